@@ -1,0 +1,147 @@
+//! Evaluation over many samples, per category and overall (the paper's Table I).
+//!
+//! For each sample: analyse first → last frame, count folds, measure RMSE and Fréchet of
+//! the predicted end (SPEC metrics), and, where `truth` is given, the angular error of f1
+//! and f2 against the first true fold.
+
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+
+use serde::Serialize;
+
+use crate::analysis::{analyze, FrameRange};
+use crate::formats::Sample;
+
+/// The outcome for one sample.
+#[derive(Debug, Clone, Serialize)]
+pub struct SampleResult {
+    pub name: String,
+    pub category: String,
+    pub folds: usize,
+    /// Folds the sample should have (truth, else one per step).
+    pub expected_folds: usize,
+    pub rmse: Option<f64>,
+    pub frechet: Option<f64>,
+    /// Angular error of f1 and f2 against the true first fold, radians.
+    pub angle_error: Option<[f64; 2]>,
+    pub error: Option<String>,
+}
+
+/// Mean and population variance.
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct Stat {
+    pub mean: f64,
+    pub var: f64,
+}
+
+impl Stat {
+    fn of(values: &[f64]) -> Option<Stat> {
+        if values.is_empty() {
+            return None;
+        }
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / values.len() as f64;
+        Some(Stat { mean, var })
+    }
+}
+
+/// One row of the table.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub category: String,
+    pub count: usize,
+    pub rmse: Option<Stat>,
+    pub frechet: Option<Stat>,
+    /// Samples whose fold count differs from what they should have.
+    pub fold_count_misses: usize,
+    pub errors: usize,
+    pub f1_error: Option<Stat>,
+    pub f2_error: Option<Stat>,
+}
+
+/// The whole evaluation.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    pub categories: Vec<Summary>,
+    pub overall: Summary,
+    pub samples: Vec<SampleResult>,
+}
+
+fn angle_diff(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
+/// Evaluate one sample.
+pub fn evaluate(sample: &Sample) -> SampleResult {
+    let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
+    let mut result = SampleResult {
+        name: sample.name.clone(),
+        category: if sample.category.is_empty() { "uncategorised".into() } else { sample.category.clone() },
+        folds: 0,
+        expected_folds: truth_folds.as_ref().map_or(sample.frames.len().saturating_sub(1), Vec::len),
+        rmse: None,
+        frechet: None,
+        angle_error: None,
+        error: None,
+    };
+    match sample.border_frames().and_then(|b| analyze(&b, FrameRange::default())) {
+        Ok(a) => {
+            result.folds = a.folds.len();
+            result.rmse = a.metrics.map(|m| m.rmse);
+            result.frechet = a.metrics.map(|m| m.frechet);
+            if let (Some(found), Some(truth)) = (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first())) {
+                result.angle_error = Some([angle_diff(found[0], truth[0]), angle_diff(found[1], truth[1])]);
+            }
+        }
+        Err(e) => result.error = Some(e.to_string()),
+    }
+    result
+}
+
+fn summarise(category: &str, results: &[&SampleResult]) -> Summary {
+    let pick = |f: &dyn Fn(&SampleResult) -> Option<f64>| Stat::of(&results.iter().filter_map(|r| f(r)).collect::<Vec<_>>());
+    Summary {
+        category: category.to_string(),
+        count: results.len(),
+        rmse: pick(&|r| r.rmse),
+        frechet: pick(&|r| r.frechet),
+        fold_count_misses: results.iter().filter(|r| r.error.is_none() && r.folds != r.expected_folds).count(),
+        errors: results.iter().filter(|r| r.error.is_some()).count(),
+        f1_error: pick(&|r| r.angle_error.map(|a| a[0])),
+        f2_error: pick(&|r| r.angle_error.map(|a| a[1])),
+    }
+}
+
+/// Build the report from per-sample results.
+pub fn report(samples: Vec<SampleResult>) -> Report {
+    let mut by_category: BTreeMap<&str, Vec<&SampleResult>> = BTreeMap::new();
+    for r in &samples {
+        by_category.entry(r.category.as_str()).or_default().push(r);
+    }
+    let categories = by_category.iter().map(|(c, rs)| summarise(c, rs)).collect();
+    let overall = summarise("overall", &samples.iter().collect::<Vec<_>>());
+    Report { categories, overall, samples }
+}
+
+impl Report {
+    /// The table as aligned text.
+    pub fn table(&self) -> String {
+        let fmt = |s: Option<Stat>, scale: f64| s.map_or(("-".to_string(), "-".to_string()), |s| (format!("{:.4}", s.mean * scale), format!("{:.5}", s.var * scale * scale)));
+        let mut out = format!(
+            "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
+            "category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "f1 err°", "f2 err°"
+        );
+        for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
+            let (rm, rv) = fmt(s.rmse, 1.0);
+            let (fm, fv) = fmt(s.frechet, 1.0);
+            let (a1, _) = fmt(s.f1_error, 180.0 / PI);
+            let (a2, _) = fmt(s.f2_error, 180.0 / PI);
+            out.push_str(&format!(
+                "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
+                s.category, s.count, rm, rv, fm, fv, s.fold_count_misses, s.errors, a1, a2
+            ));
+        }
+        out
+    }
+}

@@ -1,0 +1,59 @@
+//! Plain text / CSV borders: one vertex per line, `x,y,z` or `x y z` (tabs and `;` too).
+//! Blank lines and lines starting with `#` are skipped; one header line of words is allowed.
+//!
+//! ```
+//! use close::formats::text::parse_frame;
+//! let frame = parse_frame("x,y,z\n0,0,0\n1 0 0\n1,1,0\n# a comment\n0,1,0\n").unwrap();
+//! assert_eq!(frame.len(), 4);
+//! assert!(parse_frame("0,0,0\n1,zero,0\n").unwrap_err().to_string().contains("line 2"));
+//! ```
+
+use super::MAX_FILE_BYTES;
+use crate::border::MAX_VERTICES;
+use crate::error::{Error, Result};
+
+/// Parse one frame of vertices.
+pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
+    if text.len() > MAX_FILE_BYTES {
+        return Err(Error::TooLarge(format!("{} bytes of text (at most {MAX_FILE_BYTES})", text.len())));
+    }
+    let mut out = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
+        let numbers: Vec<f64> = match fields.iter().map(|f| f.parse::<f64>()).collect::<Result<_, _>>() {
+            Ok(numbers) => numbers,
+            // A header line of words before any vertex.
+            Err(_) if out.is_empty() && fields.iter().all(|f| f.chars().all(char::is_alphabetic)) => continue,
+            Err(_) => return Err(Error::parse("text", format!("line {}: {line:?} is not three numbers", k + 1))),
+        };
+        if numbers.len() != 3 {
+            return Err(Error::parse("text", format!("line {}: expected x,y,z but found {} values", k + 1, numbers.len())));
+        }
+        if out.len() >= MAX_VERTICES + 1 {
+            return Err(Error::TooLarge(format!("more than {MAX_VERTICES} vertices")));
+        }
+        out.push([numbers[0], numbers[1], numbers[2]]);
+    }
+    if out.is_empty() {
+        return Err(Error::Empty("the text file holds no vertex".into()));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_lines_are_named() {
+        assert!(matches!(parse_frame(""), Err(Error::Empty(_))));
+        assert!(parse_frame("1,2\n").unwrap_err().to_string().contains("line 1"));
+        assert!(parse_frame("0 0 0\n1 2 3 4\n").unwrap_err().to_string().contains("4 values"));
+        // NaN parses as a number here; the border check names it.
+        assert!(parse_frame("nan,0,0\n").unwrap()[0][0].is_nan());
+    }
+}

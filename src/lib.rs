@@ -1,0 +1,22 @@
+//! CloSE: a geometric, shape-agnostic cloth state representation.
+//!
+//! From a cloth's border before and after a fold this crate computes the dGLI disks
+//! ([`disk`]), the corners and fold coordinates ([`close`], [`fold`]), a plain-words label
+//! ([`label`]), the predicted folded border and its error ([`metrics`]); [`analysis`] runs
+//! the whole pipeline.
+
+pub mod analysis;
+pub mod border;
+pub mod close;
+pub mod disk;
+pub mod error;
+pub mod eval;
+pub mod fold;
+pub mod formats;
+pub mod gli;
+pub mod label;
+pub mod metrics;
+
+pub use analysis::{analyze, Analysis, FrameRange};
+pub use error::{Error, Result};
+pub use formats::Sample;
