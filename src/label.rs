@@ -268,7 +268,7 @@ mod tests {
         assert_eq!(class(12.0, 26.0), FoldClass::CornerFolded);
         assert_eq!(class(5.32, 44.84), FoldClass::FoldedInHalfAskew);
         assert_eq!(class(52.25, 4.75), FoldClass::OneSideFolded);
-        assert_eq!(class(50.0, 7.0), FoldClass::OneSideAskew);
+        assert_eq!(class(55.0, 7.0), FoldClass::OneSideAskew);
     }
 
     #[test]
