@@ -46,6 +46,8 @@ pub struct Analysis {
     pub folds: Vec<[f64; 2]>,
     pub label: Label,
     pub border_indices: Vec<usize>,
+    /// Where the border came from ("border", "mesh boundary loop", "mesh silhouette", …).
+    pub border_source: String,
     /// True when the input was clockwise and was walked the other way.
     pub reversed: bool,
     pub warnings: Vec<String>,
@@ -114,6 +116,7 @@ pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
         folds,
         label,
         border_indices: sample.border_indices.clone(),
+        border_source: sample.source.clone(),
         reversed: sample.reversed,
         warnings: sample.warnings.clone(),
         start_frame: start,

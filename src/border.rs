@@ -100,6 +100,8 @@ pub struct BorderFrames {
     pub reversed: bool,
     /// What was repaired on the way (closing vertex dropped, duplicates merged).
     pub warnings: Vec<String>,
+    /// Where the border came from: "border" (given as such) or how a mesh gave it.
+    pub source: String,
 }
 
 impl BorderFrames {
@@ -184,7 +186,7 @@ pub fn prepare(raw: Vec<Vec<[f64; 3]>>) -> Result<BorderFrames> {
         .iter()
         .map(|frame| kept.iter().map(|&k| Point::new(frame[k][0], frame[k][1], frame[k][2])).collect())
         .collect();
-    Ok(BorderFrames { frames, border_indices: kept, reversed, warnings })
+    Ok(BorderFrames { frames, border_indices: kept, reversed, warnings, source: "border".into() })
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@ pub mod fold;
 pub mod formats;
 pub mod gli;
 pub mod label;
+pub mod mesh;
 pub mod metrics;
 
 pub use analysis::{analyze, Analysis, FrameRange};
