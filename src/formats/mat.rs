@@ -108,7 +108,7 @@ impl Endian {
             9 | 12 | 13 => 8,
             other => return Err(bad(format!("data type {other} where numbers were expected"))),
         };
-        if b.len() % size != 0 {
+        if !b.len().is_multiple_of(size) {
             return Err(bad(format!("{} bytes is not a whole number of {size}-byte values", b.len())));
         }
         let word = |c: &[u8]| -> [u8; 8] {
@@ -252,9 +252,11 @@ impl Endian {
         }
         let mut data = vec![0.0; cells];
         for c in 0..cols {
-            for k in jc[c]..jc[c + 1] {
-                let r = *ir.get(k).filter(|&&r| r < rows).ok_or_else(|| corrupt("row index out of range"))?;
-                data[c * rows + r] = pr[k];
+            for (&r, &value) in ir[jc[c]..jc[c + 1]].iter().zip(&pr[jc[c]..jc[c + 1]]) {
+                if r >= rows {
+                    return Err(corrupt("row index out of range"));
+                }
+                data[c * rows + r] = value;
             }
         }
         Ok(Value::Matrix { dims, data })

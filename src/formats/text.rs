@@ -33,7 +33,7 @@ pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
         if numbers.len() != 3 {
             return Err(Error::parse("text", format!("line {}: expected x,y,z but found {} values", k + 1, numbers.len())));
         }
-        if out.len() >= MAX_VERTICES + 1 {
+        if out.len() > MAX_VERTICES {
             return Err(Error::TooLarge(format!("more than {MAX_VERTICES} vertices")));
         }
         out.push([numbers[0], numbers[1], numbers[2]]);

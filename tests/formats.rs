@@ -1,0 +1,389 @@
+//! Readers and mesh borders end to end: meshes made here (grid napkins and towels, a flat
+//! T-shirt, a two-layer T-shirt shell with openings) folded by reflection, written as OBJ
+//! and PLY, and the scipy-written `.mat` fixtures; each must give the same CloSE as the
+//! equivalent border sample. Then every parser is fuzzed with arbitrary and mutated bytes.
+
+use std::collections::HashSet;
+
+use close::border::Point;
+use close::fold::reflect::reflect_xy;
+use close::formats::{read_files, MeshFrames, Sample};
+use close::{analyze, Analysis, Error, FrameRange};
+use proptest::prelude::*;
+
+const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/formats");
+
+/// A grid of (w+1)×(h+1) vertices, id = j·(w+1) + i, with quads or triangles.
+fn grid(w: usize, h: usize, keep: impl Fn(usize, usize) -> bool, triangles: bool) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
+    let id = |i: usize, j: usize| j * (w + 1) + i;
+    let v = (0..=h).flat_map(|j| (0..=w).map(move |i| [i as f64, j as f64, 0.0])).collect();
+    let mut faces = Vec::new();
+    for j in 0..h {
+        for i in 0..w {
+            if !keep(i, j) {
+                continue;
+            }
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if triangles {
+                faces.extend([vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]]);
+            } else {
+                faces.push(q.to_vec());
+            }
+        }
+    }
+    (v, faces)
+}
+
+/// Fold: every vertex left of the directed line a→b (in XY) is reflected across it and
+/// stacked: z ↦ top − z.
+fn fold(vertices: &[[f64; 3]], a: [f64; 2], b: [f64; 2], top: f64) -> Vec<[f64; 3]> {
+    let (pa, pb) = (Point::new(a[0], a[1], 0.0), Point::new(b[0], b[1], 0.0));
+    vertices
+        .iter()
+        .map(|v| {
+            let side = (b[0] - a[0]) * (v[1] - a[1]) - (b[1] - a[1]) * (v[0] - a[0]);
+            if side > 1e-9 {
+                let r = reflect_xy(&Point::new(v[0], v[1], v[2]), &pa, &pb);
+                [r.x, r.y, top - v[2]]
+            } else {
+                *v
+            }
+        })
+        .collect()
+}
+
+/// Integer points walked anticlockwise along a polygon with axis-parallel sides.
+fn ring(corners: &[[i64; 2]]) -> Vec<[i64; 2]> {
+    let mut out = Vec::new();
+    for k in 0..corners.len() {
+        let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+        let steps = (b[0] - a[0]).abs().max((b[1] - a[1]).abs());
+        out.extend((0..steps).map(|s| [a[0] + (b[0] - a[0]).signum() * s, a[1] + (b[1] - a[1]).signum() * s]));
+    }
+    out
+}
+
+fn mesh_sample(faces: Vec<Vec<usize>>, frames: Vec<Vec<[f64; 3]>>) -> Sample {
+    Sample { name: "mesh".into(), category: "test".into(), frames: Vec::new(), mesh: Some(MeshFrames::new(faces, frames)), truth: None }
+}
+
+fn border_sample(ids: &[usize], frames: &[Vec<[f64; 3]>]) -> Sample {
+    Sample::from_frames("border", "test", frames.iter().map(|f| ids.iter().map(|&k| f[k]).collect()).collect())
+}
+
+fn analysis(sample: &Sample) -> Analysis {
+    analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap()
+}
+
+/// Same corners and folds (to `tol` radians), and the mesh's border indices are the ids.
+fn assert_same_close(mesh: &Analysis, border: &Analysis, ids: &[usize], tol: f64) {
+    let expected: Vec<usize> = border.border_indices.iter().map(|&k| ids[k]).collect();
+    assert_eq!(mesh.border_indices, expected);
+    assert_eq!(mesh.corners, border.corners);
+    assert_eq!(mesh.folds.len(), border.folds.len());
+    for (m, b) in mesh.folds.iter().zip(&border.folds) {
+        for k in 0..2 {
+            let d = (m[k] - b[k]).rem_euclid(std::f64::consts::TAU);
+            assert!(d.min(std::f64::consts::TAU - d) < tol, "{:?} vs {:?}", mesh.folds, border.folds);
+        }
+    }
+}
+
+#[test]
+fn napkin_and_towel_meshes_match_their_border_samples() {
+    // (width, height, fold line, triangles): a half fold, a diagonal corner fold, a towel.
+    let cases = [
+        (10, 10, [[5.0, 0.0], [5.0, 10.0]], false),
+        (10, 10, [[10.0, 4.0], [4.0, 10.0]], true),
+        (16, 8, [[6.0, 8.0], [6.0, 0.0]], true),
+    ];
+    for (w, h, line, triangles) in cases {
+        let (flat, faces) = grid(w, h, |_, _| true, triangles);
+        let frames = vec![flat.clone(), fold(&flat, line[0], line[1], 0.05)];
+        let ids: Vec<usize> = ring(&[[0, 0], [w as i64, 0], [w as i64, h as i64], [0, h as i64]])
+            .iter()
+            .map(|p| p[1] as usize * (w + 1) + p[0] as usize)
+            .collect();
+        let mesh = analysis(&mesh_sample(faces, frames.clone()));
+        let border = analysis(&border_sample(&ids, &frames));
+        assert_eq!(mesh.border_source, "mesh boundary loop");
+        assert_eq!(border.border_source, "border");
+        assert_same_close(&mesh, &border, &ids, 1e-9);
+        assert_eq!(mesh.corners.len(), 4, "{w}×{h}");
+        assert_eq!(mesh.folds.len(), 1, "{w}×{h} {line:?}");
+    }
+}
+
+/// The T-shirt outline (anticlockwise from the hem's left end) on a 10×8 grid, and its
+/// openings: neck, sleeve ends, hem (the outline points strictly inside them).
+const SHIRT: [[i64; 2]; 8] = [[2, 0], [8, 0], [8, 5], [10, 5], [10, 8], [0, 8], [0, 5], [2, 5]];
+
+fn in_shirt(i: usize, j: usize) -> bool {
+    (2..8).contains(&i) || j >= 5
+}
+
+fn in_opening(p: [i64; 2]) -> bool {
+    (p[1] == 8 && (4..=6).contains(&p[0])) || (p[1] == 0 && (3..=7).contains(&p[0])) || ((p[0] == 0 || p[0] == 10) && (6..=7).contains(&p[1]))
+}
+
+#[test]
+fn a_flat_triangulated_garment_uses_its_boundary_loop() {
+    let (flat, faces) = grid(10, 8, in_shirt, true);
+    let ids: Vec<usize> = ring(&SHIRT).iter().map(|p| p[1] as usize * 11 + p[0] as usize).collect();
+    // Fold the left sleeve over the body.
+    let frames = vec![flat.clone(), fold(&flat, [2.0, 8.0], [2.0, 0.0], 0.05)];
+    let mesh = analysis(&mesh_sample(faces, frames.clone()));
+    assert_eq!(mesh.border_source, "mesh boundary loop");
+    assert_same_close(&mesh, &analysis(&border_sample(&ids, &frames)), &ids, 1e-9);
+}
+
+/// A two-layer shell: the back panel is the flat shirt (z = 0), the front a copy at z = h
+/// sharing the seam vertices (outline points outside the openings, at z = h/2); the
+/// openings' points exist twice, so each opening is a boundary loop of the shell.
+fn shirt_shell(h: f64) -> (Vec<[f64; 3]>, Vec<Vec<usize>>, Vec<usize>) {
+    let (back, back_faces) = grid(10, 8, in_shirt, true);
+    let outline = ring(&SHIRT);
+    let seam: HashSet<usize> = outline.iter().filter(|p| !in_opening(**p)).map(|p| p[1] as usize * 11 + p[0] as usize).collect();
+    let mut vertices: Vec<[f64; 3]> = back.iter().enumerate().map(|(k, v)| [v[0], v[1], if seam.contains(&k) { h / 2.0 } else { 0.0 }]).collect();
+    let front: Vec<usize> = (0..back.len())
+        .map(|k| {
+            if seam.contains(&k) {
+                k
+            } else {
+                vertices.push([back[k][0], back[k][1], h]);
+                vertices.len() - 1
+            }
+        })
+        .collect();
+    let mut faces = back_faces.clone();
+    faces.extend(back_faces.iter().map(|f| f.iter().rev().map(|&k| front[k]).collect()));
+    // What the silhouette should find: the outline, seen on the front layer.
+    let border = outline.iter().map(|p| front[p[1] as usize * 11 + p[0] as usize]).collect();
+    (vertices, faces, border)
+}
+
+#[test]
+fn a_garment_shell_uses_the_silhouette_and_matches_its_outline() {
+    let (flat, faces, ids) = shirt_shell(0.1);
+    // Hem folded up over the body (the shell flips: z ↦ 0.3 − z keeps it on top).
+    let frames = vec![flat.clone(), fold(&flat, [10.0, 3.0], [0.0, 3.0], 0.3)];
+    let sample = mesh_sample(faces, frames.clone());
+    let b = sample.border_frames().unwrap();
+    assert_eq!(b.source, "mesh silhouette");
+    let mesh = analysis(&sample);
+    let border = analysis(&border_sample(&ids, &frames));
+    assert_same_close(&mesh, &border, &ids, 1e-9);
+    assert_eq!(mesh.folds.len(), 1, "{:?}", mesh.folds);
+}
+
+#[test]
+fn a_coarser_epsilon_cover_still_gives_the_same_close() {
+    // A fine shell (ε-cover thins its outline): compare with every second outline point.
+    let (flat, faces, ids) = shirt_shell(0.1);
+    let scale = |f: &Vec<[f64; 3]>| f.iter().map(|v| [v[0] * 0.05, v[1] * 0.05, v[2] * 0.05]).collect::<Vec<_>>();
+    let frames = vec![scale(&flat), scale(&fold(&flat, [2.0, 8.0], [2.0, 0.0], 0.3))];
+    let mesh = analysis(&mesh_sample(faces, frames.clone()));
+    assert_eq!(mesh.border_source, "mesh silhouette");
+    // Scaling does not change the ε-cover (normalised units): same border as before.
+    let border = analysis(&border_sample(&ids, &frames));
+    assert_same_close(&mesh, &border, &ids, 1e-9);
+}
+
+// ---- Files: OBJ, PLY (ASCII and binary), MATLAB ----
+
+fn obj(v: &[[f64; 3]], faces: &[Vec<usize>]) -> Vec<u8> {
+    let mut s = String::from("# napkin\no cloth\n");
+    v.iter().for_each(|p| s += &format!("v {} {} {}\n", p[0], p[1], p[2]));
+    faces.iter().for_each(|f| s += &format!("f {}\n", f.iter().map(|k| format!("{}//1", k + 1)).collect::<Vec<_>>().join(" ")));
+    s.into_bytes()
+}
+
+fn ply(v: &[[f64; 3]], faces: &[Vec<usize>], format: &str) -> Vec<u8> {
+    let mut out = format!(
+        "ply\nformat {format} 1.0\ncomment made by tests/formats.rs\nelement vertex {}\nproperty double x\nproperty double y\nproperty float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        v.len(),
+        faces.len()
+    )
+    .into_bytes();
+    let big = format == "binary_big_endian";
+    for p in v {
+        match format {
+            "ascii" => out.extend(format!("{} {} {}\n", p[0], p[1], p[2]).bytes()),
+            _ if big => out.extend([p[0].to_be_bytes().to_vec(), p[1].to_be_bytes().to_vec(), (p[2] as f32).to_be_bytes().to_vec()].concat()),
+            _ => out.extend([p[0].to_le_bytes().to_vec(), p[1].to_le_bytes().to_vec(), (p[2] as f32).to_le_bytes().to_vec()].concat()),
+        }
+    }
+    for f in faces {
+        if format == "ascii" {
+            out.extend(format!("{} {}\n", f.len(), f.iter().map(|k| k.to_string()).collect::<Vec<_>>().join(" ")).bytes());
+        } else {
+            out.push(f.len() as u8);
+            f.iter().for_each(|&k| out.extend(if big { (k as i32).to_be_bytes() } else { (k as i32).to_le_bytes() }));
+        }
+    }
+    out
+}
+
+#[test]
+fn obj_and_ply_frames_read_as_one_mesh_sample() {
+    let (flat, faces) = grid(8, 8, |_, _| true, false);
+    let folded = fold(&flat, [8.0, 3.0], [0.0, 3.0], 0.0625);
+    let expected = MeshFrames::new(faces.clone(), vec![flat.clone(), folded.clone()]);
+    type Writer<'a> = &'a dyn Fn(&[[f64; 3]]) -> Vec<u8>;
+    let writers: [(&str, Writer); 4] = [
+        ("obj", &|v| obj(v, &faces)),
+        ("ply", &|v| ply(v, &faces, "ascii")),
+        ("ply", &|v| ply(v, &faces, "binary_little_endian")),
+        ("ply", &|v| ply(v, &faces, "binary_big_endian")),
+    ];
+    for (ext, write) in writers {
+        let files = vec![(format!("a/f0.{ext}"), write(&flat)), (format!("a/f1.{ext}"), write(&folded))];
+        let sample = read_files(&files).unwrap();
+        assert_eq!(sample.mesh.as_ref(), Some(&expected), "{ext}");
+        assert_eq!(sample.name, format!("f0.{ext}"));
+        assert_eq!(analysis(&sample).folds.len(), 1);
+    }
+    // A frame with another vertex count is named.
+    let files = vec![("f0.obj".to_string(), obj(&flat, &faces)), ("f1.obj".to_string(), obj(&flat[1..], &[]))];
+    let err = read_files(&files).unwrap_err().to_string();
+    assert!(err.contains("f1.obj has 80 vertices") && err.contains("f0.obj has 81"), "{err}");
+    // OBJ then PLY frames mix; a text file does not.
+    let mixed = vec![("f0.obj".to_string(), obj(&flat, &faces)), ("f1.ply".to_string(), ply(&folded, &faces, "ascii"))];
+    assert_eq!(read_files(&mixed).unwrap().mesh.unwrap(), expected);
+    let bad = vec![("f0.obj".to_string(), obj(&flat, &faces)), ("f1.txt".to_string(), b"0 0 0\n".to_vec())];
+    assert!(read_files(&bad).unwrap_err().to_string().contains(".txt"));
+}
+
+fn fixture(name: &str) -> (String, Vec<u8>) {
+    (name.to_string(), std::fs::read(format!("{FIXTURES}/{name}")).unwrap())
+}
+
+#[test]
+fn scipy_mat_files_dense_sparse_compressed_or_not() {
+    let samples: Vec<Sample> = ["napkin_dense.mat", "napkin_dense_compressed.mat", "napkin_sparse.mat", "napkin_sparse_compressed.mat"]
+        .iter()
+        .map(|f| read_files(&[fixture(f)]).unwrap())
+        .collect();
+    let mesh = samples[0].mesh.clone().unwrap();
+    for s in &samples {
+        assert_eq!(s.mesh.as_ref().unwrap().frames, mesh.frames);
+        assert_eq!(s.mesh.as_ref().unwrap().border_edges, mesh.border_edges);
+    }
+    // The script's grid: vertex id = 4j + i, frame 1 folds x > 1.5 over x = 1.5.
+    assert_eq!(mesh.frames.len(), 2);
+    assert_eq!(mesh.frames[0][6], [2.0, 1.0, 0.0]);
+    assert_eq!(mesh.frames[1][7], [0.0, 1.0, 0.05]);
+    let ids = [0, 1, 2, 3, 7, 11, 15, 14, 13, 12, 8, 4];
+    let b = samples[3].border_frames().unwrap();
+    assert_eq!(b.source, "mesh border edges");
+    assert_eq!(b.border_indices, ids);
+    let m = analysis(&samples[3]);
+    assert_same_close(&m, &analysis(&border_sample(&ids, &mesh.frames)), &ids, 1e-9);
+}
+
+#[test]
+fn mat_files_with_wrong_variables_are_named() {
+    let err = read_files(&[fixture("wrong_names.mat")]).unwrap_err().to_string();
+    assert!(err.contains("wrong_names.mat") && err.contains("phiPositions") && err.contains("positions"), "{err}");
+    let err = read_files(&[fixture("open_border.mat")]).unwrap().border_frames().unwrap_err().to_string();
+    assert!(err.contains("do not close up"), "{err}");
+    let mut v73 = fixture("napkin_dense.mat");
+    v73.1[..10].copy_from_slice(b"MATLAB 7.3");
+    assert!(read_files(&[v73]).unwrap_err().to_string().contains("HDF5"));
+}
+
+#[test]
+fn bad_meshes_are_clear_errors() {
+    let (flat, faces) = grid(3, 3, |_, _| true, false);
+    let with_faces = |extra: Vec<Vec<usize>>| {
+        let mut f = faces.clone();
+        f.extend(extra);
+        mesh_sample(f, vec![flat.clone()]).border_frames().unwrap_err()
+    };
+    assert!(with_faces(vec![vec![0, 1, 16]]).to_string().contains("vertex 16"));
+    assert!(with_faces(vec![vec![0, 1, 7], vec![1, 0, 9]]).to_string().contains("non-manifold"));
+    let no_faces = mesh_sample(Vec::new(), vec![flat.clone()]).border_frames().unwrap_err();
+    assert!(matches!(no_faces, Error::Mesh(_)));
+    let json = br#"{"mesh": {"faces": [[0, 1, 2]], "frames": [[[0,0,0],[1,0,0],[0,1,0]]]}}"#;
+    let s = read_files(&[("t.json".into(), json.to_vec())]).unwrap();
+    assert!(s.border_frames().unwrap_err().to_string().contains("too few"));
+    let huge = b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+    assert!(matches!(read_files(&[("h.ply".into(), huge.to_vec())]), Err(Error::Parse { .. } | Error::TooLarge(_))));
+}
+
+// ---- Fuzzing: no input may panic ----
+
+/// Every reader, then the border, on one named file.
+fn read_everything(name: &str, bytes: &[u8]) {
+    if let Ok(sample) = read_files(&[(name.to_string(), bytes.to_vec())]) {
+        if let Ok(b) = sample.border_frames() {
+            let _ = analyze(&b, FrameRange::default());
+        }
+    }
+}
+
+fn valid_files() -> Vec<(&'static str, Vec<u8>)> {
+    let (v, f) = grid(3, 3, |_, _| true, true);
+    vec![
+        ("x.obj", obj(&v, &f)),
+        ("x.ply", ply(&v, &f, "ascii")),
+        ("x.ply", ply(&v, &f, "binary_little_endian")),
+        ("x.ply", ply(&v, &f, "binary_big_endian")),
+        ("x.mat", fixture("napkin_sparse.mat").1),
+        ("x.mat", fixture("napkin_sparse_compressed.mat").1),
+        ("x.mat", fixture("napkin_dense_compressed.mat").1),
+        ("x.json", br#"{"mesh": {"faces": [[0,1,2,3]], "frames": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}}"#.to_vec()),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..600), ext in prop::sample::select(vec!["obj", "ply", "mat", "json", "txt"])) {
+        read_everything(&format!("x.{ext}"), &bytes);
+    }
+
+    #[test]
+    fn headed_garbage_never_panics(body in proptest::collection::vec(any::<u8>(), 0..600), which in 0usize..3) {
+        // Past the magic, so the parsers' inner paths are reached.
+        let (name, head): (&str, Vec<u8>) = match which {
+            0 => ("x.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n".to_vec()),
+            1 => ("x.mat", fixture("napkin_dense.mat").1[..128].to_vec()),
+            _ => ("x.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n".to_vec()),
+        };
+        read_everything(name, &[head, body].concat());
+    }
+
+    #[test]
+    fn mutated_valid_files_never_panic(
+        which in 0usize..8,
+        edits in proptest::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 1..8),
+        cut in any::<prop::sample::Index>(),
+        truncate in any::<bool>(),
+    ) {
+        let (name, mut bytes) = valid_files().swap_remove(which);
+        for (at, byte) in edits {
+            let k = at.index(bytes.len());
+            bytes[k] = byte;
+        }
+        if truncate {
+            bytes.truncate(cut.index(bytes.len()));
+        }
+        read_everything(name, &bytes);
+    }
+
+    #[test]
+    fn random_meshes_never_panic(
+        n in 3usize..30,
+        faces in proptest::collection::vec(proptest::collection::vec(0usize..32, 3..5), 0..40),
+        coords in proptest::collection::vec(-2.0f64..2.0, 90),
+    ) {
+        let v: Vec<[f64; 3]> = (0..n).map(|k| [coords[3 * k], coords[3 * k + 1], coords[3 * k + 2] * 0.1]).collect();
+        if let Ok(b) = mesh_sample(faces, vec![v.clone(), v]).border_frames() {
+            prop_assert!(b.border_indices.iter().all(|&k| k < n));
+            let unique: HashSet<_> = b.border_indices.iter().collect();
+            prop_assert_eq!(unique.len(), b.border_indices.len());
+        }
+    }
+}
