@@ -336,8 +336,13 @@ fn valid_files() -> Vec<(&'static str, Vec<u8>)> {
     ]
 }
 
+/// Cases per fuzz property: 2000 in a normal run, `FUZZ_CASES=N` for a longer campaign.
+fn fuzz_cases() -> u32 {
+    std::env::var("FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(2000)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: fuzz_cases(), ..ProptestConfig::default() })]
 
     #[test]
     fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..600), ext in prop::sample::select(vec!["obj", "ply", "mat", "json", "txt"])) {
