@@ -13,7 +13,7 @@ use crate::border::{BorderFrames, Normalisation, Point};
 use crate::close::{corners, Corners};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::{detect, reflect::apply_fold, FoldDetection};
+use crate::fold::{detect, reflect::apply_fold, FoldDetection, FoldMethod};
 use crate::label::{label, Label};
 use crate::metrics::Metrics;
 
@@ -22,6 +22,13 @@ use crate::metrics::Metrics;
 pub struct FrameRange {
     pub start: Option<usize>,
     pub end: Option<usize>,
+}
+
+/// How to analyse: which frames, and how fold points are chosen.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Options {
+    pub frames: FrameRange,
+    pub method: FoldMethod,
 }
 
 /// One step between consecutive frames.
@@ -79,6 +86,12 @@ fn to_array(p: &Point3<f64>) -> [f64; 3] {
 
 /// Analyse frames `range` of a prepared sample.
 pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
+    analyze_with(sample, Options { frames: range, ..Options::default() })
+}
+
+/// Analyse with explicit [`Options`].
+pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis> {
+    let range = options.frames;
     let last = sample.frames.len() - 1;
     let start = range.start.unwrap_or(0);
     let end = range.end.unwrap_or(last);
@@ -95,7 +108,7 @@ pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
     let steps: Vec<Step> = disks
         .windows(2)
         .enumerate()
-        .map(|(k, pair)| Step { from_frame: start + k, to_frame: start + k + 1, detection: detect(&pair[0], &pair[1]) })
+        .map(|(k, pair)| Step { from_frame: start + k, to_frame: start + k + 1, detection: detect(&pair[0], &pair[1], options.method) })
         .collect();
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
     let predicted = folds.iter().fold(start_border.clone(), |border, &f| apply_fold(&border, f));

@@ -9,7 +9,8 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use crate::analysis::{analyze, FrameRange};
+use crate::analysis::{analyze_with, Options};
+use crate::fold::FoldMethod;
 use crate::formats::Sample;
 
 /// The outcome for one sample.
@@ -72,8 +73,13 @@ fn angle_diff(a: f64, b: f64) -> f64 {
     d.min(2.0 * PI - d)
 }
 
-/// Evaluate one sample.
+/// Evaluate one sample with the default fold method.
 pub fn evaluate(sample: &Sample) -> SampleResult {
+    evaluate_with(sample, FoldMethod::default())
+}
+
+/// Evaluate one sample, choosing fold points with `method`.
+pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
     let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
     let mut result = SampleResult {
         name: sample.name.clone(),
@@ -85,7 +91,7 @@ pub fn evaluate(sample: &Sample) -> SampleResult {
         angle_error: None,
         error: None,
     };
-    match sample.border_frames().and_then(|b| analyze(&b, FrameRange::default())) {
+    match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
         Ok(a) => {
             result.folds = a.folds.len();
             result.rmse = a.metrics.map(|m| m.rmse);
