@@ -107,3 +107,17 @@ fn second_fold_is_read_from_its_own_step() {
     assert_eq!(a.folds.len(), 2, "{:?}", a.steps.iter().map(|s| s.detection.cut).collect::<Vec<_>>());
     assert!(a.label.text.contains("Fold 2"));
 }
+
+#[test]
+fn noise_without_a_fold_is_no_fold() {
+    let start = napkin(19);
+    let mut state = 7u64;
+    let mut noise = || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.01
+    };
+    let end: Vec<[f64; 3]> = start.iter().map(|p| [p[0] + noise(), p[1] + noise(), p[2] + noise()]).collect();
+    let a = run(vec![start, end]);
+    assert!(a.folds.is_empty(), "{:?}", a.steps[0].detection.cut);
+    assert!(a.label.text.contains("not folded"));
+}
