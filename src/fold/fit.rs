@@ -67,6 +67,7 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
     let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7).with_tolerance_grad(1e-9).ok()?.with_tolerance_cost(1e-12).ok()?;
     let result = Executor::new(Problem(tables), solver)
         .configure(|state| state.param(vec![a0, 0.0]).max_iters(200))
+        .timer(false)
         .run()
         .ok()?;
     let state = result.state();
@@ -138,6 +139,7 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> O
     let solver = BrentOpt::new(lo, hi);
     Executor::new(RimProblem { cells: &near }, solver)
         .configure(|state| state.max_iters(100))
+        .timer(false)
         .run()
         .ok()
         .and_then(|r| r.state().get_best_param().copied())
