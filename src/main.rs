@@ -132,6 +132,7 @@ fn run_eval(paths: &[PathBuf], json: bool, method: FoldMethod) -> Result<(), Str
                     frechet: None,
                     angle_error: None,
                     error: Some(e),
+                    steps: Vec::new(),
                 },
             };
             bar.inc(1);

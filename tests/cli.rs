@@ -124,3 +124,32 @@ fn eval_prints_a_table_per_category() {
     assert_eq!(v["overall"]["count"], 1);
     assert_eq!(v["overall"]["fold_count_misses"], 0);
 }
+
+#[test]
+fn eval_scores_second_folds_apart() {
+    let dir = tempdir::Dir::new("cli-second");
+    let start = napkin(19);
+    let first = fold_frame(&start, 9.5, 47.5);
+    // Then the bottom-left corner of the folded cloth (a single layer there).
+    let second = fold_frame(&first, 66.5, 5.0);
+    let n = start.len() as f64;
+    let angle = |f: f64| 2.0 * std::f64::consts::PI * f / n;
+    let sample = serde_json::json!({
+        "name": "half_then_half", "category": "napkin_second_fold",
+        "frames": [start, first, second],
+        "truth": {"folds": [[angle(9.5), angle(47.5)], [angle(66.5), angle(5.0)]]},
+    });
+    write(&dir, "twice.json", sample.to_string().as_bytes());
+    let out = close(&["eval", dir.0.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let folds = &v["categories"][0]["by_fold"];
+    assert_eq!(folds.as_array().unwrap().len(), 2);
+    for k in 0..2 {
+        assert_eq!(folds[k]["found"], 1);
+        assert!(folds[k]["rmse"]["mean"].as_f64().unwrap() < 0.05, "{folds}");
+        assert!(folds[k]["f1_error"]["mean"].as_f64().unwrap() < 0.05, "{folds}");
+    }
+    let table = String::from_utf8(close(&["eval", dir.0.to_str().unwrap()]).stdout).unwrap();
+    assert!(table.contains("  fold 2"), "{table}");
+}
