@@ -13,7 +13,7 @@ use crate::border::{BorderFrames, Normalisation, Point};
 use crate::close::{corners, Corners};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::{detect, reflect::apply_fold, FoldDetection};
+use crate::fold::{detect, reflect::apply_fold, FoldDetection, FoldMethod};
 use crate::label::{label, Label};
 use crate::metrics::Metrics;
 
@@ -24,6 +24,13 @@ pub struct FrameRange {
     pub end: Option<usize>,
 }
 
+/// How to analyse: which frames, and how fold points are chosen.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Options {
+    pub frames: FrameRange,
+    pub method: FoldMethod,
+}
+
 /// One step between consecutive frames.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Step {
@@ -31,6 +38,9 @@ pub struct Step {
     pub to_frame: usize,
     #[serde(flatten)]
     pub detection: FoldDetection,
+    /// The start border with the folds found up to this step applied, against this
+    /// step's true end frame.
+    pub metrics: Metrics,
 }
 
 /// Everything `close analyze` reports.
@@ -81,6 +91,12 @@ fn to_array(p: &Point3<f64>) -> [f64; 3] {
 
 /// Analyse frames `range` of a prepared sample.
 pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
+    analyze_with(sample, Options { frames: range, ..Options::default() })
+}
+
+/// Analyse with explicit [`Options`].
+pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis> {
+    let range = options.frames;
     let last = sample.frames.len() - 1;
     let start = range.start.unwrap_or(0);
     let end = range.end.unwrap_or(last);
@@ -94,15 +110,20 @@ pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
     let norm = Normalisation::of(start_border)?;
     let disks: Vec<Disk> = (start..=end).into_par_iter().map(|k| Disk::of_border(&norm.apply_all(&sample.frames[k]))).collect();
     let found: Corners = corners(&disks[0]);
-    let steps: Vec<Step> = disks
-        .windows(2)
-        .enumerate()
-        .map(|(k, pair)| Step { from_frame: start + k, to_frame: start + k + 1, detection: detect(&pair[0], &pair[1]) })
-        .collect();
+    let mut predicted = start_border.clone();
+    let mut steps = Vec::with_capacity(disks.len().saturating_sub(1));
+    for (k, pair) in disks.windows(2).enumerate() {
+        let detection = detect(&pair[0], &pair[1], options.method);
+        if let Some(fold) = detection.fold {
+            predicted = apply_fold(&predicted, fold);
+        }
+        let to_frame = start + k + 1;
+        let metrics = Metrics::measure(&norm, &predicted, &sample.frames[to_frame]);
+        steps.push(Step { from_frame: start + k, to_frame, detection, metrics });
+    }
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
-    let predicted = folds.iter().fold(start_border.clone(), |border, &f| apply_fold(&border, f));
     let end_border = &sample.frames[end];
-    let metrics = (end > start).then(|| Metrics::measure(&norm, &predicted, end_border));
+    let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
     let label = label(n, &found.vertices, &folds);
     let mut disks = disks;

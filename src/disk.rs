@@ -25,7 +25,7 @@ use rayon::prelude::*;
 
 use crate::border::Point;
 use crate::error::{Error, Result};
-use crate::gli::dgli;
+use crate::gli::dgli_fast;
 
 /// Index of pair (i, j), i < j, in the condensed vector of an N-edge border.
 #[inline]
@@ -69,7 +69,7 @@ impl Disk {
         rows.into_par_iter().with_min_len(4).for_each(|(i, row)| {
             let (a, b) = (&points[i], &points[(i + 1) % n]);
             for (slot, j) in row.iter_mut().zip(i + 1..n) {
-                *slot = dgli(a, b, &points[j], &points[(j + 1) % n]);
+                *slot = dgli_fast(a, b, &points[j], &points[(j + 1) % n]);
             }
         });
         Disk { n, values }

@@ -2,14 +2,16 @@
 //!
 //! For each sample: analyse first → last frame, count folds, measure RMSE and Fréchet of
 //! the predicted end (SPEC metrics), and, where `truth` is given, the angular error of f1
-//! and f2 against the first true fold.
+//! and f2 against the true fold. Samples with several steps (a fold, then a second fold)
+//! are also scored step by step, so first and second folds get rows of their own.
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use crate::analysis::{analyze, FrameRange};
+use crate::analysis::{analyze_with, Options};
+use crate::fold::FoldMethod;
 use crate::formats::Sample;
 
 /// The outcome for one sample.
@@ -25,6 +27,18 @@ pub struct SampleResult {
     /// Angular error of f1 and f2 against the true first fold, radians.
     pub angle_error: Option<[f64; 2]>,
     pub error: Option<String>,
+    /// Step k (frame k → k+1): the prediction with the folds found so far.
+    pub steps: Vec<StepResult>,
+}
+
+/// How one step of a sample went.
+#[derive(Debug, Clone, Serialize)]
+pub struct StepResult {
+    pub fold_found: bool,
+    pub rmse: f64,
+    pub frechet: f64,
+    /// Against the step's true fold, when known.
+    pub angle_error: Option<[f64; 2]>,
 }
 
 /// Mean and population variance.
@@ -57,6 +71,21 @@ pub struct Summary {
     pub errors: usize,
     pub f1_error: Option<Stat>,
     pub f2_error: Option<Stat>,
+    /// For categories with multi-step samples: fold 1, fold 2, … scored apart.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub by_fold: Vec<FoldSummary>,
+}
+
+/// The k-th fold of every multi-step sample of a category.
+#[derive(Debug, Clone, Serialize)]
+pub struct FoldSummary {
+    pub fold: usize,
+    pub count: usize,
+    pub found: usize,
+    pub rmse: Option<Stat>,
+    pub frechet: Option<Stat>,
+    pub f1_error: Option<Stat>,
+    pub f2_error: Option<Stat>,
 }
 
 /// The whole evaluation.
@@ -72,8 +101,13 @@ fn angle_diff(a: f64, b: f64) -> f64 {
     d.min(2.0 * PI - d)
 }
 
-/// Evaluate one sample.
+/// Evaluate one sample with the default fold method.
 pub fn evaluate(sample: &Sample) -> SampleResult {
+    evaluate_with(sample, FoldMethod::default())
+}
+
+/// Evaluate one sample, choosing fold points with `method`.
+pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
     let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
     let mut result = SampleResult {
         name: sample.name.clone(),
@@ -84,23 +118,59 @@ pub fn evaluate(sample: &Sample) -> SampleResult {
         frechet: None,
         angle_error: None,
         error: None,
+        steps: Vec::new(),
     };
-    match sample.border_frames().and_then(|b| analyze(&b, FrameRange::default())) {
+    match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
         Ok(a) => {
             result.folds = a.folds.len();
             result.rmse = a.metrics.map(|m| m.rmse);
             result.frechet = a.metrics.map(|m| m.frechet);
+            let error = |found: &[f64; 2], truth: &[f64; 2]| [angle_diff(found[0], truth[0]), angle_diff(found[1], truth[1])];
             if let (Some(found), Some(truth)) = (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first())) {
-                result.angle_error = Some([angle_diff(found[0], truth[0]), angle_diff(found[1], truth[1])]);
+                result.angle_error = Some(error(found, truth));
             }
+            result.steps = a
+                .steps
+                .iter()
+                .enumerate()
+                .map(|(k, step)| StepResult {
+                    fold_found: step.detection.fold.is_some(),
+                    rmse: step.metrics.rmse,
+                    frechet: step.metrics.frechet,
+                    angle_error: step.detection.fold.zip(truth_folds.as_ref().and_then(|t| t.get(k))).map(|(f, t)| error(&f, t)),
+                })
+                .collect();
         }
         Err(e) => result.error = Some(e.to_string()),
     }
     result
 }
 
+fn stat_of<T>(items: &[T], f: impl Fn(&T) -> Option<f64>) -> Option<Stat> {
+    Stat::of(&items.iter().filter_map(f).collect::<Vec<_>>())
+}
+
+fn by_fold(results: &[&SampleResult]) -> Vec<FoldSummary> {
+    let multi: Vec<&SampleResult> = results.iter().copied().filter(|r| r.steps.len() > 1).collect();
+    let most = multi.iter().map(|r| r.steps.len()).max().unwrap_or(0);
+    (0..most)
+        .map(|k| {
+            let steps: Vec<&StepResult> = multi.iter().filter_map(|r| r.steps.get(k)).collect();
+            FoldSummary {
+                fold: k + 1,
+                count: steps.len(),
+                found: steps.iter().filter(|s| s.fold_found).count(),
+                rmse: stat_of(&steps, |s| Some(s.rmse)),
+                frechet: stat_of(&steps, |s| Some(s.frechet)),
+                f1_error: stat_of(&steps, |s| s.angle_error.map(|a| a[0])),
+                f2_error: stat_of(&steps, |s| s.angle_error.map(|a| a[1])),
+            }
+        })
+        .collect()
+}
+
 fn summarise(category: &str, results: &[&SampleResult]) -> Summary {
-    let pick = |f: &dyn Fn(&SampleResult) -> Option<f64>| Stat::of(&results.iter().filter_map(|r| f(r)).collect::<Vec<_>>());
+    let pick = |f: &dyn Fn(&SampleResult) -> Option<f64>| stat_of(results, |r| f(r));
     Summary {
         category: category.to_string(),
         count: results.len(),
@@ -110,6 +180,7 @@ fn summarise(category: &str, results: &[&SampleResult]) -> Summary {
         errors: results.iter().filter(|r| r.error.is_some()).count(),
         f1_error: pick(&|r| r.angle_error.map(|a| a[0])),
         f2_error: pick(&|r| r.angle_error.map(|a| a[1])),
+        by_fold: by_fold(results),
     }
 }
 
@@ -141,6 +212,25 @@ impl Report {
                 "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
                 s.category, s.count, rm, rv, fm, fv, s.fold_count_misses, s.errors, a1, a2
             ));
+            for f in &s.by_fold {
+                let (rm, rv) = fmt(f.rmse, 1.0);
+                let (fm, fv) = fmt(f.frechet, 1.0);
+                let (a1, _) = fmt(f.f1_error, 180.0 / PI);
+                let (a2, _) = fmt(f.f2_error, 180.0 / PI);
+                out.push_str(&format!(
+                    "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
+                    format!("  fold {}", f.fold),
+                    f.count,
+                    rm,
+                    rv,
+                    fm,
+                    fv,
+                    f.count - f.found,
+                    "",
+                    a1,
+                    a2
+                ));
+            }
         }
         out
     }

@@ -86,9 +86,80 @@ pub fn dgli(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
     }
 }
 
+/// Van Oosterom–Strackee: the solid angle Ω of the spherical triangle (u1, u2, u3) of unit
+/// vectors is 2·arg(X + iY) with Y = u1·(u2×u3), X = 1 + u1·u2 + u2·u3 + u3·u1.
+#[inline(always)]
+fn triangle(u1: &Vector3<f64>, u2: &Vector3<f64>, u3: &Vector3<f64>) -> (f64, f64) {
+    (1.0 + u1.dot(u2) + u2.dot(u3) + u3.dot(u1), u1.dot(&u2.cross(u3)))
+}
+
+/// Complex product: arguments add.
+#[inline(always)]
+fn mul((a, b): (f64, f64), (c, d): (f64, f64)) -> (f64, f64) {
+    (a * c - b * d, a * d + b * c)
+}
+
+/// The spherical quadrilateral (u1, u2, u3, u4) as two triangles, as a complex number whose
+/// argument is half its signed solid angle.
+#[inline(always)]
+fn quadrilateral(u1: &Vector3<f64>, u2: &Vector3<f64>, u3: &Vector3<f64>, u4: &Vector3<f64>) -> (f64, f64) {
+    mul(triangle(u1, u2, u3), triangle(u1, u3, u4))
+}
+
+/// [`dgli`] computed the fast way, as used for whole disks.
+///
+/// Levitt's G is the signed solid angle of the spherical quadrilateral of directions
+/// (C−A, D−A, D−B, C−B). Written with Van Oosterom–Strackee's formula as the argument of a
+/// complex number, the difference G(2ε) − G(ε) is the argument of one ratio: one `atan2`
+/// per pair instead of eight `asin`, and no cancellation between two nearly equal sums.
+/// C−A and D−B do not change with the lift, so their directions are shared. Agrees with
+/// [`dgli`] to rounding wherever the asin form is well conditioned, and stays accurate
+/// where it is not (nearly collinear edges).
+#[inline]
+pub fn dgli_fast(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
+    let lift = Vector3::new(0.0, 0.0, EPSILON);
+    let (b1, d1) = (b + lift, d + lift);
+    let (b2, d2) = (b1 + lift, d1 + lift);
+    let ca = unit(c - a);
+    let db = unit(d - b);
+    let q1 = quadrilateral(&ca, &unit(d1 - a), &db, &unit(c - b1));
+    let q2 = quadrilateral(&ca, &unit(d2 - a), &db, &unit(c - b2));
+    // arg(q2 · conj(q1)) = (G(2ε) − G(ε)) / 2, with Levitt's sign opposite to the triangles'.
+    let (re, im) = mul(q2, (q1.0, -q1.1));
+    let value = -2.0 * im.atan2(re) / EPSILON;
+    if value.is_finite() {
+        value
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_fast_form_agrees_with_levitts() {
+        // Deterministic pseudo-random segment pairs at many scales and distances.
+        let mut state = 0x2545F4914F6CDD1Du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut worst = 0.0f64;
+        for _ in 0..2000 {
+            let p = |x: f64, y: f64, z: f64| Point::new(x, y, z);
+            let a = p(next(), next(), 0.05 * next());
+            let b = p(next(), next(), 0.05 * next());
+            let c = p(next(), next(), 0.05 * next());
+            let d = p(next(), next(), 0.05 * next());
+            let (slow, fast) = (dgli(&a, &b, &c, &d), dgli_fast(&a, &b, &c, &d));
+            worst = worst.max((slow - fast).abs() / (1.0 + slow.abs()));
+        }
+        assert!(worst < 1e-6, "worst relative difference {worst}");
+    }
 
     #[test]
     fn crossing_segments_link_by_half_a_turn_each_way() {

@@ -18,6 +18,7 @@ pub mod label;
 pub mod mesh;
 pub mod metrics;
 
-pub use analysis::{analyze, Analysis, FrameRange};
+pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
+pub use fold::FoldMethod;
 pub use error::{Error, Result};
 pub use formats::Sample;

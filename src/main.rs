@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use close::formats::{read_files, Sample};
-use close::{analyze, eval, FrameRange};
+use close::{analyze_with, eval, FoldMethod, FrameRange, Options};
 
 #[derive(Parser)]
 #[command(name = "close", version, about = "CloSE cloth-state representation: analyse folds, evaluate, serve the web app")]
@@ -36,6 +36,9 @@ enum Command {
         /// Add the start and end dGLI disks as condensed pair vectors.
         #[arg(long)]
         disks: bool,
+        /// How fold points are chosen.
+        #[arg(long, value_enum, default_value_t = Method::Cut)]
+        method: Method,
     },
     /// Evaluate every sample under the given files or folders.
     Eval {
@@ -44,7 +47,28 @@ enum Command {
         /// Print the full report as JSON instead of a table.
         #[arg(long)]
         json: bool,
+        /// How fold points are chosen.
+        #[arg(long, value_enum, default_value_t = Method::Cut)]
+        method: Method,
     },
+}
+
+/// Fold point methods, as the command line names them.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Method {
+    /// Least same-side change of the diff disk, refined on the rim (default).
+    Cut,
+    /// The paper's fitted curves alone.
+    Paper,
+}
+
+impl From<Method> for FoldMethod {
+    fn from(m: Method) -> FoldMethod {
+        match m {
+            Method::Cut => FoldMethod::Cut,
+            Method::Paper => FoldMethod::Paper,
+        }
+    }
 }
 
 fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
@@ -56,10 +80,10 @@ fn load_sample(paths: &[PathBuf]) -> Result<Sample, String> {
     read_files(&files).map_err(|e| e.to_string())
 }
 
-fn run_analyze(files: &[PathBuf], range: FrameRange, disks: bool) -> Result<(), String> {
+fn run_analyze(files: &[PathBuf], options: Options, disks: bool) -> Result<(), String> {
     let sample = load_sample(files)?;
     let frames = sample.border_frames().map_err(|e| e.to_string())?;
-    let analysis = analyze(&frames, range).map_err(|e| e.to_string())?;
+    let analysis = analyze_with(&frames, options).map_err(|e| e.to_string())?;
     let mut out = serde_json::to_value(&analysis).map_err(|e| e.to_string())?;
     if disks {
         out["disk_start"] = analysis.disk_start.values().into();
@@ -87,7 +111,7 @@ fn sample_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
     Ok(out)
 }
 
-fn run_eval(paths: &[PathBuf], json: bool) -> Result<(), String> {
+fn run_eval(paths: &[PathBuf], json: bool, method: FoldMethod) -> Result<(), String> {
     let files = sample_files(paths)?;
     if files.is_empty() {
         return Err("no Sample JSON file found".into());
@@ -98,7 +122,7 @@ fn run_eval(paths: &[PathBuf], json: bool) -> Result<(), String> {
         .par_iter()
         .map(|path| {
             let result = match read(path).and_then(|f| close::formats::json::parse_sample(&f.1).map_err(|e| e.to_string())) {
-                Ok(sample) => eval::evaluate(&sample),
+                Ok(sample) => eval::evaluate_with(&sample, method),
                 Err(e) => eval::SampleResult {
                     name: path.display().to_string(),
                     category: "unreadable".into(),
@@ -108,6 +132,7 @@ fn run_eval(paths: &[PathBuf], json: bool) -> Result<(), String> {
                     frechet: None,
                     angle_error: None,
                     error: Some(e),
+                    steps: Vec::new(),
                 },
             };
             bar.inc(1);
@@ -130,8 +155,10 @@ fn run_eval(paths: &[PathBuf], json: bool) -> Result<(), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
-        Some(Command::Analyze { files, start, end, json: _, disks }) => run_analyze(&files, FrameRange { start, end }, disks),
-        Some(Command::Eval { paths, json }) => run_eval(&paths, json),
+        Some(Command::Analyze { files, start, end, json: _, disks, method }) => {
+            run_analyze(&files, Options { frames: FrameRange { start, end }, method: method.into() }, disks)
+        }
+        Some(Command::Eval { paths, json, method }) => run_eval(&paths, json, method.into()),
         None => Err("no command given; see --help".into()),
     };
     match outcome {

@@ -67,6 +67,7 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
     let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7).with_tolerance_grad(1e-9).ok()?.with_tolerance_cost(1e-12).ok()?;
     let result = Executor::new(Problem(tables), solver)
         .configure(|state| state.param(vec![a0, 0.0]).max_iters(200))
+        .timer(false)
         .run()
         .ok()?;
     let state = result.state();
@@ -91,9 +92,17 @@ pub fn fit_curves(g: &Disk) -> Vec<Curve> {
             kept.push(m);
         }
     }
-    let rim_cells: Vec<Cell> = (1..=RIM_RINGS.min(g.layers())).flat_map(|d| ring_cells(g, d)).collect();
+    let rim_cells = rim_cells(g);
+    let reach = RIM_SEARCH_EDGES * 2.0 * PI / n as f64;
     kept.into_iter()
-        .map(|(a0, a1, loss)| Curve { a0, a1, loss, rim: refine_rim(&rim_cells, n, (a0 + a1).rem_euclid(2.0 * PI)) })
+        .map(|(a0, a1, loss)| {
+            let rim = (a0 + a1).rem_euclid(2.0 * PI);
+            // A refinement that runs to the edge of its range found no minimum near the line.
+            let refined = refine_rim(&rim_cells, n, rim, rim - reach, rim + reach)
+                .filter(|r| (wrap(r - rim).abs() - reach).abs() > 1e-3 * reach)
+                .unwrap_or(rim);
+            Curve { a0, a1, loss, rim: refined }
+        })
         .collect()
 }
 
@@ -109,8 +118,14 @@ impl CostFunction for RimProblem<'_> {
     }
 }
 
-/// Refine a rim coordinate on the rim rings near it, with the curve held radial.
-pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64) -> f64 {
+/// The cells of the rim rings, which the refinement reads.
+pub fn rim_cells(g: &Disk) -> Vec<Cell> {
+    (1..=RIM_RINGS.min(g.layers())).flat_map(|d| ring_cells(g, d)).collect()
+}
+
+/// Refine a rim coordinate on the rim rings near it, with the curve held radial, searching
+/// angles in [lo, hi]. `None` when the rim holds no change there or the solver fails.
+pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> Option<f64> {
     let edge = 2.0 * PI / n as f64;
     let near: Vec<Cell> = rim_cells
         .iter()
@@ -118,14 +133,15 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64) -> f64 {
         .map(|c| Cell { angle: rim + wrap(c.angle - rim), ..*c })
         .collect();
     if near.iter().all(|c| c.value <= 0.0) {
-        return rim;
+        return None;
     }
-    let solver = BrentOpt::new(rim - RIM_SEARCH_EDGES * edge, rim + RIM_SEARCH_EDGES * edge);
+    let (lo, hi) = (rim + wrap(lo - rim), rim + wrap(hi - rim));
+    let solver = BrentOpt::new(lo, hi);
     Executor::new(RimProblem { cells: &near }, solver)
         .configure(|state| state.max_iters(100))
+        .timer(false)
         .run()
         .ok()
         .and_then(|r| r.state().get_best_param().copied())
-        .unwrap_or(rim)
-        .rem_euclid(2.0 * PI)
+        .map(|a| a.rem_euclid(2.0 * PI))
 }

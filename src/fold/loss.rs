@@ -114,12 +114,13 @@ impl RingTables {
                     // Cell angle π(2a + d + 1)/N is grid point p (per_edge is even).
                     let p = (per_edge * (2 * a + d + 1) / 2) % grid;
                     let (head, tail) = table.split_at_mut(p);
-                    for (t, slot) in tail.iter_mut().enumerate() {
-                        *slot += sg * ka[t] - gg * kb[t];
+                    let (ka_head, ka_tail) = ka.split_at(grid - p);
+                    let (kb_head, kb_tail) = kb.split_at(grid - p);
+                    for (slot, (a, b)) in tail.iter_mut().zip(ka_head.iter().zip(kb_head)) {
+                        *slot += sg * a - gg * b;
                     }
-                    for (t, slot) in head.iter_mut().enumerate() {
-                        let t = grid - p + t;
-                        *slot += sg * ka[t] - gg * kb[t];
+                    for (slot, (a, b)) in head.iter_mut().zip(ka_tail.iter().zip(kb_tail)) {
+                        *slot += sg * a - gg * b;
                     }
                 }
                 ((l - d + 1) as f64 / l as f64, stride as f64, table)
@@ -133,12 +134,13 @@ impl RingTables {
     pub fn loss_and_gradient(&self, a0: f64, a1: f64) -> (f64, [f64; 2]) {
         let mut loss = 0.0;
         let mut grad = [0.0; 2];
-        let m = self.grid as isize;
+        let m = self.grid as i64;
         for (radius, weight, table) in &self.rings {
-            let x = (a0 + a1 * radius).rem_euclid(2.0 * PI) / self.step;
-            let i = x.floor() as isize;
-            let t = x - i as f64;
-            let at = |k: isize| table[(i + k).rem_euclid(m) as usize];
+            let x = (a0 + a1 * radius) / self.step;
+            let floor = x.floor();
+            let t = x - floor;
+            let i = floor as i64;
+            let at = |k: i64| table[(i + k).rem_euclid(m) as usize];
             let (p0, p1, p2, p3) = (at(-1), at(0), at(1), at(2));
             let c1 = -p0 + p2;
             let c2 = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;

@@ -4,7 +4,7 @@
 //! use close::formats::json::parse_sample;
 //! let s = parse_sample(br#"{"name": "sq", "frames": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}"#).unwrap();
 //! assert_eq!(s.frames[0].len(), 4);
-//! assert!(parse_sample(b"{\"frames\": 3}").unwrap_err().to_string().contains("expected a sequence at line 1"));
+//! assert!(parse_sample(b"{\"frames\": 3}").unwrap_err().to_string().contains("expected a sequence"));
 //! ```
 
 use super::{Sample, MAX_FILE_BYTES};

@@ -1,0 +1,123 @@
+//! Invariants: CloSE does not change under rotation, translation or uniform scaling of the
+//! cloth; relabelling the vertices cyclically shifts every angle; a clockwise border gives
+//! the CloSE of its anticlockwise twin. And exact geometry: a reflection fold is found.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use close::{analyze, Analysis, FrameRange, Sample};
+use common::{angle_diff, fold_frame, napkin};
+
+const FOLD: (f64, f64) = (5.3, 44.8);
+
+fn folded_napkin() -> Vec<Vec<[f64; 3]>> {
+    let start = napkin(19);
+    let end = fold_frame(&start, FOLD.0, FOLD.1);
+    vec![start, end]
+}
+
+fn run(frames: Vec<Vec<[f64; 3]>>) -> Analysis {
+    let sample = Sample::from_frames("t", "napkin", frames);
+    analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap()
+}
+
+fn map(frames: &[Vec<[f64; 3]>], f: impl Fn([f64; 3]) -> [f64; 3]) -> Vec<Vec<[f64; 3]>> {
+    frames.iter().map(|fr| fr.iter().map(|&p| f(p)).collect()).collect()
+}
+
+fn assert_same_close(a: &Analysis, b: &Analysis, shift: f64) {
+    assert_eq!(a.corners.len(), b.corners.len());
+    let mut moved: Vec<f64> = a.corners.iter().map(|c| (c + shift).rem_euclid(2.0 * PI)).collect();
+    moved.sort_by(f64::total_cmp);
+    for (x, y) in moved.iter().zip(&b.corners) {
+        assert!(angle_diff(*x, *y) < 1e-9, "corners {:?} vs {:?}", a.corners, b.corners);
+    }
+    assert_eq!(a.folds.len(), 1);
+    assert_eq!(b.folds.len(), 1);
+    for k in 0..2 {
+        assert!(angle_diff(a.folds[0][k] + shift, b.folds[0][k]) < 1e-4, "folds {:?} vs {:?}", a.folds, b.folds);
+    }
+}
+
+#[test]
+fn a_reflection_fold_is_found_where_it_was_made() {
+    let a = run(folded_napkin());
+    let n = a.n as f64;
+    assert_eq!(a.corner_vertices, vec![0, 19, 38, 57]);
+    assert_eq!(a.folds.len(), 1);
+    let truth = [2.0 * PI * FOLD.0 / n, 2.0 * PI * FOLD.1 / n];
+    for k in 0..2 {
+        assert!(angle_diff(a.folds[0][k], truth[k]) < 0.5 * 2.0 * PI / n, "{:?} vs {truth:?}", a.folds);
+    }
+    assert!(a.metrics.unwrap().rmse < 0.02, "{:?}", a.metrics);
+}
+
+#[test]
+fn rotation_and_translation_leave_close_unchanged() {
+    let frames = folded_napkin();
+    let (c, s) = (0.7f64.cos(), 0.7f64.sin());
+    let moved = map(&frames, |p| [c * p[0] - s * p[1] + 3.0, s * p[0] + c * p[1] - 2.0, p[2] + 0.5]);
+    assert_same_close(&run(frames), &run(moved), 0.0);
+}
+
+#[test]
+fn uniform_scaling_leaves_close_unchanged() {
+    let frames = folded_napkin();
+    for scale in [0.01, 3.7, 250.0] {
+        let scaled = map(&frames, |p| [scale * p[0], scale * p[1], scale * p[2]]);
+        assert_same_close(&run(frames.clone()), &run(scaled), 0.0);
+    }
+}
+
+#[test]
+fn cyclic_relabelling_shifts_every_angle() {
+    let frames = folded_napkin();
+    let n = frames[0].len();
+    let s = 11;
+    // New vertex i is old vertex i + s: an old angle θ becomes θ − 2πs/N.
+    let shifted: Vec<Vec<[f64; 3]>> = frames.iter().map(|fr| (0..n).map(|i| fr[(i + s) % n]).collect()).collect();
+    assert_same_close(&run(frames), &run(shifted), -2.0 * PI * s as f64 / n as f64);
+}
+
+#[test]
+fn a_clockwise_border_gives_the_close_of_its_anticlockwise_twin() {
+    let frames = folded_napkin();
+    let n = frames[0].len();
+    let clockwise: Vec<Vec<[f64; 3]>> = frames.iter().map(|fr| (0..n).map(|i| fr[(n - i) % n]).collect()).collect();
+    let (a, b) = (run(frames), run(clockwise));
+    assert!(!a.reversed);
+    assert!(b.reversed);
+    assert_eq!(b.border_indices[..3], [0, n - 1, n - 2]);
+    assert_same_close(&a, &b, 0.0);
+    // The prediction comes back in border order, which is the twin's order.
+    for (p, q) in a.predicted_end.iter().zip(&b.predicted_end) {
+        assert!((p[0] - q[0]).abs() < 1e-9 && (p[1] - q[1]).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn second_fold_is_read_from_its_own_step() {
+    let start = napkin(19);
+    let first = fold_frame(&start, 9.5, 47.5);
+    // Fold a corner of the folded cloth (vertices by index on the folded border).
+    let second = fold_frame(&first, 66.5, 5.0);
+    let a = run(vec![start, first, second]);
+    assert_eq!(a.steps.len(), 2);
+    assert_eq!(a.folds.len(), 2, "{:?}", a.steps.iter().map(|s| s.detection.cut).collect::<Vec<_>>());
+    assert!(a.label.text.contains("Fold 2"));
+}
+
+#[test]
+fn noise_without_a_fold_is_no_fold() {
+    let start = napkin(19);
+    let mut state = 7u64;
+    let mut noise = || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.01
+    };
+    let end: Vec<[f64; 3]> = start.iter().map(|p| [p[0] + noise(), p[1] + noise(), p[2] + noise()]).collect();
+    let a = run(vec![start, end]);
+    assert!(a.folds.is_empty(), "{:?}", a.steps[0].detection.cut);
+    assert!(a.label.text.contains("not folded"));
+}
