@@ -132,10 +132,13 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> O
         .filter(|c| wrap(c.angle - rim).abs() <= RIM_WINDOW_EDGES * edge)
         .map(|c| Cell { angle: rim + wrap(c.angle - rim), ..*c })
         .collect();
-    if near.iter().all(|c| c.value <= 0.0) {
+    let (lo, hi) = (rim + wrap(lo - rim), rim + wrap(hi - rim));
+    // Only change at the searched angles says where the fold is; change further off (a
+    // nearby corner) would pull the minimum to a bound.
+    let informative = near.iter().any(|c| c.angle >= lo - edge && c.angle <= hi + edge && c.value > super::FLAT_DIFF);
+    if !informative {
         return None;
     }
-    let (lo, hi) = (rim + wrap(lo - rim), rim + wrap(hi - rim));
     let solver = BrentOpt::new(lo, hi);
     Executor::new(RimProblem { cells: &near }, solver)
         .configure(|state| state.max_iters(100))
