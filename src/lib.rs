@@ -8,6 +8,7 @@
 pub mod analysis;
 pub mod border;
 pub mod close;
+pub mod dataset;
 pub mod disk;
 pub mod error;
 pub mod eval;
