@@ -17,6 +17,7 @@ pub mod formats;
 pub mod gli;
 pub mod label;
 pub mod metrics;
+pub mod plan;
 
 pub use analysis::{analyze, Analysis, FrameRange};
 pub use error::{Error, Result};

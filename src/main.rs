@@ -45,6 +45,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Plan how to reach a goal fold from a sample's end state (SPEC "Planning").
+    Plan {
+        /// One Sample JSON, or one text/CSV file per frame.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The goal fold as two angles in radians, e.g. `--goal 0.5,3.6`.
+        #[arg(long, required = true, value_delimiter = ',', num_args = 1, allow_hyphen_values = true)]
+        goal: Vec<f64>,
+        /// Print the plan as JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
@@ -127,11 +139,41 @@ fn run_eval(paths: &[PathBuf], json: bool) -> Result<(), String> {
     Ok(())
 }
 
+/// Analyse the sample, then plan from its start border, corners and folds to `goal`;
+/// vertices are reported as input indices.
+fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
+    let &[g1, g2] = goal else {
+        return Err(format!("--goal takes two angles f1,f2 (got {} values)", goal.len()));
+    };
+    let sample = load_sample(files)?;
+    let frames = sample.border_frames().map_err(|e| e.to_string())?;
+    let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
+    let mut plan = close::plan::plan(&analysis.start_border, &analysis.corner_vertices, &analysis.folds, [g1, g2])
+        .map_err(|e| e.to_string())?;
+    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
+        pick.vertex = analysis.border_indices[pick.vertex];
+    }
+    if json {
+        println!("{}", serde_json::to_string(&plan).map_err(|e| e.to_string())?);
+        return Ok(());
+    }
+    println!("{}", plan.case);
+    for (k, step) in plan.steps.iter().enumerate() {
+        println!("{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action, step.fold[0], step.fold[1], step.corners);
+        for p in &step.picks {
+            let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
+            println!("   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
+        }
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
         Some(Command::Analyze { files, start, end, json: _, disks }) => run_analyze(&files, FrameRange { start, end }, disks),
         Some(Command::Eval { paths, json }) => run_eval(&paths, json),
+        Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         None => Err("no command given; see --help".into()),
     };
     match outcome {
