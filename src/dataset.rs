@@ -635,7 +635,6 @@ pub fn find(id: &str) -> Option<&'static Entry> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::{analyze, FrameRange};
     use crate::eval::evaluate;
     use crate::fold::reflect::apply_fold;
     use std::collections::HashSet;
@@ -762,24 +761,20 @@ mod tests {
     }
 
     #[test]
-    fn every_sample_prepares_and_analyses() {
-        let failures: Vec<String> = builtin()
-            .iter()
-            .filter_map(|e| {
-                let outcome = e.sample.border_frames().and_then(|b| {
-                    assert!(!b.reversed && b.warnings.is_empty(), "{}: {:?}", e.id, b.warnings);
-                    analyze(&b, FrameRange::default())
-                });
-                outcome.err().map(|err| format!("{}: {err}", e.id))
-            })
-            .collect();
-        assert!(failures.is_empty(), "{failures:#?}");
+    fn every_sample_prepares_without_repair() {
+        for e in builtin() {
+            let b = e.sample.border_frames().unwrap_or_else(|err| panic!("{}: {err}", e.id));
+            assert!(!b.reversed && b.warnings.is_empty(), "{}: {:?}", e.id, b.warnings);
+            assert_eq!(b.len(), e.sample.frames[0].len(), "{}", e.id);
+        }
     }
 
-    /// The fold detector over the dataset: printed for tuning, with a sanity floor.
+    /// The fold detector over the dataset: printed for tuning, with a sanity floor. Every
+    /// sample is analysed here (`evaluate` runs `analyze`), so none may fail.
     #[test]
-    fn evaluation_over_the_dataset() {
-        let results: Vec<_> = builtin().iter().map(|e| evaluate(&e.sample)).collect();
+    fn every_sample_analyses_and_most_clean_ones_get_one_fold() {
+        use rayon::prelude::*;
+        let results: Vec<_> = builtin().par_iter().map(|e| evaluate(&e.sample)).collect();
         let clean: Vec<_> = results.iter().filter(|r| !r.name.contains("__noisy") && r.expected_folds == 1).collect();
         let one_fold = clean.iter().filter(|r| r.folds == 1).count();
         let report = crate::eval::report(results.clone());
@@ -788,7 +783,8 @@ mod tests {
             println!("miss: {} found {} folds, expected {}", r.name, r.folds, r.expected_folds);
         }
         println!("clean single folds with exactly one fold: {one_fold}/{}", clean.len());
-        assert!(results.iter().all(|r| r.error.is_none()));
+        let failures: Vec<String> = results.iter().filter_map(|r| r.error.as_ref().map(|e| format!("{}: {e}", r.name))).collect();
+        assert!(failures.is_empty(), "{failures:#?}");
         assert!(one_fold * 10 > clean.len() * 8, "{one_fold} of {} clean samples got one fold", clean.len());
     }
 
