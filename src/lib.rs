@@ -18,6 +18,8 @@ pub mod gli;
 pub mod label;
 pub mod metrics;
 pub mod plan;
+#[cfg(feature = "rerun")]
+pub mod record;
 
 pub use analysis::{analyze, Analysis, FrameRange};
 pub use error::{Error, Result};

@@ -57,6 +57,16 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Write a recording of the analysis for the Rerun viewer (open it with `rerun FILE.rrd`).
+    #[cfg(feature = "rerun")]
+    Record {
+        /// One Sample JSON, or one text/CSV file per frame.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Where to write the .rrd file.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
@@ -168,12 +178,25 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
     Ok(())
 }
 
+#[cfg(feature = "rerun")]
+fn run_record(files: &[PathBuf], out: &Path) -> Result<(), String> {
+    let sample = load_sample(files)?;
+    let frames = sample.border_frames().map_err(|e| e.to_string())?;
+    let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
+    let rrd = close::record::record(&analysis, &frames).map_err(|e| e.to_string())?;
+    std::fs::write(out, &rrd).map_err(|e| format!("{}: {e}", out.display()))?;
+    eprintln!("wrote {} ({} bytes); open it with `rerun {}`", out.display(), rrd.len(), out.display());
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
         Some(Command::Analyze { files, start, end, json: _, disks }) => run_analyze(&files, FrameRange { start, end }, disks),
         Some(Command::Eval { paths, json }) => run_eval(&paths, json),
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
+        #[cfg(feature = "rerun")]
+        Some(Command::Record { files, out }) => run_record(&files, &out),
         None => Err("no command given; see --help".into()),
     };
     match outcome {
