@@ -34,6 +34,9 @@ pub enum Error {
     /// A mesh could not give a border (no boundary, out-of-range face, …).
     #[error("mesh problem: {0}")]
     Mesh(String),
+    /// A recording could not be written (feature `rerun`).
+    #[error("recording failed: {0}")]
+    Recording(String),
 }
 
 /// Shorthand used across the crate.

@@ -8,6 +8,7 @@
 pub mod analysis;
 pub mod border;
 pub mod close;
+pub mod dataset;
 pub mod disk;
 pub mod error;
 pub mod eval;
@@ -17,6 +18,9 @@ pub mod gli;
 pub mod label;
 pub mod mesh;
 pub mod metrics;
+pub mod plan;
+#[cfg(feature = "rerun")]
+pub mod record;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use fold::FoldMethod;

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use close::formats::{read_files, Sample};
-use close::{analyze_with, eval, FoldMethod, FrameRange, Options};
+use close::{analyze, analyze_with, eval, FoldMethod, FrameRange, Options};
 
 #[derive(Parser)]
 #[command(name = "close", version, about = "CloSE cloth-state representation: analyse folds, evaluate, serve the web app")]
@@ -50,6 +50,28 @@ enum Command {
         /// How fold points are chosen.
         #[arg(long, value_enum, default_value_t = Method::Cut)]
         method: Method,
+    },
+    /// Plan how to reach a goal fold from a sample's end state (SPEC "Planning").
+    Plan {
+        /// One Sample JSON, or one text/CSV file per frame.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The goal fold as two angles in radians, e.g. `--goal 0.5,3.6`.
+        #[arg(long, required = true, value_delimiter = ',', num_args = 1, allow_hyphen_values = true)]
+        goal: Vec<f64>,
+        /// Print the plan as JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write a recording of the analysis for the Rerun viewer (open it with `rerun FILE.rrd`).
+    #[cfg(feature = "rerun")]
+    Record {
+        /// One Sample JSON, or one text/CSV file per frame.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Where to write the .rrd file.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -152,6 +174,46 @@ fn run_eval(paths: &[PathBuf], json: bool, method: FoldMethod) -> Result<(), Str
     Ok(())
 }
 
+/// Analyse the sample, then plan from its start border, corners and folds to `goal`;
+/// vertices are reported as input indices.
+fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
+    let &[g1, g2] = goal else {
+        return Err(format!("--goal takes two angles f1,f2 (got {} values)", goal.len()));
+    };
+    let sample = load_sample(files)?;
+    let frames = sample.border_frames().map_err(|e| e.to_string())?;
+    let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
+    let mut plan = close::plan::plan(&analysis.start_border, &analysis.corner_vertices, &analysis.folds, [g1, g2])
+        .map_err(|e| e.to_string())?;
+    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
+        pick.vertex = analysis.border_indices[pick.vertex];
+    }
+    if json {
+        println!("{}", serde_json::to_string(&plan).map_err(|e| e.to_string())?);
+        return Ok(());
+    }
+    println!("{}", plan.case);
+    for (k, step) in plan.steps.iter().enumerate() {
+        println!("{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action, step.fold[0], step.fold[1], step.corners);
+        for p in &step.picks {
+            let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
+            println!("   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(feature = "rerun")]
+fn run_record(files: &[PathBuf], out: &Path) -> Result<(), String> {
+    let sample = load_sample(files)?;
+    let frames = sample.border_frames().map_err(|e| e.to_string())?;
+    let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
+    let rrd = close::record::record(&analysis, &frames).map_err(|e| e.to_string())?;
+    std::fs::write(out, &rrd).map_err(|e| format!("{}: {e}", out.display()))?;
+    eprintln!("wrote {} ({} bytes); open it with `rerun {}`", out.display(), rrd.len(), out.display());
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
@@ -159,6 +221,9 @@ fn main() -> ExitCode {
             run_analyze(&files, Options { frames: FrameRange { start, end }, method: method.into() }, disks)
         }
         Some(Command::Eval { paths, json, method }) => run_eval(&paths, json, method.into()),
+        Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
+        #[cfg(feature = "rerun")]
+        Some(Command::Record { files, out }) => run_record(&files, &out),
         None => Err("no command given; see --help".into()),
     };
     match outcome {

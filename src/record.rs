@@ -1,0 +1,173 @@
+//! Rerun recordings (feature `rerun`): an analysis as an `.rrd` for the Rerun viewer.
+//!
+//! Entities, on the `frame` sequence timeline (the input's frame numbers):
+//! - `border`: each analysed frame's border as a closed 3D line strip;
+//!   `predicted_end`: the start border with the folds applied, at the end frame;
+//! - `fold/{k}/points` and `fold/{k}/line`: fold k's points P1, P2 on the border it folds
+//!   (the start with folds 1…k−1 applied) and the chord between them, at its step's end frame;
+//! - `close/f1`, `close/f2`: the fold coordinates (radians) as scalars, per step;
+//!   `close/corners`: the corner count; `close/label`: the label text;
+//! - `disk/start`, `disk/end`, `disk/diff`, `disk/signed_diff` (static): each disk unrolled
+//!   in polar form as a tensor of L rows (ring d = 1, the rim, first) by 2N columns of
+//!   width π/N: the cell of ring d starting at edge a is centred on angle π(2a + d + 1)/N,
+//!   so it covers columns 2a + d and 2a + d + 1 (mod 2N).
+//!
+//! Open the file with `rerun recording.rrd` (the viewer of the same minor version, 0.36).
+//!
+//! ```no_run
+//! # fn main() -> close::Result<()> {
+//! use close::{analyze, FrameRange};
+//! let sample = close::formats::json::parse_sample(&std::fs::read("sample.json").unwrap())?;
+//! let frames = sample.border_frames()?;
+//! let analysis = analyze(&frames, FrameRange::default())?;
+//! std::fs::write("sample.rrd", close::record::record(&analysis, &frames)?).unwrap();
+//! # Ok(()) }
+//! ```
+
+use rerun::datatypes::{TensorBuffer, TensorData};
+use rerun::{LineStrips3D, Points3D, RecordingStream, RecordingStreamBuilder, Scalars, Tensor, TextDocument};
+
+use crate::analysis::Analysis;
+use crate::border::{point_at, BorderFrames, Point};
+use crate::disk::Disk;
+use crate::error::{Error, Result};
+use crate::fold::reflect::apply_fold;
+
+/// Name of the frame timeline.
+pub const TIMELINE: &str = "frame";
+
+fn failed(e: impl std::fmt::Display) -> Error {
+    Error::Recording(e.to_string())
+}
+
+fn xyz(p: &Point) -> [f32; 3] {
+    [p.x as f32, p.y as f32, p.z as f32]
+}
+
+/// A border as one closed strip.
+fn closed_strip(points: &[Point]) -> Vec<[f32; 3]> {
+    points.iter().chain(points.first()).map(xyz).collect()
+}
+
+/// The disk unrolled in polar form (see the module doc), rows = rings from the rim.
+pub fn polar_image(disk: &Disk) -> (usize, usize, Vec<f64>) {
+    let (n, rings) = (disk.n(), disk.layers());
+    let width = 2 * n;
+    let mut image = vec![0.0; rings * width];
+    for d in 1..=rings {
+        for a in 0..n {
+            let v = disk.ring_value(d, a);
+            for c in [2 * a + d, 2 * a + d + 1] {
+                image[(d - 1) * width + c % width] = v;
+            }
+        }
+    }
+    (rings, width, image)
+}
+
+fn log_disk(rec: &RecordingStream, path: &str, disk: &Disk) -> Result<()> {
+    let (rows, cols, values) = polar_image(disk);
+    let data = TensorData::new(vec![rows as u64, cols as u64], TensorBuffer::F64(values.into()))
+        .with_dim_names(["ring (rim first)", "angle (π/N per column)"]);
+    rec.log_static(path, &Tensor::new(data)).map_err(failed)
+}
+
+/// Record an analysis of `frames` as an in-memory `.rrd` file.
+pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
+    let (rec, storage) = RecordingStreamBuilder::new("close").enabled(true).memory().map_err(failed)?;
+    let (start, end) = (analysis.start_frame, analysis.end_frame);
+    let Some(analysed) = frames.frames.get(start..=end) else {
+        return Err(Error::InvalidArgument(format!("the analysis covers frames {start}…{end}, the sample has {}", frames.frames.len())));
+    };
+    for (k, border) in (start..).zip(analysed) {
+        rec.set_time_sequence(TIMELINE, k as i64);
+        rec.log("border", &LineStrips3D::new([closed_strip(border)])).map_err(failed)?;
+    }
+
+    rec.set_time_sequence(TIMELINE, start as i64);
+    rec.log("close/corners", &Scalars::single(analysis.corners.len() as f64)).map_err(failed)?;
+    rec.log("close/label", &TextDocument::new(analysis.label.text.clone())).map_err(failed)?;
+    let n = analysis.n;
+    let mut folded = analysis.start_border.clone();
+    let steps = analysis.steps.iter().filter_map(|s| s.detection.fold.map(|f| (s.to_frame, f)));
+    for (k, (frame, fold)) in steps.enumerate() {
+        rec.set_time_sequence(TIMELINE, frame as i64);
+        let to_param = |f: f64| f.rem_euclid(std::f64::consts::TAU) * n as f64 / std::f64::consts::TAU;
+        let ends = [xyz(&point_at(&folded, to_param(fold[0]))), xyz(&point_at(&folded, to_param(fold[1])))];
+        let base = format!("fold/{}", k + 1);
+        rec.log(format!("{base}/points"), &Points3D::new(ends).with_labels(["f1", "f2"])).map_err(failed)?;
+        rec.log(format!("{base}/line"), &LineStrips3D::new([ends])).map_err(failed)?;
+        rec.log("close/f1", &Scalars::single(fold[0])).map_err(failed)?;
+        rec.log("close/f2", &Scalars::single(fold[1])).map_err(failed)?;
+        folded = apply_fold(&folded, fold);
+    }
+    rec.set_time_sequence(TIMELINE, end as i64);
+    rec.log("predicted_end", &LineStrips3D::new([closed_strip(&folded)])).map_err(failed)?;
+
+    log_disk(&rec, "disk/start", &analysis.disk_start)?;
+    log_disk(&rec, "disk/end", &analysis.disk_end)?;
+    log_disk(&rec, "disk/diff", &analysis.disk_start.abs_diff(&analysis.disk_end))?;
+    log_disk(&rec, "disk/signed_diff", &analysis.disk_start.signed_diff(&analysis.disk_end))?;
+    storage.drain_as_bytes().map_err(failed)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeSet;
+
+    use rerun::external::re_log_encoding::DecoderApp;
+    use rerun::log::{Chunk, LogMsg};
+
+    use super::*;
+    use crate::analysis::{analyze, FrameRange};
+
+    /// Entity paths and the number of chunks of the recording, decoded back from the bytes.
+    fn entities(rrd: &[u8]) -> BTreeSet<String> {
+        DecoderApp::decode_eager(rrd)
+            .expect("an RRD stream")
+            .filter_map(|msg| match msg.expect("a decodable message") {
+                LogMsg::ArrowMsg(_, arrow) => Some(Chunk::from_arrow_msg(&arrow).expect("a chunk").entity_path().to_string()),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_recording_reads_back_with_every_entity() {
+        let entry = crate::dataset::find("napkin__half_vertical").expect("a built-in sample");
+        let frames = entry.sample.border_frames().unwrap();
+        let analysis = analyze(&frames, FrameRange::default()).unwrap();
+        assert_eq!(analysis.folds.len(), 1, "the detector finds this fold");
+        let paths = entities(&record(&analysis, &frames).unwrap());
+        for expected in [
+            "/border",
+            "/predicted_end",
+            "/fold/1/points",
+            "/fold/1/line",
+            "/close/f1",
+            "/close/f2",
+            "/close/corners",
+            "/close/label",
+            "/disk/start",
+            "/disk/end",
+            "/disk/diff",
+            "/disk/signed_diff",
+        ] {
+            assert!(paths.contains(expected), "{expected} missing from {paths:?}");
+        }
+    }
+
+    #[test]
+    fn the_polar_image_places_each_cell_by_its_angle() {
+        // 6 edges, 3 rings: pair (i, j) holds 10·i + j so each cell names itself.
+        let n = 6;
+        let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (10 * i + j) as f64)).collect();
+        let disk = Disk::from_values(n, values).unwrap();
+        let (rows, cols, image) = polar_image(&disk);
+        assert_eq!((rows, cols), (3, 12));
+        // Ring 1, edges 0–1: angle π(0 + 1 + 1)/6 = 2 columns of π/6 → columns 1 and 2.
+        assert_eq!(&image[1..3], &[1.0, 1.0]);
+        // Ring 2, edges 5–1 (a = 5): columns 12 and 13 wrap to 0 and 1.
+        assert_eq!((image[12], image[13]), (15.0, 15.0));
+    }
+}
