@@ -41,6 +41,23 @@ pub struct StepResult {
     pub angle_error: Option<[f64; 2]>,
 }
 
+impl SampleResult {
+    /// The result of a sample that could not be read.
+    pub fn unreadable(name: &str, error: &str) -> SampleResult {
+        SampleResult {
+            name: name.to_string(),
+            category: "unreadable".into(),
+            folds: 0,
+            expected_folds: 0,
+            rmse: None,
+            frechet: None,
+            angle_error: None,
+            error: Some(error.to_string()),
+            steps: Vec::new(),
+        }
+    }
+}
+
 /// Mean and population variance.
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct Stat {
@@ -200,7 +217,7 @@ impl Report {
     pub fn table(&self) -> String {
         let fmt = |s: Option<Stat>, scale: f64| s.map_or(("-".to_string(), "-".to_string()), |s| (format!("{:.4}", s.mean * scale), format!("{:.5}", s.var * scale * scale)));
         let mut out = format!(
-            "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
+            "{:<20} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
             "category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "f1 err°", "f2 err°"
         );
         for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
@@ -209,7 +226,7 @@ impl Report {
             let (a1, _) = fmt(s.f1_error, 180.0 / PI);
             let (a2, _) = fmt(s.f2_error, 180.0 / PI);
             out.push_str(&format!(
-                "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
+                "{:<20} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
                 s.category, s.count, rm, rv, fm, fv, s.fold_count_misses, s.errors, a1, a2
             ));
             for f in &s.by_fold {
@@ -218,7 +235,7 @@ impl Report {
                 let (a1, _) = fmt(f.f1_error, 180.0 / PI);
                 let (a2, _) = fmt(f.f2_error, 180.0 / PI);
                 out.push_str(&format!(
-                    "{:<16} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
+                    "{:<20} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
                     format!("  fold {}", f.fold),
                     f.count,
                     rm,

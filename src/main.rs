@@ -42,14 +42,21 @@ enum Command {
     },
     /// Evaluate every sample under the given files or folders.
     Eval {
-        #[arg(required = true)]
+        #[arg(required_unless_present = "builtin")]
         paths: Vec<PathBuf>,
+        /// Evaluate the built-in dataset (with any given paths).
+        #[arg(long)]
+        builtin: bool,
         /// Print the full report as JSON instead of a table.
         #[arg(long)]
         json: bool,
         /// How fold points are chosen.
         #[arg(long, value_enum, default_value_t = Method::Cut)]
         method: Method,
+    },
+    /// Write the built-in dataset as Sample JSON files into a folder.
+    Dataset {
+        out: PathBuf,
     },
     /// Plan how to reach a goal fold from a sample's end state (SPEC "Planning").
     Plan {
@@ -133,29 +140,29 @@ fn sample_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
     Ok(out)
 }
 
-fn run_eval(paths: &[PathBuf], json: bool, method: FoldMethod) -> Result<(), String> {
+fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> Result<(), String> {
     let files = sample_files(paths)?;
-    if files.is_empty() {
+    let mut samples: Vec<(String, Result<Sample, String>)> = files
+        .iter()
+        .map(|path| {
+            let sample = read(path).and_then(|f| close::formats::json::parse_sample(&f.1).map_err(|e| e.to_string()));
+            (path.display().to_string(), sample)
+        })
+        .collect();
+    if builtin {
+        samples.extend(close::dataset::builtin().iter().map(|e| (e.id.clone(), Ok(e.sample.clone()))));
+    }
+    if samples.is_empty() {
         return Err("no Sample JSON file found".into());
     }
-    let bar = if std::io::stderr().is_terminal() { ProgressBar::new(files.len() as u64) } else { ProgressBar::hidden() };
+    let bar = if std::io::stderr().is_terminal() { ProgressBar::new(samples.len() as u64) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} samples {elapsed} {msg}").expect("valid template"));
-    let results: Vec<eval::SampleResult> = files
+    let results: Vec<eval::SampleResult> = samples
         .par_iter()
-        .map(|path| {
-            let result = match read(path).and_then(|f| close::formats::json::parse_sample(&f.1).map_err(|e| e.to_string())) {
-                Ok(sample) => eval::evaluate_with(&sample, method),
-                Err(e) => eval::SampleResult {
-                    name: path.display().to_string(),
-                    category: "unreadable".into(),
-                    folds: 0,
-                    expected_folds: 0,
-                    rmse: None,
-                    frechet: None,
-                    angle_error: None,
-                    error: Some(e),
-                    steps: Vec::new(),
-                },
+        .map(|(name, sample)| {
+            let result = match sample {
+                Ok(sample) => eval::evaluate_with(sample, method),
+                Err(e) => eval::SampleResult::unreadable(name, e),
             };
             bar.inc(1);
             result
@@ -171,6 +178,17 @@ fn run_eval(paths: &[PathBuf], json: bool, method: FoldMethod) -> Result<(), Str
             eprintln!("error: {}: {}", r.name, r.error.as_deref().unwrap_or_default());
         }
     }
+    Ok(())
+}
+
+fn run_dataset(out: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let entries = close::dataset::builtin();
+    for entry in entries {
+        let path = out.join(format!("{}.json", entry.id));
+        std::fs::write(&path, close::formats::json::to_json(&entry.sample)).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    eprintln!("wrote {} samples to {}", entries.len(), out.display());
     Ok(())
 }
 
@@ -220,7 +238,8 @@ fn main() -> ExitCode {
         Some(Command::Analyze { files, start, end, json: _, disks, method }) => {
             run_analyze(&files, Options { frames: FrameRange { start, end }, method: method.into() }, disks)
         }
-        Some(Command::Eval { paths, json, method }) => run_eval(&paths, json, method.into()),
+        Some(Command::Eval { paths, builtin, json, method }) => run_eval(&paths, builtin, json, method.into()),
+        Some(Command::Dataset { out }) => run_dataset(&out),
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out }) => run_record(&files, &out),

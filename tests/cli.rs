@@ -153,3 +153,16 @@ fn eval_scores_second_folds_apart() {
     let table = String::from_utf8(close(&["eval", dir.0.to_str().unwrap()]).stdout).unwrap();
     assert!(table.contains("  fold 2"), "{table}");
 }
+
+#[test]
+fn the_builtin_dataset_exports_and_evaluates() {
+    let dir = tempdir::Dir::new("cli-dataset");
+    let out = close(&["dataset", dir.0.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let files = std::fs::read_dir(&dir.0).unwrap().count();
+    assert!(files >= 60, "{files} samples exported");
+    let eval = close(&["eval", "--builtin", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+    assert_eq!(v["overall"]["count"].as_u64().unwrap() as usize, files);
+    assert_eq!(v["overall"]["errors"], 0);
+}
