@@ -34,6 +34,9 @@ pub enum Error {
     /// A mesh could not give a border (no boundary, out-of-range face, …).
     #[error("mesh problem: {0}")]
     Mesh(String),
+    /// A picture could not be drawn or encoded (a bug, not a bad input).
+    #[error("could not draw the picture: {0}")]
+    Render(String),
 }
 
 /// Shorthand used across the crate.

@@ -16,6 +16,7 @@ pub mod formats;
 pub mod gli;
 pub mod label;
 pub mod metrics;
+pub mod render;
 
 pub use analysis::{analyze, Analysis, FrameRange};
 pub use error::{Error, Result};
