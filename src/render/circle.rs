@@ -14,13 +14,13 @@
 //! assert!((arc[2] - 2.0 * PI).abs() < 1e-12);
 //! ```
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::disk::outward;
-use super::{draw_title, endpoint_name, fold_colour, label_size, line_width, text_style, title_size, Area, Canvas, DrawResult, INK, MUTED};
+use super::raster::text_width;
+use super::{endpoint_name, fold_colour, label_size, line_width, outward, plot, Canvas, INK, MUTED, PAPER};
 use crate::analysis::Analysis;
 use crate::error::Result;
 
@@ -35,7 +35,7 @@ pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
 }
 
 /// The lines of text under the circle: corners, one line per fold, the label sentence.
-fn caption(analysis: &Analysis, chars_per_line: usize) -> Vec<(String, RGBColor)> {
+fn caption(analysis: &Analysis, size: f64, width: f64) -> Vec<(String, [u8; 3])> {
     let corners = match analysis.corners.len() {
         0 => "no corners".to_string(),
         1 => "1 corner".to_string(),
@@ -50,16 +50,16 @@ fn caption(analysis: &Analysis, chars_per_line: usize) -> Vec<(String, RGBColor)
     if count == 0 {
         lines.push(("no fold detected".into(), MUTED));
     }
-    lines.extend(wrap(&analysis.label.text, chars_per_line).into_iter().map(|l| (l, MUTED)));
+    lines.extend(wrap(&analysis.label.text, |line| text_width(line, size) <= width).into_iter().map(|l| (l, MUTED)));
     lines
 }
 
-/// Greedy word wrap to at most `width` characters a line (a longer word gets its own line).
-fn wrap(text: &str, width: usize) -> Vec<String> {
+/// Greedy word wrap: each line as long as `fits` allows (a longer word gets its own line).
+fn wrap(text: &str, fits: impl Fn(&str) -> bool) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in text.split_whitespace() {
         match lines.last_mut() {
-            Some(line) if line.chars().count() + 1 + word.chars().count() <= width => {
+            Some(line) if fits(&format!("{line} {word}")) => {
                 line.push(' ');
                 line.push_str(word);
             }
@@ -69,84 +69,97 @@ fn wrap(text: &str, width: usize) -> Vec<String> {
     lines
 }
 
+/// Where the circle sits: centre and radius in pixels.
+struct Frame {
+    cx: f64,
+    cy: f64,
+    radius: f64,
+}
+
+impl Frame {
+    /// The pixel of polar point (r, θ), y down.
+    fn at(&self, r: f64, theta: f64) -> (f64, f64) {
+        (self.cx + self.radius * r * theta.cos(), self.cy - self.radius * r * theta.sin())
+    }
+}
+
 /// Draw the fold circle of `analysis`.
 pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     let unit = canvas.unit();
     let (w, h) = (canvas.width as f64, canvas.height as f64);
     let label = label_size(unit);
-    // DejaVu Sans averages about 0.55 em a character.
-    let lines = caption(analysis, ((w - label) / (0.55 * label)).max(8.0) as usize);
-    let line_height = 1.3 * label;
-    let top = 1.8 * title_size(unit);
-    let text_top = h - line_height * lines.len() as f64 - 0.5 * label;
-    let pad = 2.2 * label;
+    let lines = caption(analysis, label, w - label);
+    let line_height = 1.35 * label;
+    let top = canvas.title_band();
+    let text_top = h - line_height * lines.len() as f64 - 0.4 * label;
+    // Room outside the circle for corner numbers and fold names.
+    let pad = 3.2 * label;
     let radius = ((w - 2.0 * pad) / 2.0).min((text_top - top - 2.0 * pad) / 2.0).max(4.0);
-    let (cx, cy) = (w / 2.0, top + pad + radius);
-    let at = |r: f64, theta: f64| ((cx + radius * r * theta.cos()).round() as i32, (cy - radius * r * theta.sin()).round() as i32);
+    let frame = Frame { cx: w / 2.0, cy: top + pad + radius, radius };
+    shade_folded_sides(canvas, analysis, &frame)?;
+    canvas.title("CloSE fold circle");
+    canvas.ring((frame.cx, frame.cy), radius, line_width(unit, 0.004), INK);
+    let tick = 0.4 * label / radius;
+    canvas.stroke(&[frame.at(1.0, 0.0), frame.at(1.0 - tick, 0.0)], line_width(unit, 0.003), INK);
+    canvas.text("0", frame.at(1.0 - 1.5 * tick, 0.0), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
+    draw_folds(canvas, analysis, &frame);
+    draw_corners(canvas, &analysis.corners, &frame);
+    for (k, (text, colour)) in lines.iter().enumerate() {
+        let y = text_top + line_height * (k as f64 + 0.5);
+        canvas.text(text, (0.5 * label, y), label, *colour, (HPos::Left, VPos::Center));
+    }
+    Ok(())
+}
+
+/// The folded side of each fold, between its arc and its chord, lightly shaded.
+fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -> Result<()> {
     canvas.draw(|area| {
-        draw_title(area, unit, "CloSE fold circle")?;
-        draw_folds(area, unit, analysis, &at)?;
-        area.draw(&Circle::new(at(0.0, 0.0), radius.round() as i32, INK.stroke_width(line_width(unit, 0.004))))?;
-        draw_angle_marks(area, unit, radius, &at)?;
-        draw_corners(area, unit, radius, &analysis.corners, &at)?;
-        for (k, (text, colour)) in lines.into_iter().enumerate() {
-            let y = (text_top + line_height * (k as f64 + 0.5)) as i32;
-            area.draw(&Text::new(text, ((0.5 * label) as i32, y), text_style(label, colour, HPos::Left, VPos::Center)))?;
+        for (k, &fold) in analysis.folds.iter().enumerate() {
+            let arc: Vec<(i32, i32)> = folded_arc(fold, 361)
+                .into_iter()
+                .map(|t| frame.at(1.0, t))
+                .map(|(x, y)| (x.round() as i32, y.round() as i32))
+                .collect();
+            area.draw(&Polygon::new(arc, plot(fold_colour(k)).mix(0.14).filled()))?;
         }
         Ok(())
     })
 }
 
-/// Ticks and names of the quarter angles, inside the circle so the corner numbers outside stay clear.
-fn draw_angle_marks(area: &Area, unit: f64, radius: f64, at: &impl Fn(f64, f64) -> (i32, i32)) -> DrawResult {
-    let size = label_size(unit) * 0.8;
-    let tick = 0.3 * size / radius;
-    for (k, name) in ["0", "π/2", "π", "3π/2"].iter().enumerate() {
-        let theta = k as f64 * PI / 2.0;
-        area.draw(&PathElement::new(vec![at(1.0, theta), at(1.0 - tick, theta)], MUTED.stroke_width(1)))?;
-        let (h, v) = outward(theta + PI);
-        area.draw(&Text::new(name.to_string(), at(1.0 - 2.0 * tick, theta), text_style(size, MUTED, h, v)))?;
-    }
-    Ok(())
-}
-
 /// Corner dots, numbered 1… outside the circle when there are at most [`NUMBERED_CORNERS`].
-fn draw_corners(area: &Area, unit: f64, radius: f64, corners: &[f64], at: &impl Fn(f64, f64) -> (i32, i32)) -> DrawResult {
-    let dot = (unit * 0.012).max(2.0) as i32;
+fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) {
+    let unit = canvas.unit();
+    let dot = (unit * 0.012).max(2.0);
     let size = label_size(unit);
     for (k, &theta) in corners.iter().enumerate() {
-        area.draw(&Circle::new(at(1.0, theta), dot + 1, WHITE.filled()))?;
-        area.draw(&Circle::new(at(1.0, theta), dot, INK.filled()))?;
+        canvas.disc(frame.at(1.0, theta), dot + 1.5, PAPER);
+        canvas.disc(frame.at(1.0, theta), dot, INK);
         if corners.len() <= NUMBERED_CORNERS {
-            let (h, v) = outward(theta);
-            let r = 1.0 + 1.6 * dot as f64 / radius;
-            area.draw(&Text::new((k + 1).to_string(), at(r, theta), text_style(size, INK, h, v)))?;
+            let at = frame.at(1.0 + 1.8 * dot / frame.radius, theta);
+            canvas.text(&(k + 1).to_string(), at, size, INK, outward(theta));
         }
     }
-    Ok(())
 }
 
-/// Each fold: the shaded folded side, its arc, the chord and the named endpoints.
-fn draw_folds(area: &Area, unit: f64, analysis: &Analysis, at: &impl Fn(f64, f64) -> (i32, i32)) -> DrawResult {
+/// Each fold: its arc (the folded side), the chord (the fold line) and the named endpoints.
+fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
+    let unit = canvas.unit();
     let count = analysis.folds.len();
     let size = label_size(unit);
+    let marker = (unit * 0.016).max(3.0);
     for (k, &fold) in analysis.folds.iter().enumerate() {
         let colour = fold_colour(k);
-        let arc: Vec<(i32, i32)> = folded_arc(fold, 181).into_iter().map(|t| at(1.0, t)).collect();
-        area.draw(&Polygon::new(arc.clone(), colour.mix(0.14).filled()))?;
-        area.draw(&PathElement::new(arc, colour.stroke_width(line_width(unit, 0.014))))?;
-        area.draw(&PathElement::new(vec![at(1.0, fold[0]), at(1.0, fold[1])], colour.stroke_width(line_width(unit, 0.004))))?;
-        let marker = (unit * 0.016).max(3.0) as i32;
+        let arc: Vec<(f64, f64)> = folded_arc(fold, 361).into_iter().map(|t| frame.at(1.0, t)).collect();
+        canvas.stroke(&arc, line_width(unit, 0.014), colour);
+        canvas.stroke(&[frame.at(1.0, fold[0]), frame.at(1.0, fold[1])], line_width(unit, 0.005), colour);
         for (e, &f) in fold.iter().enumerate() {
-            area.draw(&Circle::new(at(1.0, f), marker, colour.filled()))?;
-            area.draw(&Circle::new(at(1.0, f), marker, WHITE.stroke_width(1)))?;
-            // Endpoint names go inside, clear of the corner numbers outside.
-            let (h, v) = outward(f + PI);
-            let r = 1.0 - 0.09;
-            area.draw(&Text::new(endpoint_name(k, e, count), at(r, f), text_style(size, colour, h, v)))?;
+            canvas.disc(frame.at(1.0, f), marker + 1.5, PAPER);
+            canvas.disc(frame.at(1.0, f), marker, colour);
+            // Beyond the corner numbers, so the two rarely collide.
+            let at = frame.at(1.0 + 2.2 * size / frame.radius, f);
+            canvas.text(&endpoint_name(k, e, count), at, size, colour, outward(f));
         }
     }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -163,9 +176,11 @@ mod tests {
 
     #[test]
     fn wrap_keeps_words_and_width() {
-        let lines = wrap("one fold along the diagonal, corners 2 and 3 folded", 16);
-        assert!(lines.iter().all(|l| l.chars().count() <= 16), "{lines:?}");
+        let fits = |line: &str| line.chars().count() <= 16;
+        let lines = wrap("one fold along the diagonal, corners 2 and 3 folded", fits);
+        assert!(lines.iter().all(|l| fits(l)), "{lines:?}");
+        assert!(lines.len() >= 3);
         assert_eq!(lines.join(" "), "one fold along the diagonal, corners 2 and 3 folded");
-        assert_eq!(wrap("", 10), Vec::<String>::new());
+        assert_eq!(wrap("", fits), Vec::<String>::new());
     }
 }

@@ -20,14 +20,10 @@
 
 use std::f64::consts::{PI, TAU};
 
-use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::colour::{Ramp, Scale};
-use super::{
-    draw_title, endpoint_name, fold_colour, label_size, line_width, text_style, title_size, Area, Canvas, DrawResult,
-    INK, MUTED,
-};
+use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
 use crate::analysis::Analysis;
 use crate::disk::{condensed_index, Disk};
 use crate::error::Result;
@@ -54,9 +50,10 @@ impl Layout {
         let bar_width = (0.035 * unit).max(4.0);
         let band = bar_width + 5.5 * label;
         let pad = 1.6 * label;
-        let radius = ((w - band - 2.0 * pad) / 2.0).min((h - top - 2.0 * pad) / 2.0).max(4.0);
-        let cx = pad + radius + ((w - band - 2.0 * pad) / 2.0 - radius).max(0.0);
-        let cy = top + pad + radius;
+        let (room_x, room_y) = ((w - band - 2.0 * pad) / 2.0, (h - top - 2.0 * pad) / 2.0);
+        let radius = room_x.min(room_y).max(4.0);
+        // Centred in the room left of the bar, below the title.
+        let (cx, cy) = (pad + room_x.max(radius), top + pad + room_y.max(radius));
         let bar_left = (w - band + label) as i32;
         let bar = [bar_left, (cy - 0.75 * radius) as i32, bar_left + bar_width as i32, (cy + 0.75 * radius) as i32];
         Layout { cx, cy, radius, bar }
@@ -67,11 +64,6 @@ impl Layout {
         (self.cx + self.radius * r * theta.cos(), self.cy - self.radius * r * theta.sin())
     }
 
-    /// [`Self::pixel`] rounded for plotters.
-    fn at(&self, r: f64, theta: f64) -> (i32, i32) {
-        let (x, y) = self.pixel(r, theta);
-        (x.round() as i32, y.round() as i32)
-    }
 }
 
 /// The (ring d, first edge a) of the sector holding polar point (r ≤ 1, θ) on an N-edge disk.
@@ -91,16 +83,13 @@ pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, an
     paint_sectors(canvas, disk, ramp, &scale, &layout);
     let t_range = bar_range(ramp, &scale);
     paint_bar(canvas, ramp, t_range, &layout);
-    let unit = canvas.unit();
-    canvas.draw(|area| {
-        draw_title(area, unit, title)?;
-        draw_frame(area, unit, &layout, disk.n())?;
-        draw_bar_ticks(area, unit, &layout, &scale, t_range)?;
-        match analysis {
-            Some(analysis) => draw_folds(area, unit, &layout, analysis, disk.layers()),
-            None => Ok(()),
-        }
-    })
+    canvas.title(title);
+    draw_frame(canvas, &layout, disk.n());
+    draw_bar_ticks(canvas, &layout, &scale, t_range);
+    if let Some(analysis) = analysis {
+        draw_folds(canvas, &layout, analysis, disk.layers());
+    }
+    Ok(())
 }
 
 /// Fill every pixel of the disk with its sector's colour.
@@ -124,15 +113,8 @@ fn paint_sectors(canvas: &mut Canvas, disk: &Disk, ramp: Ramp, scale: &Scale, la
                 continue;
             }
             let (d, a) = sector_at(n, (dist / radius).min(1.0), dy.atan2(dx).rem_euclid(TAU));
-            blend(canvas.pixel_mut(x, y), colour_of(d, a), coverage);
+            canvas.blend(x as i64, y as i64, colour_of(d, a), coverage);
         }
-    }
-}
-
-/// Mix `colour` into `pixel` with weight `alpha`.
-fn blend(pixel: &mut [u8], colour: [u8; 3], alpha: f64) {
-    for (p, c) in pixel.iter_mut().zip(colour) {
-        *p = (*p as f64 * (1.0 - alpha) + c as f64 * alpha).round() as u8;
     }
 }
 
@@ -157,54 +139,42 @@ fn paint_bar(canvas: &mut Canvas, ramp: Ramp, (lo, hi): (f64, f64), layout: &Lay
     }
 }
 
-/// Rim outline and angle marks 0, π/2, π, 3π/2 (with the vertex count).
-fn draw_frame(area: &Area, unit: f64, layout: &Layout, n: usize) -> DrawResult {
-    let (cx, cy) = (layout.cx.round() as i32, layout.cy.round() as i32);
-    area.draw(&Circle::new((cx, cy), layout.radius.round() as i32, MUTED.stroke_width(1)))?;
-    let size = label_size(unit) * 0.85;
-    let gap = 0.25 * size / layout.radius;
+/// Rim outline, angle marks 0, π/2, π, 3π/2, and the vertex count under the colour bar.
+fn draw_frame(canvas: &mut Canvas, layout: &Layout, n: usize) {
+    let size = label_size(canvas.unit()) * 0.85;
+    canvas.ring((layout.cx, layout.cy), layout.radius, 1.0, MUTED);
+    let gap = 0.3 * size / layout.radius;
     for (k, name) in ["0", "π/2", "π", "3π/2"].iter().enumerate() {
         let theta = k as f64 * PI / 2.0;
-        area.draw(&PathElement::new(vec![layout.at(1.0, theta), layout.at(1.0 + gap, theta)], MUTED.stroke_width(1)))?;
-        let (h, v) = outward(theta);
-        area.draw(&Text::new(name.to_string(), layout.at(1.0 + 2.0 * gap, theta), text_style(size, MUTED, h, v)))?;
+        canvas.stroke(&[layout.pixel(1.0, theta), layout.pixel(1.0 + gap, theta)], 1.0, MUTED);
+        canvas.text(name, layout.pixel(1.0 + 2.0 * gap, theta), size, MUTED, outward(theta));
     }
-    let note = format!("N = {n}");
-    let (_, height) = area.dim_in_pixel();
-    area.draw(&Text::new(note, ((0.4 * size) as i32, height as i32 - (0.4 * size) as i32), text_style(size, MUTED, HPos::Left, VPos::Bottom)))
-}
-
-/// Text anchor that puts a label outside a circle at `theta`.
-pub(crate) fn outward(theta: f64) -> (HPos, VPos) {
-    let (c, s) = (theta.cos(), theta.sin());
-    let h = if c > 0.38 { HPos::Left } else if c < -0.38 { HPos::Right } else { HPos::Center };
-    let v = if s > 0.38 { VPos::Bottom } else if s < -0.38 { VPos::Top } else { VPos::Center };
-    (h, v)
+    let [left, _, _, bottom] = layout.bar;
+    canvas.text(&format!("N = {n}"), (left as f64, bottom as f64 + 1.8 * size), size, MUTED, (HPos::Left, VPos::Center));
 }
 
 /// Outline, ticks and value labels of the colour bar: 0, ±s (the robust scale) and ±max.
-fn draw_bar_ticks(area: &Area, unit: f64, layout: &Layout, scale: &Scale, (lo, hi): (f64, f64)) -> DrawResult {
-    let [left, top, right, bottom] = layout.bar;
-    area.draw(&Rectangle::new([(left, top), (right, bottom)], MUTED.stroke_width(1)))?;
-    let size = label_size(unit) * 0.85;
-    let y_of = |t: f64| top + ((hi - t) / (hi - lo) * (bottom - top) as f64).round() as i32;
+fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi): (f64, f64)) {
+    let [left, top, right, bottom] = layout.bar.map(|v| v as f64);
+    canvas.stroke(&[(left, top), (right, top), (right, bottom), (left, bottom), (left, top)], 1.0, MUTED);
+    let size = label_size(canvas.unit()) * 0.85;
+    let y_of = |t: f64| top + (hi - t) / (hi - lo) * (bottom - top);
     let mut ticks = vec![(hi, scale.max)];
     if lo < 0.0 {
         ticks.push((lo, -scale.max));
     }
     ticks.push((0.0, 0.0));
     for t in [scale.squash(scale.s), -scale.squash(scale.s)] {
-        let clear = ticks.iter().all(|&(u, _)| (y_of(u) - y_of(t)).abs() as f64 > 1.3 * size);
+        let clear = ticks.iter().all(|&(u, _)| (y_of(u) - y_of(t)).abs() > 1.3 * size);
         if clear && t >= lo && t <= hi {
             ticks.push((t, scale.unsquash(t)));
         }
     }
     for (t, value) in ticks {
         let y = y_of(t);
-        area.draw(&PathElement::new(vec![(right, y), (right + (0.4 * size) as i32, y)], INK.stroke_width(1)))?;
-        area.draw(&Text::new(format_value(value), (right + (0.6 * size) as i32, y), text_style(size, INK, HPos::Left, VPos::Center)))?;
+        canvas.stroke(&[(right, y), (right + 0.4 * size, y)], 1.0, INK);
+        canvas.text(&format_value(value), (right + 0.6 * size, y), size, INK, (HPos::Left, VPos::Center));
     }
-    Ok(())
 }
 
 /// A value with about three significant digits.
@@ -221,37 +191,35 @@ pub(crate) fn format_value(v: f64) -> String {
 }
 
 /// Every fitted fold curve of every step, and the fold points on the rim.
-fn draw_folds(area: &Area, unit: f64, layout: &Layout, analysis: &Analysis, layers: usize) -> DrawResult {
-    let width = line_width(unit, 0.006);
+fn draw_folds(canvas: &mut Canvas, layout: &Layout, analysis: &Analysis, layers: usize) {
+    let unit = canvas.unit();
+    let width = line_width(unit, 0.005);
     let inner = 1.0 / layers.max(1) as f64;
     for curve in analysis.steps.iter().flat_map(|s| &s.detection.curves) {
-        let points: Vec<(i32, i32)> = (0..=64)
-            .map(|k| inner + (1.0 - inner) * k as f64 / 64.0)
-            .map(|r| layout.at(r, curve.a0 + curve.a1 * r))
+        let points: Vec<(f64, f64)> = (0..=96)
+            .map(|k| inner + (1.0 - inner) * k as f64 / 96.0)
+            .map(|r| layout.pixel(r, curve.a0 + curve.a1 * r))
             .collect();
         // A white halo keeps the curve visible on dark and light cells alike.
-        area.draw(&PathElement::new(points.clone(), WHITE.stroke_width(width + 2)))?;
-        area.draw(&PathElement::new(points, INK.stroke_width(width)))?;
-        area.draw(&Circle::new(layout.at(1.0, curve.rim), (2 * width + 1) as i32, INK.stroke_width(width)))?;
+        canvas.stroke(&points, width + 2.0, PAPER);
+        canvas.stroke(&points, width, INK);
+        canvas.ring(layout.pixel(1.0, curve.rim), 1.5 * width + 1.0, width, INK);
     }
-    let marker = (unit * 0.014).max(3.0) as i32;
+    let marker = (unit * 0.014).max(3.0);
     let size = label_size(unit);
     for (k, fold) in analysis.folds.iter().enumerate() {
         for (e, &f) in fold.iter().enumerate() {
             let colour = fold_colour(k);
-            area.draw(&Circle::new(layout.at(1.0, f), marker + 1, WHITE.filled()))?;
-            area.draw(&Circle::new(layout.at(1.0, f), marker, colour.filled()))?;
-            let (h, v) = outward(f);
-            let text = endpoint_name(k, e, analysis.folds.len());
-            area.draw(&Text::new(text, layout.at(1.0 + 1.3 * marker as f64 / layout.radius, f), text_style(size, colour, h, v)))?;
+            canvas.disc(layout.pixel(1.0, f), marker + 1.5, PAPER);
+            canvas.disc(layout.pixel(1.0, f), marker, colour);
+            let at = layout.pixel(1.0 + 1.6 * marker / layout.radius, f);
+            canvas.text(&endpoint_name(k, e, analysis.folds.len()), at, size, colour, outward(f));
         }
     }
     if analysis.folds.is_empty() {
-        let (w, h) = area.dim_in_pixel();
-        let at = (w as i32 - (0.4 * size) as i32, h as i32 - (0.4 * size) as i32);
-        area.draw(&Text::new("no fold detected", at, text_style(size * 0.85, MUTED, HPos::Right, VPos::Bottom)))?;
+        let [left, top, ..] = layout.bar;
+        canvas.text("no fold", (left as f64, top as f64 - 1.2 * size), 0.85 * size, MUTED, (HPos::Left, VPos::Center));
     }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -22,6 +22,7 @@ pub mod borders;
 pub mod circle;
 pub mod colour;
 pub mod disk;
+pub mod raster;
 
 use std::sync::OnceLock;
 
@@ -125,7 +126,7 @@ fn ensure_font() -> Result<()> {
 }
 
 /// What plotters drawing on the canvas returns.
-type DrawResult = std::result::Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
+type DrawResult<T = ()> = std::result::Result<T, DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
 /// A plotters drawing area over the whole canvas, in pixel coordinates.
 type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 
@@ -156,10 +157,11 @@ impl Canvas {
     }
 
     /// Draw with plotters over the current pixels.
-    fn draw(&mut self, f: impl FnOnce(&Area) -> DrawResult) -> Result<()> {
+    fn draw<T>(&mut self, f: impl FnOnce(&Area) -> DrawResult<T>) -> Result<T> {
         let area = BitMapBackend::with_buffer(&mut self.rgb, (self.width, self.height)).into_drawing_area();
-        f(&area).map_err(|e| Error::Render(e.to_string()))?;
-        area.present().map_err(|e| Error::Render(e.to_string()))
+        let out = f(&area).map_err(|e| Error::Render(e.to_string()))?;
+        area.present().map_err(|e| Error::Render(e.to_string()))?;
+        Ok(out)
     }
 
     /// Encode as an 8-bit RGB PNG.
@@ -177,22 +179,29 @@ impl Canvas {
     }
 }
 
-/// Text of `size` pixels in `colour`, anchored at (`h`, `v`).
-fn text_style(size: f64, colour: RGBColor, h: HPos, v: VPos) -> TextStyle<'static> {
-    TextStyle { font: (FAMILY, size).into_font(), color: colour.to_backend_color(), pos: Pos::new(h, v) }
+/// A plotters text style of `size` pixels in `colour` (chart labels only; other text goes
+/// through [`Canvas::text`]).
+fn text_style(size: f64, colour: [u8; 3]) -> TextStyle<'static> {
+    TextStyle { font: (FAMILY, size).into_font(), color: plot(colour).to_backend_color(), pos: Pos::new(HPos::Center, VPos::Center) }
+}
+
+/// A palette colour for plotters.
+fn plot([r, g, b]: [u8; 3]) -> RGBColor {
+    RGBColor(r, g, b)
 }
 
 /// Ink for text and outlines.
-const INK: RGBColor = RGBColor(40, 40, 40);
+const INK: [u8; 3] = [40, 40, 40];
 /// Secondary text and guides.
-const MUTED: RGBColor = RGBColor(130, 130, 130);
+const MUTED: [u8; 3] = [130, 130, 130];
+/// Background, and halos that keep lines readable over colour.
+const PAPER: [u8; 3] = [255, 255, 255];
 
 /// One colour per fold, shared by every picture so fold k looks the same everywhere.
-const FOLD_COLOURS: [RGBColor; 4] =
-    [RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189), RGBColor(23, 190, 207)];
+const FOLD_COLOURS: [[u8; 3]; 4] = [[214, 39, 40], [44, 160, 44], [148, 103, 189], [23, 190, 207]];
 
 /// Colour of fold `k` (0-based).
-fn fold_colour(k: usize) -> RGBColor {
+fn fold_colour(k: usize) -> [u8; 3] {
     FOLD_COLOURS[k % FOLD_COLOURS.len()]
 }
 
@@ -205,11 +214,25 @@ fn endpoint_name(k: usize, e: usize, folds: usize) -> String {
     }
 }
 
-/// Draw the title centred at the top.
-fn draw_title(area: &Area, unit: f64, title: &str) -> DrawResult {
-    let (w, _) = area.dim_in_pixel();
-    let size = title_size(unit);
-    area.draw(&Text::new(title.to_string(), (w as i32 / 2, (0.9 * size) as i32), text_style(size, INK, HPos::Center, VPos::Center)))
+/// Text anchor that puts a label outside a circle at angle `theta` (y up).
+fn outward(theta: f64) -> (HPos, VPos) {
+    let (c, s) = (theta.cos(), theta.sin());
+    let h = if c > 0.38 { HPos::Left } else if c < -0.38 { HPos::Right } else { HPos::Center };
+    let v = if s > 0.38 { VPos::Bottom } else if s < -0.38 { VPos::Top } else { VPos::Center };
+    (h, v)
+}
+
+impl Canvas {
+    /// The title, centred at the top.
+    fn title(&mut self, title: &str) {
+        let size = title_size(self.unit());
+        self.text(title, (self.width as f64 / 2.0, 0.9 * size), size, INK, (HPos::Center, VPos::Center));
+    }
+
+    /// Height of the title band.
+    fn title_band(&self) -> f64 {
+        1.8 * title_size(self.unit())
+    }
 }
 
 /// Font size of titles.
@@ -223,8 +246,8 @@ fn label_size(unit: f64) -> f64 {
 }
 
 /// Line width for `fraction` of the unit, at least one pixel.
-fn line_width(unit: f64, fraction: f64) -> u32 {
-    (unit * fraction).round().max(1.0) as u32
+fn line_width(unit: f64, fraction: f64) -> f64 {
+    (unit * fraction).max(1.0)
 }
 
 #[cfg(test)]
