@@ -37,6 +37,9 @@ pub enum Error {
     /// A recording could not be written (feature `rerun`).
     #[error("recording failed: {0}")]
     Recording(String),
+    /// A picture could not be drawn or encoded (a bug, not a bad input).
+    #[error("could not draw the picture: {0}")]
+    Render(String),
 }
 
 /// Shorthand used across the crate.

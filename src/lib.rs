@@ -21,6 +21,7 @@ pub mod metrics;
 pub mod plan;
 #[cfg(feature = "rerun")]
 pub mod record;
+pub mod render;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use fold::FoldMethod;
