@@ -8,6 +8,7 @@
 pub mod analysis;
 pub mod border;
 pub mod close;
+pub mod dataset;
 pub mod disk;
 pub mod error;
 pub mod eval;
@@ -16,6 +17,8 @@ pub mod formats;
 pub mod gli;
 pub mod label;
 pub mod metrics;
+pub mod plan;
+pub mod render;
 
 pub use analysis::{analyze, Analysis, FrameRange};
 pub use error::{Error, Result};
