@@ -15,6 +15,7 @@ pub mod eval;
 pub mod fold;
 pub mod formats;
 pub mod gli;
+pub mod interpolate;
 pub mod label;
 pub mod metrics;
 pub mod plan;
