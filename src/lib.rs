@@ -20,6 +20,7 @@ pub mod label;
 pub mod metrics;
 pub mod plan;
 pub mod render;
+pub mod server;
 
 pub use analysis::{analyze, Analysis, FrameRange};
 pub use error::{Error, Result};

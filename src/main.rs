@@ -45,7 +45,15 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Serve the web app (the default when no command is given).
+    Serve {
+        /// Address to listen on.
+        #[arg(long, default_value = DEFAULT_ADDR)]
+        addr: String,
+    },
 }
+
+const DEFAULT_ADDR: &str = "127.0.0.1:8080";
 
 fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
     std::fs::read(path).map(|b| (path.display().to_string(), b)).map_err(|e| format!("{}: {e}", path.display()))
@@ -132,7 +140,8 @@ fn main() -> ExitCode {
     let outcome = match cli.command {
         Some(Command::Analyze { files, start, end, json: _, disks }) => run_analyze(&files, FrameRange { start, end }, disks),
         Some(Command::Eval { paths, json }) => run_eval(&paths, json),
-        None => Err("no command given; see --help".into()),
+        Some(Command::Serve { addr }) => close::server::run(&addr),
+        None => close::server::run(DEFAULT_ADDR),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
