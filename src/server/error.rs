@@ -85,4 +85,20 @@ macro_rules! from_rejection {
     )*};
 }
 
-from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection, MultipartError);
+from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection);
+
+/// A form that could not be read is the client's doing: a body over the limit (413, found in
+/// the error's sources) or a malformed form (400), never a server fault.
+impl From<MultipartError> for ApiError {
+    fn from(e: MultipartError) -> Self {
+        let mut source: Option<&dyn std::error::Error> = Some(&e);
+        while let Some(s) = source {
+            if s.to_string().contains("length limit exceeded") {
+                return ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, "the form is larger than the limit".into());
+            }
+            source = s.source();
+        }
+        let status = if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
+        ApiError::Rejected(status, format!("could not read the form: {}", e.body_text()))
+    }
+}

@@ -267,7 +267,7 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
     let analyzed = match req.sample {
         Value::String(id) => sample_analysis(&state, &id).await?,
         Value::Object(_) => {
-            let sample: Sample = serde_json::from_value(req.sample).map_err(|e| Error::parse("sample JSON", e))?;
+            let sample = parse_sample(req.sample.to_string().as_bytes())?;
             let key = content_key(&[b"plan", &serde_json::to_vec(&sample).unwrap_or_default()]);
             state.analysis(key, move |key| analyzed(key, &sample, FrameRange::default(), json!({}))).await?
         }
