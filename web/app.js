@@ -147,6 +147,8 @@ async function loadSamples() {
     list.append(h, cards);
   }
   interp.fillSamples(samples);
+  // Open the first sample so the page never starts empty (in a talk, the first click counts).
+  if (samples.length && !$("#browse-result .result")) openSample(samples[0].id);
 }
 
 async function openSample(id) {

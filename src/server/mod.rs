@@ -47,10 +47,12 @@ pub struct Config {
     pub body_limit: usize,
     /// Longest a request may take.
     pub timeout: Duration,
-    /// Analyses kept in memory.
+    /// Analyses kept in memory, and their largest total size in bytes.
     pub cached_analyses: usize,
-    /// PNGs kept in memory.
+    pub analysis_cache_bytes: usize,
+    /// PNGs kept in memory, and their largest total size in bytes.
     pub cached_images: usize,
+    pub image_cache_bytes: usize,
     /// Analyses and renders running at once.
     pub workers: usize,
 }
@@ -61,7 +63,9 @@ impl Default for Config {
             body_limit: 64 * 1024 * 1024,
             timeout: Duration::from_secs(30),
             cached_analyses: 256,
-            cached_images: 256,
+            analysis_cache_bytes: 256 * 1024 * 1024,
+            cached_images: 512,
+            image_cache_bytes: 64 * 1024 * 1024,
             workers: std::thread::available_parallelism().map_or(2, |n| n.get()),
         }
     }
@@ -93,8 +97,8 @@ impl AppState {
         // Build the dataset now rather than on the first request.
         crate::dataset::builtin();
         AppState(Arc::new(Inner {
-            analyses: Mutex::new(Lru::new(config.cached_analyses)),
-            images: Mutex::new(Lru::new(config.cached_images)),
+            analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
+            images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
             cpu: Arc::new(Semaphore::new(config.workers.max(1))),
             config,
         }))
@@ -125,7 +129,7 @@ impl AppState {
             return Ok(hit);
         }
         let analyzed = Arc::new(self.run_cpu(move || compute(key)).await?);
-        lock(&self.0.analyses).insert(analyzed.key.clone(), analyzed.clone());
+        lock(&self.0.analyses).insert(analyzed.key.clone(), analyzed.clone(), analyzed.bytes());
         Ok(analyzed)
     }
 
@@ -139,7 +143,7 @@ impl AppState {
             return Ok(hit);
         }
         let png = Bytes::from(self.run_cpu(render).await?);
-        lock(&self.0.images).insert(key, png.clone());
+        lock(&self.0.images).insert(key, png.clone(), png.len());
         Ok(png)
     }
 }

@@ -34,6 +34,15 @@ pub struct Analyzed {
     pub response: Bytes,
 }
 
+impl Analyzed {
+    /// Roughly the memory it holds: the two disks, the borders, the response.
+    pub fn bytes(&self) -> usize {
+        let a = &self.analysis;
+        let floats = a.disk_start.values().len() + a.disk_end.values().len() + 3 * (a.start_border.len() + a.end_border.len());
+        8 * floats + self.response.len()
+    }
+}
+
 fn points(border: &[Point]) -> Vec<[f64; 3]> {
     border.iter().map(|p| [p.x, p.y, p.z]).collect()
 }
