@@ -157,9 +157,9 @@ mod tests {
         for (from, to) in cases() {
             let path = fold_path(from, to, 201);
             for w in path.windows(2) {
-                for k in 0..2 {
+                for (a, b) in w[0].iter().zip(&w[1]) {
                     // No endpoint travels a full turn: under 2π / 200 per step.
-                    assert!(shortest(w[1][k] - w[0][k]).abs() <= TAU / 200.0 + 1e-12, "{from:?} → {to:?}");
+                    assert!(shortest(b - a).abs() <= TAU / 200.0 + 1e-12, "{from:?} → {to:?}");
                 }
             }
         }
