@@ -39,6 +39,10 @@ impl ApiError {
                 Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
                     StatusCode::UNPROCESSABLE_ENTITY
                 }
+                // Variants added later (e.g. a picture that could not be drawn) are the
+                // server's failures, not the input's.
+                #[allow(unreachable_patterns)]
+                _ => StatusCode::INTERNAL_SERVER_ERROR,
             },
             ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
