@@ -192,6 +192,15 @@ async fn the_app_works_in_a_real_browser() {
     assert_ne!(halfway, canvas(&client).await, "playing did not change the drawing");
     screenshot(&client, &shots, "06-interpolate-end.png").await;
 
+    // The same motion from the server agrees; a plan to the goal fold lists its steps.
+    client.find(Locator::Id("check-server")).await.expect("check button").click().await.expect("click");
+    let check = text_of(&client, "#interp-check").await;
+    assert!(check.contains("agree"), "parity display: {check}");
+    client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
+    let step = text_of(&client, "#plan-steps li").await;
+    assert!(step.contains("along"), "plan step: {step}");
+    screenshot(&client, &shots, "07-plan.png").await;
+
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);
 }
