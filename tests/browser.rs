@@ -138,7 +138,8 @@ async fn the_app_works_in_a_real_browser() {
     // 1. Browse: open a sample; its pictures load and its label shows.
     client.goto(&format!("{base}/")).await.expect("load the app");
     let cards = wait_for("sample cards", async || client.find_all(Locator::Css(".sample-card")).await.ok().filter(|c| !c.is_empty())).await;
-    images_loaded(&client, ".sample-card img").await;
+    // Thumbnails load lazily: check the first ones, which are on screen.
+    images_loaded(&client, "#sample-list .cards:first-of-type .sample-card:nth-child(-n+2) img").await;
     cards[0].click().await.expect("open a sample");
     let label = text_of(&client, "#browse-result .result-label").await;
     assert!(label.contains("corner"), "label: {label}");

@@ -124,6 +124,15 @@ async fn the_app_and_its_assets_are_served() {
 }
 
 #[tokio::test]
+async fn json_answers_are_gzipped_when_asked() {
+    let app = test_app();
+    let request = Request::get(format!("/api/samples/{}", first_entry().id)).header(header::ACCEPT_ENCODING, "gzip").body(Body::empty()).unwrap();
+    let response = app.oneshot(request).await.expect("answer");
+    assert_eq!(response.status(), StatusCode::OK);
+    assert_eq!(response.headers().get(header::CONTENT_ENCODING).map(|v| v.as_bytes()), Some(&b"gzip"[..]));
+}
+
+#[tokio::test]
 async fn samples_are_listed_with_thumbnails() {
     let app = test_app();
     let list = get(&app, "/api/samples").await.json();
