@@ -15,6 +15,7 @@ pub mod eval;
 pub mod fold;
 pub mod formats;
 pub mod gli;
+pub mod interpolate;
 pub mod label;
 pub mod mesh;
 pub mod metrics;
@@ -22,6 +23,7 @@ pub mod plan;
 #[cfg(feature = "rerun")]
 pub mod record;
 pub mod render;
+pub mod server;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use fold::FoldMethod;

@@ -80,6 +80,12 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Serve the web app (the default when no command is given).
+    Serve {
+        /// Address to listen on.
+        #[arg(long, default_value = DEFAULT_ADDR)]
+        addr: String,
+    },
 }
 
 /// Fold point methods, as the command line names them.
@@ -99,6 +105,8 @@ impl From<Method> for FoldMethod {
         }
     }
 }
+
+const DEFAULT_ADDR: &str = "127.0.0.1:8080";
 
 fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
     std::fs::read(path).map(|b| (path.display().to_string(), b)).map_err(|e| format!("{}: {e}", path.display()))
@@ -243,7 +251,8 @@ fn main() -> ExitCode {
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out }) => run_record(&files, &out),
-        None => Err("no command given; see --help".into()),
+        Some(Command::Serve { addr }) => close::server::run(&addr),
+        None => close::server::run(DEFAULT_ADDR),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

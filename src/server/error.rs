@@ -1,0 +1,108 @@
+//! The one error type of the HTTP API: every failure is a status code and `{"error": "..."}`.
+//!
+//! Library errors map by kind: input that cannot be read is 400, input that reads but is no
+//! usable border is 422, too large is 413; axum's own rejections keep their status and
+//! text. A 500 is left only for a failure of the server itself (a worker that died).
+
+use axum::extract::multipart::{MultipartError, MultipartRejection};
+use axum::extract::rejection::{BytesRejection, JsonRejection, PathRejection, QueryRejection};
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use serde_json::json;
+
+use crate::error::Error;
+
+/// Why a request failed.
+#[derive(Debug)]
+pub enum ApiError {
+    /// The input was read but is wrong (parse error, bad border, …).
+    Input(Error),
+    /// The body is not JSON or a multipart form.
+    UnsupportedMediaType(String),
+    /// No such sample, image or route.
+    NotFound(String),
+    /// A well-formed request asking for something impossible.
+    BadRequest(String),
+    /// Rejected by an extractor or a layer before reaching the handler.
+    Rejected(StatusCode, String),
+    /// The server failed (a worker panicked or the pool shut down).
+    Internal(String),
+}
+
+impl ApiError {
+    pub fn status(&self) -> StatusCode {
+        match self {
+            ApiError::Input(e) => match e {
+                Error::Parse { .. } | Error::Empty(_) | Error::InvalidArgument(_) => StatusCode::BAD_REQUEST,
+                Error::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
+                Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
+                    StatusCode::UNPROCESSABLE_ENTITY
+                }
+                // Variants added later (e.g. a picture that could not be drawn) are the
+                // server's failures, not the input's.
+                #[allow(unreachable_patterns)]
+                _ => StatusCode::INTERNAL_SERVER_ERROR,
+            },
+            ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            ApiError::NotFound(_) => StatusCode::NOT_FOUND,
+            ApiError::BadRequest(_) => StatusCode::BAD_REQUEST,
+            ApiError::Rejected(status, _) => *status,
+            ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
+        }
+    }
+
+    pub fn message(&self) -> String {
+        match self {
+            ApiError::Input(e) => e.to_string(),
+            ApiError::UnsupportedMediaType(m) | ApiError::NotFound(m) | ApiError::BadRequest(m) | ApiError::Internal(m) => m.clone(),
+            ApiError::Rejected(status, m) if *status == StatusCode::PAYLOAD_TOO_LARGE => format!("request body too large: {m}"),
+            ApiError::Rejected(_, m) => m.clone(),
+        }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let status = self.status();
+        if status.is_server_error() {
+            tracing::error!(error = %self.message(), "request failed");
+        }
+        (status, Json(json!({ "error": self.message() }))).into_response()
+    }
+}
+
+impl From<Error> for ApiError {
+    fn from(e: Error) -> Self {
+        ApiError::Input(e)
+    }
+}
+
+/// axum rejections all carry a status and a text: keep both.
+macro_rules! from_rejection {
+    ($($t:ty),*) => {$(
+        impl From<$t> for ApiError {
+            fn from(r: $t) -> Self {
+                ApiError::Rejected(r.status(), r.body_text())
+            }
+        }
+    )*};
+}
+
+from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection);
+
+/// A form that could not be read is the client's doing: a body over the limit (413, found in
+/// the error's sources) or a malformed form (400), never a server fault.
+impl From<MultipartError> for ApiError {
+    fn from(e: MultipartError) -> Self {
+        let mut source: Option<&dyn std::error::Error> = Some(&e);
+        while let Some(s) = source {
+            if s.to_string().contains("length limit exceeded") {
+                return ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, "the form is larger than the limit".into());
+            }
+            source = s.source();
+        }
+        let status = if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
+        ApiError::Rejected(status, format!("could not read the form: {}", e.body_text()))
+    }
+}

@@ -1,0 +1,365 @@
+//! Every route of the HTTP API (SPEC §4), driven in-process with `tower::ServiceExt::oneshot`:
+//! the answers on good input, and a JSON 4xx naming the problem for each bad input of SPEC §2.
+
+use axum::body::{to_bytes, Body, Bytes};
+use axum::http::{header, Method, Request, StatusCode};
+use axum::Router;
+use serde_json::{json, Value};
+use tower::ServiceExt;
+
+use close::server::{app, AppState, Config};
+use close::{analyze, dataset, FrameRange};
+
+struct Answer {
+    status: StatusCode,
+    content_type: String,
+    body: Bytes,
+}
+
+impl Answer {
+    fn json(&self) -> Value {
+        serde_json::from_slice(&self.body).unwrap_or_else(|e| panic!("not JSON ({e}): {}", String::from_utf8_lossy(&self.body)))
+    }
+
+    /// The `error` text of a JSON error answer with status `status`.
+    fn error(&self, status: StatusCode) -> String {
+        assert_eq!(self.status, status, "{}", String::from_utf8_lossy(&self.body));
+        assert!(self.content_type.starts_with("application/json"), "error answer is {}", self.content_type);
+        self.json()["error"].as_str().unwrap_or_else(|| panic!("no error text in {}", self.json())).to_string()
+    }
+}
+
+async fn send(app: &Router, request: Request<Body>) -> Answer {
+    let response = app.clone().oneshot(request).await.expect("the router never fails");
+    let status = response.status();
+    let content_type = response.headers().get(header::CONTENT_TYPE).map(|v| v.to_str().unwrap_or("").to_string()).unwrap_or_default();
+    let body = to_bytes(response.into_body(), usize::MAX).await.expect("body");
+    Answer { status, content_type, body }
+}
+
+async fn get(app: &Router, uri: &str) -> Answer {
+    send(app, Request::get(uri).body(Body::empty()).unwrap()).await
+}
+
+async fn post(app: &Router, uri: &str, content_type: &str, body: impl Into<Body>) -> Answer {
+    send(app, Request::post(uri).header(header::CONTENT_TYPE, content_type).body(body.into()).unwrap()).await
+}
+
+async fn post_json(app: &Router, uri: &str, body: &Value) -> Answer {
+    post(app, uri, "application/json", body.to_string()).await
+}
+
+/// A multipart/form-data body of (field, file name, content) parts.
+fn multipart(parts: &[(&str, &str, &str)]) -> (String, String) {
+    let boundary = "close-test-boundary-7d1f";
+    let mut body = String::new();
+    for (field, file, content) in parts {
+        body.push_str(&format!(
+            "--{boundary}\r\nContent-Disposition: form-data; name=\"{field}\"; filename=\"{file}\"\r\nContent-Type: application/octet-stream\r\n\r\n{content}\r\n"
+        ));
+    }
+    body.push_str(&format!("--{boundary}--\r\n"));
+    (format!("multipart/form-data; boundary={boundary}"), body)
+}
+
+fn text_frame(frame: &[[f64; 3]]) -> String {
+    frame.iter().map(|p| format!("{},{},{}\n", p[0], p[1], p[2])).collect()
+}
+
+fn first_entry() -> &'static dataset::Entry {
+    dataset::builtin().iter().find(|e| e.sample.frames.len() >= 2).expect("a built-in sample with two frames")
+}
+
+fn test_app() -> Router {
+    app(AppState::new())
+}
+
+async fn assert_healthy(app: &Router) {
+    let a = get(app, "/healthz").await;
+    assert_eq!(a.status, StatusCode::OK);
+    assert_eq!(a.json()["status"], "ok");
+}
+
+async fn assert_png(app: &Router, url: &str) {
+    let a = get(app, url).await;
+    assert_eq!(a.status, StatusCode::OK, "{url}: {}", String::from_utf8_lossy(&a.body));
+    assert_eq!(a.content_type, "image/png", "{url}");
+    assert!(a.body.starts_with(b"\x89PNG\r\n\x1a\n"), "{url} is not a PNG");
+}
+
+/// Equal JSON, numbers to 1e-9 (the analysis sums in parallel, so the last bits may vary).
+fn assert_same(a: &Value, b: &Value, at: &str) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
+            assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "{at}: {x} != {y}");
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            assert_eq!(x.len(), y.len(), "{at}: lengths");
+            x.iter().zip(y).enumerate().for_each(|(k, (x, y))| assert_same(x, y, &format!("{at}[{k}]")));
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            assert_eq!(x.keys().collect::<Vec<_>>(), y.keys().collect::<Vec<_>>(), "{at}: keys");
+            x.iter().for_each(|(k, x)| assert_same(x, &y[k], &format!("{at}.{k}")));
+        }
+        _ => assert_eq!(a, b, "{at}"),
+    }
+}
+
+#[tokio::test]
+async fn the_app_and_its_assets_are_served() {
+    let app = test_app();
+    let index = get(&app, "/").await;
+    assert_eq!(index.status, StatusCode::OK);
+    assert!(index.content_type.starts_with("text/html"));
+    let html = String::from_utf8_lossy(&index.body);
+    for asset in ["/assets/app.js", "/assets/app.css"] {
+        assert!(html.contains(asset), "index does not load {asset}");
+        assert_eq!(get(&app, asset).await.status, StatusCode::OK, "{asset}");
+    }
+    assert!(get(&app, "/assets/fold.mjs").await.content_type.starts_with("text/javascript"));
+    assert!(get(&app, "/assets/nope.js").await.error(StatusCode::NOT_FOUND).contains("nope.js"));
+    assert!(get(&app, "/no/such/route").await.error(StatusCode::NOT_FOUND).contains("/no/such/route"));
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn json_answers_are_gzipped_when_asked() {
+    let app = test_app();
+    let request = Request::get(format!("/api/samples/{}", first_entry().id)).header(header::ACCEPT_ENCODING, "gzip").body(Body::empty()).unwrap();
+    let response = app.oneshot(request).await.expect("answer");
+    assert_eq!(response.status(), StatusCode::OK);
+    assert_eq!(response.headers().get(header::CONTENT_ENCODING).map(|v| v.as_bytes()), Some(&b"gzip"[..]));
+}
+
+#[tokio::test]
+async fn samples_are_listed_with_thumbnails() {
+    let app = test_app();
+    let list = get(&app, "/api/samples").await.json();
+    let samples = list["samples"].as_array().expect("samples array");
+    assert_eq!(samples.len(), dataset::builtin().len());
+    for (s, e) in samples.iter().zip(dataset::builtin()) {
+        assert_eq!(s["id"], e.id.as_str());
+        assert_eq!(s["name"], e.sample.name.as_str());
+        assert_eq!(s["category"], e.sample.category.as_str());
+        assert_eq!(s["n"], e.sample.frames[0].len());
+        assert_eq!(s["frames"], e.sample.frames.len());
+    }
+    assert_png(&app, samples[0]["thumbnail"].as_str().expect("thumbnail url")).await;
+}
+
+#[tokio::test]
+async fn a_sample_comes_with_its_analysis_and_pictures() {
+    let app = test_app();
+    let entry = first_entry();
+    let a = get(&app, &format!("/api/samples/{}", entry.id)).await;
+    assert_eq!(a.status, StatusCode::OK);
+    let v = a.json();
+    // The CLI's JSON, field for field.
+    let cli = serde_json::to_value(analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap()).unwrap();
+    for (key, value) in cli.as_object().unwrap() {
+        assert_same(&v[key], value, key);
+    }
+    for key in ["folds", "corners", "label", "predicted_end", "metrics", "images", "sample", "start_border"] {
+        assert!(!v[key].is_null(), "missing {key}");
+    }
+    assert!(v["label"]["text"].as_str().is_some_and(|t| !t.is_empty()));
+    assert!(v["metrics"]["rmse"].as_f64().is_some());
+    assert_eq!(v["sample"]["frames"].as_array().map(Vec::len), Some(entry.sample.frames.len()));
+    for picture in ["disk_start", "disk_end", "diff", "signed_diff", "close", "borders"] {
+        assert_png(&app, v["images"][picture].as_str().unwrap_or_else(|| panic!("no {picture} image"))).await;
+    }
+    // A picture of another size is another PNG.
+    let small = get(&app, &format!("/api/images/sample:{}/close.png?size=100", entry.id)).await;
+    let large = get(&app, &format!("/api/images/sample:{}/close.png?size=300", entry.id)).await;
+    assert_ne!(small.body, large.body);
+
+    let missing = get(&app, "/api/samples/no-such-sample").await.error(StatusCode::NOT_FOUND);
+    assert!(missing.contains("no-such-sample"), "{missing}");
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn uploads_of_each_kind_give_the_same_analysis() {
+    let app = test_app();
+    let entry = first_entry();
+    let sample_json = serde_json::to_string(&entry.sample).unwrap();
+    let by_json = post(&app, "/api/analyze", "application/json", sample_json.clone()).await;
+    assert_eq!(by_json.status, StatusCode::OK, "{}", String::from_utf8_lossy(&by_json.body));
+    let by_json = by_json.json();
+
+    let (ct, body) = multipart(&[("sample", "napkin.json", &sample_json)]);
+    let by_file = post(&app, "/api/analyze", &ct, body).await.json();
+
+    let frames = &entry.sample.frames;
+    let (start, end) = (text_frame(&frames[0]), text_frame(&frames[frames.len() - 1]));
+    let (ct, body) = multipart(&[("start", "start.txt", &start), ("end", "end.txt", &end)]);
+    let by_text = post(&app, "/api/analyze", &ct, body).await.json();
+
+    for v in [&by_file, &by_text] {
+        assert_same(&v["folds"], &by_json["folds"], "folds");
+        assert_same(&v["corners"], &by_json["corners"], "corners");
+        assert_eq!(v["label"]["text"], by_json["label"]["text"]);
+        assert_eq!(v["images"].as_object().map(|m| m.len()), Some(6));
+    }
+    assert_png(&app, by_text["images"]["diff"].as_str().unwrap()).await;
+}
+
+#[tokio::test]
+async fn analyses_are_cached_by_content_and_frame_range() {
+    let app = test_app();
+    let body = serde_json::to_string(&first_entry().sample).unwrap();
+    let first = post(&app, "/api/analyze", "application/json", body.clone()).await;
+    let again = post(&app, "/api/analyze", "application/json", body.clone()).await;
+    assert_eq!(first.body, again.body);
+    let one_frame = post(&app, "/api/analyze?start=0&end=0", "application/json", body.clone()).await.json();
+    assert_ne!(one_frame["key"], first.json()["key"]);
+    assert_eq!(one_frame["folds"], json!([]));
+    assert!(one_frame["metrics"].is_null());
+    let bad_range = post(&app, "/api/analyze?start=0&end=99", "application/json", body.clone()).await;
+    assert!(bad_range.error(StatusCode::BAD_REQUEST).contains("frame 99"));
+    let bad_query = post(&app, "/api/analyze?start=abc", "application/json", body).await;
+    assert!(bad_query.error(StatusCode::BAD_REQUEST).contains("start"));
+}
+
+/// A square border of `k` vertices a side, in frames.
+fn square(k: usize) -> Vec<[f64; 3]> {
+    let c = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+    (0..4 * k)
+        .map(|v| {
+            let (a, b, t) = (c[v / k], c[(v / k + 1) % 4], (v % k) as f64 / k as f64);
+            [a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1), 0.0]
+        })
+        .collect()
+}
+
+#[tokio::test]
+async fn bad_uploads_are_named_4xx_and_the_server_keeps_serving() {
+    let app = test_app();
+    let sq = json!(square(3));
+    let cases: Vec<(&str, String, StatusCode, &str)> = vec![
+        ("application/json", "this is not json".into(), StatusCode::BAD_REQUEST, "parse"),
+        ("application/json", "".into(), StatusCode::BAD_REQUEST, "empty"),
+        ("application/json", r#"{"frames": [[[NaN, 0, 0]]]}"#.into(), StatusCode::BAD_REQUEST, "parse"),
+        ("application/json", r#"{"frames": [[[1e400, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]]}"#.into(), StatusCode::BAD_REQUEST, "number"),
+        ("application/json", r#"{"frames": [[["a", 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]]}"#.into(), StatusCode::BAD_REQUEST, "parse"),
+        ("application/json", r#"{"name": "no frames"}"#.into(), StatusCode::BAD_REQUEST, "frames"),
+        ("application/json", json!({"frames": [sq, square(2)]}).to_string(), StatusCode::UNPROCESSABLE_ENTITY, "frame 1 has 8 vertices"),
+        ("application/json", json!({"frames": [[[0, 0, 0], [1, 0, 0], [1, 1, 0]]]}).to_string(), StatusCode::UNPROCESSABLE_ENTITY, "too few"),
+        ("application/json", json!({"frames": [[[0, 0, 0], [1, 1, 0], [2, 2, 0], [3, 3, 0], [4, 4, 0]]]}).to_string(), StatusCode::UNPROCESSABLE_ENTITY, "degenerate"),
+        ("application/json", json!({"frames": [square(1300)]}).to_string(), StatusCode::PAYLOAD_TOO_LARGE, "5200 vertices"),
+        ("text/plain", "0,0,0".into(), StatusCode::UNSUPPORTED_MEDIA_TYPE, "text/plain"),
+        ("", "0,0,0".into(), StatusCode::UNSUPPORTED_MEDIA_TYPE, "content type"),
+    ];
+    for (content_type, body, status, words) in cases {
+        let request = Request::post("/api/analyze");
+        let request = if content_type.is_empty() { request } else { request.header(header::CONTENT_TYPE, content_type) };
+        let error = send(&app, request.body(Body::from(body.clone())).unwrap()).await.error(status);
+        assert!(error.to_lowercase().contains(&words.to_lowercase()), "{body:.60}: {error:?} should name {words:?}");
+    }
+
+    let (ct, body) = multipart(&[]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::BAD_REQUEST).contains("no file"));
+    let (ct, body) = multipart(&[("frames", "a.txt", "0,0,0")]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::BAD_REQUEST).contains("\"frames\""));
+    let (ct, body) = multipart(&[("end", "end.txt", "0,0,0")]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::BAD_REQUEST).contains("start"));
+    let (ct, body) = multipart(&[("start", "a.txt", "0,0,0\n1,0,0\n1,1,0\n0,1,0\n"), ("end", "b.txt", "0,0,0\nx,y\n")]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::BAD_REQUEST).contains("b.txt"));
+    let (ct, body) = multipart(&[("sample", "cloth.xls", "…")]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::BAD_REQUEST).contains(".xls"));
+    let broken = "--b\r\nContent-Disposition: form-data; name=\"sample\"\r\n\r\nunterminated";
+    post(&app, "/api/analyze", "multipart/form-data; boundary=b", broken).await.error(StatusCode::BAD_REQUEST);
+    post(&app, "/api/analyze", "multipart/form-data", "no boundary").await.error(StatusCode::BAD_REQUEST);
+
+    let wrong_method = send(&app, Request::builder().method(Method::PUT).uri("/api/analyze").body(Body::empty()).unwrap()).await;
+    assert!(wrong_method.error(StatusCode::METHOD_NOT_ALLOWED).contains("method"));
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn bodies_over_the_limit_are_413() {
+    let app = app(AppState::with_config(Config { body_limit: 1024, ..Config::default() }));
+    let big = json!({"frames": [square(100)]}).to_string();
+    assert!(big.len() > 1024);
+    // Announced by Content-Length: refused before reading.
+    let announced = Request::post("/api/analyze")
+        .header(header::CONTENT_TYPE, "application/json")
+        .header(header::CONTENT_LENGTH, big.len())
+        .body(Body::from(big.clone()))
+        .unwrap();
+    assert!(send(&app, announced).await.error(StatusCode::PAYLOAD_TOO_LARGE).contains("too large"));
+    // No Content-Length (as when streamed): cut while reading.
+    let unannounced = post(&app, "/api/analyze", "application/json", big.clone()).await;
+    assert!(unannounced.error(StatusCode::PAYLOAD_TOO_LARGE).contains("too large"));
+    let (ct, body) = multipart(&[("sample", "big.json", &big)]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::PAYLOAD_TOO_LARGE).contains("too large"));
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn unknown_pictures_and_analyses_are_404() {
+    let app = test_app();
+    let id = &first_entry().id;
+    assert!(get(&app, &format!("/api/images/sample:{id}/rainbow.png")).await.error(StatusCode::NOT_FOUND).contains("rainbow"));
+    assert!(get(&app, &format!("/api/images/sample:{id}/close.jpg")).await.error(StatusCode::NOT_FOUND).contains("close.jpg"));
+    assert!(get(&app, "/api/images/0123abcd/close.png").await.error(StatusCode::NOT_FOUND).contains("0123abcd"));
+    assert!(get(&app, "/api/images/sample:nope/close.png").await.error(StatusCode::NOT_FOUND).contains("nope"));
+    assert!(get(&app, &format!("/api/images/sample:{id}/close.png?size=big")).await.error(StatusCode::BAD_REQUEST).contains("size"));
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn interpolation_moves_from_one_fold_to_the_other() {
+    let app = test_app();
+    let border = square(4);
+    let a = post_json(&app, "/api/interpolate", &json!({"border": border, "from": [0.5, 3.6], "to": [1.0, 4.0], "steps": 9})).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    let v = a.json();
+    let folds: Vec<[f64; 2]> = serde_json::from_value(v["folds"].clone()).unwrap();
+    let borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(v["borders"].clone()).unwrap();
+    assert_eq!((folds.len(), borders.len()), (9, 9));
+    assert_eq!((folds[0], folds[8]), ([0.5, 3.6], [1.0, 4.0]));
+    assert!(borders.iter().all(|b| b.len() == border.len()));
+
+    for (body, status, words) in [
+        (json!({"border": border, "from": [0, 1], "to": [1, 2], "steps": 1}), StatusCode::BAD_REQUEST, "steps"),
+        (json!({"border": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "from": [0, 1], "to": [1, 2]}), StatusCode::UNPROCESSABLE_ENTITY, "too few"),
+        (json!({"border": border, "from": [0, 1]}), StatusCode::UNPROCESSABLE_ENTITY, "to"),
+        (json!({"border": square(2000), "from": [0, 1], "to": [1, 2], "steps": 1000}), StatusCode::PAYLOAD_TOO_LARGE, "steps"),
+    ] {
+        let error = post_json(&app, "/api/interpolate", &body).await.error(status);
+        assert!(error.contains(words), "{error:?} should name {words:?}");
+    }
+    assert!(post(&app, "/api/interpolate", "text/plain", "{}").await.error(StatusCode::UNSUPPORTED_MEDIA_TYPE).contains("application/json"));
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn plans_reach_the_goal_with_input_vertex_indices() {
+    let app = test_app();
+    let entry = first_entry();
+    let goal = [0.3, 3.4];
+    let by_id = post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": goal})).await;
+    assert_eq!(by_id.status, StatusCode::OK, "{}", String::from_utf8_lossy(&by_id.body));
+    let v = by_id.json();
+    assert!(v["case"].as_str().is_some_and(|c| !c.is_empty()));
+    let steps = v["steps"].as_array().expect("steps");
+    assert!(!steps.is_empty());
+    let n = entry.sample.frames[0].len() as u64;
+    for step in steps {
+        assert!(step["action"].is_string() && step["fold"].is_array() && step["corners"].is_array());
+        for pick in step["picks"].as_array().unwrap() {
+            assert!(pick["vertex"].as_u64().is_some_and(|k| k < n));
+            assert_eq!(pick["from"].as_array().map(Vec::len), Some(3));
+        }
+    }
+    let by_sample = post_json(&app, "/api/plan", &json!({"sample": entry.sample, "goal": goal})).await.json();
+    assert_same(&by_sample["steps"], &v["steps"], "steps");
+
+    assert!(post_json(&app, "/api/plan", &json!({"sample": "nope", "goal": goal})).await.error(StatusCode::NOT_FOUND).contains("nope"));
+    assert!(post_json(&app, "/api/plan", &json!({"sample": 7, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("sample"));
+    assert!(post_json(&app, "/api/plan", &json!({"sample": {"frames": 3}, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("parse"));
+    assert!(post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [1]})).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("goal"));
+    assert_healthy(&app).await;
+}

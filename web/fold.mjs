@@ -1,0 +1,112 @@
+// Fold interpolation and reflection: the browser's copy of src/interpolate.rs and
+// src/fold/reflect.rs (same rules, same floating-point order; tests/http.rs checks parity).
+//
+// A fold (f1, f2) folds the border arc walked anticlockwise from f1 to f2. Between two
+// folds each endpoint moves linearly; the span (f2 − f1 mod 2π) moves straight from its
+// start to its end value, never through 0 or 2π, and of the ways that do so the one with
+// the least travel |d1| + |d2| wins (ties: the shortest way for f1).
+
+export const TAU = 2 * Math.PI;
+// Rust's f64::MIN_POSITIVE (the smallest normal number).
+const MIN_POSITIVE = 2.2250738585072014e-308;
+
+/** Rust's f64::rem_euclid. */
+function remEuclid(x, m) {
+  const r = x % m;
+  return r < 0 ? r + Math.abs(m) : r;
+}
+
+export function wrap(angle) {
+  return remEuclid(angle, TAU);
+}
+
+/** x taken into (−π, π]. */
+export function shortest(x) {
+  const r = wrap(x);
+  return r > Math.PI ? r - TAU : r;
+}
+
+/** How far each endpoint moves [d1, d2] going from fold `from` to fold `to`. */
+export function displacements(from, to) {
+  const spanChange = wrap(to[1] - to[0]) - wrap(from[1] - from[0]);
+  const d1 = shortest(to[0] - from[0]);
+  const cost = (d) => Math.abs(d) + Math.abs(d + spanChange);
+  let best = d1;
+  for (const d of [d1, d1 - TAU, d1 + TAU]) {
+    if (cost(d) < cost(best) - 1e-12) best = d;
+  }
+  return [best, best + spanChange];
+}
+
+/** The fold at fraction tau ∈ [0, 1] of the way (tau 0 and 1 give the ends exactly). */
+export function foldAt(from, to, tau) {
+  if (tau <= 0) return [wrap(from[0]), wrap(from[1])];
+  if (tau >= 1) return [wrap(to[0]), wrap(to[1])];
+  const [d1, d2] = displacements(from, to);
+  return [wrap(from[0] + tau * d1), wrap(from[1] + tau * d2)];
+}
+
+/** `steps` folds from `from` to `to`, both included. */
+export function foldPath(from, to, steps) {
+  const last = Math.max(steps - 1, 1);
+  const out = [];
+  for (let t = 0; t < steps; t++) {
+    out.push(t === steps - 1 && t > 0 ? foldAt(from, to, 1) : foldAt(from, to, t / last));
+  }
+  return out;
+}
+
+/** Point at border parameter s (fractional vertex index, cyclic). */
+export function pointAt(points, s) {
+  const n = points.length;
+  s = remEuclid(s, n);
+  const k = Math.min(Math.floor(s), n - 1);
+  const t = s - k;
+  const a = points[k];
+  const b = points[(k + 1) % n];
+  return [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t];
+}
+
+/** Indices strictly inside the anticlockwise arc from f1 to f2. */
+export function foldedVertices(n, fold) {
+  const s1 = (wrap(fold[0]) * n) / TAU;
+  const span = (wrap(fold[1] - fold[0]) * n) / TAU;
+  const out = [];
+  for (let v = 0; v < n; v++) {
+    const offset = remEuclid(v - s1, n);
+    if (offset > 1e-9 && offset < span - 1e-9) out.push(v);
+  }
+  return out;
+}
+
+/** Reflect p across the XY line through a and b (z kept). */
+export function reflectXY(p, a, b) {
+  const dx = b[0] - a[0];
+  const dy = b[1] - a[1];
+  const len2 = dx * dx + dy * dy;
+  const norms = a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  if (len2 <= Number.EPSILON * Math.max(norms, MIN_POSITIVE)) return p.slice();
+  const px = p[0] - a[0];
+  const py = p[1] - a[1];
+  const t = (px * dx + py * dy) / len2;
+  const fx = a[0] + t * dx;
+  const fy = a[1] + t * dy;
+  return [2 * fx - p[0], 2 * fy - p[1], p[2]];
+}
+
+/** The border folded along `fold`, and the two points of the fold line. */
+export function applyFold(points, fold) {
+  const n = points.length;
+  const toParam = (f) => (wrap(f) * n) / TAU;
+  const a = pointAt(points, toParam(fold[0]));
+  const b = pointAt(points, toParam(fold[1]));
+  const out = points.map((p) => p.slice());
+  for (const v of foldedVertices(n, fold)) out[v] = reflectXY(points[v], a, b);
+  return out;
+}
+
+/** The fold line's end points on the flat border. */
+export function foldLine(points, fold) {
+  const n = points.length;
+  return [pointAt(points, (wrap(fold[0]) * n) / TAU), pointAt(points, (wrap(fold[1]) * n) / TAU)];
+}
