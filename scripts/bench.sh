@@ -11,7 +11,7 @@ median() {
     $0 ~ bench {inside=1; next}
     /^[├╰]─ [a-z]/ {inside=0}
     inside && $0 ~ "─ " n " " {
-      split($0, cols, "│"); m = cols[4]; gsub(/^ +| +$/, "", m); split(m, p, " ");
+      line = $0; sub(/^│/, "", line); split(line, cols, "│"); m = cols[3]; gsub(/^ +| +$/, "", m); split(m, p, " ");
       unit = p[2]; v = p[1];
       if (unit == "ns") v /= 1e9; else if (unit == "µs") v /= 1e6; else if (unit == "ms") v /= 1e3;
       print v; exit }'

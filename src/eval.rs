@@ -215,40 +215,39 @@ pub fn report(samples: Vec<SampleResult>) -> Report {
 impl Report {
     /// The table as aligned text.
     pub fn table(&self) -> String {
-        let fmt = |s: Option<Stat>, scale: f64| s.map_or(("-".to_string(), "-".to_string()), |s| (format!("{:.4}", s.mean * scale), format!("{:.5}", s.var * scale * scale)));
-        let mut out = format!(
-            "{:<20} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
-            "category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "f1 err°", "f2 err°"
-        );
+        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "f1 err°", "f2 err°"].map(String::from));
         for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
-            let (rm, rv) = fmt(s.rmse, 1.0);
-            let (fm, fv) = fmt(s.frechet, 1.0);
-            let (a1, _) = fmt(s.f1_error, 180.0 / PI);
-            let (a2, _) = fmt(s.f2_error, 180.0 / PI);
-            out.push_str(&format!(
-                "{:<20} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
-                s.category, s.count, rm, rv, fm, fv, s.fold_count_misses, s.errors, a1, a2
-            ));
+            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.f1_error, s.f2_error], s.fold_count_misses, &s.errors.to_string()));
             for f in &s.by_fold {
-                let (rm, rv) = fmt(f.rmse, 1.0);
-                let (fm, fv) = fmt(f.frechet, 1.0);
-                let (a1, _) = fmt(f.f1_error, 180.0 / PI);
-                let (a2, _) = fmt(f.f2_error, 180.0 / PI);
-                out.push_str(&format!(
-                    "{:<20} {:>5} {:>9} {:>9} {:>9} {:>9} {:>7} {:>6} {:>9} {:>9}\n",
-                    format!("  fold {}", f.fold),
-                    f.count,
-                    rm,
-                    rv,
-                    fm,
-                    fv,
-                    f.count - f.found,
-                    "",
-                    a1,
-                    a2
-                ));
+                let label = format!("  fold {}", f.fold);
+                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.f1_error, f.f2_error], f.count - f.found, ""));
             }
         }
         out
     }
+}
+
+/// One aligned line of the table.
+fn row(cells: [String; 10]) -> String {
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9] = cells;
+    format!("{c0:<20} {c1:>5} {c2:>9} {c3:>9} {c4:>9} {c5:>9} {c6:>7} {c7:>6} {c8:>9} {c9:>9}\n")
+}
+
+/// A row from statistics: RMSE and Fréchet with their variances, angle errors in degrees.
+fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 4], misses: usize, errors: &str) -> String {
+    let mean = |s: Option<Stat>, scale: f64| s.map_or("-".to_string(), |s| format!("{:.4}", s.mean * scale));
+    let var = |s: Option<Stat>| s.map_or("-".to_string(), |s| format!("{:.5}", s.var));
+    let degrees = 180.0 / PI;
+    row([
+        label.to_string(),
+        count.to_string(),
+        mean(rmse, 1.0),
+        var(rmse),
+        mean(frechet, 1.0),
+        var(frechet),
+        misses.to_string(),
+        errors.to_string(),
+        mean(f1, degrees),
+        mean(f2, degrees),
+    ])
 }
