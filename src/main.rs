@@ -1,6 +1,6 @@
 //! `close`: the command line (SPEC §3).
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -108,6 +108,15 @@ impl From<Method> for FoldMethod {
 
 const DEFAULT_ADDR: &str = "127.0.0.1:8080";
 
+/// Print a result and a newline; a closed pipe (`close … | head`) is not an error.
+fn emit(text: &str) -> Result<(), String> {
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(format!("writing the output: {e}")),
+        _ => Ok(()),
+    }
+}
+
 fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
     std::fs::read(path).map(|b| (path.display().to_string(), b)).map_err(|e| format!("{}: {e}", path.display()))
 }
@@ -126,7 +135,7 @@ fn run_analyze(files: &[PathBuf], options: Options, disks: bool) -> Result<(), S
         out["disk_start"] = analysis.disk_start.values().into();
         out["disk_end"] = analysis.disk_end.values().into();
     }
-    println!("{out}");
+    emit(&out.to_string())?;
     Ok(())
 }
 
@@ -179,9 +188,9 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
     bar.finish_and_clear();
     let report = eval::report(results);
     if json {
-        println!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
+        emit(&serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?)?;
     } else {
-        print!("{}", report.table());
+        emit(report.table().trim_end())?;
         for r in report.samples.iter().filter(|r| r.error.is_some()) {
             eprintln!("error: {}: {}", r.name, r.error.as_deref().unwrap_or_default());
         }
@@ -215,18 +224,17 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
         pick.vertex = analysis.border_indices[pick.vertex];
     }
     if json {
-        println!("{}", serde_json::to_string(&plan).map_err(|e| e.to_string())?);
-        return Ok(());
+        return emit(&serde_json::to_string(&plan).map_err(|e| e.to_string())?);
     }
-    println!("{}", plan.case);
+    let mut text = plan.case.clone();
     for (k, step) in plan.steps.iter().enumerate() {
-        println!("{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action, step.fold[0], step.fold[1], step.corners);
+        text += &format!("\n{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action, step.fold[0], step.fold[1], step.corners);
         for p in &step.picks {
             let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
-            println!("   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
+            text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
         }
     }
-    Ok(())
+    emit(&text)
 }
 
 #[cfg(feature = "rerun")]

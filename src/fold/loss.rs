@@ -87,12 +87,16 @@ pub struct RingTables {
 impl RingTables {
     /// At most this many rings are tabulated; beyond it every k-th ring stands for k rings.
     pub const MAX_RINGS: usize = 96;
+    /// At most this many grid angles per ring.
+    pub const MAX_GRID: usize = 2048;
 
     /// Tabulate the loss of the diff disk `g`.
     pub fn new(g: &Disk) -> RingTables {
         let n = g.n();
+        // Half-edge cell angles fall on the grid exactly up to MAX_GRID points; beyond it,
+        // cells share grid points (their weights add), which bounds the work for huge N.
         let per_edge = if n <= 128 { 4 } else { 2 };
-        let grid = per_edge * n;
+        let grid = (per_edge * n).min(Self::MAX_GRID);
         let step = 2.0 * PI / grid as f64;
         // Kernels indexed by (mm − p) mod grid, i.e. at δ = −(mm − p)·step.
         let kernel = |f: fn(f64) -> f64| -> Vec<f64> { (0..grid).map(|t| f(wrap(-(t as f64) * step))).collect() };
@@ -104,15 +108,19 @@ impl RingTables {
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|d| {
-                let mut table = vec![0.0; grid];
+                // The ring's √g and g profiles on the grid.
+                let (mut sqrt_g, mut plain_g) = (vec![0.0; grid], vec![0.0; grid]);
                 for a in 0..n {
                     let value = g.ring_value(d, a);
-                    if value <= 0.0 {
-                        continue;
+                    if value > 0.0 {
+                        let p = (ring_angle(n, d, a) / step).round() as usize % grid;
+                        sqrt_g[p] += value.sqrt();
+                        plain_g[p] += value;
                     }
-                    let (sg, gg) = (value.sqrt(), value);
-                    // Cell angle π(2a + d + 1)/N is grid point p (per_edge is even).
-                    let p = (per_edge * (2 * a + d + 1) / 2) % grid;
+                }
+                let mut table = vec![0.0; grid];
+                for p in (0..grid).filter(|&p| plain_g[p] > 0.0) {
+                    let (sg, gg) = (sqrt_g[p], plain_g[p]);
                     let (head, tail) = table.split_at_mut(p);
                     let (ka_head, ka_tail) = ka.split_at(grid - p);
                     let (kb_head, kb_tail) = kb.split_at(grid - p);
