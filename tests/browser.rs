@@ -1,5 +1,6 @@
 //! End-to-end in a real headless Chromium (driven over WebDriver by fantoccini): load the
-//! app, open a sample, upload a file, move the interpolation slider. Screenshots go to
+//! app, open a sample, upload a file, move the interpolation slider (the drawing and the
+//! disk follow). Screenshots go to
 //! `target/e2e-screenshots/` for a person to look at.
 //!
 //! Needs Debian's `chromium` and `chromium-driver` (or `CLOSE_CHROMIUM` / `CLOSE_CHROMEDRIVER`
@@ -84,6 +85,19 @@ async fn canvas(client: &Client) -> u64 {
     let url = js(client, "return document.getElementById('interp-canvas').toDataURL()").await;
     let mut h = std::hash::DefaultHasher::new();
     url.as_str().unwrap_or_default().hash(&mut h);
+    h.finish()
+}
+
+/// A digest of the disk picture of the interpolation, once it shows the current state.
+async fn disk_picture(client: &Client) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let script = "const img = document.getElementById('interp-disk'); \
+                  if (!img.complete || !img.naturalWidth || img.dataset.key !== window.closeApp.interp.diskKey()) return null; \
+                  const c = document.createElement('canvas'); c.width = img.naturalWidth; c.height = img.naturalHeight; \
+                  c.getContext('2d').drawImage(img, 0, 0); return c.toDataURL();";
+    let url = wait_for("the disk of the current state", async || js(client, script).await.as_str().map(str::to_string)).await;
+    let mut h = std::hash::DefaultHasher::new();
+    url.hash(&mut h);
     h.finish()
 }
 
@@ -177,6 +191,7 @@ async fn the_app_works_in_a_real_browser() {
     })
     .await;
     let before = canvas(&client).await;
+    let disk_before = disk_picture(&client).await;
     screenshot(&client, &shots, "04-interpolate-start.png").await;
     // A mouse click on the middle of the slider's track moves it there.
     client.find(Locator::Id("interp-slider")).await.expect("slider").click().await.expect("click the slider");
@@ -186,6 +201,7 @@ async fn the_app_works_in_a_real_browser() {
     assert_ne!(before, halfway, "moving the slider did not change the drawing");
     let readout = client.find(Locator::Id("interp-readout")).await.expect("readout").text().await.expect("text");
     assert!(!readout.contains("t = 0.000"), "the readout did not follow the slider: {readout}");
+    assert_ne!(disk_before, disk_picture(&client).await, "the disk did not follow the slider");
     screenshot(&client, &shots, "05-interpolate-half.png").await;
     // The play button runs the motion to its end.
     client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");

@@ -363,3 +363,45 @@ async fn plans_reach_the_goal_with_input_vertex_indices() {
     assert!(post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [1]})).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("goal"));
     assert_healthy(&app).await;
 }
+
+#[tokio::test]
+async fn the_disk_of_any_border_state_is_a_png() {
+    let app = test_app();
+    let flat = square(5);
+    let folded: Vec<Vec<[f64; 3]>> = serde_json::from_value(
+        post_json(&app, "/api/interpolate", &json!({"border": flat, "from": [0.3, 0.3], "to": [0.3, 3.44], "steps": 3})).await.json()["borders"].clone(),
+    )
+    .unwrap();
+    let disk = async |body: Value| {
+        let a = post_json(&app, "/api/disk", &body).await;
+        assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+        assert_eq!(a.content_type, "image/png");
+        assert!(a.body.starts_with(b"\x89PNG\r\n\x1a\n"));
+        a.body
+    };
+    let flat_png = disk(json!({"border": flat, "size": 200})).await;
+    assert_eq!(flat_png, disk(json!({"border": flat, "size": 200})).await, "the same border, the same picture");
+    let half = disk(json!({"border": folded[1], "reference": flat, "size": 200})).await;
+    let full = disk(json!({"border": folded[2], "reference": flat, "size": 200})).await;
+    assert!(flat_png != half && half != full, "the disk follows the fold");
+    // The disk does not depend on where the cloth lies, but does on the picture's size.
+    let shifted: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] + 3.0, p[1] - 1.0, p[2]]).collect();
+    assert_eq!(flat_png, disk(json!({"border": shifted, "size": 200})).await);
+    assert_ne!(flat_png, disk(json!({"border": flat, "size": 120})).await);
+
+    for (body, status, words) in [
+        (json!({"border": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}), StatusCode::UNPROCESSABLE_ENTITY, "too few"),
+        (json!({"border": square(2), "reference": square(3)}), StatusCode::UNPROCESSABLE_ENTITY, "frame 1 has 8 vertices"),
+        (json!({"border": [[0, 0, 0], [1, 1, 0], [2, 2, 0], [3, 3, 0]]}), StatusCode::UNPROCESSABLE_ENTITY, "degenerate"),
+        (json!({"border": square(2000)}), StatusCode::PAYLOAD_TOO_LARGE, "vertices"),
+        (json!({"border": [[0, 0]]}), StatusCode::UNPROCESSABLE_ENTITY, "border"),
+        (json!({"size": 100}), StatusCode::UNPROCESSABLE_ENTITY, "border"),
+        (json!({"border": flat, "colour": "red"}), StatusCode::UNPROCESSABLE_ENTITY, "colour"),
+    ] {
+        let error = post_json(&app, "/api/disk", &body).await.error(status);
+        assert!(error.contains(words), "{error:?} should name {words:?}");
+    }
+    assert!(post(&app, "/api/disk", "application/json", "{\"border\": [[0, 0").await.error(StatusCode::BAD_REQUEST).contains("JSON"));
+    assert!(post(&app, "/api/disk", "text/plain", "{}").await.error(StatusCode::UNSUPPORTED_MEDIA_TYPE).contains("application/json"));
+    assert_healthy(&app).await;
+}

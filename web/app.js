@@ -232,6 +232,54 @@ function arcPath(a, b, r) {
   return `M ${x1} ${y1} A ${r} ${r} 0 ${span > Math.PI ? 1 : 0} 0 ${x2} ${y2}`;
 }
 
+/**
+ * Keeps an <img> showing the dGLI disk of the latest border state asked for. One request is
+ * in flight at a time and only the newest waiting state is kept, so dragging the slider
+ * never queues up stale pictures.
+ */
+class DiskFollower {
+  constructor(img, status, size = 480) {
+    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null });
+  }
+
+  /** Show the disk of `border` (normalised like `reference`, the flat start) under `key`. */
+  show(key, border, reference) {
+    this.next = { key, border, reference };
+    if (!this.busy) this.pump();
+  }
+
+  async pump() {
+    this.busy = true;
+    while (this.next) {
+      const job = this.next;
+      this.next = null;
+      if (job.key === this.shown) continue;
+      try {
+        const res = await fetch("/api/disk", {
+          method: "POST",
+          headers: { "content-type": "application/json" },
+          body: JSON.stringify({ border: job.border, reference: job.reference, size: this.size }),
+        });
+        if (!res.ok) {
+          const body = await res.json().catch(() => ({}));
+          throw new Error(`${body.error || res.statusText} (HTTP ${res.status})`);
+        }
+        const url = URL.createObjectURL(await res.blob());
+        this.img.src = url;
+        await this.img.decode();
+        if (this.url) URL.revokeObjectURL(this.url);
+        this.url = url;
+        this.shown = job.key;
+        this.img.dataset.key = job.key;
+        this.status.textContent = "";
+      } catch (e) {
+        this.status.textContent = `(not drawn: ${e.message})`;
+      }
+    }
+    this.busy = false;
+  }
+}
+
 const interp = {
   border: null,
   corners: [],
@@ -259,6 +307,7 @@ const interp = {
   /** Fold the start border of an analysis; start unfolded at its first fold's f1. */
   useResult(result, id) {
     this.border = result.start_border;
+    this.cloth = (this.cloth || 0) + 1;
     this.corners = result.corners;
     this.sampleId = result.id || null;
     this.sampleJson = result.sample || null;
@@ -303,12 +352,21 @@ const interp = {
   draw() {
     if (!this.border || !this.bounds) return;
     const fold = this.current();
-    this.drawCanvas(fold);
+    const folded = applyFold(this.border, fold);
+    this.drawCanvas(fold, folded);
     this.drawCircle(fold);
     $("#interp-readout").textContent = `t = ${this.tau.toFixed(3)}   fold ${fmtFold(fold)}`;
+    // The disk only while it is on screen; showing the tab draws again.
+    if (!$("#view-interpolate").hidden) this.disk.show(this.diskKey(), folded, this.border);
   },
 
-  drawCanvas(fold) {
+  /** Names the state drawn: the cloth and the current fold. */
+  diskKey() {
+    const fold = this.current();
+    return `${this.cloth}|${fold[0].toFixed(9)},${fold[1].toFixed(9)}`;
+  },
+
+  drawCanvas(fold, folded) {
     const canvas = $("#interp-canvas");
     const ctx = canvas.getContext("2d");
     const { width, height } = canvas;
@@ -335,7 +393,6 @@ const interp = {
     ctx.setLineDash([]);
 
     // The folded border.
-    const folded = applyFold(this.border, fold);
     poly(folded);
     ctx.fillStyle = "rgba(31, 111, 235, 0.12)";
     ctx.fill();
@@ -522,6 +579,7 @@ const interp = {
   },
 
   setup() {
+    this.disk = new DiskFollower($("#interp-disk"), $("#interp-disk-status"));
     const slider = $("#interp-slider");
     slider.addEventListener("input", () => {
       this.playing = false;

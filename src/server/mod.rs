@@ -2,7 +2,8 @@
 //!
 //! Routes: `GET /` (the app in `web/`, embedded), `GET /healthz`, `POST /api/analyze`,
 //! `GET /api/samples`, `GET /api/samples/{id}`, `GET /api/images/{key}/{picture}.png`,
-//! `POST /api/interpolate`, `POST /api/plan`. Every error is a 4xx (or, for a server fault,
+//! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
+//! `POST /api/plan`. Every error is a 4xx (or, for a server fault,
 //! 5xx) with `{"error": "..."}`. Analyses and renders run on blocking threads, at most one
 //! per core at a time, and are cached by content: an analysis under the hash of the request
 //! body and frame range (a built-in sample under its id), a PNG under (analysis, picture,
@@ -189,6 +190,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/samples/{id}", get(routes::sample))
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate))
+        .route("/api/disk", post(routes::disk))
         .route("/api/plan", post(routes::plan))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))

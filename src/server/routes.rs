@@ -14,11 +14,12 @@ use serde_json::{json, Value};
 use super::cache::content_key;
 use super::{ApiError, AppState};
 use crate::analysis::{analyze as run_analysis, Analysis, FrameRange};
-use crate::border::Point;
+use crate::border::{prepare, Normalisation, Point};
+use crate::disk::Disk;
 use crate::dataset;
 use crate::error::Error;
 use crate::formats::{json::parse_sample, read_files, Sample};
-use crate::render::{render_png, Picture, DEFAULT_SIZE};
+use crate::render::{disk_png, render_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
 /// Most vertices × steps an interpolation may return (its JSON grows with both).
 const MAX_INTERPOLATED_POINTS: usize = 2_000_000;
@@ -243,6 +244,43 @@ pub struct InterpolateRequest {
     to: [f64; 2],
     #[serde(default = "default_steps")]
     steps: usize,
+}
+
+/// `POST /api/disk`: the dGLI disk of one border state (e.g. a frame of an interpolation).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiskRequest {
+    border: Vec<[f64; 3]>,
+    /// The border whose normalisation (and orientation) applies, as the analysis uses the
+    /// start frame's for the end frame; by default `border` itself. A folded border
+    /// overlaps itself, so its own orientation is no guide: send the flat one here.
+    #[serde(default)]
+    reference: Option<Vec<[f64; 3]>>,
+    size: Option<u32>,
+}
+
+fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
+    points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
+}
+
+pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>, JsonRejection>) -> Result<Response, ApiError> {
+    let Json(req) = body?;
+    let size = req.size.unwrap_or(DEFAULT_SIZE).clamp(MIN_SIZE, MAX_SIZE);
+    let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
+    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
+    let png = state
+        .image(key, move || {
+            let frames = match req.reference {
+                Some(reference) => vec![reference, req.border],
+                None => vec![req.border],
+            };
+            let border = prepare(frames)?;
+            let (start, now) = (&border.frames[0], &border.frames[border.frames.len() - 1]);
+            let disk = Disk::of_border(&Normalisation::of(start)?.apply_all(now));
+            Ok(disk_png(&disk, "dGLI disk · current state", size, size)?)
+        })
+        .await?;
+    Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "no-store")], png).into_response())
 }
 
 pub async fn interpolate(State(state): State<AppState>, body: Result<Json<InterpolateRequest>, JsonRejection>) -> Result<Json<Value>, ApiError> {
