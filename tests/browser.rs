@@ -1,6 +1,6 @@
 //! End-to-end in a real headless Chromium (driven over WebDriver by fantoccini): load the
 //! app, open a sample, upload a file, move the interpolation slider (the drawing and the
-//! disk follow). Screenshots go to
+//! disk follow), plan a fold. Screenshots go to
 //! `target/e2e-screenshots/` for a person to look at.
 //!
 //! Needs Debian's `chromium` and `chromium-driver` (or `CLOSE_CHROMIUM` / `CLOSE_CHROMEDRIVER`
@@ -99,6 +99,31 @@ async fn disk_picture(client: &Client) -> u64 {
     let mut h = std::hash::DefaultHasher::new();
     url.hash(&mut h);
     h.finish()
+}
+
+/// The texts of the plan view's cards, once there are some.
+async fn plan_steps(client: &Client) -> Vec<String> {
+    wait_for("plan steps", async || {
+        let texts: Vec<String> = serde_json::from_value(js(client, "return [...document.querySelectorAll('#plan-list .plan-step')].map(li => li.innerText)").await).ok()?;
+        (!texts.is_empty()).then_some(texts)
+    })
+    .await
+}
+
+/// Type a goal fold (degrees) into the plan view.
+async fn set_goal(client: &Client, g1: u32, g2: u32) {
+    let script = format!(
+        "for (const [id, v] of [['goal-1', {g1}], ['goal-2', {g2}]]) {{ const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }}"
+    );
+    js(client, &script).await;
+}
+
+/// Pixels of the pick → place arrows' green in the plan's step pictures.
+async fn arrow_pixels(client: &Client) -> u64 {
+    let script = "let n = 0; for (const c of document.querySelectorAll('#plan-list canvas')) { \
+                  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; \
+                  for (let i = 0; i < d.length; i += 4) if (d[i] === 47 && d[i + 1] === 133 && d[i + 2] === 90) n++; } return n;";
+    js(client, script).await.as_u64().unwrap_or(0)
 }
 
 async fn slider_value(client: &Client) -> String {
@@ -209,14 +234,50 @@ async fn the_app_works_in_a_real_browser() {
     assert_ne!(halfway, canvas(&client).await, "playing did not change the drawing");
     screenshot(&client, &shots, "06-interpolate-end.png").await;
 
-    // The same motion from the server agrees; a plan to the goal fold lists its steps.
+    // The same motion from the server agrees.
     client.find(Locator::Id("check-server")).await.expect("check button").click().await.expect("click");
     let check = text_of(&client, "#interp-check").await;
     assert!(check.contains("agree"), "parity display: {check}");
+
+    // 4. Plan: the interpolation's goal opens the plan view; each step is drawn with its
+    // pick → place arrows and said in words.
     client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
-    let step = text_of(&client, "#plan-steps li").await;
-    assert!(step.contains("along"), "plan step: {step}");
+    wait_for("the plan view", async || js(&client, "return !document.getElementById('view-plan').hidden").await.as_bool().filter(|&v| v)).await;
+    // A goal folding the same corners as the sample's half fold: one direct step.
+    set_goal(&client, 60, 240).await;
+    client.find(Locator::Id("plan-run")).await.expect("plan run").click().await.expect("click");
+    wait_for("the plan", async || {
+        let case = client.find(Locator::Id("plan-case")).await.ok()?.text().await.ok()?;
+        case.contains("straight").then_some(())
+    })
+    .await;
+    let steps = plan_steps(&client).await;
+    assert!(steps.len() >= 2, "the current state and at least one step: {steps:?}");
+    assert!(steps[0].starts_with("Now"), "{steps:?}");
+    assert!(steps[1..].iter().all(|s| s.contains("Step") && s.contains("along")), "{steps:?}");
+    assert!(steps[1..].iter().any(|s| s.contains("grasp corner")), "no corner grasped: {steps:?}");
+    assert!(arrow_pixels(&client).await > 50, "no pick → place arrow drawn");
     screenshot(&client, &shots, "07-plan.png").await;
+
+    // A sample folded twice, a goal typed in: unfold both folds, then fold.
+    let twice = close::dataset::builtin().iter().find(|e| e.sample.frames.len() == 3).expect("a second-fold sample");
+    js(&client, &format!("const s = document.getElementById('plan-sample'); s.value = {:?}; s.dispatchEvent(new Event('change'))", twice.id)).await;
+    wait_for("the sample's state", async || {
+        let now = client.find(Locator::Id("plan-now")).await.ok()?.text().await.ok()?;
+        now.contains(" then ").then_some(())
+    })
+    .await;
+    set_goal(&client, 10, 150).await;
+    client.find(Locator::Id("plan-run")).await.expect("plan run").click().await.expect("click");
+    wait_for("a new plan", async || {
+        let case = client.find(Locator::Id("plan-case")).await.ok()?.text().await.ok()?;
+        case.contains("unfold first").then_some(())
+    })
+    .await;
+    let steps = plan_steps(&client).await;
+    assert_eq!(steps.iter().filter(|s| s.contains("· Unfold")).count(), 2, "{steps:?}");
+    assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
+    screenshot(&client, &shots, "08-plan-unfold.png").await;
 
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);

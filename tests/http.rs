@@ -354,8 +354,13 @@ async fn plans_reach_the_goal_with_input_vertex_indices() {
             assert_eq!(pick["from"].as_array().map(Vec::len), Some(3));
         }
     }
+    assert_eq!(v["border_indices"].as_array().map(Vec::len), Some(n as usize));
     let by_sample = post_json(&app, "/api/plan", &json!({"sample": entry.sample, "goal": goal})).await.json();
     assert_same(&by_sample["steps"], &v["steps"], "steps");
+    // An upload is planned by its analysis key while the analysis is cached.
+    let uploaded = post_json(&app, "/api/analyze", &serde_json::to_value(&entry.sample).unwrap()).await.json();
+    let by_key = post_json(&app, "/api/plan", &json!({"sample": uploaded["key"], "goal": goal})).await.json();
+    assert_same(&by_key["steps"], &v["steps"], "steps");
 
     assert!(post_json(&app, "/api/plan", &json!({"sample": "nope", "goal": goal})).await.error(StatusCode::NOT_FOUND).contains("nope"));
     assert!(post_json(&app, "/api/plan", &json!({"sample": 7, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("sample"));

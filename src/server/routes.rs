@@ -301,7 +301,7 @@ pub async fn interpolate(State(state): State<AppState>, body: Result<Json<Interp
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanRequest {
-    /// A Sample JSON object, or the id of a built-in sample.
+    /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis.
     sample: Value,
     goal: [f64; 2],
 }
@@ -312,13 +312,17 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
     let analyzed = match req.sample {
-        Value::String(id) => sample_analysis(&state, &id).await?,
+        // An analysis still cached (an upload's "key") or a built-in sample's id.
+        Value::String(id) => match state.cached_analysis(&id) {
+            Some(hit) => hit,
+            None => sample_analysis(&state, &id).await?,
+        },
         Value::Object(_) => {
             let sample = parse_sample(req.sample.to_string().as_bytes())?;
             let key = content_key(&[b"plan", &serde_json::to_vec(&sample).unwrap_or_default()]);
             state.analysis(key, move |key| analyzed(key, &sample, FrameRange::default(), json!({}))).await?
         }
-        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object or a built-in sample id".into())),
+        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
     };
     let goal = req.goal;
     let result = state
@@ -336,6 +340,7 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
                 "folds": a.folds,
                 "corners": a.corners,
                 "start_border": points(&a.start_border),
+                "border_indices": a.border_indices,
             }))
         })
         .await?;
