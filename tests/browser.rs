@@ -183,6 +183,9 @@ async fn the_app_works_in_a_real_browser() {
     let label = text_of(&client, "#browse-result .result-label").await;
     assert!(label.contains("corner"), "label: {label}");
     assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
+    // The Rerun download is offered exactly when the server can write recordings.
+    let offered = js(&client, "return !document.querySelector('#browse-result .recording').hidden").await;
+    assert_eq!(offered.as_bool(), Some(cfg!(feature = "rerun")), "recording link shown: {offered}");
     screenshot(&client, &shots, "01-sample.png").await;
 
     // 2. Upload a Sample JSON; then a broken file shows the server's error.

@@ -410,3 +410,44 @@ async fn the_disk_of_any_border_state_is_a_png() {
     assert!(post(&app, "/api/disk", "text/plain", "{}").await.error(StatusCode::UNSUPPORTED_MEDIA_TYPE).contains("application/json"));
     assert_healthy(&app).await;
 }
+
+#[cfg(not(feature = "rerun"))]
+#[tokio::test]
+async fn without_the_rerun_feature_recordings_are_404_saying_why() {
+    let app = test_app();
+    let id = &first_entry().id;
+    let error = get(&app, &format!("/api/samples/{id}/recording.rrd")).await.error(StatusCode::NOT_FOUND);
+    assert!(error.contains("without the `rerun` feature"), "{error}");
+    assert!(get(&app, &format!("/api/samples/{id}")).await.json().get("recording").is_none(), "no download offered");
+    assert_healthy(&app).await;
+}
+
+#[cfg(feature = "rerun")]
+#[tokio::test]
+async fn a_sample_recording_downloads_as_rrd() {
+    use rerun::external::re_log_encoding::DecoderApp;
+    use rerun::log::{Chunk, LogMsg};
+
+    let app = test_app();
+    let id = &first_entry().id;
+    let url = format!("/api/samples/{id}/recording.rrd");
+    assert_eq!(get(&app, &format!("/api/samples/{id}")).await.json()["recording"], url.as_str());
+    let a = get(&app, &url).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    assert_eq!(a.content_type, "application/octet-stream");
+    assert!(a.body.starts_with(b"RRF2") && a.body.len() > 1000, "{} bytes", a.body.len());
+    // It decodes, with the borders and the disks in it.
+    let entities: Vec<String> = DecoderApp::decode_eager(&a.body[..])
+        .expect("an RRD stream")
+        .filter_map(|msg| match msg.expect("a decodable message") {
+            LogMsg::ArrowMsg(_, arrow) => Some(Chunk::from_arrow_msg(&arrow).expect("a chunk").entity_path().to_string()),
+            _ => None,
+        })
+        .collect();
+    for expected in ["/border", "/fold/1/line", "/disk/start"] {
+        assert!(entities.iter().any(|e| e == expected), "{expected} missing from {entities:?}");
+    }
+    assert_eq!(get(&app, &url).await.body, a.body, "cached");
+    assert!(get(&app, "/api/samples/nope/recording.rrd").await.error(StatusCode::NOT_FOUND).contains("nope"));
+    assert_healthy(&app).await;
+}

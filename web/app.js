@@ -96,6 +96,13 @@ function renderResult(slot, result) {
     fig.append(img, cap);
     images.append(fig);
   }
+  if (result.recording) {
+    const file = `${result.id || "sample"}.rrd`;
+    $(".recording", node).hidden = false;
+    $(".recording-link", node).href = result.recording;
+    $(".recording-link", node).download = file;
+    $(".recording-command", node).textContent = `rerun ${file}`;
+  }
   $(".warnings", node).textContent = (result.warnings || []).join(" ");
   const button = $(".interp-this", node);
   button.hidden = result.folds.length === 0;

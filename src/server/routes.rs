@@ -193,7 +193,11 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<super::Analyz
     let entry = dataset::find(id).ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them")))?;
     state
         .analysis(format!("{SAMPLE_KEY}{id}"), move |key| {
-            analyzed(key, &entry.sample, FrameRange::default(), json!({ "id": entry.id, "sample": entry.sample }))
+            let mut extra = json!({ "id": entry.id, "sample": entry.sample });
+            if cfg!(feature = "rerun") {
+                extra["recording"] = json!(format!("/api/samples/{}/recording.rrd", entry.id));
+            }
+            analyzed(key, &entry.sample, FrameRange::default(), extra)
         })
         .await
 }
@@ -201,6 +205,30 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<super::Analyz
 pub async fn sample(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
     let Path(id) = id?;
     Ok(json_response(sample_analysis(&state, &id).await?.response.clone()))
+}
+
+/// `GET /api/samples/{id}/recording.rrd`: the sample's analysis as a Rerun recording.
+#[cfg(feature = "rerun")]
+pub async fn recording(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
+    let Path(id) = id?;
+    let analyzed = sample_analysis(&state, &id).await?;
+    let entry = dataset::find(&id).ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}")))?;
+    let rrd = state
+        .cached_bytes(format!("{}/recording.rrd", analyzed.key), move || {
+            Ok(crate::record::record(&analyzed.analysis, &entry.sample.border_frames()?)?)
+        })
+        .await?;
+    let disposition = format!("attachment; filename=\"{}.rrd\"", id.replace(|c: char| !c.is_ascii_alphanumeric() && c != '_' && c != '-', "_"));
+    Ok(([(header::CONTENT_TYPE, "application/octet-stream".to_string()), (header::CONTENT_DISPOSITION, disposition)], rrd).into_response())
+}
+
+/// Without the `rerun` feature there is no recording to give: say why.
+#[cfg(not(feature = "rerun"))]
+pub async fn recording(id: Result<Path<String>, PathRejection>) -> ApiError {
+    let name = id.map(|Path(id)| id).unwrap_or_default();
+    ApiError::NotFound(format!(
+        "no recording of {name:?}: this server was built without the `rerun` feature (cargo run --features rerun)"
+    ))
 }
 
 #[derive(Debug, Deserialize)]
@@ -226,7 +254,7 @@ pub async fn image(
     };
     let size = query.size.unwrap_or(DEFAULT_SIZE);
     let png = state
-        .image(format!("{key}/{}/{size}", picture.name()), move || Ok(render_png(&analyzed.analysis, picture, size, size)?))
+        .cached_bytes(format!("{key}/{}/{size}", picture.name()), move || Ok(render_png(&analyzed.analysis, picture, size, size)?))
         .await?;
     // The key names the content, so the picture never changes.
     Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], png).into_response())
@@ -269,7 +297,7 @@ pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>,
     let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
     let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
     let png = state
-        .image(key, move || {
+        .cached_bytes(key, move || {
             let frames = match req.reference {
                 Some(reference) => vec![reference, req.border],
                 None => vec![req.border],
