@@ -88,6 +88,13 @@ async fn canvas(client: &Client) -> u64 {
     h.finish()
 }
 
+/// A Wavefront OBJ of one mesh frame.
+fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
+    let v = vertices.iter().map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
+    let f = faces.iter().map(|f| format!("f {}\n", f.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(" ")));
+    v.chain(f).collect()
+}
+
 /// A digest of the disk picture of the interpolation, once it shows the current state.
 async fn disk_picture(client: &Client) -> u64 {
     use std::hash::{Hash, Hasher};
@@ -187,6 +194,17 @@ async fn the_app_works_in_a_real_browser() {
     let offered = js(&client, "return !document.querySelector('#browse-result .recording').hidden").await;
     assert_eq!(offered.as_bool(), Some(cfg!(feature = "rerun")), "recording link shown: {offered}");
     screenshot(&client, &shots, "01-sample.png").await;
+    // A built-in mesh sample is listed, and its view says where its border came from.
+    let mesh_entry = close::dataset::builtin().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
+    let card = client.find(Locator::Css(&format!(".sample-card[data-id={:?}]", mesh_entry.id))).await.expect("the mesh sample's card");
+    card.click().await.expect("open the mesh sample");
+    wait_for("the mesh sample's view", async || {
+        let meta = client.find(Locator::Css("#browse-result .result-meta")).await.ok()?.text().await.ok()?;
+        meta.contains("mesh boundary loop").then_some(())
+    })
+    .await;
+    assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
+    screenshot(&client, &shots, "01b-mesh-sample.png").await;
 
     // 2. Upload a Sample JSON; then a broken file shows the server's error.
     client.find(Locator::Id("tab-upload")).await.expect("upload tab").click().await.expect("click");
@@ -202,6 +220,32 @@ async fn the_app_works_in_a_real_browser() {
     assert!(text_of(&client, "#upload-result .result-label").await.contains("corner"));
     assert_eq!(images_loaded(&client, "#upload-result .images img").await, 6);
     screenshot(&client, &shots, "02-upload.png").await;
+
+    // Two OBJ frames of a mesh (chosen together, in reverse order): the border is the mesh's
+    // boundary loop, and the page says so.
+    let mesh = mesh_entry.sample.mesh.as_ref().expect("mesh");
+    let objs: Vec<PathBuf> = mesh
+        .frames
+        .iter()
+        .enumerate()
+        .map(|(k, frame)| {
+            let path = scratch.join(format!("cloth-frame{k}.obj"));
+            std::fs::write(&path, obj(frame, &mesh.faces)).expect("write an OBJ frame");
+            path
+        })
+        .rev()
+        .collect();
+    js(&client, "document.getElementById('upload-input').value = ''").await;
+    let paths: Vec<String> = objs.iter().map(|p| p.display().to_string()).collect();
+    client.find(Locator::Id("upload-input")).await.expect("file input").send_keys(&paths.join("\n")).await.expect("choose the OBJ files");
+    wait_for("the mesh analysis", async || {
+        let meta = client.find(Locator::Css("#upload-result .result-meta")).await.ok()?.text().await.ok()?;
+        meta.contains("mesh boundary loop").then_some(())
+    })
+    .await;
+    assert_eq!(text_of(&client, "#upload-result .result-name").await, "cloth-frame0.obj", "frames in file-name order");
+    assert!(text_of(&client, "#upload-result .close-table").await.contains("fold 1"), "the mesh's fold is found");
+    screenshot(&client, &shots, "02b-upload-mesh.png").await;
 
     let bad = scratch.join("broken.json");
     std::fs::write(&bad, b"{\"frames\": [[[0, 0, 0], [1, 0").expect("write broken file");

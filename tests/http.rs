@@ -142,9 +142,12 @@ async fn samples_are_listed_with_thumbnails() {
         assert_eq!(s["id"], e.id.as_str());
         assert_eq!(s["name"], e.sample.name.as_str());
         assert_eq!(s["category"], e.sample.category.as_str());
-        assert_eq!(s["n"], e.sample.frames[0].len());
-        assert_eq!(s["frames"], e.sample.frames.len());
+        let border = e.sample.border_frames().expect("a built-in border");
+        assert_eq!(s["n"], border.len());
+        assert_eq!(s["frames"], e.sample.mesh.as_ref().map_or(e.sample.frames.len(), |m| m.frames.len()));
+        assert_eq!(s["mesh"], e.sample.mesh.is_some());
     }
+    assert!(samples.iter().any(|s| s["mesh"] == true), "the dataset shows a mesh sample");
     assert_png(&app, samples[0]["thumbnail"].as_str().expect("thumbnail url")).await;
 }
 
@@ -449,5 +452,40 @@ async fn a_sample_recording_downloads_as_rrd() {
     }
     assert_eq!(get(&app, &url).await.body, a.body, "cached");
     assert!(get(&app, "/api/samples/nope/recording.rrd").await.error(StatusCode::NOT_FOUND).contains("nope"));
+    assert_healthy(&app).await;
+}
+
+/// A Wavefront OBJ of one mesh frame (1-based faces).
+fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
+    let v = vertices.iter().map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
+    let f = faces.iter().map(|f| format!("f {}\n", f.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(" ")));
+    v.chain(f).collect()
+}
+
+#[tokio::test]
+async fn mesh_uploads_name_how_their_border_was_found() {
+    let app = test_app();
+    let entry = dataset::builtin().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
+    let mesh = entry.sample.mesh.as_ref().unwrap();
+    let (f0, f1) = (obj(&mesh.frames[0], &mesh.faces), obj(&mesh.frames[1], &mesh.faces));
+    let (ct, body) = multipart(&[("sample", "frame0.obj", &f0), ("sample", "frame1.obj", &f1)]);
+    let a = post(&app, "/api/analyze", &ct, body).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    let v = a.json();
+    assert_eq!(v["border_source"], "mesh boundary loop");
+    assert_eq!(v["frames"], 2);
+    // The same analysis as the built-in sample's, border indices being mesh vertices.
+    let builtin = get(&app, &format!("/api/samples/{}", entry.id)).await.json();
+    for key in ["n", "corners", "folds", "border_indices", "border_source"] {
+        assert_same(&v[key], &builtin[key], key);
+    }
+    assert!(v["border_indices"].as_array().unwrap().iter().all(|k| k.as_u64().is_some_and(|k| (k as usize) < mesh.frames[0].len())));
+    assert_png(&app, v["images"]["signed_diff"].as_str().unwrap()).await;
+
+    // A frame with other vertices is named, as is a mesh with no face.
+    let (ct, body) = multipart(&[("sample", "frame0.obj", &f0), ("sample", "short.obj", &obj(&mesh.frames[1][1..], &mesh.faces[..1]))]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("short.obj"));
+    let (ct, body) = multipart(&[("sample", "points.obj", &obj(&mesh.frames[0], &[]))]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("no face"));
     assert_healthy(&app).await;
 }

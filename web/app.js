@@ -64,8 +64,9 @@ function renderResult(slot, result) {
   const node = $("#result-template").content.firstElementChild.cloneNode(true);
   $(".result-name", node).textContent = result.name || "(unnamed)";
   const reversed = result.reversed ? " · given clockwise, walked anticlockwise" : "";
+  const source = result.border_source === "border" ? "border given" : `border from the ${result.border_source}`;
   $(".result-meta", node).textContent =
-    `${result.category || "upload"} · N = ${result.n} vertices · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
+    `${result.category || "upload"} · N = ${result.n} vertices (${source}) · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
   $(".result-label", node).textContent = result.label.text;
 
   const close = $(".close-table tbody", node);
@@ -180,17 +181,13 @@ async function openSample(id) {
 async function upload(files) {
   const status = $("#upload-status");
   const slot = $("#upload-result");
-  files = [...files];
+  // Frames go in file-name order, numbers compared as numbers (frame2 before frame10).
+  files = [...files].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
   if (files.length === 0) return;
+  // The server reads every kind from "sample" files, by their names' extensions.
   const form = new FormData();
-  if (files.length === 2 && !files.some((f) => f.name.toLowerCase().endsWith(".json"))) {
-    form.append("start", files[0], files[0].name);
-    form.append("end", files[1], files[1].name);
-    status.textContent = `Analysing ${files[0].name} → ${files[1].name}…`;
-  } else {
-    for (const f of files) form.append("sample", f, f.name);
-    status.textContent = `Analysing ${files.map((f) => f.name).join(", ")}…`;
-  }
+  for (const f of files) form.append("sample", f, f.name);
+  status.textContent = `Analysing ${files.map((f) => f.name).join(" → ")}…`;
   try {
     const result = await api("/api/analyze", { method: "POST", body: form });
     renderResult(slot, result);
