@@ -595,13 +595,22 @@ fn param(outline: &Outline, at: At) -> f64 {
 /// that name. Rectangular shapes only (a grid fills them).
 const MESH_FOLDS: [(Shape, &str); 3] = [(Shape::Napkin, "half_vertical"), (Shape::Napkin, "diagonal"), (Shape::Towel, "corner45")];
 
+/// A flat grid mesh and its boundary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridMesh {
+    pub vertices: Vec<Point>,
+    /// Quads of vertex indices.
+    pub faces: Vec<Vec<usize>>,
+    /// The boundary vertices in the outline's order: anticlockwise from the bottom-left
+    /// corner, as the mesh's border is found.
+    pub ring: Vec<usize>,
+}
+
 /// A grid mesh of a rectangular shape: (w+1)×(h+1) vertices, id = j·(w+1) + i, quads,
 /// with w segments along the bottom and h up the side as the outline has, normalised as the
-/// outline is (a grid and its outline share the centre and the farthest vertex). Returns
-/// the vertices, the faces and the boundary in the outline's order (anticlockwise from the
-/// bottom-left corner, as the mesh's border is found). Errors for a shape that is no
-/// rectangle.
-pub fn grid_mesh(kind: Shape) -> Result<(Vec<Point>, Vec<Vec<usize>>, Vec<usize>)> {
+/// outline is (a grid and its outline share the centre and the farthest vertex). Errors for
+/// a shape that is no rectangle.
+pub fn grid_mesh(kind: Shape) -> Result<GridMesh> {
     let (o, corners) = (outline(kind), kind.corners());
     let &[[0.0, 0.0], [width, 0.0], [_, height], [0.0, _]] = corners else {
         return Err(Error::InvalidArgument(format!("a grid mesh needs a rectangle, and the {} is not one", kind.name())));
@@ -616,7 +625,7 @@ pub fn grid_mesh(kind: Shape) -> Result<(Vec<Point>, Vec<Vec<usize>>, Vec<usize>
         .chain((0..w).map(|i| id(w - i, h)))
         .chain((0..h).map(|j| id(0, h - j)))
         .collect();
-    Ok((normalise(raw), faces, ring))
+    Ok(GridMesh { vertices: normalise(raw), faces, ring })
 }
 
 /// Fold a whole mesh as [`fold_border`] folds its boundary `ring`: the line through the
@@ -656,7 +665,7 @@ fn mesh_samples() -> Result<Vec<Sample>> {
             let spec = single_folds(kind).into_iter().find(|s| s.name == fold).ok_or_else(|| Error::InvalidArgument(format!("no fold {fold}")))?;
             let o = outline(kind);
             let f = [param(&o, spec.from), param(&o, spec.to)];
-            let (flat, faces, ring) = grid_mesh(kind)?;
+            let GridMesh { vertices: flat, faces, ring } = grid_mesh(kind)?;
             let folded = fold_mesh(&flat, &ring, f[0], f[1], THICKNESS).map_err(|e| Error::InvalidArgument(format!("built-in sample {name}: {e}")))?;
             let angle = |x: f64| 2.0 * PI * x / ring.len() as f64;
             Ok(Sample {
@@ -722,10 +731,6 @@ mod tests {
     use crate::eval::evaluate;
     use crate::fold::reflect::apply_fold;
     use std::collections::HashSet;
-
-    fn points(frame: &[[f64; 3]]) -> Vec<Point> {
-        frame.iter().map(|p| Point::new(p[0], p[1], p[2])).collect()
-    }
 
     fn is_second_fold(e: &Entry) -> bool {
         e.sample.category.ends_with("_second_fold")
