@@ -279,6 +279,7 @@ async fn the_app_works_in_a_real_browser() {
     client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");
     wait_for("the motion to end", async || (slider_value(&client).await == "1000").then_some(())).await;
     assert_ne!(halfway, canvas(&client).await, "playing did not change the drawing");
+    disk_picture(&client).await;
     screenshot(&client, &shots, "06-interpolate-end.png").await;
 
     // The same motion from the server agrees.

@@ -392,6 +392,12 @@ async fn the_disk_of_any_border_state_is_a_png() {
     let half = disk(json!({"border": folded[1], "reference": flat, "size": 200})).await;
     let full = disk(json!({"border": folded[2], "reference": flat, "size": 200})).await;
     assert!(flat_png != half && half != full, "the disk follows the fold");
+    // A sample's end frame against its start gives the analysis's end disk.
+    let entry = first_entry();
+    let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+    let frames = &entry.sample.frames;
+    let end = disk(json!({"border": frames[frames.len() - 1], "reference": frames[0], "size": 200})).await;
+    assert_eq!(end, close::render::disk_png(&analysis.disk_end, "dGLI disk · current state", 200, 200).unwrap());
     // The disk does not depend on where the cloth lies, but does on the picture's size.
     let shifted: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] + 3.0, p[1] - 1.0, p[2]]).collect();
     assert_eq!(flat_png, disk(json!({"border": shifted, "size": 200})).await);

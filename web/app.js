@@ -1,7 +1,7 @@
 // CloSE web app: browse the built-in samples, upload one, interpolate folds.
 // Plain ES module, no build step; talks to the JSON API of src/server.
 
-import { TAU, wrap, foldAt, applyFold, foldLine, foldPath } from "./fold.mjs";
+import { TAU, wrap, foldAt, applyFold, foldLine, foldPath, foldedVertices } from "./fold.mjs";
 
 const $ = (sel, root = document) => root.querySelector(sel);
 const PICTURES = [
@@ -419,6 +419,21 @@ function labelCorners(ctx, v, points, corners, size) {
   }
 }
 
+/**
+ * The folded border with the folded layer a cloth's thickness (1% of the cloth's radius)
+ * above the flat one, turned over, as the built-in dataset folds: two layers at the same
+ * height would give the disk near-singular values where they touch.
+ */
+function stacked(flat, folded, fold) {
+  const n = flat.length;
+  const centre = [0, 1].map((c) => flat.reduce((sum, p) => sum + p[c], 0) / n);
+  const radius = Math.max(...flat.map((p) => Math.hypot(p[0] - centre[0], p[1] - centre[1])));
+  const top = Math.max(...flat.map((p) => p[2]));
+  const out = folded.map((p) => p.slice());
+  for (const v of foldedVertices(n, fold)) out[v][2] = 2 * top + 0.01 * radius - flat[v][2];
+  return out;
+}
+
 /** Vertex of a corner angle on a border of n vertices. */
 const cornerVertex = (c, n) => Math.round((c * n) / TAU) % n;
 
@@ -490,7 +505,7 @@ const interp = {
     this.drawCircle(fold);
     $("#interp-readout").textContent = `t = ${this.tau.toFixed(3)}   fold ${fmtFold(fold)}`;
     // The disk only while it is on screen; showing the tab draws again.
-    if (!$("#view-interpolate").hidden) this.disk.show(this.diskKey(), folded, this.border);
+    if (!$("#view-interpolate").hidden) this.disk.show(this.diskKey(), stacked(this.border, folded, fold), this.border);
   },
 
   /** Names the state drawn: the cloth and the current fold. */
@@ -671,7 +686,6 @@ const planner = {
   goal: [Math.PI / 4, (5 * Math.PI) / 4],
   folds: [],
   corners: [],
-  border: null,
 
   fillSamples(list) {
     $("#plan-sample").replaceChildren(...list.map((s) => new Option(`${s.category} · ${s.name}`, s.id)));
@@ -694,7 +708,7 @@ const planner = {
     if (!this.sample && id) this.load(id, true);
   },
 
-  /** Load the current state of `sample`; `takeGoal` starts the goal at its truth or a diagonal. */
+  /** Load the current state of `sample`; `takeGoal` starts the goal on a diagonal. */
   async load(sample, takeGoal) {
     this.sample = sample;
     try {
@@ -704,7 +718,6 @@ const planner = {
       if (res) {
         this.folds = res.folds;
         this.corners = res.corners;
-        this.border = res.start_border;
         $("#plan-now").textContent = `${res.name}: N = ${res.n}, ${res.corners.length} corners, now ${
           res.folds.length ? res.folds.map(fmtDeg).join(" then ") : "flat"
         }.`;
@@ -714,6 +727,7 @@ const planner = {
           this.goal = [c[0], c[Math.min(2, c.length - 1)]];
         }
       } else {
+        [this.folds, this.corners] = [[], []];
         $("#plan-now").textContent = "An uploaded sample: its state is shown with the plan.";
       }
       $("#plan-list").replaceChildren();
@@ -756,7 +770,7 @@ const planner = {
         headers: { "content-type": "application/json" },
         body: JSON.stringify({ sample: this.sample, goal: this.goal }),
       });
-      Object.assign(this, { folds: res.folds, corners: res.corners, border: res.start_border });
+      Object.assign(this, { folds: res.folds, corners: res.corners });
       this.drawCircle();
       $("#plan-case").textContent = `${res.steps.length} step${res.steps.length > 1 ? "s" : ""} · ${CASES[res.case] || res.case}`;
       list.replaceChildren(...this.stepCards(res));
