@@ -18,6 +18,10 @@
 //! moved. Every fold endpoint is written as a point along a side of the shape's polygon,
 //! so the fold means the same thing whatever N is.
 //!
+//! **Meshes.** The napkin and the towel also come as grid meshes of quads whose boundary
+//! is their outline ([`grid_mesh`]), folded by the same rule with every vertex on the
+//! folded side reflected ([`fold_mesh`]): category `mesh`, the truth as for the border.
+//!
 //! Variants of a clean fold: Gaussian noise (sd 0.005) on the end frame only, a rotation
 //! about z plus a translation of both frames, an in-plane jitter (sd 1e-5) of the start
 //! before folding, and a cyclic relabelling of the vertices. Randomness is a seeded
@@ -42,7 +46,7 @@ use nalgebra::{Rotation3, Vector3};
 use crate::border::{point_at, Point};
 use crate::error::{Error, Result};
 use crate::fold::reflect::{folded_vertices, reflect_xy};
-use crate::formats::{Sample, Truth};
+use crate::formats::{MeshFrames, Sample, Truth};
 
 /// Cloth thickness: the height a folded layer gains.
 pub const THICKNESS: f64 = 0.01;
@@ -587,6 +591,94 @@ fn param(outline: &Outline, at: At) -> f64 {
     outline.on_side(at.0, at.1)
 }
 
+/// The mesh samples: (shape, fold name) of a grid mesh folded like the border sample of
+/// that name. Rectangular shapes only (a grid fills them).
+const MESH_FOLDS: [(Shape, &str); 3] = [(Shape::Napkin, "half_vertical"), (Shape::Napkin, "diagonal"), (Shape::Towel, "corner45")];
+
+/// A flat grid mesh and its boundary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridMesh {
+    pub vertices: Vec<Point>,
+    /// Quads of vertex indices.
+    pub faces: Vec<Vec<usize>>,
+    /// The boundary vertices in the outline's order: anticlockwise from the bottom-left
+    /// corner, as the mesh's border is found.
+    pub ring: Vec<usize>,
+}
+
+/// A grid mesh of a rectangular shape: (w+1)×(h+1) vertices, id = j·(w+1) + i, quads,
+/// with w segments along the bottom and h up the side as the outline has, normalised as the
+/// outline is (a grid and its outline share the centre and the farthest vertex). Errors for
+/// a shape that is no rectangle.
+pub fn grid_mesh(kind: Shape) -> Result<GridMesh> {
+    let (o, corners) = (outline(kind), kind.corners());
+    let &[[0.0, 0.0], [width, 0.0], [_, height], [0.0, _]] = corners else {
+        return Err(Error::InvalidArgument(format!("a grid mesh needs a rectangle, and the {} is not one", kind.name())));
+    };
+    let (w, h) = (o.side_starts[1] - o.side_starts[0], o.side_starts[2] - o.side_starts[1]);
+    let id = |i: usize, j: usize| j * (w + 1) + i;
+    let raw = (0..=h).flat_map(|j| (0..=w).map(move |i| Point::new(i as f64 / w as f64 * width, j as f64 / h as f64 * height, 0.0))).collect();
+    let faces = (0..h).flat_map(|j| (0..w).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])).collect();
+    let ring = (0..w)
+        .map(|i| id(i, 0))
+        .chain((0..h).map(|j| id(w, j)))
+        .chain((0..w).map(|i| id(w - i, h)))
+        .chain((0..h).map(|j| id(0, h - j)))
+        .collect();
+    Ok(GridMesh { vertices: normalise(raw), faces, ring })
+}
+
+/// Fold a whole mesh as [`fold_border`] folds its boundary `ring`: the line through the
+/// boundary points at parameters f1, f2, and every vertex on the folded arc's side of it
+/// (interior ones too) reflected and stacked on top.
+pub fn fold_mesh(vertices: &[Point], ring: &[usize], f1: f64, f2: f64, thickness: f64) -> Result<Vec<Point>> {
+    let boundary: Vec<Point> = ring.iter().map(|&k| vertices[k]).collect();
+    // Checks the fold, and tells which side of the line the folded arc lies on.
+    let folded = fold_border(&boundary, f1, f2, thickness)?;
+    let Some(v) = (0..ring.len()).find(|&v| folded[v] != boundary[v]) else {
+        return Err(Error::InvalidArgument(format!("fold ({f1}, {f2}) moves no vertex")));
+    };
+    let (a, b) = (point_at(&boundary, f1), point_at(&boundary, f2));
+    let side = side_of(&a, &b, &boundary[v]).signum();
+    let top = vertices.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    let scale = vertices.iter().map(|p| p.coords.norm()).fold(0.0, f64::max).max(1.0);
+    let tolerance = 1e-9 * scale * scale;
+    Ok(vertices
+        .iter()
+        .map(|p| {
+            if side * side_of(&a, &b, p) > tolerance {
+                let r = reflect_xy(p, &a, &b);
+                Point::new(r.x, r.y, 2.0 * top + thickness - p.z)
+            } else {
+                *p
+            }
+        })
+        .collect())
+}
+
+/// The mesh samples of [`MESH_FOLDS`], category `mesh`.
+fn mesh_samples() -> Result<Vec<Sample>> {
+    MESH_FOLDS
+        .iter()
+        .map(|&(kind, fold)| {
+            let name = format!("{}_mesh__{fold}", kind.name());
+            let spec = single_folds(kind).into_iter().find(|s| s.name == fold).ok_or_else(|| Error::InvalidArgument(format!("no fold {fold}")))?;
+            let o = outline(kind);
+            let f = [param(&o, spec.from), param(&o, spec.to)];
+            let GridMesh { vertices: flat, faces, ring } = grid_mesh(kind)?;
+            let folded = fold_mesh(&flat, &ring, f[0], f[1], THICKNESS).map_err(|e| Error::InvalidArgument(format!("built-in sample {name}: {e}")))?;
+            let angle = |x: f64| 2.0 * PI * x / ring.len() as f64;
+            Ok(Sample {
+                name,
+                category: "mesh".into(),
+                frames: Vec::new(),
+                truth: Some(Truth { folds: vec![[angle(f[0]), angle(f[1])]], folded_vertices: Some(moved(&flat, &folded)) }),
+                mesh: Some(MeshFrames::new(faces, vec![to_arrays(&flat), to_arrays(&folded)])),
+            })
+        })
+        .collect()
+}
+
 /// Generate the whole dataset (what [`builtin`] caches).
 fn generate() -> Result<Vec<Entry>> {
     let mut samples = Vec::new();
@@ -617,6 +709,7 @@ fn generate() -> Result<Vec<Entry>> {
         let category = format!("{}_second_fold", spec.shape.name());
         samples.push(make_sample(name, &category, vec![start, once, twice], &[f, g], Variant::Clean));
     }
+    samples.extend(mesh_samples()?);
     Ok(samples.into_iter().map(|sample| Entry { id: sample.name.clone(), sample }).collect())
 }
 
@@ -639,12 +732,13 @@ mod tests {
     use crate::fold::reflect::apply_fold;
     use std::collections::HashSet;
 
-    fn points(frame: &[[f64; 3]]) -> Vec<Point> {
-        frame.iter().map(|p| Point::new(p[0], p[1], p[2])).collect()
-    }
-
     fn is_second_fold(e: &Entry) -> bool {
         e.sample.category.ends_with("_second_fold")
+    }
+
+    /// Frames of a border sample or of a mesh sample.
+    fn frame_count(e: &Entry) -> usize {
+        e.sample.mesh.as_ref().map_or(e.sample.frames.len(), |m| m.frames.len())
     }
 
     #[test]
@@ -669,7 +763,7 @@ mod tests {
         assert!(seconds >= 8, "{seconds} second-fold samples");
         for e in data {
             let frames = if is_second_fold(e) { 3 } else { 2 };
-            assert_eq!(e.sample.frames.len(), frames, "{}", e.id);
+            assert_eq!(frame_count(e), frames, "{}", e.id);
             assert_eq!(e.sample.truth.as_ref().map(|t| t.folds.len()), Some(frames - 1), "{}", e.id);
         }
         assert_eq!(find("napkin__half_vertical__noisy").map(|e| e.sample.category.as_str()), Some("napkin"));
@@ -749,14 +843,20 @@ mod tests {
     fn truth_folds_reproduce_the_end_frames() {
         for e in builtin() {
             let truth = e.sample.truth.as_ref().unwrap();
-            let start = points(&e.sample.frames[0]);
+            // The border as the analysis sees it (a mesh's boundary, in border order).
+            let b = e.sample.border_frames().unwrap();
+            let start = &b.frames[0];
             let predicted = truth.folds.iter().fold(start.clone(), |b, &f| apply_fold(&b, f));
-            let end = points(e.sample.frames.last().unwrap());
-            let worst = predicted.iter().zip(&end).map(|(p, q)| (p.xy() - q.xy()).norm()).fold(0.0, f64::max);
+            let end = b.frames.last().unwrap();
+            let worst = predicted.iter().zip(end).map(|(p, q)| (p.xy() - q.xy()).norm()).fold(0.0, f64::max);
             let tolerance = if e.id.ends_with("__noisy") { 6.0 * END_NOISE } else { 1e-9 };
             assert!(worst < tolerance, "{}: worst XY error {worst}", e.id);
-            let moved: Vec<usize> = (0..start.len()).filter(|&v| (predicted[v] - start[v]).norm() > 0.0).collect();
-            assert_eq!(truth.folded_vertices.as_ref(), Some(&moved), "{}", e.id);
+            // The truth lists input vertices: of a mesh, interior ones too.
+            let mut moved: Vec<usize> = (0..start.len()).filter(|&v| (predicted[v] - start[v]).norm() > 0.0).map(|v| b.border_indices[v]).collect();
+            moved.sort_unstable();
+            let on_border: HashSet<usize> = b.border_indices.iter().copied().collect();
+            let listed: Vec<usize> = truth.folded_vertices.iter().flatten().copied().filter(|v| on_border.contains(v)).collect();
+            assert_eq!(listed, moved, "{}", e.id);
         }
     }
 
@@ -765,7 +865,10 @@ mod tests {
         for e in builtin() {
             let b = e.sample.border_frames().unwrap_or_else(|err| panic!("{}: {err}", e.id));
             assert!(!b.reversed && b.warnings.is_empty(), "{}: {:?}", e.id, b.warnings);
-            assert_eq!(b.len(), e.sample.frames[0].len(), "{}", e.id);
+            match &e.sample.mesh {
+                Some(_) => assert_eq!(b.source, "mesh boundary loop", "{}", e.id),
+                None => assert_eq!(b.len(), e.sample.frames[0].len(), "{}", e.id),
+            }
         }
     }
 
@@ -786,6 +889,27 @@ mod tests {
         let failures: Vec<String> = results.iter().filter_map(|r| r.error.as_ref().map(|e| format!("{}: {e}", r.name))).collect();
         assert!(failures.is_empty(), "{failures:#?}");
         assert!(one_fold * 10 > clean.len() * 8, "{one_fold} of {} clean samples got one fold", clean.len());
+    }
+
+    #[test]
+    fn mesh_samples_have_the_border_of_their_border_twins() {
+        let meshes: Vec<&Entry> = builtin().iter().filter(|e| e.sample.mesh.is_some()).collect();
+        assert_eq!(meshes.len(), MESH_FOLDS.len());
+        for e in meshes {
+            let twin = find(&e.id.replace("_mesh__", "__")).unwrap_or_else(|| panic!("{}: no border twin", e.id));
+            let (mesh, border) = (e.sample.border_frames().unwrap(), twin.sample.border_frames().unwrap());
+            assert_eq!(mesh.len(), border.len(), "{}", e.id);
+            for (m, b) in mesh.frames.iter().zip(&border.frames) {
+                let worst = m.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
+                assert!(worst < 1e-12, "{}: frames differ by {worst}", e.id);
+            }
+            assert_eq!(e.sample.truth.as_ref().map(|t| &t.folds), twin.sample.truth.as_ref().map(|t| &t.folds));
+            // Interior vertices fold too: more moved than the border's share.
+            let moved = e.sample.truth.as_ref().and_then(|t| t.folded_vertices.as_ref()).map_or(0, Vec::len);
+            let moved_on_border = twin.sample.truth.as_ref().and_then(|t| t.folded_vertices.as_ref()).map_or(0, Vec::len);
+            assert!(moved > moved_on_border, "{}: {moved} mesh vertices moved", e.id);
+        }
+        assert!(grid_mesh(Shape::Skirt).is_err());
     }
 
     #[test]

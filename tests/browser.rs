@@ -1,5 +1,6 @@
 //! End-to-end in a real headless Chromium (driven over WebDriver by fantoccini): load the
-//! app, open a sample, upload a file, move the interpolation slider. Screenshots go to
+//! app, open a sample, upload a file, move the interpolation slider (the drawing and the
+//! disk follow), plan a fold. Screenshots go to
 //! `target/e2e-screenshots/` for a person to look at.
 //!
 //! Needs Debian's `chromium` and `chromium-driver` (or `CLOSE_CHROMIUM` / `CLOSE_CHROMEDRIVER`
@@ -87,6 +88,51 @@ async fn canvas(client: &Client) -> u64 {
     h.finish()
 }
 
+/// A Wavefront OBJ of one mesh frame.
+fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
+    let v = vertices.iter().map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
+    let f = faces.iter().map(|f| format!("f {}\n", f.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(" ")));
+    v.chain(f).collect()
+}
+
+/// A digest of the disk picture of the interpolation, once it shows the current state.
+async fn disk_picture(client: &Client) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let script = "const img = document.getElementById('interp-disk'); \
+                  if (!img.complete || !img.naturalWidth || img.dataset.key !== window.closeApp.interp.diskKey()) return null; \
+                  const c = document.createElement('canvas'); c.width = img.naturalWidth; c.height = img.naturalHeight; \
+                  c.getContext('2d').drawImage(img, 0, 0); return c.toDataURL();";
+    let url = wait_for("the disk of the current state", async || js(client, script).await.as_str().map(str::to_string)).await;
+    let mut h = std::hash::DefaultHasher::new();
+    url.hash(&mut h);
+    h.finish()
+}
+
+/// The texts of the plan view's cards, once there are some.
+async fn plan_steps(client: &Client) -> Vec<String> {
+    wait_for("plan steps", async || {
+        let texts: Vec<String> = serde_json::from_value(js(client, "return [...document.querySelectorAll('#plan-list .plan-step')].map(li => li.innerText)").await).ok()?;
+        (!texts.is_empty()).then_some(texts)
+    })
+    .await
+}
+
+/// Type a goal fold (degrees) into the plan view.
+async fn set_goal(client: &Client, g1: u32, g2: u32) {
+    let script = format!(
+        "for (const [id, v] of [['goal-1', {g1}], ['goal-2', {g2}]]) {{ const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }}"
+    );
+    js(client, &script).await;
+}
+
+/// Pixels of the pick → place arrows' green in the plan's step pictures.
+async fn arrow_pixels(client: &Client) -> u64 {
+    let script = "let n = 0; for (const c of document.querySelectorAll('#plan-list canvas')) { \
+                  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; \
+                  for (let i = 0; i < d.length; i += 4) if (d[i] === 47 && d[i + 1] === 133 && d[i + 2] === 90) n++; } return n;";
+    js(client, script).await.as_u64().unwrap_or(0)
+}
+
 async fn slider_value(client: &Client) -> String {
     js(client, "return document.getElementById('interp-slider').value").await.as_str().unwrap_or_default().to_string()
 }
@@ -144,7 +190,21 @@ async fn the_app_works_in_a_real_browser() {
     let label = text_of(&client, "#browse-result .result-label").await;
     assert!(label.contains("corner"), "label: {label}");
     assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
+    // The Rerun download is offered exactly when the server can write recordings.
+    let offered = js(&client, "return !document.querySelector('#browse-result .recording').hidden").await;
+    assert_eq!(offered.as_bool(), Some(cfg!(feature = "rerun")), "recording link shown: {offered}");
     screenshot(&client, &shots, "01-sample.png").await;
+    // A built-in mesh sample is listed, and its view says where its border came from.
+    let mesh_entry = close::dataset::builtin().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
+    let card = client.find(Locator::Css(&format!(".sample-card[data-id={:?}]", mesh_entry.id))).await.expect("the mesh sample's card");
+    card.click().await.expect("open the mesh sample");
+    wait_for("the mesh sample's view", async || {
+        let meta = client.find(Locator::Css("#browse-result .result-meta")).await.ok()?.text().await.ok()?;
+        meta.contains("mesh boundary loop").then_some(())
+    })
+    .await;
+    assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
+    screenshot(&client, &shots, "01b-mesh-sample.png").await;
 
     // 2. Upload a Sample JSON; then a broken file shows the server's error.
     client.find(Locator::Id("tab-upload")).await.expect("upload tab").click().await.expect("click");
@@ -160,6 +220,32 @@ async fn the_app_works_in_a_real_browser() {
     assert!(text_of(&client, "#upload-result .result-label").await.contains("corner"));
     assert_eq!(images_loaded(&client, "#upload-result .images img").await, 6);
     screenshot(&client, &shots, "02-upload.png").await;
+
+    // Two OBJ frames of a mesh (chosen together, in reverse order): the border is the mesh's
+    // boundary loop, and the page says so.
+    let mesh = mesh_entry.sample.mesh.as_ref().expect("mesh");
+    let objs: Vec<PathBuf> = mesh
+        .frames
+        .iter()
+        .enumerate()
+        .map(|(k, frame)| {
+            let path = scratch.join(format!("cloth-frame{k}.obj"));
+            std::fs::write(&path, obj(frame, &mesh.faces)).expect("write an OBJ frame");
+            path
+        })
+        .rev()
+        .collect();
+    js(&client, "document.getElementById('upload-input').value = ''").await;
+    let paths: Vec<String> = objs.iter().map(|p| p.display().to_string()).collect();
+    client.find(Locator::Id("upload-input")).await.expect("file input").send_keys(&paths.join("\n")).await.expect("choose the OBJ files");
+    wait_for("the mesh analysis", async || {
+        let meta = client.find(Locator::Css("#upload-result .result-meta")).await.ok()?.text().await.ok()?;
+        meta.contains("mesh boundary loop").then_some(())
+    })
+    .await;
+    assert_eq!(text_of(&client, "#upload-result .result-name").await, "cloth-frame0.obj", "frames in file-name order");
+    assert!(text_of(&client, "#upload-result .close-table").await.contains("fold 1"), "the mesh's fold is found");
+    screenshot(&client, &shots, "02b-upload-mesh.png").await;
 
     let bad = scratch.join("broken.json");
     std::fs::write(&bad, b"{\"frames\": [[[0, 0, 0], [1, 0").expect("write broken file");
@@ -177,6 +263,7 @@ async fn the_app_works_in_a_real_browser() {
     })
     .await;
     let before = canvas(&client).await;
+    let disk_before = disk_picture(&client).await;
     screenshot(&client, &shots, "04-interpolate-start.png").await;
     // A mouse click on the middle of the slider's track moves it there.
     client.find(Locator::Id("interp-slider")).await.expect("slider").click().await.expect("click the slider");
@@ -186,21 +273,59 @@ async fn the_app_works_in_a_real_browser() {
     assert_ne!(before, halfway, "moving the slider did not change the drawing");
     let readout = client.find(Locator::Id("interp-readout")).await.expect("readout").text().await.expect("text");
     assert!(!readout.contains("t = 0.000"), "the readout did not follow the slider: {readout}");
+    assert_ne!(disk_before, disk_picture(&client).await, "the disk did not follow the slider");
     screenshot(&client, &shots, "05-interpolate-half.png").await;
     // The play button runs the motion to its end.
     client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");
     wait_for("the motion to end", async || (slider_value(&client).await == "1000").then_some(())).await;
     assert_ne!(halfway, canvas(&client).await, "playing did not change the drawing");
+    disk_picture(&client).await;
     screenshot(&client, &shots, "06-interpolate-end.png").await;
 
-    // The same motion from the server agrees; a plan to the goal fold lists its steps.
+    // The same motion from the server agrees.
     client.find(Locator::Id("check-server")).await.expect("check button").click().await.expect("click");
     let check = text_of(&client, "#interp-check").await;
     assert!(check.contains("agree"), "parity display: {check}");
+
+    // 4. Plan: the interpolation's goal opens the plan view; each step is drawn with its
+    // pick → place arrows and said in words.
     client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
-    let step = text_of(&client, "#plan-steps li").await;
-    assert!(step.contains("along"), "plan step: {step}");
+    wait_for("the plan view", async || js(&client, "return !document.getElementById('view-plan').hidden").await.as_bool().filter(|&v| v)).await;
+    // A goal folding the same corners as the sample's half fold: one direct step.
+    set_goal(&client, 60, 240).await;
+    client.find(Locator::Id("plan-run")).await.expect("plan run").click().await.expect("click");
+    wait_for("the plan", async || {
+        let case = client.find(Locator::Id("plan-case")).await.ok()?.text().await.ok()?;
+        case.contains("straight").then_some(())
+    })
+    .await;
+    let steps = plan_steps(&client).await;
+    assert!(steps.len() >= 2, "the current state and at least one step: {steps:?}");
+    assert!(steps[0].starts_with("Now"), "{steps:?}");
+    assert!(steps[1..].iter().all(|s| s.contains("Step") && s.contains("along")), "{steps:?}");
+    assert!(steps[1..].iter().any(|s| s.contains("grasp corner")), "no corner grasped: {steps:?}");
+    assert!(arrow_pixels(&client).await > 50, "no pick → place arrow drawn");
     screenshot(&client, &shots, "07-plan.png").await;
+
+    // A sample folded twice, a goal typed in: unfold both folds, then fold.
+    let twice = close::dataset::builtin().iter().find(|e| e.sample.frames.len() == 3).expect("a second-fold sample");
+    js(&client, &format!("const s = document.getElementById('plan-sample'); s.value = {:?}; s.dispatchEvent(new Event('change'))", twice.id)).await;
+    wait_for("the sample's state", async || {
+        let now = client.find(Locator::Id("plan-now")).await.ok()?.text().await.ok()?;
+        now.contains(" then ").then_some(())
+    })
+    .await;
+    set_goal(&client, 10, 150).await;
+    client.find(Locator::Id("plan-run")).await.expect("plan run").click().await.expect("click");
+    wait_for("a new plan", async || {
+        let case = client.find(Locator::Id("plan-case")).await.ok()?.text().await.ok()?;
+        case.contains("unfold first").then_some(())
+    })
+    .await;
+    let steps = plan_steps(&client).await;
+    assert_eq!(steps.iter().filter(|s| s.contains("· Unfold")).count(), 2, "{steps:?}");
+    assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
+    screenshot(&client, &shots, "08-plan-unfold.png").await;
 
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);

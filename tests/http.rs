@@ -142,9 +142,12 @@ async fn samples_are_listed_with_thumbnails() {
         assert_eq!(s["id"], e.id.as_str());
         assert_eq!(s["name"], e.sample.name.as_str());
         assert_eq!(s["category"], e.sample.category.as_str());
-        assert_eq!(s["n"], e.sample.frames[0].len());
-        assert_eq!(s["frames"], e.sample.frames.len());
+        let border = e.sample.border_frames().expect("a built-in border");
+        assert_eq!(s["n"], border.len());
+        assert_eq!(s["frames"], e.sample.mesh.as_ref().map_or(e.sample.frames.len(), |m| m.frames.len()));
+        assert_eq!(s["mesh"], e.sample.mesh.is_some());
     }
+    assert!(samples.iter().any(|s| s["mesh"] == true), "the dataset shows a mesh sample");
     assert_png(&app, samples[0]["thumbnail"].as_str().expect("thumbnail url")).await;
 }
 
@@ -354,12 +357,141 @@ async fn plans_reach_the_goal_with_input_vertex_indices() {
             assert_eq!(pick["from"].as_array().map(Vec::len), Some(3));
         }
     }
+    assert_eq!(v["border_indices"].as_array().map(Vec::len), Some(n as usize));
     let by_sample = post_json(&app, "/api/plan", &json!({"sample": entry.sample, "goal": goal})).await.json();
     assert_same(&by_sample["steps"], &v["steps"], "steps");
+    // An upload is planned by its analysis key while the analysis is cached.
+    let uploaded = post_json(&app, "/api/analyze", &serde_json::to_value(&entry.sample).unwrap()).await.json();
+    let by_key = post_json(&app, "/api/plan", &json!({"sample": uploaded["key"], "goal": goal})).await.json();
+    assert_same(&by_key["steps"], &v["steps"], "steps");
 
     assert!(post_json(&app, "/api/plan", &json!({"sample": "nope", "goal": goal})).await.error(StatusCode::NOT_FOUND).contains("nope"));
     assert!(post_json(&app, "/api/plan", &json!({"sample": 7, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("sample"));
     assert!(post_json(&app, "/api/plan", &json!({"sample": {"frames": 3}, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("parse"));
     assert!(post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [1]})).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("goal"));
+    assert_healthy(&app).await;
+}
+
+#[tokio::test]
+async fn the_disk_of_any_border_state_is_a_png() {
+    let app = test_app();
+    let flat = square(5);
+    let folded: Vec<Vec<[f64; 3]>> = serde_json::from_value(
+        post_json(&app, "/api/interpolate", &json!({"border": flat, "from": [0.3, 0.3], "to": [0.3, 3.44], "steps": 3})).await.json()["borders"].clone(),
+    )
+    .unwrap();
+    let disk = async |body: Value| {
+        let a = post_json(&app, "/api/disk", &body).await;
+        assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+        assert_eq!(a.content_type, "image/png");
+        assert!(a.body.starts_with(b"\x89PNG\r\n\x1a\n"));
+        a.body
+    };
+    let flat_png = disk(json!({"border": flat, "size": 200})).await;
+    assert_eq!(flat_png, disk(json!({"border": flat, "size": 200})).await, "the same border, the same picture");
+    let half = disk(json!({"border": folded[1], "reference": flat, "size": 200})).await;
+    let full = disk(json!({"border": folded[2], "reference": flat, "size": 200})).await;
+    assert!(flat_png != half && half != full, "the disk follows the fold");
+    // A sample's end frame against its start gives the analysis's end disk.
+    let entry = first_entry();
+    let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+    let frames = &entry.sample.frames;
+    let end = disk(json!({"border": frames[frames.len() - 1], "reference": frames[0], "size": 200})).await;
+    assert_eq!(end, close::render::disk_png(&analysis.disk_end, "dGLI disk · current state", 200, 200).unwrap());
+    // The disk does not depend on where the cloth lies, but does on the picture's size.
+    let shifted: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] + 3.0, p[1] - 1.0, p[2]]).collect();
+    assert_eq!(flat_png, disk(json!({"border": shifted, "size": 200})).await);
+    assert_ne!(flat_png, disk(json!({"border": flat, "size": 120})).await);
+
+    for (body, status, words) in [
+        (json!({"border": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}), StatusCode::UNPROCESSABLE_ENTITY, "too few"),
+        (json!({"border": square(2), "reference": square(3)}), StatusCode::UNPROCESSABLE_ENTITY, "frame 1 has 8 vertices"),
+        (json!({"border": [[0, 0, 0], [1, 1, 0], [2, 2, 0], [3, 3, 0]]}), StatusCode::UNPROCESSABLE_ENTITY, "degenerate"),
+        (json!({"border": square(2000)}), StatusCode::PAYLOAD_TOO_LARGE, "vertices"),
+        (json!({"border": [[0, 0]]}), StatusCode::UNPROCESSABLE_ENTITY, "border"),
+        (json!({"size": 100}), StatusCode::UNPROCESSABLE_ENTITY, "border"),
+        (json!({"border": flat, "colour": "red"}), StatusCode::UNPROCESSABLE_ENTITY, "colour"),
+    ] {
+        let error = post_json(&app, "/api/disk", &body).await.error(status);
+        assert!(error.contains(words), "{error:?} should name {words:?}");
+    }
+    assert!(post(&app, "/api/disk", "application/json", "{\"border\": [[0, 0").await.error(StatusCode::BAD_REQUEST).contains("JSON"));
+    assert!(post(&app, "/api/disk", "text/plain", "{}").await.error(StatusCode::UNSUPPORTED_MEDIA_TYPE).contains("application/json"));
+    assert_healthy(&app).await;
+}
+
+#[cfg(not(feature = "rerun"))]
+#[tokio::test]
+async fn without_the_rerun_feature_recordings_are_404_saying_why() {
+    let app = test_app();
+    let id = &first_entry().id;
+    let error = get(&app, &format!("/api/samples/{id}/recording.rrd")).await.error(StatusCode::NOT_FOUND);
+    assert!(error.contains("without the `rerun` feature"), "{error}");
+    assert!(get(&app, &format!("/api/samples/{id}")).await.json().get("recording").is_none(), "no download offered");
+    assert_healthy(&app).await;
+}
+
+#[cfg(feature = "rerun")]
+#[tokio::test]
+async fn a_sample_recording_downloads_as_rrd() {
+    use rerun::external::re_log_encoding::DecoderApp;
+    use rerun::log::{Chunk, LogMsg};
+
+    let app = test_app();
+    let id = &first_entry().id;
+    let url = format!("/api/samples/{id}/recording.rrd");
+    assert_eq!(get(&app, &format!("/api/samples/{id}")).await.json()["recording"], url.as_str());
+    let a = get(&app, &url).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    assert_eq!(a.content_type, "application/octet-stream");
+    assert!(a.body.starts_with(b"RRF2") && a.body.len() > 1000, "{} bytes", a.body.len());
+    // It decodes, with the borders and the disks in it.
+    let entities: Vec<String> = DecoderApp::decode_eager(&a.body[..])
+        .expect("an RRD stream")
+        .filter_map(|msg| match msg.expect("a decodable message") {
+            LogMsg::ArrowMsg(_, arrow) => Some(Chunk::from_arrow_msg(&arrow).expect("a chunk").entity_path().to_string()),
+            _ => None,
+        })
+        .collect();
+    for expected in ["/border", "/fold/1/line", "/disk/start"] {
+        assert!(entities.iter().any(|e| e == expected), "{expected} missing from {entities:?}");
+    }
+    assert_eq!(get(&app, &url).await.body, a.body, "cached");
+    assert!(get(&app, "/api/samples/nope/recording.rrd").await.error(StatusCode::NOT_FOUND).contains("nope"));
+    assert_healthy(&app).await;
+}
+
+/// A Wavefront OBJ of one mesh frame (1-based faces).
+fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
+    let v = vertices.iter().map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
+    let f = faces.iter().map(|f| format!("f {}\n", f.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(" ")));
+    v.chain(f).collect()
+}
+
+#[tokio::test]
+async fn mesh_uploads_name_how_their_border_was_found() {
+    let app = test_app();
+    let entry = dataset::builtin().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
+    let mesh = entry.sample.mesh.as_ref().unwrap();
+    let (f0, f1) = (obj(&mesh.frames[0], &mesh.faces), obj(&mesh.frames[1], &mesh.faces));
+    let (ct, body) = multipart(&[("sample", "frame0.obj", &f0), ("sample", "frame1.obj", &f1)]);
+    let a = post(&app, "/api/analyze", &ct, body).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    let v = a.json();
+    assert_eq!(v["border_source"], "mesh boundary loop");
+    assert_eq!(v["frames"], 2);
+    // The same analysis as the built-in sample's, border indices being mesh vertices.
+    let builtin = get(&app, &format!("/api/samples/{}", entry.id)).await.json();
+    for key in ["n", "corners", "folds", "border_indices", "border_source"] {
+        assert_same(&v[key], &builtin[key], key);
+    }
+    assert!(v["border_indices"].as_array().unwrap().iter().all(|k| k.as_u64().is_some_and(|k| (k as usize) < mesh.frames[0].len())));
+    assert_png(&app, v["images"]["signed_diff"].as_str().unwrap()).await;
+
+    // A frame with other vertices is named, as is a mesh with no face.
+    let (ct, body) = multipart(&[("sample", "frame0.obj", &f0), ("sample", "short.obj", &obj(&mesh.frames[1][1..], &mesh.faces[..1]))]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("short.obj"));
+    let (ct, body) = multipart(&[("sample", "points.obj", &obj(&mesh.frames[0], &[]))]);
+    assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("no face"));
     assert_healthy(&app).await;
 }

@@ -1,7 +1,7 @@
 // CloSE web app: browse the built-in samples, upload one, interpolate folds.
 // Plain ES module, no build step; talks to the JSON API of src/server.
 
-import { TAU, wrap, foldAt, applyFold, foldLine, foldPath } from "./fold.mjs";
+import { TAU, wrap, foldAt, applyFold, foldLine, foldPath, foldedVertices } from "./fold.mjs";
 
 const $ = (sel, root = document) => root.querySelector(sel);
 const PICTURES = [
@@ -42,6 +42,7 @@ function showTab(name) {
   for (const view of document.querySelectorAll(".view")) view.hidden = view.id !== `view-${name}`;
   showError("");
   if (name === "interpolate") interp.draw();
+  if (name === "plan") planner.shown();
 }
 
 // ---------- formatting ----------
@@ -63,8 +64,9 @@ function renderResult(slot, result) {
   const node = $("#result-template").content.firstElementChild.cloneNode(true);
   $(".result-name", node).textContent = result.name || "(unnamed)";
   const reversed = result.reversed ? " · given clockwise, walked anticlockwise" : "";
+  const source = result.border_source === "border" ? "border given" : `border from the ${result.border_source}`;
   $(".result-meta", node).textContent =
-    `${result.category || "upload"} · N = ${result.n} vertices · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
+    `${result.category || "upload"} · N = ${result.n} vertices (${source}) · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
   $(".result-label", node).textContent = result.label.text;
 
   const close = $(".close-table tbody", node);
@@ -95,6 +97,13 @@ function renderResult(slot, result) {
     fig.append(img, cap);
     images.append(fig);
   }
+  if (result.recording) {
+    const file = `${result.id || "sample"}.rrd`;
+    $(".recording", node).hidden = false;
+    $(".recording-link", node).href = result.recording;
+    $(".recording-link", node).download = file;
+    $(".recording-command", node).textContent = `rerun ${file}`;
+  }
   $(".warnings", node).textContent = (result.warnings || []).join(" ");
   const button = $(".interp-this", node);
   button.hidden = result.folds.length === 0;
@@ -102,6 +111,7 @@ function renderResult(slot, result) {
     interp.useResult(result, "this result");
     showTab("interpolate");
   });
+  $(".plan-this", node).addEventListener("click", () => planner.open(result.id || result.key));
   slot.replaceChildren(node);
 }
 
@@ -147,6 +157,7 @@ async function loadSamples() {
     list.append(h, cards);
   }
   interp.fillSamples(samples);
+  planner.fillSamples(samples);
   // Open the first sample so the page never starts empty (in a talk, the first click counts).
   if (samples.length && !$("#browse-result .result")) openSample(samples[0].id);
 }
@@ -170,17 +181,13 @@ async function openSample(id) {
 async function upload(files) {
   const status = $("#upload-status");
   const slot = $("#upload-result");
-  files = [...files];
+  // Frames go in file-name order, numbers compared as numbers (frame2 before frame10).
+  files = [...files].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
   if (files.length === 0) return;
+  // The server reads every kind from "sample" files, by their names' extensions.
   const form = new FormData();
-  if (files.length === 2 && !files.some((f) => f.name.toLowerCase().endsWith(".json"))) {
-    form.append("start", files[0], files[0].name);
-    form.append("end", files[1], files[1].name);
-    status.textContent = `Analysing ${files[0].name} → ${files[1].name}…`;
-  } else {
-    for (const f of files) form.append("sample", f, f.name);
-    status.textContent = `Analysing ${files.map((f) => f.name).join(", ")}…`;
-  }
+  for (const f of files) form.append("sample", f, f.name);
+  status.textContent = `Analysing ${files.map((f) => f.name).join(" → ")}…`;
   try {
     const result = await api("/api/analyze", { method: "POST", body: form });
     renderResult(slot, result);
@@ -232,6 +239,204 @@ function arcPath(a, b, r) {
   return `M ${x1} ${y1} A ${r} ${r} 0 ${span > Math.PI ? 1 : 0} 0 ${x2} ${y2}`;
 }
 
+/**
+ * Keeps an <img> showing the dGLI disk of the latest border state asked for. One request is
+ * in flight at a time and only the newest waiting state is kept, so dragging the slider
+ * never queues up stale pictures.
+ */
+class DiskFollower {
+  constructor(img, status, size = 480) {
+    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null });
+  }
+
+  /** Show the disk of `border` (normalised like `reference`, the flat start) under `key`. */
+  show(key, border, reference) {
+    this.next = { key, border, reference };
+    if (!this.busy) this.pump();
+  }
+
+  async pump() {
+    this.busy = true;
+    while (this.next) {
+      const job = this.next;
+      this.next = null;
+      if (job.key === this.shown) continue;
+      try {
+        const res = await fetch("/api/disk", {
+          method: "POST",
+          headers: { "content-type": "application/json" },
+          body: JSON.stringify({ border: job.border, reference: job.reference, size: this.size }),
+        });
+        if (!res.ok) {
+          const body = await res.json().catch(() => ({}));
+          throw new Error(`${body.error || res.statusText} (HTTP ${res.status})`);
+        }
+        const url = URL.createObjectURL(await res.blob());
+        this.img.src = url;
+        await this.img.decode();
+        if (this.url) URL.revokeObjectURL(this.url);
+        this.url = url;
+        this.shown = job.key;
+        this.img.dataset.key = job.key;
+        this.status.textContent = "";
+      } catch (e) {
+        this.status.textContent = `(not drawn: ${e.message})`;
+      }
+    }
+    this.busy = false;
+  }
+}
+
+/**
+ * Draw a fold circle into the SVG `root`: the unit circle with angle 0 marked, the corners as
+ * numbered dots, each of `arcs` ({fold, color}) as its folded arc and chord, and `handles`
+ * ({id, angle, color, label, r}) as draggable dots outside the circle.
+ */
+function drawFoldCircle(root, corners, arcs, handles) {
+  root.replaceChildren();
+  svg("circle", { cx: 0, cy: 0, r: R, fill: "none", stroke: "#cbd2dc", "stroke-width": 2 }, root);
+  svg("line", { x1: R - 6, y1: 0, x2: R + 6, y2: 0, stroke: "#9aa4b2" }, root);
+  svg("text", { x: R + 9, y: 4, "font-size": 10, fill: "#667085" }, root).textContent = "0";
+  arcs.forEach(({ fold, color }, k) => {
+    // Nested arcs stay apart when several folds are shown.
+    const r = R - 5 * k;
+    if (wrap(fold[1] - fold[0]) > 1e-9) {
+      svg("path", { d: arcPath(fold[0], fold[1], r), fill: "none", stroke: color, "stroke-width": 7, "stroke-linecap": "round", opacity: 0.85 }, root);
+    }
+    const [ax, ay] = onCircle(fold[0]);
+    const [bx, by] = onCircle(fold[1]);
+    svg("line", { x1: ax, y1: ay, x2: bx, y2: by, stroke: color, "stroke-dasharray": "4 4" }, root);
+  });
+  corners.forEach((c, k) => {
+    const [x, y] = onCircle(c);
+    svg("circle", { cx: x, cy: y, r: 3.5, fill: "#111827" }, root);
+    const [tx, ty] = onCircle(c, R - 13);
+    svg("text", { x: tx, y: ty + 3.5, "font-size": 10, "text-anchor": "middle", fill: "#111827" }, root).textContent = k + 1;
+  });
+  for (const h of handles) {
+    const [x, y] = onCircle(h.angle, h.r);
+    const dot = svg("circle", { cx: x, cy: y, r: 8, fill: h.color, stroke: "#fff", "stroke-width": 2, class: "handle" }, root);
+    dot.dataset.id = h.id;
+    svg("text", { x, y: y + 3.5, "font-size": 9, "text-anchor": "middle", fill: "#fff", "pointer-events": "none" }, root).textContent = h.label;
+  }
+}
+
+/** Let the handles of the fold circle `root` be dragged round it: `move(id, angle)`. */
+function dragOnCircle(root, move) {
+  let id = null;
+  root.addEventListener("pointerdown", (e) => {
+    if (!e.target.classList.contains("handle")) return;
+    id = e.target.dataset.id;
+    root.setPointerCapture(e.pointerId);
+  });
+  root.addEventListener("pointermove", (e) => {
+    if (id === null) return;
+    const pt = root.createSVGPoint();
+    pt.x = e.clientX;
+    pt.y = e.clientY;
+    const p = pt.matrixTransform(root.getScreenCTM().inverse());
+    move(id, wrap(Math.atan2(-p.y, p.x)));
+  });
+  const stop = () => (id = null);
+  root.addEventListener("pointerup", stop);
+  root.addEventListener("pointercancel", stop);
+}
+
+/** Maps border points to a canvas, fitted to `bounds` {x0, x1, y0, y1} with `pad` pixels. */
+function viewport(canvas, bounds, pad) {
+  const { width, height } = canvas;
+  const b = bounds;
+  const scale = Math.min((width - 2 * pad) / (b.x1 - b.x0 || 1), (height - 2 * pad) / (b.y1 - b.y0 || 1));
+  const ox = (width - scale * (b.x1 - b.x0)) / 2;
+  const oy = (height - scale * (b.y1 - b.y0)) / 2;
+  return { X: (p) => ox + scale * (p[0] - b.x0), Y: (p) => height - (oy + scale * (p[1] - b.y0)) };
+}
+
+/** XY bounds of several borders. */
+function boundsOf(borders) {
+  const xs = borders.flatMap((b) => b.map((p) => p[0]));
+  const ys = borders.flatMap((b) => b.map((p) => p[1]));
+  return { x0: Math.min(...xs), x1: Math.max(...xs), y0: Math.min(...ys), y1: Math.max(...ys) };
+}
+
+/** Stroke (and optionally fill) the closed polygon `pts` through the viewport `v`. */
+function polygon(ctx, v, pts, { stroke, fill, width = 2, dash = [] }) {
+  ctx.beginPath();
+  pts.forEach((p, k) => (k ? ctx.lineTo(v.X(p), v.Y(p)) : ctx.moveTo(v.X(p), v.Y(p))));
+  ctx.closePath();
+  if (fill) {
+    ctx.fillStyle = fill;
+    ctx.fill();
+  }
+  ctx.setLineDash(dash);
+  ctx.strokeStyle = stroke;
+  ctx.lineWidth = width;
+  ctx.stroke();
+  ctx.setLineDash([]);
+}
+
+/** An arrow from p to q (border points) through the viewport `v`. */
+function arrow(ctx, v, p, q, color) {
+  const [x1, y1, x2, y2] = [v.X(p), v.Y(p), v.X(q), v.Y(q)];
+  ctx.beginPath();
+  ctx.moveTo(x1, y1);
+  ctx.lineTo(x2, y2);
+  ctx.strokeStyle = color;
+  ctx.lineWidth = 2.5;
+  ctx.stroke();
+  const ang = Math.atan2(y2 - y1, x2 - x1);
+  ctx.beginPath();
+  ctx.moveTo(x2, y2);
+  ctx.lineTo(x2 - 14 * Math.cos(ang - 0.4), y2 - 14 * Math.sin(ang - 0.4));
+  ctx.lineTo(x2 - 14 * Math.cos(ang + 0.4), y2 - 14 * Math.sin(ang + 0.4));
+  ctx.closePath();
+  ctx.fillStyle = color;
+  ctx.fill();
+  ctx.beginPath();
+  ctx.arc(x1, y1, 5, 0, TAU);
+  ctx.fill();
+}
+
+/**
+ * Dot and number the corners (angles) at their vertices of `points`; corners that a fold
+ * stacked on one another share one label ("1·4") instead of overprinting.
+ */
+function labelCorners(ctx, v, points, corners, size) {
+  const spots = new Map();
+  corners.forEach((c, k) => {
+    const p = points[cornerVertex(c, points.length)];
+    const key = `${Math.round(v.X(p) / 4)},${Math.round(v.Y(p) / 4)}`;
+    if (!spots.has(key)) spots.set(key, { p, labels: [] });
+    spots.get(key).labels.push(k + 1);
+  });
+  ctx.font = `${size}px system-ui, sans-serif`;
+  ctx.fillStyle = "#111827";
+  for (const { p, labels } of spots.values()) {
+    ctx.beginPath();
+    ctx.arc(v.X(p), v.Y(p), size / 3, 0, TAU);
+    ctx.fill();
+    ctx.fillText(labels.join("·"), v.X(p) + size / 2, v.Y(p) - size / 2);
+  }
+}
+
+/**
+ * The folded border with the folded layer a cloth's thickness (1% of the cloth's radius)
+ * above the flat one, turned over, as the built-in dataset folds: two layers at the same
+ * height would give the disk near-singular values where they touch.
+ */
+function stacked(flat, folded, fold) {
+  const n = flat.length;
+  const centre = [0, 1].map((c) => flat.reduce((sum, p) => sum + p[c], 0) / n);
+  const radius = Math.max(...flat.map((p) => Math.hypot(p[0] - centre[0], p[1] - centre[1])));
+  const top = Math.max(...flat.map((p) => p[2]));
+  const out = folded.map((p) => p.slice());
+  for (const v of foldedVertices(n, fold)) out[v][2] = 2 * top + 0.01 * radius - flat[v][2];
+  return out;
+}
+
+/** Vertex of a corner angle on a border of n vertices. */
+const cornerVertex = (c, n) => Math.round((c * n) / TAU) % n;
+
 const interp = {
   border: null,
   corners: [],
@@ -259,9 +464,10 @@ const interp = {
   /** Fold the start border of an analysis; start unfolded at its first fold's f1. */
   useResult(result, id) {
     this.border = result.start_border;
+    this.cloth = (this.cloth || 0) + 1;
     this.corners = result.corners;
     this.sampleId = result.id || null;
-    this.sampleJson = result.sample || null;
+    this.sampleKey = result.key || null;
     this.sampleFold = result.folds[0] || (result.sample && result.sample.truth && result.sample.truth.folds[0]) || null;
     const goal = this.sampleFold || [Math.PI / 4, (5 * Math.PI) / 4];
     this.to = [wrap(goal[0]), wrap(goal[1])];
@@ -276,16 +482,7 @@ const interp = {
   /** After folds or border changed: new view bounds, inputs, circle. */
   changed() {
     if (!this.border) return;
-    let xs = [];
-    let ys = [];
-    for (const f of foldPath(this.from, this.to, 21)) {
-      for (const p of applyFold(this.border, f)) {
-        xs.push(p[0]);
-        ys.push(p[1]);
-      }
-    }
-    const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
-    this.bounds = { x0, x1, y0, y1 };
+    this.bounds = boundsOf(foldPath(this.from, this.to, 21).map((f) => applyFold(this.border, f)));
     this.writeInputs();
     this.draw();
   },
@@ -303,125 +500,55 @@ const interp = {
   draw() {
     if (!this.border || !this.bounds) return;
     const fold = this.current();
-    this.drawCanvas(fold);
+    const folded = applyFold(this.border, fold);
+    this.drawCanvas(fold, folded);
     this.drawCircle(fold);
     $("#interp-readout").textContent = `t = ${this.tau.toFixed(3)}   fold ${fmtFold(fold)}`;
+    // The disk only while it is on screen; showing the tab draws again.
+    if (!$("#view-interpolate").hidden) this.disk.show(this.diskKey(), stacked(this.border, folded, fold), this.border);
   },
 
-  drawCanvas(fold) {
+  /** Names the state drawn: the cloth and the current fold. */
+  diskKey() {
+    const fold = this.current();
+    return `${this.cloth}|${fold[0].toFixed(9)},${fold[1].toFixed(9)}`;
+  },
+
+  drawCanvas(fold, folded) {
     const canvas = $("#interp-canvas");
     const ctx = canvas.getContext("2d");
-    const { width, height } = canvas;
-    ctx.clearRect(0, 0, width, height);
-    const b = this.bounds;
-    const pad = 40;
-    const scale = Math.min((width - 2 * pad) / (b.x1 - b.x0 || 1), (height - 2 * pad) / (b.y1 - b.y0 || 1));
-    const ox = (width - scale * (b.x1 - b.x0)) / 2;
-    const oy = (height - scale * (b.y1 - b.y0)) / 2;
-    const X = (p) => ox + scale * (p[0] - b.x0);
-    const Y = (p) => height - (oy + scale * (p[1] - b.y0));
-    const poly = (pts, close = true) => {
-      ctx.beginPath();
-      pts.forEach((p, k) => (k ? ctx.lineTo(X(p), Y(p)) : ctx.moveTo(X(p), Y(p))));
-      if (close) ctx.closePath();
-    };
-
-    // The flat cloth, dashed.
-    poly(this.border);
-    ctx.setLineDash([6, 6]);
-    ctx.strokeStyle = "#9aa4b2";
-    ctx.lineWidth = 1.5;
-    ctx.stroke();
-    ctx.setLineDash([]);
-
-    // The folded border.
-    const folded = applyFold(this.border, fold);
-    poly(folded);
-    ctx.fillStyle = "rgba(31, 111, 235, 0.12)";
-    ctx.fill();
-    ctx.strokeStyle = "#1f6feb";
-    ctx.lineWidth = 2.5;
-    ctx.stroke();
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
+    const v = viewport(canvas, this.bounds, 40);
+    polygon(ctx, v, this.border, { stroke: "#9aa4b2", width: 1.5, dash: [6, 6] });
+    polygon(ctx, v, folded, { stroke: "#1f6feb", fill: "rgba(31, 111, 235, 0.12)", width: 2.5 });
 
     // Corners (numbered in border order) where they are now.
-    ctx.font = `${Math.round(width / 55)}px system-ui, sans-serif`;
-    const n = this.border.length;
-    this.corners.forEach((c, k) => {
-      const v = Math.round((c * n) / TAU) % n;
-      const p = folded[v];
-      ctx.beginPath();
-      ctx.arc(X(p), Y(p), 5, 0, TAU);
-      ctx.fillStyle = "#111827";
-      ctx.fill();
-      ctx.fillText(String(k + 1), X(p) + 7, Y(p) - 7);
-    });
+    labelCorners(ctx, v, folded, this.corners, Math.round(canvas.width / 55));
+    ctx.font = `${Math.round(canvas.width / 55)}px system-ui, sans-serif`;
 
     // The fold line.
     const [a, c] = foldLine(this.border, fold);
     ctx.beginPath();
-    ctx.moveTo(X(a), Y(a));
-    ctx.lineTo(X(c), Y(c));
+    ctx.moveTo(v.X(a), v.Y(a));
+    ctx.lineTo(v.X(c), v.Y(c));
     ctx.strokeStyle = "#d1495b";
     ctx.lineWidth = 3;
     ctx.stroke();
     for (const [p, label] of [[a, "f₁"], [c, "f₂"]]) {
       ctx.beginPath();
-      ctx.arc(X(p), Y(p), 6, 0, TAU);
+      ctx.arc(v.X(p), v.Y(p), 6, 0, TAU);
       ctx.fillStyle = "#d1495b";
       ctx.fill();
-      ctx.fillText(label, X(p) + 8, Y(p) + 18);
-    }
-
-    // Plan arrows, when a plan is shown.
-    for (const pick of this.picks || []) {
-      const [p, q] = [pick.from, pick.to];
-      ctx.beginPath();
-      ctx.moveTo(X(p), Y(p));
-      ctx.lineTo(X(q), Y(q));
-      ctx.strokeStyle = "#2f855a";
-      ctx.lineWidth = 2.5;
-      ctx.stroke();
-      const ang = Math.atan2(Y(q) - Y(p), X(q) - X(p));
-      ctx.beginPath();
-      ctx.moveTo(X(q), Y(q));
-      ctx.lineTo(X(q) - 14 * Math.cos(ang - 0.4), Y(q) - 14 * Math.sin(ang - 0.4));
-      ctx.lineTo(X(q) - 14 * Math.cos(ang + 0.4), Y(q) - 14 * Math.sin(ang + 0.4));
-      ctx.closePath();
-      ctx.fillStyle = "#2f855a";
-      ctx.fill();
+      ctx.fillText(label, v.X(p) + 8, v.Y(p) + 18);
     }
   },
 
   drawCircle(fold) {
-    const root = $("#fold-circle");
-    root.replaceChildren();
-    svg("circle", { cx: 0, cy: 0, r: R, fill: "none", stroke: "#cbd2dc", "stroke-width": 2 }, root);
-    svg("line", { x1: R - 6, y1: 0, x2: R + 6, y2: 0, stroke: "#9aa4b2" }, root);
-    svg("text", { x: R + 9, y: 4, "font-size": 10, fill: "#667085" }, root).textContent = "0";
-    // The folded arc of the current fold, and its chord.
-    if (wrap(fold[1] - fold[0]) > 1e-9) {
-      svg("path", { d: arcPath(fold[0], fold[1], R), fill: "none", stroke: "#d1495b", "stroke-width": 7, "stroke-linecap": "round", opacity: 0.85 }, root);
+    const handles = [];
+    for (const [which, color, r] of [["from", "#2b6cb0", R + 14], ["to", "#dd6b20", R + 26]]) {
+      this[which].forEach((angle, k) => handles.push({ id: `${which}:${k}`, angle, color, label: k + 1, r }));
     }
-    const [ax, ay] = onCircle(fold[0]);
-    const [bx, by] = onCircle(fold[1]);
-    svg("line", { x1: ax, y1: ay, x2: bx, y2: by, stroke: "#d1495b", "stroke-dasharray": "4 4" }, root);
-    this.corners.forEach((c, k) => {
-      const [x, y] = onCircle(c);
-      svg("circle", { cx: x, cy: y, r: 3.5, fill: "#111827" }, root);
-      const [tx, ty] = onCircle(c, R - 13);
-      svg("text", { x: tx, y: ty + 3.5, "font-size": 10, "text-anchor": "middle", fill: "#111827" }, root).textContent = k + 1;
-    });
-    const handle = (which, k, color) => {
-      const [x, y] = onCircle(this[which][k], R + (which === "from" ? 14 : 26));
-      const h = svg("circle", { cx: x, cy: y, r: 8, fill: color, stroke: "#fff", "stroke-width": 2, class: "handle" }, root);
-      h.dataset.which = which;
-      h.dataset.k = k;
-      svg("text", { x, y: y + 3.5, "font-size": 9, "text-anchor": "middle", fill: "#fff", "pointer-events": "none" }, root).textContent = k + 1;
-    };
-    handle("from", 0, "#2b6cb0");
-    handle("from", 1, "#2b6cb0");
-    handle("to", 0, "#dd6b20");
-    handle("to", 1, "#dd6b20");
+    drawFoldCircle($("#fold-circle"), this.corners, [{ fold, color: "#d1495b" }], handles);
   },
 
   writeInputs() {
@@ -442,7 +569,6 @@ const interp = {
     };
     this.from = [read("#from-1", this.from[0]), read("#from-2", this.from[1])];
     this.to = [read("#to-1", this.to[0]), read("#to-2", this.to[1])];
-    this.picks = null;
     this.changed();
   },
 
@@ -491,37 +617,18 @@ const interp = {
     }
   },
 
-  /** Plan from the sample's current state to the "to" fold and draw pick → place arrows. */
-  async plan() {
-    const list = $("#plan-steps");
-    const sample = this.sampleId || this.sampleJson;
+  /** Open the plan view on this cloth with the "to" fold as the goal. */
+  planGoal() {
+    const sample = this.sampleId || this.sampleKey;
     if (!sample) {
-      showError("Planning needs a built-in sample: choose one above.");
+      showError("Planning needs a sample: choose one above.");
       return;
     }
-    try {
-      const res = await api("/api/plan", {
-        method: "POST",
-        headers: { "content-type": "application/json" },
-        body: JSON.stringify({ sample, goal: this.to }),
-      });
-      list.replaceChildren(
-        ...res.steps.map((s) => {
-          const li = document.createElement("li");
-          const picks = s.picks.map((p) => `vertex ${p.vertex}`).join(", ") || "no corner";
-          li.textContent = `${s.action} along ${fmtFold(s.fold)}: pick ${picks}`;
-          return li;
-        }),
-      );
-      $("#interp-check").textContent = `Plan case: ${res.case}`;
-      this.picks = res.steps.flatMap((s) => s.picks);
-      this.draw();
-    } catch (e) {
-      showError(e.message);
-    }
+    planner.open(sample, this.to);
   },
 
   setup() {
+    this.disk = new DiskFollower($("#interp-disk"), $("#interp-disk-status"));
     const slider = $("#interp-slider");
     slider.addEventListener("input", () => {
       this.playing = false;
@@ -542,29 +649,222 @@ const interp = {
       this.changed();
     });
     $("#check-server").addEventListener("click", () => this.checkServer());
-    $("#plan-goal").addEventListener("click", () => this.plan());
+    $("#plan-goal").addEventListener("click", () => this.planGoal());
 
-    // Drag a handle round the circle.
-    const root = $("#fold-circle");
-    let drag = null;
-    root.addEventListener("pointerdown", (e) => {
-      if (!e.target.classList.contains("handle")) return;
-      drag = { which: e.target.dataset.which, k: Number(e.target.dataset.k) };
-      root.setPointerCapture(e.pointerId);
-    });
-    root.addEventListener("pointermove", (e) => {
-      if (!drag) return;
-      const pt = root.createSVGPoint();
-      pt.x = e.clientX;
-      pt.y = e.clientY;
-      const p = pt.matrixTransform(root.getScreenCTM().inverse());
-      this[drag.which][drag.k] = wrap(Math.atan2(-p.y, p.x));
-      this.picks = null;
+    dragOnCircle($("#fold-circle"), (id, angle) => {
+      const [which, k] = id.split(":");
+      this[which][Number(k)] = angle;
       this.changed();
     });
-    const stop = () => (drag = null);
-    root.addEventListener("pointerup", stop);
-    root.addEventListener("pointercancel", stop);
+  },
+};
+
+// ---------- plan ----------
+
+const fmtPoint = (p) => `(${p[0].toFixed(2)}, ${p[1].toFixed(2)})`;
+const fmtDeg = (f) => `(${deg(f[0]).toFixed(1)}°, ${deg(f[1]).toFixed(1)}°)`;
+const ACTIONS = { fold: "Fold", unfold: "Unfold" };
+const CASES = {
+  fold: "The cloth is flat: one fold reaches the goal.",
+  direct: "The goal folds the same corners as now: one step moves them straight there.",
+  unfold_then_fold: "The goal folds other corners: unfold first, then fold the goal.",
+};
+
+/** What a plan step does, in words. */
+function stepText(step) {
+  const moved = step.corners.length ? `moves corner${step.corners.length > 1 ? "s" : ""} ${step.corners.join(" and ")}` : "moves no corner";
+  const picks = step.picks.map((p) => {
+    const corner = step.cornerOf(p.vertex);
+    const what = corner ? `corner ${corner} (vertex ${p.vertex})` : `vertex ${p.vertex}`;
+    return step.action === "unfold" ? `grasp ${what} at ${fmtPoint(p.from)} and put it back at ${fmtPoint(p.to)}` : `grasp ${what} at ${fmtPoint(p.from)} and place it at ${fmtPoint(p.to)}`;
+  });
+  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}.`;
+}
+
+const planner = {
+  sample: null,
+  goal: [Math.PI / 4, (5 * Math.PI) / 4],
+  folds: [],
+  corners: [],
+
+  fillSamples(list) {
+    $("#plan-sample").replaceChildren(...list.map((s) => new Option(`${s.category} · ${s.name}`, s.id)));
+  },
+
+  /** Show the plan view for `sample` (an id or an analysis key), goal `goal` if given. */
+  async open(sample, goal) {
+    const select = $("#plan-sample");
+    if (!select.querySelector(`option[value="${CSS.escape(sample)}"]`)) select.append(new Option(`upload · ${sample.slice(0, 12)}`, sample));
+    select.value = sample;
+    if (goal) this.goal = [wrap(goal[0]), wrap(goal[1])];
+    this.sample = sample;
+    showTab("plan");
+    await this.load(sample, !goal);
+  },
+
+  /** The view came on screen: start on the chosen sample if none is loaded. */
+  shown() {
+    const id = $("#plan-sample").value;
+    if (!this.sample && id) this.load(id, true);
+  },
+
+  /** Load the current state of `sample`; `takeGoal` starts the goal on a diagonal. */
+  async load(sample, takeGoal) {
+    this.sample = sample;
+    try {
+      // An upload's state comes back with its plan; a built-in sample's is shown now.
+      const builtin = samples.some((s) => s.id === sample);
+      const res = builtin ? await api(`/api/samples/${encodeURIComponent(sample)}`) : null;
+      if (res) {
+        this.folds = res.folds;
+        this.corners = res.corners;
+        $("#plan-now").textContent = `${res.name}: N = ${res.n}, ${res.corners.length} corners, now ${
+          res.folds.length ? res.folds.map(fmtDeg).join(" then ") : "flat"
+        }.`;
+        if (takeGoal && res.corners.length >= 2) {
+          // A diagonal through the first and third corners, a natural first goal.
+          const c = res.corners;
+          this.goal = [c[0], c[Math.min(2, c.length - 1)]];
+        }
+      } else {
+        [this.folds, this.corners] = [[], []];
+        $("#plan-now").textContent = "An uploaded sample: its state is shown with the plan.";
+      }
+      $("#plan-list").replaceChildren();
+      $("#plan-case").textContent = "";
+      this.drawCircle();
+      this.writeInputs();
+    } catch (e) {
+      showError(e.message);
+    }
+  },
+
+  drawCircle() {
+    const arcs = this.folds.map((fold) => ({ fold, color: "#2b6cb0" }));
+    arcs.push({ fold: this.goal, color: "#dd6b20" });
+    const handles = this.goal.map((angle, k) => ({ id: String(k), angle, color: "#dd6b20", label: k + 1, r: R + 18 }));
+    drawFoldCircle($("#plan-circle"), this.corners, arcs, handles);
+  },
+
+  writeInputs() {
+    $("#goal-1").value = deg(this.goal[0]).toFixed(1);
+    $("#goal-2").value = deg(this.goal[1]).toFixed(1);
+  },
+
+  readInputs() {
+    const read = (id, old) => {
+      const v = parseFloat($(id).value);
+      return Number.isFinite(v) ? wrap((v * Math.PI) / 180) : old;
+    };
+    this.goal = [read("#goal-1", this.goal[0]), read("#goal-2", this.goal[1])];
+    this.drawCircle();
+  },
+
+  /** Ask the server for the plan and draw every step. */
+  async plan() {
+    if (!this.sample) return;
+    const list = $("#plan-list");
+    try {
+      const res = await api("/api/plan", {
+        method: "POST",
+        headers: { "content-type": "application/json" },
+        body: JSON.stringify({ sample: this.sample, goal: this.goal }),
+      });
+      Object.assign(this, { folds: res.folds, corners: res.corners });
+      this.drawCircle();
+      $("#plan-case").textContent = `${res.steps.length} step${res.steps.length > 1 ? "s" : ""} · ${CASES[res.case] || res.case}`;
+      list.replaceChildren(...this.stepCards(res));
+      showError("");
+    } catch (e) {
+      list.replaceChildren();
+      $("#plan-case").textContent = "";
+      showError(e.message);
+    }
+  },
+
+  /**
+   * The states the plan goes through, from now: an unfold takes the last fold off, a fold
+   * folds the flat cloth ("direct" replaces the current folds by the goal at once).
+   */
+  states(res) {
+    const flat = res.start_border;
+    let applied = [...res.folds];
+    const at = (folds) => folds.reduce((b, f) => applyFold(b, f), flat);
+    const out = [{ state: at(applied) }];
+    for (const step of res.steps) {
+      const before = at(applied);
+      if (step.action === "unfold") applied = applied.slice(0, -1);
+      else applied = res.case === "direct" ? [step.fold] : [...applied, step.fold];
+      const after = at(applied);
+      // The line a fold step folds along lies on the border it folds (plan.rs: the flat
+      // cloth); an unfold's on the state it goes back to.
+      out.push({ step, before, state: after, line: foldLine(step.action === "unfold" ? after : flat, step.fold) });
+    }
+    return out;
+  },
+
+  stepCards(res) {
+    const flat = res.start_border;
+    const n = flat.length;
+    const states = this.states(res);
+    const bounds = boundsOf([flat, ...states.map((s) => s.state), ...res.steps.flatMap((s) => s.picks.map((p) => [p.from, p.to]))]);
+    // Input vertex (what picks name) → 1-based corner number.
+    const cornerVertices = res.corners.map((c) => cornerVertex(c, n));
+    const inputIndex = res.border_indices || null;
+    return states.map(({ step, before, state, line }, k) => {
+      const li = document.createElement("li");
+      li.className = "plan-step";
+      const canvas = document.createElement("canvas");
+      canvas.width = 520;
+      canvas.height = 420;
+      const ctx = canvas.getContext("2d");
+      const v = viewport(canvas, bounds, 28);
+      // Outlines only: a folded border overlaps itself, so a fill would cancel out.
+      polygon(ctx, v, flat, { stroke: "#cbd2dc", width: 1.2, dash: [5, 5] });
+      if (before) polygon(ctx, v, before, { stroke: "#9aa4b2", width: 1.5, dash: [2, 4] });
+      polygon(ctx, v, state, { stroke: "#1f6feb", width: 2.5 });
+      labelCorners(ctx, v, state, res.corners, 15);
+      if (line) {
+        ctx.beginPath();
+        ctx.moveTo(v.X(line[0]), v.Y(line[0]));
+        ctx.lineTo(v.X(line[1]), v.Y(line[1]));
+        ctx.strokeStyle = "#d1495b";
+        ctx.lineWidth = 2.5;
+        ctx.stroke();
+      }
+      for (const pick of step ? step.picks : []) arrow(ctx, v, pick.from, pick.to, "#2f855a");
+      const text = document.createElement("div");
+      const title = document.createElement("h4");
+      const words = document.createElement("p");
+      if (step) {
+        title.textContent = `Step ${k} · ${ACTIONS[step.action] || step.action}`;
+        // Picks name input vertices; a border vertex that is a corner gets its number.
+        step.cornerOf = (vertex) => {
+          const border = inputIndex ? inputIndex.indexOf(vertex) : vertex;
+          const i = cornerVertices.indexOf(border);
+          return i >= 0 ? i + 1 : null;
+        };
+        words.textContent = stepText(step);
+        li.dataset.picks = step.picks.length;
+      } else {
+        title.textContent = "Now";
+        words.textContent = res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat.";
+      }
+      text.append(title, words);
+      li.append(canvas, text);
+      return li;
+    });
+  },
+
+  setup() {
+    $("#plan-sample").addEventListener("change", (e) => this.load(e.target.value, true));
+    for (const id of ["#goal-1", "#goal-2"]) $(id).addEventListener("change", () => this.readInputs());
+    $("#plan-run").addEventListener("click", () => this.plan());
+    dragOnCircle($("#plan-circle"), (id, angle) => {
+      this.goal[Number(id)] = angle;
+      this.drawCircle();
+      this.writeInputs();
+    });
   },
 };
 
@@ -573,6 +873,7 @@ const interp = {
 for (const tab of document.querySelectorAll(".tab")) tab.addEventListener("click", () => showTab(tab.dataset.tab));
 setupUpload();
 interp.setup();
+planner.setup();
 loadSamples();
 // For tests and the console.
-window.closeApp = { interp, openSample, upload };
+window.closeApp = { interp, planner, openSample, upload };

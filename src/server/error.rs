@@ -2,7 +2,9 @@
 //!
 //! Library errors map by kind: input that cannot be read is 400, input that reads but is no
 //! usable border is 422, too large is 413; axum's own rejections keep their status and
-//! text. A 500 is left only for a failure of the server itself (a worker that died).
+//! text. A 500 is left for a failure of the server itself: a worker that died, a picture
+//! or a recording that could not be written. The match over library errors is exhaustive,
+//! so a new variant does not compile until it is given a status.
 
 use axum::extract::multipart::{MultipartError, MultipartRejection};
 use axum::extract::rejection::{BytesRejection, JsonRejection, PathRejection, QueryRejection};
@@ -33,16 +35,15 @@ pub enum ApiError {
 impl ApiError {
     pub fn status(&self) -> StatusCode {
         match self {
+            // No catch-all: a new library error must be given its status here.
             ApiError::Input(e) => match e {
                 Error::Parse { .. } | Error::Empty(_) | Error::InvalidArgument(_) => StatusCode::BAD_REQUEST,
                 Error::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
                 Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
                     StatusCode::UNPROCESSABLE_ENTITY
                 }
-                // Variants added later (e.g. a picture that could not be drawn) are the
-                // server's failures, not the input's.
-                #[allow(unreachable_patterns)]
-                _ => StatusCode::INTERNAL_SERVER_ERROR,
+                // A picture or recording that cannot be written is our bug, not bad input.
+                Error::Render(_) | Error::Recording(_) => StatusCode::INTERNAL_SERVER_ERROR,
             },
             ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
@@ -104,5 +105,21 @@ impl From<MultipartError> for ApiError {
         }
         let status = if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
         ApiError::Rejected(status, format!("could not read the form: {}", e.body_text()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn input_errors_are_4xx_and_our_failures_5xx() {
+        let status = |e: Error| ApiError::from(e).status();
+        assert_eq!(status(Error::parse("text", "x")), StatusCode::BAD_REQUEST);
+        assert_eq!(status(Error::TooLarge("x".into())), StatusCode::PAYLOAD_TOO_LARGE);
+        assert_eq!(status(Error::Mesh("no boundary".into())), StatusCode::UNPROCESSABLE_ENTITY);
+        assert_eq!(status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }), StatusCode::UNPROCESSABLE_ENTITY);
+        assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);
+        assert_eq!(status(Error::Recording("encoder".into())), StatusCode::INTERNAL_SERVER_ERROR);
     }
 }

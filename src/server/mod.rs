@@ -2,7 +2,9 @@
 //!
 //! Routes: `GET /` (the app in `web/`, embedded), `GET /healthz`, `POST /api/analyze`,
 //! `GET /api/samples`, `GET /api/samples/{id}`, `GET /api/images/{key}/{picture}.png`,
-//! `POST /api/interpolate`, `POST /api/plan`. Every error is a 4xx (or, for a server fault,
+//! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
+//! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
+//! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
 //! 5xx) with `{"error": "..."}`. Analyses and renders run on blocking threads, at most one
 //! per core at a time, and are cached by content: an analysis under the hash of the request
 //! body and frame range (a built-in sample under its id), a PNG under (analysis, picture,
@@ -50,7 +52,7 @@ pub struct Config {
     /// Analyses kept in memory, and their largest total size in bytes.
     pub cached_analyses: usize,
     pub analysis_cache_bytes: usize,
-    /// PNGs kept in memory, and their largest total size in bytes.
+    /// PNGs and recordings kept in memory, and their largest total size in bytes.
     pub cached_images: usize,
     pub image_cache_bytes: usize,
     /// Analyses and renders running at once.
@@ -137,8 +139,9 @@ impl AppState {
         lock(&self.0.analyses).get(key)
     }
 
-    /// The cached PNG under `key`, or `render` it (off the runtime) and cache it.
-    async fn image(&self, key: String, render: impl FnOnce() -> Result<Vec<u8>, ApiError> + Send + 'static) -> Result<Bytes, ApiError> {
+    /// The cached file (a PNG, a recording) under `key`, or `render` it (off the runtime)
+    /// and cache it.
+    async fn cached_bytes(&self, key: String, render: impl FnOnce() -> Result<Vec<u8>, ApiError> + Send + 'static) -> Result<Bytes, ApiError> {
         if let Some(hit) = lock(&self.0.images).get(&key) {
             return Ok(hit);
         }
@@ -187,8 +190,10 @@ pub fn app(state: AppState) -> Router {
         .route("/api/analyze", post(routes::analyze))
         .route("/api/samples", get(routes::samples))
         .route("/api/samples/{id}", get(routes::sample))
+        .route("/api/samples/{id}/recording.rrd", get(routes::recording))
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate))
+        .route("/api/disk", post(routes::disk))
         .route("/api/plan", post(routes::plan))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))

@@ -1,6 +1,6 @@
 //! The handlers of the HTTP API (SPEC §4).
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use axum::body::Bytes;
 use axum::extract::rejection::{JsonRejection, PathRejection, QueryRejection};
@@ -14,11 +14,12 @@ use serde_json::{json, Value};
 use super::cache::content_key;
 use super::{ApiError, AppState};
 use crate::analysis::{analyze as run_analysis, Analysis, FrameRange};
-use crate::border::Point;
+use crate::border::{prepare, Normalisation, Point};
+use crate::disk::Disk;
 use crate::dataset;
 use crate::error::Error;
 use crate::formats::{json::parse_sample, read_files, Sample};
-use crate::render::{render_png, Picture, DEFAULT_SIZE};
+use crate::render::{disk_png, render_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
 /// Most vertices × steps an interpolation may return (its JSON grows with both).
 const MAX_INTERPOLATED_POINTS: usize = 2_000_000;
@@ -57,7 +58,7 @@ fn analyzed(key: String, sample: &Sample, range: FrameRange, extra: Value) -> Re
         ("key", json!(key)),
         ("name", json!(sample.name)),
         ("category", json!(sample.category)),
-        ("frames", json!(sample.frames.len())),
+        ("frames", json!(frame_count(sample))),
         ("start_border", json!(points(&analysis.start_border))),
         ("end_border", json!(points(&analysis.end_border))),
         ("images", Value::Object(images)),
@@ -170,21 +171,32 @@ pub async fn analyze(
     Ok(json_response(done.response.clone()))
 }
 
+/// Frames of a border or mesh sample.
+fn frame_count(sample: &Sample) -> usize {
+    sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len())
+}
+
 pub async fn samples() -> Json<Value> {
-    let list: Vec<Value> = dataset::builtin()
-        .iter()
-        .map(|e| {
-            json!({
-                "id": e.id,
-                "name": e.sample.name,
-                "category": e.sample.category,
-                "n": e.sample.frames.first().map_or(0, Vec::len),
-                "frames": e.sample.frames.len(),
-                "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/borders.png?size={THUMBNAIL_SIZE}", e.id),
+    // The dataset never changes, and a mesh's border vertex count takes finding its border.
+    static LIST: OnceLock<Value> = OnceLock::new();
+    let list = LIST.get_or_init(|| {
+        let list: Vec<Value> = dataset::builtin()
+            .iter()
+            .map(|e| {
+                json!({
+                    "id": e.id,
+                    "name": e.sample.name,
+                    "category": e.sample.category,
+                    "n": e.sample.border_frames().map_or(0, |b| b.len()),
+                    "frames": frame_count(&e.sample),
+                    "mesh": e.sample.mesh.is_some(),
+                    "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/borders.png?size={THUMBNAIL_SIZE}", e.id),
+                })
             })
-        })
-        .collect();
-    Json(json!({ "samples": list }))
+            .collect();
+        json!({ "samples": list })
+    });
+    Json(list.clone())
 }
 
 /// The analysis of built-in sample `id`, cached under its id.
@@ -192,7 +204,11 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<super::Analyz
     let entry = dataset::find(id).ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them")))?;
     state
         .analysis(format!("{SAMPLE_KEY}{id}"), move |key| {
-            analyzed(key, &entry.sample, FrameRange::default(), json!({ "id": entry.id, "sample": entry.sample }))
+            let mut extra = json!({ "id": entry.id, "sample": entry.sample });
+            if cfg!(feature = "rerun") {
+                extra["recording"] = json!(format!("/api/samples/{}/recording.rrd", entry.id));
+            }
+            analyzed(key, &entry.sample, FrameRange::default(), extra)
         })
         .await
 }
@@ -200,6 +216,30 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<super::Analyz
 pub async fn sample(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
     let Path(id) = id?;
     Ok(json_response(sample_analysis(&state, &id).await?.response.clone()))
+}
+
+/// `GET /api/samples/{id}/recording.rrd`: the sample's analysis as a Rerun recording.
+#[cfg(feature = "rerun")]
+pub async fn recording(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
+    let Path(id) = id?;
+    let analyzed = sample_analysis(&state, &id).await?;
+    let entry = dataset::find(&id).ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}")))?;
+    let rrd = state
+        .cached_bytes(format!("{}/recording.rrd", analyzed.key), move || {
+            Ok(crate::record::record(&analyzed.analysis, &entry.sample.border_frames()?)?)
+        })
+        .await?;
+    let disposition = format!("attachment; filename=\"{}.rrd\"", id.replace(|c: char| !c.is_ascii_alphanumeric() && c != '_' && c != '-', "_"));
+    Ok(([(header::CONTENT_TYPE, "application/octet-stream".to_string()), (header::CONTENT_DISPOSITION, disposition)], rrd).into_response())
+}
+
+/// Without the `rerun` feature there is no recording to give: say why.
+#[cfg(not(feature = "rerun"))]
+pub async fn recording(id: Result<Path<String>, PathRejection>) -> ApiError {
+    let name = id.map(|Path(id)| id).unwrap_or_default();
+    ApiError::NotFound(format!(
+        "no recording of {name:?}: this server was built without the `rerun` feature (cargo run --features rerun)"
+    ))
 }
 
 #[derive(Debug, Deserialize)]
@@ -225,7 +265,7 @@ pub async fn image(
     };
     let size = query.size.unwrap_or(DEFAULT_SIZE);
     let png = state
-        .image(format!("{key}/{}/{size}", picture.name()), move || Ok(render_png(&analyzed.analysis, picture, size, size)?))
+        .cached_bytes(format!("{key}/{}/{size}", picture.name()), move || Ok(render_png(&analyzed.analysis, picture, size, size)?))
         .await?;
     // The key names the content, so the picture never changes.
     Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], png).into_response())
@@ -243,6 +283,43 @@ pub struct InterpolateRequest {
     to: [f64; 2],
     #[serde(default = "default_steps")]
     steps: usize,
+}
+
+/// `POST /api/disk`: the dGLI disk of one border state (e.g. a frame of an interpolation).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiskRequest {
+    border: Vec<[f64; 3]>,
+    /// The border whose normalisation (and orientation) applies, as the analysis uses the
+    /// start frame's for the end frame; by default `border` itself. A folded border
+    /// overlaps itself, so its own orientation is no guide: send the flat one here.
+    #[serde(default)]
+    reference: Option<Vec<[f64; 3]>>,
+    size: Option<u32>,
+}
+
+fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
+    points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
+}
+
+pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>, JsonRejection>) -> Result<Response, ApiError> {
+    let Json(req) = body?;
+    let size = req.size.unwrap_or(DEFAULT_SIZE).clamp(MIN_SIZE, MAX_SIZE);
+    let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
+    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
+    let png = state
+        .cached_bytes(key, move || {
+            let frames = match req.reference {
+                Some(reference) => vec![reference, req.border],
+                None => vec![req.border],
+            };
+            let border = prepare(frames)?;
+            let (start, now) = (&border.frames[0], &border.frames[border.frames.len() - 1]);
+            let disk = Disk::of_border(&Normalisation::of(start)?.apply_all(now));
+            Ok(disk_png(&disk, "dGLI disk · current state", size, size)?)
+        })
+        .await?;
+    Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "no-store")], png).into_response())
 }
 
 pub async fn interpolate(State(state): State<AppState>, body: Result<Json<InterpolateRequest>, JsonRejection>) -> Result<Json<Value>, ApiError> {
@@ -263,7 +340,7 @@ pub async fn interpolate(State(state): State<AppState>, body: Result<Json<Interp
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanRequest {
-    /// A Sample JSON object, or the id of a built-in sample.
+    /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis.
     sample: Value,
     goal: [f64; 2],
 }
@@ -274,13 +351,17 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
     let analyzed = match req.sample {
-        Value::String(id) => sample_analysis(&state, &id).await?,
+        // An analysis still cached (an upload's "key") or a built-in sample's id.
+        Value::String(id) => match state.cached_analysis(&id) {
+            Some(hit) => hit,
+            None => sample_analysis(&state, &id).await?,
+        },
         Value::Object(_) => {
             let sample = parse_sample(req.sample.to_string().as_bytes())?;
             let key = content_key(&[b"plan", &serde_json::to_vec(&sample).unwrap_or_default()]);
             state.analysis(key, move |key| analyzed(key, &sample, FrameRange::default(), json!({}))).await?
         }
-        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object or a built-in sample id".into())),
+        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
     };
     let goal = req.goal;
     let result = state
@@ -298,6 +379,7 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
                 "folds": a.folds,
                 "corners": a.corners,
                 "start_border": points(&a.start_border),
+                "border_indices": a.border_indices,
             }))
         })
         .await?;
