@@ -182,7 +182,7 @@ pub(crate) fn format_value(v: f64) -> String {
     let a = v.abs();
     match a {
         _ if a == 0.0 => "0".into(),
-        _ if a >= 1000.0 || a < 1e-3 => format!("{v:.1e}"),
+        _ if !(1e-3..1000.0).contains(&a) => format!("{v:.1e}"),
         _ if a >= 100.0 => format!("{v:.0}"),
         _ if a >= 10.0 => format!("{v:.1}"),
         _ if a >= 1.0 => format!("{v:.2}"),
