@@ -27,6 +27,9 @@ pub struct Cut {
     pub p2: f64,
     /// Same-side mass of the cut as a share of all the change (0 for an exact fold).
     pub residual: f64,
+    /// Mean change per same-side pair over mean change per straddling pair: 0 for an exact
+    /// fold, near 1 when the change is noise with no side to it.
+    pub same_to_cross: f64,
     /// True when the cut point lies strictly inside an edge (it is refinable within it).
     pub inside_edge: [bool; 2],
 }
@@ -56,6 +59,25 @@ impl PairSums {
     fn rect(&self, r0: usize, r1: usize, c0: usize, c1: usize) -> f64 {
         let w = self.n + 1;
         self.sums[r1 * w + c1] - self.sums[r0 * w + c1] - self.sums[r1 * w + c0] + self.sums[r0 * w + c0]
+    }
+
+    /// Σ g over pairs with one edge in each of two disjoint cyclic runs of edges.
+    fn between(&self, (a, la): (usize, usize), (b, lb): (usize, usize)) -> f64 {
+        let runs = |start: usize, len: usize| {
+            let end = start + len;
+            if end <= self.n {
+                [(start, end), (0, 0)]
+            } else {
+                [(start, self.n), (0, end - self.n)]
+            }
+        };
+        let mut sum = 0.0;
+        for (r0, r1) in runs(a, la) {
+            for (c0, c1) in runs(b, lb) {
+                sum += self.rect(r0, r1, c0, c1);
+            }
+        }
+        sum
     }
 
     /// Σ g over unordered pairs of the `len` edges starting at edge `a` (cyclic).
@@ -122,7 +144,12 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     };
     let (p1, p2) = (middle(h1, h2, true), middle(h2, h1, false));
     let inside = |p: f64| (p - p.round()).abs() > 0.25;
-    Some(Cut { p1, p2, residual: s_min / total, inside_edge: [inside(p1), inside(p2)] })
+    let (arc_in, arc_out) = (arc_edges(n, h1, h2), arc_edges(n, h2, h1));
+    let pairs = |len: usize| (len * len.saturating_sub(1) / 2) as f64;
+    let same_mean = s_min / (pairs(arc_in.1) + pairs(arc_out.1)).max(1.0);
+    let cross_mean = sums.between(arc_in, arc_out) / ((arc_in.1 * arc_out.1) as f64).max(1.0);
+    let same_to_cross = if cross_mean > 0.0 { same_mean / cross_mean } else { f64::INFINITY };
+    Some(Cut { p1, p2, residual: s_min / total, same_to_cross, inside_edge: [inside(p1), inside(p2)] })
 }
 
 #[cfg(test)]
