@@ -121,3 +121,25 @@ fn noise_without_a_fold_is_no_fold() {
     assert!(a.folds.is_empty(), "{:?}", a.steps[0].detection.cut);
     assert!(a.label.text.contains("not folded"));
 }
+
+#[test]
+fn a_fold_across_exactly_straight_sides_stays_within_its_edge() {
+    // No jitter: the sides are exactly straight, so the rim near the fold points does not
+    // change at all and each point is only known to lie in its edge. Nearby corners must not
+    // drag it out.
+    let per_side = 6;
+    let start: Vec<[f64; 3]> = (0..4 * per_side)
+        .map(|k| {
+            let t = (k % per_side) as f64 / per_side as f64;
+            let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
+            [x - 0.5, y - 0.5, 0.0]
+        })
+        .collect();
+    let end = fold_frame(&start, 3.0, 15.0);
+    let a = run(vec![start, end]);
+    let edge = 2.0 * PI / 24.0;
+    assert_eq!(a.folds.len(), 1);
+    for (found, truth) in a.folds[0].iter().zip([3.0 * edge, 15.0 * edge]) {
+        assert!(angle_diff(*found, truth) <= 0.5 * edge + 1e-9, "{:?}", a.folds);
+    }
+}

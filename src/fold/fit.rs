@@ -133,9 +133,11 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> O
         .map(|c| Cell { angle: rim + wrap(c.angle - rim), ..*c })
         .collect();
     let (lo, hi) = (rim + wrap(lo - rim), rim + wrap(hi - rim));
-    // Only change at the searched angles says where the fold is; change further off (a
-    // nearby corner) would pull the minimum to a bound.
-    let informative = near.iter().any(|c| c.angle >= lo - edge && c.angle <= hi + edge && c.value > super::FLAT_DIFF);
+    // Only a changed rim cell (a vertex) within the searched angles says where the fold is;
+    // change elsewhere (pairs reaching a nearby corner) would pull the minimum to a bound.
+    let tiny = 1e-9 * edge;
+    let informative =
+        near.iter().any(|c| c.layer == 1 && c.angle >= lo - tiny && c.angle <= hi + tiny && c.value > super::FLAT_DIFF);
     if !informative {
         return None;
     }
