@@ -102,10 +102,6 @@ impl Disk {
         &self.values
     }
 
-    pub fn into_values(self) -> Vec<f64> {
-        self.values
-    }
-
     /// Value of the pair of edges i and j (any order, i ≠ j).
     #[inline]
     pub fn get(&self, i: usize, j: usize) -> f64 {
