@@ -5,12 +5,10 @@
 //! (frame k−1 → k) gives at most one fold. The predicted end applies the folds in order to
 //! the start border, in the input's coordinates.
 
-use nalgebra::Point3;
-use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::border::{BorderFrames, Normalisation, Point};
-use crate::close::{corners, Corners};
+use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
+use crate::close::{corners, Close, Corners};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
 use crate::fold::{detect, reflect::apply_fold, FoldDetection, FoldMethod};
@@ -54,6 +52,8 @@ pub struct Analysis {
     pub corner_threshold: f64,
     /// One [f1, f2] per detected fold, in order.
     pub folds: Vec<[f64; 2]>,
+    /// The CloSE value of the end state: the corners and the folds that led to it.
+    pub close: Close,
     pub label: Label,
     pub border_indices: Vec<usize>,
     /// Where the border came from ("border", "mesh boundary loop", "mesh silhouette", …).
@@ -67,26 +67,32 @@ pub struct Analysis {
     /// The start border with the folds applied, input coordinates, border order.
     pub predicted_end: Vec<[f64; 3]>,
     pub metrics: Option<Metrics>,
-    /// Start and end borders (input coordinates, border order), for drawing.
+    /// The analysed frames `start_frame ..= end_frame` (input coordinates, border order),
+    /// for drawing: their disks are recomputed on demand ([`Analysis::disk`]) rather than
+    /// kept, so an analysis holds O(frames·N) memory, not O(frames·N²).
     #[serde(skip)]
-    pub start_border: Vec<Point>,
+    pub frames: Vec<Vec<Point>>,
+    /// The start frame's normalisation, which every disk of this analysis uses.
     #[serde(skip)]
-    pub end_border: Vec<Point>,
-    #[serde(skip)]
-    pub disk_start: Disk,
-    #[serde(skip)]
-    pub disk_end: Disk,
+    pub normalisation: Normalisation,
 }
 
 impl Analysis {
-    /// The CloSE of the end state.
-    pub fn close(&self) -> crate::close::Close {
-        crate::close::Close { corners: self.corners.clone(), folds: self.folds.clone() }
+    /// The start border (input coordinates, border order).
+    pub fn start_border(&self) -> &[Point] {
+        &self.frames[0]
     }
-}
 
-fn to_array(p: &Point3<f64>) -> [f64; 3] {
-    [p.x, p.y, p.z]
+    /// The end border (input coordinates, border order).
+    pub fn end_border(&self) -> &[Point] {
+        &self.frames[self.frames.len() - 1]
+    }
+
+    /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
+    /// by the start frame's transform, as the analysis computed it; `None` past the end.
+    pub fn disk(&self, k: usize) -> Option<Disk> {
+        self.frames.get(k).map(|frame| Disk::of_border(&self.normalisation.apply_all(frame)))
+    }
 }
 
 /// Analyse frames `range` of a prepared sample.
@@ -95,9 +101,14 @@ pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
 }
 
 /// Analyse with explicit [`Options`].
+///
+/// The disks are computed as a stream, one step at a time: at most two are alive at once,
+/// whatever the number of frames.
 pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis> {
     let range = options.frames;
-    let last = sample.frames.len() - 1;
+    let Some(last) = sample.frames.len().checked_sub(1) else {
+        return Err(Error::Empty("the sample has no frame".into()));
+    };
     let start = range.start.unwrap_or(0);
     let end = range.end.unwrap_or(last);
     if start > last || end > last {
@@ -106,31 +117,30 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     if end < start {
         return Err(Error::InvalidArgument(format!("end frame {end} comes before start frame {start}")));
     }
-    let start_border = &sample.frames[start];
-    let norm = Normalisation::of(start_border)?;
-    let disks: Vec<Disk> = (start..=end).into_par_iter().map(|k| Disk::of_border(&norm.apply_all(&sample.frames[k]))).collect();
-    let found: Corners = corners(&disks[0]);
-    let mut predicted = start_border.clone();
-    let mut steps = Vec::with_capacity(disks.len().saturating_sub(1));
-    for (k, pair) in disks.windows(2).enumerate() {
-        let detection = detect(&pair[0], &pair[1], options.method);
+    let frames = &sample.frames[start..=end];
+    let norm = Normalisation::of(&frames[0])?;
+    let disk_of = |k: usize| Disk::of_border(&norm.apply_all(&frames[k]));
+    let mut before = disk_of(0);
+    let found: Corners = corners(&before);
+    let mut predicted = frames[0].clone();
+    let mut steps = Vec::with_capacity(frames.len() - 1);
+    for k in 1..frames.len() {
+        let after = disk_of(k);
+        let detection = detect(&before, &after, options.method);
         if let Some(fold) = detection.fold {
             predicted = apply_fold(&predicted, fold);
         }
-        let to_frame = start + k + 1;
-        let metrics = Metrics::measure(&norm, &predicted, &sample.frames[to_frame]);
-        steps.push(Step { from_frame: start + k, to_frame, detection, metrics });
+        let metrics = Metrics::measure(&norm, &predicted, &frames[k]);
+        steps.push(Step { from_frame: start + k - 1, to_frame: start + k, detection, metrics });
+        before = after;
     }
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
-    let end_border = &sample.frames[end];
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
     let label = label(n, &found.vertices, &folds);
-    let mut disks = disks;
-    let disk_end = disks.pop().expect("at least one frame");
-    let disk_start = if disks.is_empty() { disk_end.clone() } else { disks.swap_remove(0) };
     Ok(Analysis {
         n,
+        close: Close { corners: found.angles.clone(), folds: folds.clone() },
         corners: found.angles,
         corner_vertices: found.vertices,
         corner_threshold: found.threshold,
@@ -143,11 +153,20 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
         start_frame: start,
         end_frame: end,
         steps,
-        predicted_end: predicted.iter().map(to_array).collect(),
+        predicted_end: predicted.iter().map(to_xyz).collect(),
         metrics,
-        start_border: start_border.clone(),
-        end_border: end_border.clone(),
-        disk_start,
-        disk_end,
+        frames: frames.to_vec(),
+        normalisation: norm,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sample_without_frames_is_an_error_not_a_panic() {
+        let empty = BorderFrames { frames: Vec::new(), border_indices: Vec::new(), source: "border".into(), reversed: false, warnings: Vec::new() };
+        assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty(_))));
+    }
 }

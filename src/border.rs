@@ -30,6 +30,16 @@ pub const UNIT_RADIUS_TOLERANCE: f64 = 1e-4;
 /// Most frames a sample may have.
 pub const MAX_FRAMES: usize = 1_000;
 
+/// A point as the `[x, y, z]` array that JSON and the file formats use.
+pub fn to_xyz(p: &Point) -> [f64; 3] {
+    [p.x, p.y, p.z]
+}
+
+/// The point of an `[x, y, z]` array.
+pub fn from_xyz(p: &[f64; 3]) -> Point {
+    Point::new(p[0], p[1], p[2])
+}
+
 /// Point at border parameter `s` (fractional vertex index, taken cyclically): the point
 /// `P_⌊s⌋ + frac(s)·(P_⌊s⌋+1 − P_⌊s⌋)`.
 pub fn point_at(points: &[Point], s: f64) -> Point {

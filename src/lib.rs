@@ -6,6 +6,7 @@
 //! the whole pipeline.
 
 pub mod analysis;
+pub mod angle;
 pub mod border;
 pub mod close;
 pub mod dataset;
@@ -23,6 +24,7 @@ pub mod plan;
 #[cfg(feature = "rerun")]
 pub mod record;
 pub mod render;
+pub mod rng;
 pub mod server;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};

@@ -132,8 +132,10 @@ fn run_analyze(files: &[PathBuf], options: Options, disks: bool) -> Result<(), S
     let analysis = analyze_with(&frames, options).map_err(|e| e.to_string())?;
     let mut out = serde_json::to_value(&analysis).map_err(|e| e.to_string())?;
     if disks {
-        out["disk_start"] = analysis.disk_start.values().into();
-        out["disk_end"] = analysis.disk_end.values().into();
+        let last = analysis.frames.len() - 1;
+        for (key, k) in [("disk_start", 0), ("disk_end", last)] {
+            out[key] = analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default().into();
+        }
     }
     emit(&out.to_string())?;
     Ok(())
@@ -218,7 +220,7 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
     let sample = load_sample(files)?;
     let frames = sample.border_frames().map_err(|e| e.to_string())?;
     let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
-    let mut plan = close::plan::plan(&analysis.start_border, &analysis.corner_vertices, &analysis.folds, [g1, g2])
+    let mut plan = close::plan::plan(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, [g1, g2])
         .map_err(|e| e.to_string())?;
     for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
         pick.vertex = analysis.border_indices[pick.vertex];

@@ -88,7 +88,7 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
     rec.log("close/corners", &Scalars::single(analysis.corners.len() as f64)).map_err(failed)?;
     rec.log("close/label", &TextDocument::new(analysis.label.text.clone())).map_err(failed)?;
     let n = analysis.n;
-    let mut folded = analysis.start_border.clone();
+    let mut folded = analysis.start_border().to_vec();
     let steps = analysis.steps.iter().filter_map(|s| s.detection.fold.map(|f| (s.to_frame, f)));
     for (k, (frame, fold)) in steps.enumerate() {
         rec.set_time_sequence(TIMELINE, frame as i64);
@@ -104,10 +104,13 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
     rec.set_time_sequence(TIMELINE, end as i64);
     rec.log("predicted_end", &LineStrips3D::new([closed_strip(&folded)])).map_err(failed)?;
 
-    log_disk(&rec, "disk/start", &analysis.disk_start)?;
-    log_disk(&rec, "disk/end", &analysis.disk_end)?;
-    log_disk(&rec, "disk/diff", &analysis.disk_start.abs_diff(&analysis.disk_end))?;
-    log_disk(&rec, "disk/signed_diff", &analysis.disk_start.signed_diff(&analysis.disk_end))?;
+    let missing = || Error::Recording("the analysis has no frame".into());
+    let start = analysis.disk(0).ok_or_else(missing)?;
+    let end = analysis.disk(analysis.frames.len() - 1).ok_or_else(missing)?;
+    log_disk(&rec, "disk/start", &start)?;
+    log_disk(&rec, "disk/end", &end)?;
+    log_disk(&rec, "disk/diff", &start.abs_diff(&end))?;
+    log_disk(&rec, "disk/signed_diff", &start.signed_diff(&end))?;
     storage.drain_as_bytes().map_err(failed)
 }
 

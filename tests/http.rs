@@ -397,7 +397,7 @@ async fn the_disk_of_any_border_state_is_a_png() {
     let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
     let frames = &entry.sample.frames;
     let end = disk(json!({"border": frames[frames.len() - 1], "reference": frames[0], "size": 200})).await;
-    assert_eq!(end, close::render::disk_png(&analysis.disk_end, "dGLI disk · current state", 200, 200).unwrap());
+    assert_eq!(end, close::render::disk_png(&analysis.disk(analysis.frames.len() - 1).unwrap(), "dGLI disk · current state", 200, 200).unwrap());
     // The disk does not depend on where the cloth lies, but does on the picture's size.
     let shifted: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] + 3.0, p[1] - 1.0, p[2]]).collect();
     assert_eq!(flat_png, disk(json!({"border": shifted, "size": 200})).await);

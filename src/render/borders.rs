@@ -43,14 +43,14 @@ pub fn equal_aspect(x: (f64, f64), y: (f64, f64), pixels: (u32, u32)) -> ((f64, 
 fn traces(analysis: &Analysis, unit: f64) -> Vec<Trace> {
     let array = |p: &crate::border::Point| [p.x, p.y, p.z];
     let mut traces = vec![Trace {
-        points: analysis.start_border.iter().map(array).collect(),
+        points: analysis.start_border().iter().map(array).collect(),
         colour: [160, 160, 160],
         width: line_width(unit, 0.004),
         name: "start",
     }];
     if analysis.end_frame > analysis.start_frame {
         traces.push(Trace {
-            points: analysis.end_border.iter().map(array).collect(),
+            points: analysis.end_border().iter().map(array).collect(),
             colour: [120, 170, 220],
             width: line_width(unit, 0.016),
             name: "end",

@@ -267,7 +267,7 @@ mod tests {
     #[test]
     fn zero_cells_are_white_and_large_cells_coloured() {
         let analysis = folded_square(8, [std::f64::consts::FRAC_PI_4, 5.0 * std::f64::consts::FRAC_PI_4]);
-        let disk = &analysis.disk_start;
+        let disk = &analysis.disk(0).unwrap();
         let n = disk.n();
         let (w, h) = (400, 360);
         let (_, _, rgb) = decode(&disk_png(disk, "start", w, h).unwrap());

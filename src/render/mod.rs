@@ -81,7 +81,8 @@ pub const MAX_SIZE: u32 = 2048;
 /// [`MIN_SIZE`]…[`MAX_SIZE`]).
 pub fn render_png(analysis: &Analysis, picture: Picture, width: u32, height: u32) -> Result<Vec<u8>> {
     let mut canvas = Canvas::new(width, height)?;
-    let (start, end) = (&analysis.disk_start, &analysis.disk_end);
+    let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
+    let (start, end) = (&disk_of(0)?, &disk_of(analysis.frames.len() - 1)?);
     match picture {
         Picture::DiskStart => {
             let title = format!("dGLI disk · start (frame {})", analysis.start_frame);

@@ -36,10 +36,10 @@ pub struct Analyzed {
 }
 
 impl Analyzed {
-    /// Roughly the memory it holds: the two disks, the borders, the response.
+    /// Roughly the memory it holds: the frames and the response.
     pub fn bytes(&self) -> usize {
         let a = &self.analysis;
-        let floats = a.disk_start.values().len() + a.disk_end.values().len() + 3 * (a.start_border.len() + a.end_border.len());
+        let floats = 3 * a.frames.iter().map(Vec::len).sum::<usize>();
         8 * floats + self.response.len()
     }
 }
@@ -59,8 +59,8 @@ fn analyzed(key: String, sample: &Sample, range: FrameRange, extra: Value) -> Re
         ("name", json!(sample.name)),
         ("category", json!(sample.category)),
         ("frames", json!(frame_count(sample))),
-        ("start_border", json!(points(&analysis.start_border))),
-        ("end_border", json!(points(&analysis.end_border))),
+        ("start_border", json!(points(analysis.start_border()))),
+        ("end_border", json!(points(analysis.end_border()))),
         ("images", Value::Object(images)),
     ];
     if let (Value::Object(map), Value::Object(more)) = (&mut body, extra) {
@@ -367,7 +367,7 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
     let result = state
         .run_cpu(move || {
             let a = &analyzed.analysis;
-            let mut plan = crate::plan::plan(&a.start_border, &a.corner_vertices, &a.folds, goal)?;
+            let mut plan = crate::plan::plan(a.start_border(), &a.corner_vertices, &a.folds, goal)?;
             // The planner counts border vertices; the user knows their input's indices.
             for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
                 pick.vertex = a.border_indices.get(pick.vertex).copied().unwrap_or(pick.vertex);
@@ -378,7 +378,7 @@ pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>,
                 "goal": goal,
                 "folds": a.folds,
                 "corners": a.corners,
-                "start_border": points(&a.start_border),
+                "start_border": points(a.start_border()),
                 "border_indices": a.border_indices,
             }))
         })
