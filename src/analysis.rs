@@ -124,13 +124,13 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let found: Corners = corners(&before);
     let mut predicted = frames[0].clone();
     let mut steps = Vec::with_capacity(frames.len() - 1);
-    for k in 1..frames.len() {
+    for (k, frame) in frames.iter().enumerate().skip(1) {
         let after = disk_of(k);
         let detection = detect(&before, &after, options.method);
         if let Some(fold) = detection.fold {
             predicted = apply_fold(&predicted, fold);
         }
-        let metrics = Metrics::measure(&norm, &predicted, &frames[k]);
+        let metrics = Metrics::measure(&norm, &predicted, frame);
         steps.push(Step { from_frame: start + k - 1, to_frame: start + k, detection, metrics });
         before = after;
     }
