@@ -1,9 +1,33 @@
 //! CloSE: a geometric, shape-agnostic cloth state representation.
 //!
-//! From a cloth's border before and after a fold this crate computes the dGLI disks
-//! ([`disk`]), the corners and fold coordinates ([`close`], [`fold`]), a plain-words label
-//! ([`label`]), the predicted folded border and its error ([`metrics`]); [`analysis`] runs
-//! the whole pipeline.
+//! This crate implements the representation of
+//! Kamat, Borràs and Torras, *"CloSE: A Geometric Shape-Agnostic Cloth State
+//! Representation"*: a cloth is described by its border, a closed polyline listed
+//! anticlockwise seen from above. The dGLI (the derivative of Levitt's Gauss linking
+//! integral of two border edges under a vertical lift) of every pair of edges is laid out on
+//! a disk; the disk's rim holds the corners, and the change between the disks before and
+//! after a fold shows where the fold is. The CloSE value of a state is its corner angles and
+//! one pair of fold coordinates (f1, f2) per fold, all angles on the border circle (vertex k
+//! of N at 2πk/N).
+//!
+//! The data flows one way, and the modules follow it:
+//! [`formats`] (files) → [`mesh`] (a mesh's border) → [`border`] (validation,
+//! normalisation) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates) →
+//! [`close`] (corners, the CloSE value) → [`label`] / [`plan`] / [`interpolate`] →
+//! [`analysis`] (the whole pipeline) → [`metrics`] / [`eval`] → [`render`] → [`server`].
+//!
+//! ```
+//! use close::{analyze, FrameRange, Sample};
+//! // A square napkin folded in half along its diagonal from vertex 0 to vertex 2.
+//! let json = r#"{"name": "napkin", "category": "napkin", "frames": [
+//!     [[0,0,0],[1,0,0],[1,1,0],[0,1,0]],
+//!     [[0,0,0],[0,1,0.01],[1,1,0],[0,1,0]]]}"#;
+//! let sample: Sample = close::formats::json::parse_sample(json.as_bytes())?;
+//! let analysis = analyze(&sample.border_frames()?, FrameRange::default())?;
+//! assert_eq!(analysis.n, 4);
+//! assert_eq!(analysis.close.folds.len(), analysis.folds.len());
+//! # Ok::<(), close::Error>(())
+//! ```
 
 pub mod analysis;
 pub mod angle;
