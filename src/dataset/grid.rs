@@ -19,9 +19,9 @@
 //! ```
 
 use super::shapes::{normalise, outline, Shape};
-use super::synth::{stacked_z, top, Fold};
+use super::synth::{scale_of, top, Fold, EPS};
 use crate::border::Point;
-use crate::error::{Error, FoldProblem, Result};
+use crate::error::Result;
 
 /// A flat grid mesh and its boundary (built by [`grid_mesh`] only, so indices are valid).
 #[derive(Debug, Clone, PartialEq)]
@@ -51,20 +51,16 @@ impl GridMesh {
     /// on the folded arc's side of the line mirrored and stacked `thickness` above the
     /// cloth. Errors as [`fold_border`](super::synth::fold_border) does.
     pub fn fold(&self, f1: f64, f2: f64, thickness: f64) -> Result<Vec<Point>> {
-        if !thickness.is_finite() {
-            return Err(Error::InvalidFold { f1, f2, problem: FoldProblem::NotFinite });
-        }
         let boundary: Vec<Point> = self.ring.iter().map(|&k| self.vertices[k]).collect();
-        let fold = Fold::of(&boundary, f1, f2)?;
+        let fold = Fold::of(&boundary, f1, f2, thickness)?;
         let top = top(&self.vertices);
-        let scale = self.vertices.iter().map(|p| p.coords.norm()).fold(0.0, f64::max).max(1.0);
+        let tolerance = EPS * scale_of(&self.vertices);
         Ok(self
             .vertices
             .iter()
             .map(|p| {
-                if fold.side * fold.mirror.side(p) > 1e-9 * scale {
-                    let r = fold.mirror.reflect(p);
-                    Point::new(r.x, r.y, stacked_z(p.z, top, thickness))
+                if fold.side * fold.mirror.side(p) > tolerance {
+                    fold.turn_over(p, top)
                 } else {
                     *p
                 }
@@ -98,6 +94,7 @@ pub fn grid_mesh(kind: Shape) -> Option<GridMesh> {
 mod tests {
     use super::*;
     use crate::dataset::synth::fold_border;
+    use crate::error::{Error, FoldProblem};
 
     fn worst(a: &[Point], b: &[Point]) -> f64 {
         a.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max)
@@ -135,5 +132,6 @@ mod tests {
             assert!(folded.iter().all(|p| p.z == 0.0 || p.z == 0.01));
         }
         assert!(matches!(grid.fold(5.0, 5.5, 0.01), Err(Error::InvalidFold { problem: FoldProblem::EmptyArc, .. })));
+        assert!(matches!(grid.fold(9.5, 47.5, f64::NAN), Err(Error::InvalidFold { problem: FoldProblem::NotFinite, .. })));
     }
 }

@@ -36,7 +36,12 @@ use crate::border::{point_at, Point};
 use crate::error::{Error, FoldProblem, Result};
 
 /// Relative size under which two fold points are one point, and a vertex is on the line.
-const EPS: f64 = 1e-9;
+pub(super) const EPS: f64 = 1e-9;
+
+/// The size that [`EPS`] is relative to: the farthest point from the origin, at least 1.
+pub(super) fn scale_of(points: &[Point]) -> f64 {
+    points.iter().map(|p| p.coords.norm()).fold(1.0, f64::max)
+}
 
 /// The XY line through two points, as a point and its unit left normal.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,7 +55,7 @@ impl Mirror {
     pub fn through(a: &Point, b: &Point) -> Option<Mirror> {
         let d = b.xy() - a.xy();
         let length = d.norm();
-        let scale = a.coords.norm().max(b.coords.norm()).max(1.0);
+        let scale = scale_of(&[*a, *b]);
         (length > EPS * scale).then(|| Mirror { origin: a.xy().coords, normal: Vector2::new(-d.y, d.x) / length })
     }
 
@@ -96,23 +101,25 @@ fn chord_inside(points: &[Point], a: &Point, b: &Point, tolerance: f64) -> bool 
 }
 
 /// A checked fold of a border: its mirror line, the side of it that folds (+1 left, −1
-/// right) and the vertices on the folded arc.
+/// right), the vertices on the folded arc and the thickness a folded layer gains.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Fold {
     pub mirror: Mirror,
     pub side: f64,
     pub arc: Vec<usize>,
+    pub thickness: f64,
 }
 
 impl Fold {
     /// Check the fold of `points` along border parameters `f1`, `f2` (see the module doc).
     ///
-    /// Errors when a parameter is not finite, the fold points coincide, no vertex lies on
-    /// the arc, the arc crosses the fold line, or (flat border) the chord leaves the cloth.
-    pub(super) fn of(points: &[Point], f1: f64, f2: f64) -> Result<Fold> {
+    /// Errors when a parameter or the thickness is not finite, the fold points coincide, no
+    /// vertex lies on the arc, the arc crosses the fold line, or (flat border) the chord
+    /// leaves the cloth.
+    pub(super) fn of(points: &[Point], f1: f64, f2: f64, thickness: f64) -> Result<Fold> {
         let fail = |problem| Error::InvalidFold { f1, f2, problem };
         let n = points.len();
-        if !(f1.is_finite() && f2.is_finite()) {
+        if !(f1.is_finite() && f2.is_finite() && thickness.is_finite()) {
             return Err(fail(FoldProblem::NotFinite));
         }
         if n < 3 {
@@ -121,7 +128,7 @@ impl Fold {
         let (a, b) = (point_at(points, f1), point_at(points, f2));
         let mirror = Mirror::through(&a, &b).ok_or(fail(FoldProblem::PointsCoincide))?;
         let arc = vertices_in_arc(n, f1, f2);
-        let scale = points.iter().map(|p| p.coords.norm()).fold(0.0, f64::max).max(1.0);
+        let scale = scale_of(points);
         let sides: Vec<f64> = arc.iter().map(|&v| mirror.side(&points[v])).collect();
         let side = match sides.first() {
             None => return Err(fail(FoldProblem::EmptyArc)),
@@ -134,13 +141,15 @@ impl Fold {
         if flat && !chord_inside(points, &a, &b, EPS * scale * scale) {
             return Err(fail(FoldProblem::LeavesCloth));
         }
-        Ok(Fold { mirror, side, arc })
+        Ok(Fold { mirror, side, arc, thickness })
     }
-}
 
-/// The height of a point of the folded layer: the stack turns over on top of `top`.
-pub(super) fn stacked_z(z: f64, top: f64, thickness: f64) -> f64 {
-    2.0 * top + thickness - z
+    /// `p` turned over onto a stack whose highest point is at `top`: mirrored, and its
+    /// height z taken to 2·top + thickness − z.
+    pub(super) fn turn_over(&self, p: &Point, top: f64) -> Point {
+        let r = self.mirror.reflect(p);
+        Point::new(r.x, r.y, 2.0 * top + self.thickness - p.z)
+    }
 }
 
 /// The highest z of `points`.
@@ -151,15 +160,11 @@ pub(super) fn top(points: &[Point]) -> f64 {
 /// Fold a border along border parameters `f1`, `f2` (see the module doc): the arc's
 /// vertices mirrored and stacked `thickness` above the cloth.
 pub fn fold_border(points: &[Point], f1: f64, f2: f64, thickness: f64) -> Result<Vec<Point>> {
-    if !thickness.is_finite() {
-        return Err(Error::InvalidFold { f1, f2, problem: FoldProblem::NotFinite });
-    }
-    let fold = Fold::of(points, f1, f2)?;
+    let fold = Fold::of(points, f1, f2, thickness)?;
     let top = top(points);
     let mut out = points.to_vec();
-    for v in fold.arc {
-        let r = fold.mirror.reflect(&points[v]);
-        out[v] = Point::new(r.x, r.y, stacked_z(points[v].z, top, thickness));
+    for &v in &fold.arc {
+        out[v] = fold.turn_over(&points[v], top);
     }
     Ok(out)
 }
