@@ -169,7 +169,7 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
         })
         .collect();
     if builtin {
-        samples.extend(close::dataset::builtin().iter().map(|e| (e.id.clone(), Ok(e.sample.clone()))));
+        samples.extend(close::dataset::Dataset::builtin().entries().iter().map(|e| (e.id.clone(), Ok(e.sample.clone()))));
     }
     if samples.is_empty() {
         return Err("no Sample JSON file found".into());
@@ -202,12 +202,12 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
 
 fn run_dataset(out: &Path) -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let entries = close::dataset::builtin();
-    for entry in entries {
+    let dataset = close::dataset::Dataset::builtin();
+    for entry in dataset.entries() {
         let path = out.join(format!("{}.json", entry.id));
         std::fs::write(&path, close::formats::json::to_json(&entry.sample)).map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    eprintln!("wrote {} samples to {}", entries.len(), out.display());
+    eprintln!("wrote {} samples to {}", dataset.entries().len(), out.display());
     Ok(())
 }
 

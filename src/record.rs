@@ -137,7 +137,8 @@ mod tests {
 
     #[test]
     fn a_recording_reads_back_with_every_entity() {
-        let entry = crate::dataset::find("napkin__half_vertical").expect("a built-in sample");
+        let dataset = crate::dataset::Dataset::builtin();
+        let entry = dataset.get("napkin__half_vertical").expect("a built-in sample");
         let frames = entry.sample.border_frames().unwrap();
         let analysis = analyze(&frames, FrameRange::default()).unwrap();
         assert_eq!(analysis.folds.len(), 1, "the detector finds this fold");

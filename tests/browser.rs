@@ -193,7 +193,8 @@ async fn the_app_works_in_a_real_browser() {
     assert_eq!(offered.as_bool(), Some(cfg!(feature = "rerun")), "recording link shown: {offered}");
     screenshot(&client, &shots, "01-sample.png").await;
     // A built-in mesh sample is listed, and its view says where its border came from.
-    let mesh_entry = close::dataset::builtin().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
+    let dataset = close::dataset::Dataset::builtin();
+    let mesh_entry = dataset.entries().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
     let card = client.find(Locator::Css(&format!(".sample-card[data-id={:?}]", mesh_entry.id))).await.expect("the mesh sample's card");
     card.click().await.expect("open the mesh sample");
     wait_for("the mesh sample's view", async || {
@@ -206,7 +207,7 @@ async fn the_app_works_in_a_real_browser() {
 
     // 2. Upload a Sample JSON; then a broken file shows the server's error.
     client.find(Locator::Id("tab-upload")).await.expect("upload tab").click().await.expect("click");
-    let entry = close::dataset::builtin().iter().find(|e| e.sample.frames.len() >= 2).expect("a folded sample");
+    let entry = dataset.entries().iter().find(|e| e.sample.frames.len() >= 2).expect("a folded sample");
     let mut sample = entry.sample.clone();
     sample.name = "e2e upload".into();
     let good = scratch.join("e2e-upload.json");
@@ -306,7 +307,7 @@ async fn the_app_works_in_a_real_browser() {
     screenshot(&client, &shots, "07-plan.png").await;
 
     // A sample folded twice, a goal typed in: unfold both folds, then fold.
-    let twice = close::dataset::builtin().iter().find(|e| e.sample.frames.len() == 3).expect("a second-fold sample");
+    let twice = dataset.entries().iter().find(|e| e.sample.frames.len() == 3).expect("a second-fold sample");
     js(&client, &format!("const s = document.getElementById('plan-sample'); s.value = {:?}; s.dispatchEvent(new Event('change'))", twice.id)).await;
     wait_for("the sample's state", async || {
         let now = client.find(Locator::Id("plan-now")).await.ok()?.text().await.ok()?;

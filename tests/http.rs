@@ -66,8 +66,8 @@ fn text_frame(frame: &[[f64; 3]]) -> String {
     frame.iter().map(|p| format!("{},{},{}\n", p[0], p[1], p[2])).collect()
 }
 
-fn first_entry() -> &'static dataset::Entry {
-    dataset::builtin().iter().find(|e| e.sample.frames.len() >= 2).expect("a built-in sample with two frames")
+fn first_entry() -> dataset::Entry {
+    dataset::Dataset::builtin().entries().iter().find(|e| e.sample.frames.len() >= 2).cloned().expect("a built-in sample with two frames")
 }
 
 fn test_app() -> Router {
@@ -137,8 +137,9 @@ async fn samples_are_listed_with_thumbnails() {
     let app = test_app();
     let list = get(&app, "/api/samples").await.json();
     let samples = list["samples"].as_array().expect("samples array");
-    assert_eq!(samples.len(), dataset::builtin().len());
-    for (s, e) in samples.iter().zip(dataset::builtin()) {
+    let dataset = dataset::Dataset::builtin();
+    assert_eq!(samples.len(), dataset.entries().len());
+    for (s, e) in samples.iter().zip(dataset.entries()) {
         assert_eq!(s["id"], e.id.as_str());
         assert_eq!(s["name"], e.sample.name.as_str());
         assert_eq!(s["category"], e.sample.category.as_str());
@@ -471,7 +472,8 @@ fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
 #[tokio::test]
 async fn mesh_uploads_name_how_their_border_was_found() {
     let app = test_app();
-    let entry = dataset::builtin().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
+    let dataset = dataset::Dataset::builtin();
+    let entry = dataset.entries().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
     let mesh = entry.sample.mesh.as_ref().unwrap();
     let (f0, f1) = (obj(&mesh.frames[0], &mesh.faces), obj(&mesh.frames[1], &mesh.faces));
     let (ct, body) = multipart(&[("sample", "frame0.obj", &f0), ("sample", "frame1.obj", &f1)]);

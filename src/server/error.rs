@@ -37,7 +37,7 @@ impl ApiError {
         match self {
             // No catch-all: a new library error must be given its status here.
             ApiError::Input(e) => match e {
-                Error::Parse { .. } | Error::Empty(_) | Error::InvalidArgument(_) => StatusCode::BAD_REQUEST,
+                Error::Parse { .. } | Error::Empty(_) | Error::InvalidArgument(_) | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
                 Error::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
                 Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
                     StatusCode::UNPROCESSABLE_ENTITY

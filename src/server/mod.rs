@@ -41,6 +41,7 @@ pub use error::ApiError;
 pub use routes::Analyzed;
 
 use cache::Lru;
+use crate::dataset::Dataset;
 
 /// Limits and sizes of a server.
 #[derive(Debug, Clone)]
@@ -78,6 +79,7 @@ struct Inner {
     analyses: Mutex<Lru<Arc<Analyzed>>>,
     images: Mutex<Lru<Bytes>>,
     cpu: Arc<Semaphore>,
+    dataset: Dataset,
 }
 
 /// What every request shares: the configuration, the caches and the worker permits.
@@ -96,9 +98,8 @@ impl AppState {
     }
 
     pub fn with_config(config: Config) -> Self {
-        // Build the dataset now rather than on the first request.
-        crate::dataset::builtin();
         AppState(Arc::new(Inner {
+            dataset: Dataset::builtin(),
             analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
             images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
             cpu: Arc::new(Semaphore::new(config.workers.max(1))),
@@ -108,6 +109,11 @@ impl AppState {
 
     pub fn config(&self) -> &Config {
         &self.0.config
+    }
+
+    /// The built-in samples.
+    pub fn dataset(&self) -> &Dataset {
+        &self.0.dataset
     }
 
     /// Run CPU-heavy `work` on a blocking thread once a worker permit is free.

@@ -1,6 +1,6 @@
 //! The handlers of the HTTP API (SPEC §4).
 
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use axum::body::Bytes;
 use axum::extract::rejection::{JsonRejection, PathRejection, QueryRejection};
@@ -16,7 +16,6 @@ use super::{ApiError, AppState};
 use crate::analysis::{analyze as run_analysis, Analysis, FrameRange};
 use crate::border::{prepare, Normalisation, Point};
 use crate::disk::Disk;
-use crate::dataset;
 use crate::error::Error;
 use crate::formats::{json::parse_sample, read_files, Sample};
 use crate::render::{disk_png, render_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
@@ -176,32 +175,29 @@ fn frame_count(sample: &Sample) -> usize {
     sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len())
 }
 
-pub async fn samples() -> Json<Value> {
-    // The dataset never changes, and a mesh's border vertex count takes finding its border.
-    static LIST: OnceLock<Value> = OnceLock::new();
-    let list = LIST.get_or_init(|| {
-        let list: Vec<Value> = dataset::builtin()
-            .iter()
-            .map(|e| {
-                json!({
-                    "id": e.id,
-                    "name": e.sample.name,
-                    "category": e.sample.category,
-                    "n": e.sample.border_frames().map_or(0, |b| b.len()),
-                    "frames": frame_count(&e.sample),
-                    "mesh": e.sample.mesh.is_some(),
-                    "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/borders.png?size={THUMBNAIL_SIZE}", e.id),
-                })
+pub async fn samples(State(state): State<AppState>) -> Json<Value> {
+    let list: Vec<Value> = state
+        .dataset()
+        .entries()
+        .iter()
+        .map(|e| {
+            json!({
+                "id": e.id,
+                "name": e.sample.name,
+                "category": e.sample.category,
+                "n": e.sample.border_frames().map_or(0, |b| b.len()),
+                "frames": frame_count(&e.sample),
+                "mesh": e.sample.mesh.is_some(),
+                "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/borders.png?size={THUMBNAIL_SIZE}", e.id),
             })
-            .collect();
-        json!({ "samples": list })
-    });
-    Json(list.clone())
+        })
+        .collect();
+    Json(json!({ "samples": list }))
 }
 
 /// The analysis of built-in sample `id`, cached under its id.
 async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<super::Analyzed>, ApiError> {
-    let entry = dataset::find(id).ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them")))?;
+    let entry = state.dataset().get(id).cloned().ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them")))?;
     state
         .analysis(format!("{SAMPLE_KEY}{id}"), move |key| {
             let mut extra = json!({ "id": entry.id, "sample": entry.sample });
@@ -223,7 +219,7 @@ pub async fn sample(State(state): State<AppState>, id: Result<Path<String>, Path
 pub async fn recording(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
     let Path(id) = id?;
     let analyzed = sample_analysis(&state, &id).await?;
-    let entry = dataset::find(&id).ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}")))?;
+    let entry = state.dataset().get(&id).cloned().ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}")))?;
     let rrd = state
         .cached_bytes(format!("{}/recording.rrd", analyzed.key), move || {
             Ok(crate::record::record(&analyzed.analysis, &entry.sample.border_frames()?)?)
