@@ -38,7 +38,8 @@ export function drawFoldCircle(root, corners, arcs, handles) {
   root.replaceChildren();
   svg("circle", { cx: 0, cy: 0, r: R, fill: "none", stroke: "#cbd2dc", "stroke-width": 2 }, root);
   svg("line", { x1: R - 6, y1: 0, x2: R + 6, y2: 0, stroke: "#6b7280" }, root);
-  svg("text", { x: R - 10, y: 4, "font-size": 10, fill: "#4b5563", "text-anchor": "end" }, root).textContent = "0";
+  // Below the tick, clear of a corner number inside and the handles outside.
+  svg("text", { x: R + 2, y: 16, "font-size": 9, fill: "#4b5563" }, root).textContent = "0";
   arcs.forEach(({ fold, color }, k) => {
     // Nested arcs stay apart when several folds are shown.
     const r = R - 5 * k;

@@ -8,7 +8,12 @@
 //! from its polar coordinates — which is exact, leaves no seams between neighbouring
 //! sectors and costs O(pixels) whatever N is; the rim is anti-aliased by pixel coverage.
 //! Over a diff disk the fitted fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
-//! coordinates, with the fold points marked on the rim.
+//! coordinates, with the fold points marked on the rim: only the curves of the fold the
+//! step reports ([`fold_curves`]), and only on the disk of the two frames they were fitted
+//! on. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
+//! Geometric Shape-Agnostic Cloth State Representation" (the dGLI disk and the fold-curve
+//! fit on the diff disk). A ruler under the disk names the rings by pair distance d; the
+//! colour bar says its transform (tanh, see [`super::colour`]) and its scale.
 //!
 //! ```
 //! use close::render::disk::Layout;

@@ -142,6 +142,7 @@ impl StepSpan {
             None => Ok(StepSpan { from: 0, to: analysis.frames.len() - 1, step: None }),
             Some(k) if (1..=steps).contains(&k) => Ok(StepSpan { from: k - 1, to: k, step: Some(k) }),
             Some(k) if steps == 0 => Err(Error::InvalidArgument(format!("step {k} does not exist: the analysis has one frame, no step"))),
+            Some(k) if steps == 1 => Err(Error::InvalidArgument(format!("step {k} does not exist: the analysis has one step, step=1"))),
             Some(k) => Err(Error::InvalidArgument(format!("step {k} does not exist: the analysis has steps 1…{steps}"))),
         }
     }
