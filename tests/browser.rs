@@ -201,6 +201,21 @@ async fn the_app_works_in_a_real_browser() {
                 "/api/samples",
                 get(|| async { (axum::http::StatusCode::SERVICE_UNAVAILABLE, axum::response::Html("<html><body><h1>503 Service Unavailable</h1></body></html>")) }),
             )
+            .fallback_service(app(state.clone())),
+    )
+    .await;
+    // A third whose list holds five thousand samples (as `close serve --dataset` may).
+    let many_list: Vec<Value> = (0..5000)
+        .map(|k| {
+            let (real, category) = (&close::dataset::builtin()[k % 3], ["a", "b", "c"][k % 3]);
+            json!({ "id": real.id, "name": format!("user {k}"), "category": category, "n": 4, "frames": 2, "mesh": false,
+                    "thumbnail": format!("/api/images/sample:{}/thumbnail.png?size=160", real.id) })
+        })
+        .collect();
+    let many_body = json!({ "samples": many_list }).to_string();
+    let many = serve(
+        axum::Router::new()
+            .route("/api/samples", get(move || std::future::ready(([(axum::http::header::CONTENT_TYPE, "application/json")], many_body.clone()))))
             .fallback_service(app(state)),
     )
     .await;
@@ -280,12 +295,21 @@ async fn the_app_works_in_a_real_browser() {
     client.forward().await.expect("forward");
     until(&client, "forward", "location.hash === '#/samples/trousers__legs_up_then_half'").await;
 
-    // Stale answers: A then B at once; B is shown and highlighted, whatever arrives first.
+    // Stale answers: A's answer is held back past B's (and past any abort); B is shown and
+    // highlighted, and a loading note shows while B loads.
     let (a, b) = ("tshirt__sleeve_left", "towel__half_long_then_half");
-    js(&client, &format!("location.hash = '#/samples/{a}'; setTimeout(() => location.hash = '#/samples/{b}', 0)")).await;
+    js(&client, &format!(
+        "window.realFetch = window.fetch; const sleep = ms => new Promise(r => setTimeout(r, ms)); \
+         window.fetch = (url, o) => String(url).endsWith('/api/samples/{a}') ? window.realFetch(url).then(r => sleep(1500).then(() => r)) \
+         : String(url).endsWith('/api/samples/{b}') ? sleep(600).then(() => window.realFetch(url, o)) : window.realFetch(url, o); \
+         location.hash = '#/samples/{a}'; setTimeout(() => location.hash = '#/samples/{b}', 50)"
+    ))
+    .await;
+    until(&client, "the loading state", &format!("document.getElementById('browse-result').classList.contains('loading') && document.querySelector('.loading-note').textContent.includes('{b}')")).await;
     let b_name = close::dataset::find(b).expect("sample").sample.name.clone();
     shows_sample(&client, &b_name).await;
-    tokio::time::sleep(Duration::from_millis(1500)).await;
+    tokio::time::sleep(Duration::from_millis(2500)).await;
+    js(&client, "window.fetch = window.realFetch").await;
     assert_eq!(text(&client, "document.querySelector('#browse-result .result-name').textContent").await, b_name, "a late answer replaced the newer one");
     let active = js(&client, "return [...document.querySelectorAll('.sample-card.active')].map(c => c.dataset.id)").await;
     assert_eq!(active, json!([b]));
@@ -444,6 +468,16 @@ async fn the_app_works_in_a_real_browser() {
     }
     let order = js(&client, "return document.querySelector('.plan-side').getBoundingClientRect().top < document.querySelector('.plan-main').getBoundingClientRect().top").await;
     assert_eq!(order, json!(true), "the plan's controls are below its results");
+
+    // ---- Five thousand samples: the list stays paged, the filter finds any of them.
+    goto_view(&client, &many, "").await;
+    until(&client, "the long list", "document.getElementById('sample-count').textContent.startsWith('5000 of 5000')").await;
+    let cards = js(&client, "return document.querySelectorAll('.sample-card').length").await.as_u64().unwrap_or(0);
+    assert!(cards > 0 && cards <= 3 * 24, "{cards} cards drawn for 5000 samples");
+    js(&client, "document.querySelector('.category .more').click()").await;
+    until(&client, "more cards", &format!("document.querySelectorAll('.sample-card').length > {cards}")).await;
+    js(&client, "const f = document.getElementById('sample-filter'); f.value = 'user 4321'; f.dispatchEvent(new Event('input'))").await;
+    until(&client, "one match", "document.getElementById('sample-count').textContent.startsWith('1 of 5000') && document.querySelectorAll('.sample-card').length === 1").await;
 
     // ---- The sample list fails: a readable message that survives a change of view.
     client.set_window_size(1400, 1000).await.expect("wide again");
