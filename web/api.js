@@ -29,8 +29,8 @@ export function errorText(status, statusText, body) {
     const doc = new DOMParser().parseFromString(body || "", "text/html");
     message = (doc.body ? doc.body.textContent : body || "").replace(/\s+/g, " ").trim().slice(0, 300);
   }
-  const what = `HTTP ${status}${statusText ? ` ${statusText}` : ""}`;
-  return message ? `${message} (${what})` : `The server answered ${what} without a message.`;
+  if (message) return `${message} (HTTP ${status})`;
+  return `The server answered HTTP ${status}${statusText ? ` ${statusText}` : ""} without a message.`;
 }
 
 /** fetch on `channel` (aborting its previous request); resolves to the Response if ok. */
