@@ -51,7 +51,7 @@ function show({ view, id }) {
   }
   showError(noCloth());
   if (view === "samples") {
-    const wanted = id || browse.current() || browse.first();
+    const wanted = id || browse.opened() || browse.first();
     // The default sample replaces the bare URL rather than adding a history entry.
     if (!id && wanted) location.replace(router.hashOf("samples", wanted));
     else if (wanted && wanted !== browse.current()) browse.open(wanted, showError);

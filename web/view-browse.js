@@ -15,6 +15,8 @@ const $ = (sel) => document.querySelector(sel);
 const shown = new Map();
 const closed = new Set();
 let openId = null;
+/** The sample whose result is on screen (none after a failure, so a new click retries). */
+let shownId = null;
 let actions = null;
 
 /** The samples matching the filter boxes. */
@@ -116,11 +118,13 @@ export async function open(id, showError) {
     const result = await api.sample(id);
     if (openId !== id) return;
     renderResult(slot, result, null, actions);
+    shownId = id;
     document.title = router.title("samples", result.name);
     showError("");
   } catch (e) {
     if (api.isAbort(e) || openId !== id) return;
     // The old result must not pass for the new one.
+    shownId = null;
     slot.replaceChildren(el("p", { className: "error-inline", textContent: `Sample ${id} could not be shown: ${e.message}` }));
     showError(e.message);
   } finally {
@@ -149,4 +153,6 @@ export function setup(resultActions) {
 
 /** The id of the first sample, to open when the view has none. */
 export const first = () => (store.get().samples || [])[0]?.id || null;
-export const current = () => openId;
+export const current = () => shownId;
+/** The sample last asked for, shown or not. */
+export const opened = () => openId;
