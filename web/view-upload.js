@@ -15,9 +15,9 @@ export function uploadName(files) {
   return `${files[0].name} … ${files[files.length - 1].name} (${files.length} files)`;
 }
 
-/** "frame K" in a server error, with the file that frame came from. */
+/** "frame K" in a server error, with the file that frame came from (unless the server named it). */
 export function nameFrames(message, files) {
-  if (files.length < 2) return message;
+  if (files.length < 2 || files.some((f) => message.includes(f.name))) return message;
   return message.replace(/\bframe (\d+)\b/g, (text, k) => (files[Number(k)] ? `${text} (${files[Number(k)].name})` : text));
 }
 
