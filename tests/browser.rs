@@ -1,22 +1,29 @@
-//! End-to-end in a real headless Chromium (driven over WebDriver by fantoccini): load the
-//! app, open a sample, upload a file, move the interpolation slider (the drawing and the
-//! disk follow), plan a fold. Screenshots go to
+//! End-to-end in a real headless Chromium (driven over WebDriver by fantoccini), as a new
+//! user would use the app, at 1400 px and 420 px: browse (URLs, Back/Forward, titles,
+//! filter, categories, per-step pictures, full-resolution view, low-confidence flag, stale
+//! answers, readable errors), upload (keyboard-reachable input, file names everywhere,
+//! mismatched frames), interpolate (layers filled, one disk colour scale per motion, any
+//! step or the whole sequence, keyboard handles, exact fold boxes), plan (controls above the
+//! results on a phone). axe-core (vendored in `tests/fixtures/axe/`) checks every view: no
+//! serious or critical violation. Screenshots of every view at both widths go to
 //! `target/e2e-screenshots/` for a person to look at.
 //!
 //! Needs Debian's `chromium` and `chromium-driver` (or `CLOSE_CHROMIUM` / `CLOSE_CHROMEDRIVER`
-//! pointing at them), so it is ignored by default: `cargo test -- --ignored` runs it, and
-//! `.ci/run` installs both and does.
+//! pointing at them), so it is ignored by default: `cargo test --test browser -- --ignored`.
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use fantoccini::{elements::Element, Client, ClientBuilder, Locator};
+use axum::routing::get;
+use fantoccini::{Client, ClientBuilder, Locator};
 use serde_json::{json, Value};
 
 use close::server::{app, AppState};
 
-const TIMEOUT: Duration = Duration::from_secs(30);
+const TIMEOUT: Duration = Duration::from_secs(60);
+/// WebDriver key codes.
+const ARROW_RIGHT: &str = "\u{E014}";
 
 /// chromedriver, stopped when the test ends however it ends.
 struct Driver(Child);
@@ -56,12 +63,22 @@ async fn js(client: &Client, script: &str) -> Value {
     client.execute(script, vec![]).await.unwrap_or_else(|e| panic!("script failed ({e}): {script}"))
 }
 
+/// Wait until `script` (an expression) is truthy; gives its value.
+async fn until(client: &Client, what: &str, expression: &str) -> Value {
+    let script = format!("try {{ return ({expression}) || null; }} catch (e) {{ return null; }}");
+    wait_for(what, async || Some(js(client, &script).await).filter(|v| !v.is_null())).await
+}
+
+async fn text(client: &Client, expression: &str) -> String {
+    js(client, &format!("return String({expression})")).await.as_str().unwrap_or_default().to_string()
+}
+
 async fn screenshot(client: &Client, dir: &Path, name: &str) {
     let png = client.screenshot().await.expect("screenshot");
     std::fs::write(dir.join(name), png).expect("write screenshot");
 }
 
-/// Every image under `selector` has loaded with a real picture.
+/// Every image under `selector` has loaded with a real picture; gives how many.
 async fn images_loaded(client: &Client, selector: &str) -> usize {
     let script = format!("return [...document.querySelectorAll({selector:?})].map(i => i.complete ? i.naturalWidth : 0)");
     wait_for(&format!("images of {selector}"), async || {
@@ -71,76 +88,97 @@ async fn images_loaded(client: &Client, selector: &str) -> usize {
     .await
 }
 
-async fn text_of(client: &Client, css: &str) -> String {
-    wait_for(&format!("text in {css}"), async || {
-        let el: Element = client.find(Locator::Css(css)).await.ok()?;
-        let text = el.text().await.ok()?;
-        (!text.trim().is_empty()).then_some(text)
-    })
-    .await
+async fn goto_view(client: &Client, base: &str, hash: &str) {
+    client.goto(&format!("{base}/{hash}")).await.expect("load the app");
 }
 
-/// A digest of the interpolation canvas's pixels (short enough for an assertion message).
-async fn canvas(client: &Client) -> u64 {
-    use std::hash::{Hash, Hasher};
-    let url = js(client, "return document.getElementById('interp-canvas').toDataURL()").await;
-    let mut h = std::hash::DefaultHasher::new();
-    url.as_str().unwrap_or_default().hash(&mut h);
-    h.finish()
+/// Open a hash route in the running page (a history entry, as a click on a link).
+async fn route(client: &Client, hash: &str) {
+    js(client, &format!("location.hash = {hash:?}")).await;
 }
 
-/// A Wavefront OBJ of one mesh frame.
-fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
-    let v = vertices.iter().map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]));
-    let f = faces.iter().map(|f| format!("f {}\n", f.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(" ")));
-    v.chain(f).collect()
+/// The result shown in the Browse view names `name` and is no longer loading.
+async fn shows_sample(client: &Client, name: &str) {
+    until(
+        client,
+        &format!("sample {name} shown"),
+        &format!("document.querySelector('#browse-result .result-name')?.textContent === {name:?} && !document.querySelector('#browse-result.loading')"),
+    )
+    .await;
 }
 
-/// A digest of the disk picture of the interpolation, once it shows the current state.
-async fn disk_picture(client: &Client) -> u64 {
-    use std::hash::{Hash, Hasher};
-    let script = "const img = document.getElementById('interp-disk'); \
-                  if (!img.complete || !img.naturalWidth || img.dataset.key !== window.closeApp.interp.diskKey()) return null; \
-                  const c = document.createElement('canvas'); c.width = img.naturalWidth; c.height = img.naturalHeight; \
-                  c.getContext('2d').drawImage(img, 0, 0); return c.toDataURL();";
-    let url = wait_for("the disk of the current state", async || js(client, script).await.as_str().map(str::to_string)).await;
-    let mut h = std::hash::DefaultHasher::new();
-    url.hash(&mut h);
-    h.finish()
+/// Run axe-core on the page; the serious and critical violations, described.
+async fn axe_violations(client: &Client, axe: &str) -> Vec<String> {
+    js(client, axe).await;
+    let script = "const done = arguments[arguments.length - 1]; \
+                  axe.run(document, { resultTypes: ['violations'] }).then(r => done(r.violations \
+                  .filter(v => v.impact === 'serious' || v.impact === 'critical') \
+                  .map(v => `${v.id} (${v.impact}): ${v.help} — ${v.nodes.slice(0, 3).map(n => n.target.join(' ')).join(', ')}`)), \
+                  e => done(['axe failed: ' + e]));";
+    let found = client.execute_async(script, vec![]).await.expect("axe run");
+    serde_json::from_value(found).unwrap_or_else(|_| vec!["axe gave no list".into()])
 }
 
-/// The texts of the plan view's cards, once there are some.
-async fn plan_steps(client: &Client) -> Vec<String> {
-    wait_for("plan steps", async || {
-        let texts: Vec<String> = serde_json::from_value(js(client, "return [...document.querySelectorAll('#plan-list .plan-step')].map(li => li.innerText)").await).ok()?;
-        (!texts.is_empty()).then_some(texts)
-    })
-    .await
-}
-
-/// Type a goal fold (degrees) into the plan view.
-async fn set_goal(client: &Client, g1: u32, g2: u32) {
+/// Pixels of a canvas that are not (nearly) white, as a share.
+async fn canvas_ink(client: &Client, id: &str) -> f64 {
     let script = format!(
-        "for (const [id, v] of [['goal-1', {g1}], ['goal-2', {g2}]]) {{ const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }}"
+        "const c = document.getElementById({id:?}); const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; \
+         let ink = 0; for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 0 && (d[i] < 235 || d[i + 1] < 235 || d[i + 2] < 235)) ink++; \
+         return ink / (c.width * c.height);"
     );
-    js(client, &script).await;
+    js(client, &script).await.as_f64().unwrap_or(0.0)
 }
 
-/// Pixels of the pick → place arrows' green in the plan's step pictures.
-async fn arrow_pixels(client: &Client) -> u64 {
-    let script = "let n = 0; for (const c of document.querySelectorAll('#plan-list canvas')) { \
-                  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; \
-                  for (let i = 0; i < d.length; i += 4) if (d[i] === 47 && d[i + 1] === 133 && d[i + 2] === 90) n++; } return n;";
-    js(client, script).await.as_u64().unwrap_or(0)
+/// The interpolation disk picture, once it shows the current state: its colour bar and
+/// tick labels (the right part of the picture) as a data URL, and the whole picture.
+async fn disk_picture(client: &Client) -> (String, String) {
+    let script = "const img = document.getElementById('interp-disk'); \
+                  if (!img.complete || !img.naturalWidth || img.dataset.key !== window.closeApp.diskKey()) return null; \
+                  const w = img.naturalWidth, h = img.naturalHeight, c = document.createElement('canvas'); c.width = w; c.height = h; \
+                  c.getContext('2d').drawImage(img, 0, 0); const bar = document.createElement('canvas'); bar.width = Math.round(0.2 * w); bar.height = Math.round(0.6 * h); \
+                  bar.getContext('2d').drawImage(c, w - bar.width, Math.round(0.15 * h), bar.width, bar.height, 0, 0, bar.width, bar.height); \
+                  return [bar.toDataURL(), c.toDataURL()];";
+    let v = wait_for("the disk of the current state", async || Some(js(client, script).await).filter(|v| v.is_array())).await;
+    (v[0].as_str().unwrap_or_default().to_string(), v[1].as_str().unwrap_or_default().to_string())
 }
 
-async fn slider_value(client: &Client) -> String {
-    js(client, "return document.getElementById('interp-slider').value").await.as_str().unwrap_or_default().to_string()
+/// Nothing is wider than the window.
+async fn assert_no_overflow(client: &Client, view: &str) {
+    let widths = js(client, "return [document.documentElement.scrollWidth, window.innerWidth]").await;
+    let (scroll, inner) = (widths[0].as_u64().unwrap_or(0), widths[1].as_u64().unwrap_or(0));
+    assert!(scroll <= inner, "{view}: the page is {scroll} px wide in a {inner} px window");
+}
+
+/// Choose `paths` in the upload input.
+async fn choose_files(client: &Client, paths: &[PathBuf]) {
+    js(client, "document.getElementById('upload-input').value = ''").await;
+    let list: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+    client.find(Locator::Id("upload-input")).await.expect("file input").send_keys(&list.join("\n")).await.expect("choose files");
+}
+
+fn write(dir: &Path, name: &str, body: &[u8]) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, body).expect("write a test file");
+    path
+}
+
+/// A text frame: one `x,y,z` per line.
+fn text_frame(points: &[[f64; 3]]) -> String {
+    points.iter().map(|p| format!("{},{},{}\n", p[0], p[1], p[2])).collect()
+}
+
+/// A server on a free port; gives its base URL.
+async fn serve(router: axum::Router) -> String {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.expect("bind");
+    let base = format!("http://{}", listener.local_addr().expect("address"));
+    tokio::spawn(async move { axum::serve(listener, router).await });
+    base
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-#[ignore = "needs chromium and chromedriver (apt-get install chromium chromium-driver); run with `cargo test -- --ignored`"]
+#[ignore = "needs chromium and chromedriver (apt-get install chromium chromium-driver); run with `cargo test --test browser -- --ignored`"]
 async fn the_app_works_in_a_real_browser() {
+    let dataset = close::dataset::Dataset::builtin();
     let (chromium, chromedriver) = (find_program("CLOSE_CHROMIUM", &["chromium", "chromium-browser"]), find_program("CLOSE_CHROMEDRIVER", &["chromedriver"]));
     let (Some(chromium), Some(chromedriver)) = (chromium, chromedriver) else {
         panic!(
@@ -148,17 +186,41 @@ async fn the_app_works_in_a_real_browser() {
              (or set CLOSE_CHROMIUM / CLOSE_CHROMEDRIVER)"
         );
     };
-    let shots = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/e2e-screenshots");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let shots = root.join("target/e2e-screenshots");
     std::fs::create_dir_all(&shots).expect("screenshot folder");
+    let axe = std::fs::read_to_string(root.join("tests/fixtures/axe/axe.min.js")).expect("the vendored axe-core");
     let scratch = std::env::temp_dir().join(format!("close-e2e-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).expect("scratch folder");
 
-    // The server, on a free port.
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.expect("bind");
-    let base = format!("http://{}", listener.local_addr().expect("address"));
-    tokio::spawn(async move { axum::serve(listener, app(AppState::new())).await });
+    let state = AppState::new();
+    let base = serve(app(state.clone())).await;
+    // A second server whose sample list fails with a proxy's HTML page.
+    let broken = serve(
+        axum::Router::new()
+            .route(
+                "/api/samples",
+                get(|| async { (axum::http::StatusCode::SERVICE_UNAVAILABLE, axum::response::Html("<html><body><h1>503 Service Unavailable</h1></body></html>")) }),
+            )
+            .fallback_service(app(state.clone())),
+    )
+    .await;
+    // A third whose list holds five thousand samples (as `close serve --dataset` may).
+    let many_list: Vec<Value> = (0..5000)
+        .map(|k| {
+            let (real, category) = (&dataset.entries()[k % 3], ["a", "b", "c"][k % 3]);
+            json!({ "id": real.id, "name": format!("user {k}"), "category": category, "n": 4, "frames": 2, "mesh": false,
+                    "thumbnail": format!("/api/images/sample:{}/thumbnail.png?size=160", real.id) })
+        })
+        .collect();
+    let many_body = json!({ "samples": many_list }).to_string();
+    let many = serve(
+        axum::Router::new()
+            .route("/api/samples", get(move || std::future::ready(([(axum::http::header::CONTENT_TYPE, "application/json")], many_body.clone()))))
+            .fallback_service(app(state)),
+    )
+    .await;
 
-    // chromedriver and a session.
     let port = free_port();
     let _driver = Driver(
         Command::new(&chromedriver).arg(format!("--port={port}")).stdout(Stdio::null()).stderr(Stdio::null()).spawn().expect("start chromedriver"),
@@ -178,154 +240,258 @@ async fn the_app_works_in_a_real_browser() {
         ClientBuilder::new(hyper_util::client::legacy::connect::HttpConnector::new()).capabilities(caps.clone()).connect(&webdriver).await.ok()
     })
     .await;
+    client.set_window_size(1400, 1000).await.expect("window size");
+    let mut violations: Vec<String> = Vec::new();
 
-    // 1. Browse: open a sample; its pictures load and its label shows.
-    client.goto(&format!("{base}/")).await.expect("load the app");
-    let cards = wait_for("sample cards", async || client.find_all(Locator::Css(".sample-card")).await.ok().filter(|c| !c.is_empty())).await;
-    // Thumbnails load lazily: check the first ones, which are on screen.
-    images_loaded(&client, "#sample-list .cards:first-of-type .sample-card:nth-child(-n+2) img").await;
-    cards[0].click().await.expect("open a sample");
-    let label = text_of(&client, "#browse-result .result-label").await;
-    assert!(label.contains("corner"), "label: {label}");
+    // ---- Browse: the bare URL opens the first sample under its own URL.
+    goto_view(&client, &base, "").await;
+    let first = &dataset.entries()[0];
+    until(&client, "the first sample's URL", &format!("location.hash === '#/samples/{}'", first.id)).await;
+    shows_sample(&client, &first.sample.name).await;
+    assert!(text(&client, "document.title").await.contains(&first.sample.name), "the title names the open sample");
+    // The favicon is declared and served (no 404 on load).
+    let favicon = until(&client, "the favicon", "document.querySelector('link[rel=icon]')?.href").await;
+    let status = client.execute_async("fetch(arguments[0]).then(r => arguments[1](r.status))", vec![favicon.clone()]).await.expect("fetch favicon");
+    assert_eq!(status, json!(200), "favicon {favicon}");
+    // Thumbnails are mini drawings that load.
+    images_loaded(&client, "#sample-list .category:first-of-type .sample-card:nth-child(-n+3) img").await;
+
+    // A click on a card: its URL, its title, its pictures.
+    let twice = dataset.get("napkin__half_then_half").expect("a second-fold sample");
+    client.find(Locator::Css(&format!(".sample-card[data-id={:?}]", twice.id))).await.expect("its card").click().await.expect("click");
+    shows_sample(&client, &twice.sample.name).await;
+    assert_eq!(client.current_url().await.expect("url").fragment(), Some(&*format!("/samples/{}", twice.id)));
+    assert!(text(&client, "document.title").await.contains(&twice.sample.name));
+    // Per-step pictures: step 1 first, step 2 on demand (frame 1's disks), the whole run.
     assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
-    // The Rerun download is offered exactly when the server can write recordings.
-    let offered = js(&client, "return !document.querySelector('#browse-result .recording').hidden").await;
-    assert_eq!(offered.as_bool(), Some(cfg!(feature = "rerun")), "recording link shown: {offered}");
-    screenshot(&client, &shots, "01-sample.png").await;
-    // A built-in mesh sample is listed, and its view says where its border came from.
-    let dataset = close::dataset::Dataset::builtin();
-    let mesh_entry = dataset.entries().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample");
-    let card = client.find(Locator::Css(&format!(".sample-card[data-id={:?}]", mesh_entry.id))).await.expect("the mesh sample's card");
-    card.click().await.expect("open the mesh sample");
-    wait_for("the mesh sample's view", async || {
-        let meta = client.find(Locator::Css("#browse-result .result-meta")).await.ok()?.text().await.ok()?;
-        meta.contains("mesh boundary loop").then_some(())
-    })
+    let steps = js(&client, "return [...document.querySelectorAll('#browse-result .segmented input')].map(i => i.nextElementSibling.textContent)").await;
+    assert_eq!(steps.as_array().map(Vec::len), Some(3), "all frames, step 1, step 2: {steps}");
+    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"2\"]').click()").await;
+    until(&client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
+    assert_eq!(images_loaded(&client, "#browse-result .step-pictures img").await, 4);
+    // The evidence is shown, and this exact fold is not flagged.
+    let evidence = text(&client, "document.querySelector('#browse-result .evidence-table').innerText").await;
+    assert!(evidence.contains("same/cross") && evidence.contains("cut residual") && evidence.contains("flip scores"), "{evidence}");
+    assert!(js(&client, "return document.querySelector('#browse-result .confidence').hidden").await.as_bool().unwrap_or(false));
+    screenshot(&client, &shots, "1400-01-browse-second-fold.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("browse: {v}")));
+
+    // Click to enlarge: the full-resolution picture in a dialog; Escape closes it.
+    js(&client, "document.querySelector('#browse-result .step-pictures .zoom').click()").await;
+    until(&client, "the full-resolution picture", "document.getElementById('lightbox').open && document.querySelector('#lightbox img').naturalWidth >= 1400").await;
+    screenshot(&client, &shots, "1400-02-full-resolution.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("lightbox: {v}")));
+    client.active_element().await.expect("focus").send_keys("\u{E00C}").await.expect("Escape");
+    until(&client, "the dialog to close", "!document.getElementById('lightbox').open").await;
+
+    // A doubtful fold says so.
+    route(&client, "#/samples/trousers__legs_up_then_half").await;
+    shows_sample(&client, &dataset.get("trousers__legs_up_then_half").expect("sample").sample.name).await;
+    let verdict = text(&client, "document.querySelector('#browse-result .confidence').textContent").await;
+    assert!(verdict.contains("Low confidence") && verdict.contains("step 2"), "{verdict}");
+
+    // Back and Forward move between samples.
+    client.back().await.expect("back");
+    shows_sample(&client, &twice.sample.name).await;
+    client.forward().await.expect("forward");
+    until(&client, "forward", "location.hash === '#/samples/trousers__legs_up_then_half'").await;
+
+    // Stale answers: A's answer is held back past B's (and past any abort); B is shown and
+    // highlighted, and a loading note shows while B loads.
+    let (a, b) = ("tshirt__sleeve_left", "towel__half_long_then_half");
+    js(&client, &format!(
+        "window.realFetch = window.fetch; const sleep = ms => new Promise(r => setTimeout(r, ms)); \
+         window.fetch = (url, o) => String(url).endsWith('/api/samples/{a}') ? window.realFetch(url).then(r => sleep(1500).then(() => r)) \
+         : String(url).endsWith('/api/samples/{b}') ? sleep(600).then(() => window.realFetch(url, o)) : window.realFetch(url, o); \
+         location.hash = '#/samples/{a}'; setTimeout(() => location.hash = '#/samples/{b}', 50)"
+    ))
     .await;
-    assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
-    screenshot(&client, &shots, "01b-mesh-sample.png").await;
+    until(&client, "the loading state", &format!("document.getElementById('browse-result').classList.contains('loading') && document.querySelector('.loading-note').textContent.includes('{b}')")).await;
+    let b_name = dataset.get(b).expect("sample").sample.name.clone();
+    shows_sample(&client, &b_name).await;
+    tokio::time::sleep(Duration::from_millis(2500)).await;
+    js(&client, "window.fetch = window.realFetch").await;
+    assert_eq!(text(&client, "document.querySelector('#browse-result .result-name').textContent").await, b_name, "a late answer replaced the newer one");
+    let active = js(&client, "return [...document.querySelectorAll('.sample-card.active')].map(c => c.dataset.id)").await;
+    assert_eq!(active, json!([b]));
 
-    // 2. Upload a Sample JSON; then a broken file shows the server's error.
-    client.find(Locator::Id("tab-upload")).await.expect("upload tab").click().await.expect("click");
-    let entry = dataset.entries().iter().find(|e| e.sample.frames.len() >= 2).expect("a folded sample");
-    let mut sample = entry.sample.clone();
-    sample.name = "e2e upload".into();
-    let good = scratch.join("e2e-upload.json");
-    std::fs::write(&good, serde_json::to_vec(&sample).expect("sample JSON")).expect("write upload");
-    js(&client, "document.getElementById('upload-input').style.display = 'block'").await;
-    let input = client.find(Locator::Id("upload-input")).await.expect("file input");
-    input.send_keys(&good.display().to_string()).await.expect("choose the file");
-    assert_eq!(text_of(&client, "#upload-result .result-name").await, "e2e upload");
-    assert!(text_of(&client, "#upload-result .result-label").await.contains("corner"));
-    assert_eq!(images_loaded(&client, "#upload-result .images img").await, 6);
-    screenshot(&client, &shots, "02-upload.png").await;
+    // Filter by name and category; collapse a category.
+    js(&client, "const f = document.getElementById('sample-filter'); f.value = 'tshirt sleeve'; f.dispatchEvent(new Event('input'))").await;
+    let ids = until(&client, "filtered cards", "(() => { const ids = [...document.querySelectorAll('.sample-card')].map(c => c.dataset.id); return ids.every(i => i.includes('tshirt') && i.includes('sleeve')) && ids.length ? ids : null })()").await;
+    assert!(ids.as_array().is_some_and(|a| !a.is_empty()));
+    js(&client, "const f = document.getElementById('sample-filter'); f.value = ''; f.dispatchEvent(new Event('input')); \
+                 const c = document.getElementById('sample-category'); c.value = 'towel'; c.dispatchEvent(new Event('change'))").await;
+    until(&client, "one category", "[...document.querySelectorAll('.category summary')].length === 1 && document.querySelector('.category summary').textContent.startsWith('towel')").await;
+    js(&client, "document.querySelector('.category summary').click()").await;
+    until(&client, "a closed category", "!document.querySelector('.category').open && !document.querySelector('.sample-card').checkVisibility()").await;
+    js(&client, "document.querySelector('.category summary').click()").await;
+    until(&client, "the category open again", "document.querySelector('.category').open").await;
+    js(&client, "const c = document.getElementById('sample-category'); c.value = ''; c.dispatchEvent(new Event('change'))").await;
 
-    // Two OBJ frames of a mesh (chosen together, in reverse order): the border is the mesh's
-    // boundary loop, and the page says so.
-    let mesh = mesh_entry.sample.mesh.as_ref().expect("mesh");
-    let objs: Vec<PathBuf> = mesh
-        .frames
-        .iter()
-        .enumerate()
-        .map(|(k, frame)| {
-            let path = scratch.join(format!("cloth-frame{k}.obj"));
-            std::fs::write(&path, obj(frame, &mesh.faces)).expect("write an OBJ frame");
-            path
-        })
-        .rev()
-        .collect();
-    js(&client, "document.getElementById('upload-input').value = ''").await;
-    let paths: Vec<String> = objs.iter().map(|p| p.display().to_string()).collect();
-    client.find(Locator::Id("upload-input")).await.expect("file input").send_keys(&paths.join("\n")).await.expect("choose the OBJ files");
-    wait_for("the mesh analysis", async || {
-        let meta = client.find(Locator::Css("#upload-result .result-meta")).await.ok()?.text().await.ok()?;
-        meta.contains("mesh boundary loop").then_some(())
-    })
-    .await;
-    assert_eq!(text_of(&client, "#upload-result .result-name").await, "cloth-frame0.obj", "frames in file-name order");
-    assert!(text_of(&client, "#upload-result .close-table").await.contains("fold 1"), "the mesh's fold is found");
-    screenshot(&client, &shots, "02b-upload-mesh.png").await;
+    // Readable errors: an HTML error page, then a network failure; the failed sample's
+    // card is highlighted over its own error, never over the old result.
+    js(&client, "window.realFetch = window.fetch; window.fetch = (url, o) => String(url).includes('/api/samples/napkin__diagonal') \
+                 ? Promise.resolve(new Response('<html><body><h1>503 Service Unavailable</h1></body></html>', { status: 503, headers: { 'content-type': 'text/html' } })) \
+                 : window.realFetch(url, o)").await;
+    route(&client, "#/samples/napkin__diagonal").await;
+    let error = until(&client, "the 503 message", "document.getElementById('error').textContent").await;
+    let error = error.as_str().unwrap_or_default();
+    assert!(error.contains("503 Service Unavailable") && !error.contains('<'), "error shown: {error}");
+    assert!(text(&client, "document.getElementById('browse-result').textContent").await.contains("could not be shown"));
+    js(&client, "window.fetch = (url, o) => String(url).includes('/api/samples/napkin__corner') ? Promise.reject(new TypeError('Failed to fetch')) : window.realFetch(url, o)").await;
+    route(&client, "#/samples/napkin__corner").await;
+    let error = until(&client, "the network message", "document.getElementById('error').textContent.includes('Could not reach') && document.getElementById('error').textContent").await;
+    assert!(!error.as_str().unwrap_or_default().starts_with("Failed to fetch"), "{error}");
+    js(&client, "window.fetch = window.realFetch").await;
 
-    let bad = scratch.join("broken.json");
-    std::fs::write(&bad, b"{\"frames\": [[[0, 0, 0], [1, 0").expect("write broken file");
-    js(&client, "document.getElementById('upload-input').value = ''").await;
-    client.find(Locator::Id("upload-input")).await.expect("file input").send_keys(&bad.display().to_string()).await.expect("choose");
-    let error = text_of(&client, "#error").await;
-    assert!(error.contains("could not parse") && error.contains("400"), "error shown: {error}");
-    screenshot(&client, &shots, "03-upload-error.png").await;
+    // ---- Upload: keyboard-reachable input; results named by file names everywhere.
+    route(&client, "#/upload").await;
+    until(&client, "the upload view", "!document.getElementById('view-upload').hidden").await;
+    let reachable = js(&client, "const i = document.getElementById('upload-input'); i.focus(); return getComputedStyle(i).display !== 'none' && document.activeElement === i").await;
+    assert_eq!(reachable, json!(true), "the file input cannot be focused");
+    let entry = dataset.get("napkin__half_vertical").expect("a folded sample");
+    let good = write(&scratch, "my-napkin.json", &serde_json::to_vec(&entry.sample).expect("sample JSON"));
+    choose_files(&client, &[good]).await;
+    until(&client, "the upload's result", "document.querySelector('#upload-result .result-name')?.textContent === 'my-napkin.json'").await;
+    assert_eq!(images_loaded(&client, "#upload-result img").await, 6);
+    assert!(text(&client, "document.title").await.contains("my-napkin.json"));
+    screenshot(&client, &shots, "1400-03-upload.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("upload: {v}")));
+    // Mismatched frames name their files.
+    let frames = entry.sample.frames.clone();
+    let short = write(&scratch, "b-end.txt", text_frame(&frames[1][..frames[1].len() - 3]).as_bytes());
+    let long = write(&scratch, "a-start.txt", text_frame(&frames[0]).as_bytes());
+    choose_files(&client, &[short, long]).await;
+    let error = until(&client, "the mismatch message", "document.getElementById('error').textContent").await;
+    let error = error.as_str().unwrap_or_default();
+    assert!(error.contains("a-start.txt") && error.contains("b-end.txt"), "the files are not named: {error}");
+    screenshot(&client, &shots, "1400-04-upload-error.png").await;
 
-    // 3. Interpolate: moving the slider redraws the folded border.
-    client.find(Locator::Id("tab-interpolate")).await.expect("interpolate tab").click().await.expect("click");
-    wait_for("the interpolation readout", async || {
-        let t = client.find(Locator::Id("interp-readout")).await.ok()?.text().await.ok()?;
-        t.contains("fold").then_some(())
-    })
-    .await;
-    let before = canvas(&client).await;
-    let disk_before = disk_picture(&client).await;
-    screenshot(&client, &shots, "04-interpolate-start.png").await;
-    // A mouse click on the middle of the slider's track moves it there.
-    client.find(Locator::Id("interp-slider")).await.expect("slider").click().await.expect("click the slider");
-    let moved: f64 = slider_value(&client).await.parse().unwrap_or(0.0);
-    assert!((400.0..=600.0).contains(&moved), "the slider is at {moved} after a click on its middle");
-    let halfway = canvas(&client).await;
-    assert_ne!(before, halfway, "moving the slider did not change the drawing");
-    let readout = client.find(Locator::Id("interp-readout")).await.expect("readout").text().await.expect("text");
-    assert!(!readout.contains("t = 0.000"), "the readout did not follow the slider: {readout}");
-    assert_ne!(disk_before, disk_picture(&client).await, "the disk did not follow the slider");
-    screenshot(&client, &shots, "05-interpolate-half.png").await;
-    // The play button runs the motion to its end.
+    // Upload → Interpolate: the upload, by its file name, with its fold.
+    choose_files(&client, &[scratch.join("my-napkin.json")]).await;
+    until(&client, "the upload again", "document.querySelector('#upload-result .result-name')?.textContent === 'my-napkin.json' && document.getElementById('error').hidden").await;
+    js(&client, "document.querySelector('#upload-result .interp-this').click()").await;
+    until(&client, "the interpolate view", "location.hash === '#/interpolate' && !document.getElementById('view-interpolate').hidden").await;
+    let chosen = until(&client, "the upload chosen", "document.getElementById('interp-sample').selectedOptions[0]?.textContent.includes('my-napkin.json') && document.getElementById('interp-sample').selectedOptions[0].textContent").await;
+    assert!(chosen.as_str().unwrap_or_default().starts_with("upload"), "{chosen}");
+    assert!(text(&client, "document.title").await.contains("my-napkin.json"));
+
+    // ---- Interpolate: the layers are filled; one colour scale all the way through.
+    let (bar0, disk0) = disk_picture(&client).await;
+    js(&client, "window.closeApp.interpolate.setTau(1)").await;
+    let (bar1, disk1) = disk_picture(&client).await;
+    assert_ne!(disk0, disk1, "the disk did not follow the fold");
+    assert_eq!(bar0, bar1, "the colour bar changed during the motion");
+    // At t = 1 the folded napkin is two layers on half the cloth: filled, not a hole.
+    let ink = canvas_ink(&client, "interp-canvas").await;
+    assert!(ink > 0.15, "the folded cloth is not filled: {ink:.3} of the canvas inked");
+    screenshot(&client, &shots, "1400-05-interpolate.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate: {v}")));
+
+    // Keyboard: a handle takes focus and moves by a degree per arrow key; the fold boxes
+    // keep the other folds exact and report what is not a number.
+    let before = js(&client, "return window.closeApp.interpolate.state().to").await;
+    js(&client, "document.querySelector('#fold-circle .handle[data-id=\"to:0\"]').focus()").await;
+    client.active_element().await.expect("the focused handle").send_keys(ARROW_RIGHT).await.expect("arrow key");
+    let after = until(&client, "the handle to move", &format!("(s => s.to[0] !== {} && s.to)(window.closeApp.interpolate.state())", before[0])).await;
+    let moved = (after[0].as_f64().unwrap_or(0.0) - before[0].as_f64().unwrap_or(0.0)).rem_euclid(std::f64::consts::TAU).to_degrees();
+    assert!((moved - 1.0).abs() < 1e-6, "one arrow key moved the handle {moved}°");
+    assert_eq!(after[1], before[1], "the other end moved");
+    js(&client, "const i = document.getElementById('to-2'); i.value = 'abc'; i.dispatchEvent(new Event('change'))").await;
+    assert_eq!(js(&client, "return document.getElementById('to-2').getAttribute('aria-invalid')").await, json!("true"));
+    assert!(text(&client, "document.getElementById('fold-input-status').textContent").await.contains("not a number"));
+    js(&client, "const i = document.getElementById('to-2'); i.value = '200'; i.dispatchEvent(new Event('change'))").await;
+    let exact = js(&client, "return window.closeApp.interpolate.state().to").await;
+    assert_eq!(exact[0], after[0], "editing g₂ re-read g₁ from its rounded box");
+    assert!((exact[1].as_f64().unwrap_or(0.0).to_degrees() - 200.0).abs() < 1e-9);
+
+    // A second-fold sample: pick the step, or animate the whole sequence.
+    route(&client, &format!("#/samples/{}", twice.id)).await;
+    shows_sample(&client, &twice.sample.name).await;
+    js(&client, "document.querySelector('#browse-result .interp-this').click()").await;
+    until(&client, "the step choice", "document.getElementById('interp-step').options.length === 4 && document.getElementById('interp-sample').value.endsWith('napkin__half_then_half')").await;
+    js(&client, "const s = document.getElementById('interp-step'); s.value = 'all'; s.dispatchEvent(new Event('change'))").await;
     client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");
-    wait_for("the motion to end", async || (slider_value(&client).await == "1000").then_some(())).await;
-    assert_ne!(halfway, canvas(&client).await, "playing did not change the drawing");
+    until(&client, "the sequence to end", "document.getElementById('interp-slider').value === '1000'").await;
+    let readout = text(&client, "document.getElementById('interp-readout').textContent").await;
+    assert!(readout.contains("fold 2 of 2"), "{readout}");
+    let state = js(&client, "return window.closeApp.interpolate.state().folds.length").await;
+    assert_eq!(state, json!(2));
     disk_picture(&client).await;
-    screenshot(&client, &shots, "06-interpolate-end.png").await;
+    screenshot(&client, &shots, "1400-06-interpolate-sequence.png").await;
+    client.find(Locator::Id("check-server")).await.expect("check").click().await.expect("click");
+    until(&client, "the parity check", "document.getElementById('interp-check').textContent.includes('agree')").await;
 
-    // The same motion from the server agrees.
-    client.find(Locator::Id("check-server")).await.expect("check button").click().await.expect("click");
-    let check = text_of(&client, "#interp-check").await;
-    assert!(check.contains("agree"), "parity display: {check}");
-
-    // 4. Plan: the interpolation's goal opens the plan view; each step is drawn with its
-    // pick → place arrows and said in words.
+    // ---- Plan from the interpolation's goal; each step drawn and said.
+    js(&client, "const s = document.getElementById('interp-step'); s.value = '1'; s.dispatchEvent(new Event('change'))").await;
     client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
-    wait_for("the plan view", async || js(&client, "return !document.getElementById('view-plan').hidden").await.as_bool().filter(|&v| v)).await;
-    // A goal folding the same corners as the sample's half fold: one direct step.
-    set_goal(&client, 60, 240).await;
-    client.find(Locator::Id("plan-run")).await.expect("plan run").click().await.expect("click");
-    wait_for("the plan", async || {
-        let case = client.find(Locator::Id("plan-case")).await.ok()?.text().await.ok()?;
-        case.contains("straight").then_some(())
-    })
-    .await;
-    let steps = plan_steps(&client).await;
-    assert!(steps.len() >= 2, "the current state and at least one step: {steps:?}");
-    assert!(steps[0].starts_with("Now"), "{steps:?}");
-    assert!(steps[1..].iter().all(|s| s.contains("Step") && s.contains("along")), "{steps:?}");
-    assert!(steps[1..].iter().any(|s| s.contains("grasp corner")), "no corner grasped: {steps:?}");
-    assert!(arrow_pixels(&client).await > 50, "no pick → place arrow drawn");
-    screenshot(&client, &shots, "07-plan.png").await;
-
-    // A sample folded twice, a goal typed in: unfold both folds, then fold.
-    let twice = dataset.entries().iter().find(|e| e.sample.frames.len() == 3).expect("a second-fold sample");
-    js(&client, &format!("const s = document.getElementById('plan-sample'); s.value = {:?}; s.dispatchEvent(new Event('change'))", twice.id)).await;
-    wait_for("the sample's state", async || {
-        let now = client.find(Locator::Id("plan-now")).await.ok()?.text().await.ok()?;
-        now.contains(" then ").then_some(())
-    })
-    .await;
-    set_goal(&client, 10, 150).await;
-    client.find(Locator::Id("plan-run")).await.expect("plan run").click().await.expect("click");
-    wait_for("a new plan", async || {
-        let case = client.find(Locator::Id("plan-case")).await.ok()?.text().await.ok()?;
-        case.contains("unfold first").then_some(())
-    })
-    .await;
-    let steps = plan_steps(&client).await;
+    until(&client, "the plan view", "location.hash === '#/plan' && !document.getElementById('view-plan').hidden").await;
+    js(&client, "for (const [id, v] of [['goal-1', 10], ['goal-2', 150]]) { const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }").await;
+    client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
+    until(&client, "a plan", "document.getElementById('plan-case').textContent.includes('unfold first')").await;
+    let steps: Vec<String> = serde_json::from_value(js(&client, "return [...document.querySelectorAll('#plan-list .plan-step')].map(li => li.innerText)").await).unwrap_or_default();
+    assert!(steps.first().is_some_and(|s| s.starts_with("Now")), "{steps:?}");
     assert_eq!(steps.iter().filter(|s| s.contains("· Unfold")).count(), 2, "{steps:?}");
     assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
-    screenshot(&client, &shots, "08-plan-unfold.png").await;
+    assert!(text(&client, "document.title").await.contains("half_then_half"));
+    screenshot(&client, &shots, "1400-07-plan.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("plan: {v}")));
+    // The upload is listed by its file name.
+    let options = text(&client, "[...document.getElementById('plan-sample').options].map(o => o.textContent).join('|')").await;
+    assert!(options.contains("upload · my-napkin.json"), "{options}");
+
+    // ---- Phone width: no overflow, the result first, the plan's controls above its results.
+    client.set_window_size(420, 900).await.expect("phone size");
+    until(&client, "a narrow window", "window.innerWidth <= 420").await;
+    route(&client, "#/samples/napkin__half_then_half").await;
+    shows_sample(&client, &twice.sample.name).await;
+    let order = js(&client, "return document.getElementById('browse-result').getBoundingClientRect().top < document.querySelector('.sample-panel').getBoundingClientRect().top").await;
+    assert_eq!(order, json!(true), "the result is not above the list");
+    assert_no_overflow(&client, "browse").await;
+    screenshot(&client, &shots, "420-01-browse.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("browse 420: {v}")));
+    // Tapping a card far down brings its result into view.
+    js(&client, "document.querySelector('.sample-card[data-id=\"towel__half_long\"]').scrollIntoView()").await;
+    client.find(Locator::Css(".sample-card[data-id=\"towel__half_long\"]")).await.expect("a card").click().await.expect("tap");
+    shows_sample(&client, &dataset.get("towel__half_long").expect("sample").sample.name).await;
+    let top = until(&client, "the result in view", "(t => t > -50 && t < 300 && t + 1)(document.getElementById('browse-result').getBoundingClientRect().top)").await;
+    assert!(top.as_f64().is_some(), "result at {top}");
+    for (hash, name) in [("#/upload", "upload"), ("#/interpolate", "interpolate"), ("#/plan", "plan")] {
+        route(&client, hash).await;
+        until(&client, name, &format!("!document.getElementById('view-{name}').hidden")).await;
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        assert_no_overflow(&client, name).await;
+        if name == "interpolate" {
+            disk_picture(&client).await;
+        }
+        screenshot(&client, &shots, &format!("420-0{}-{name}.png", 2 + ["upload", "interpolate", "plan"].iter().position(|n| *n == name).unwrap_or(0))).await;
+        violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("{name} 420: {v}")));
+    }
+    let order = js(&client, "return document.querySelector('.plan-side').getBoundingClientRect().top < document.querySelector('.plan-main').getBoundingClientRect().top").await;
+    assert_eq!(order, json!(true), "the plan's controls are below its results");
+
+    // ---- Five thousand samples: the list stays paged, the filter finds any of them.
+    goto_view(&client, &many, "").await;
+    until(&client, "the long list", "document.getElementById('sample-count').textContent.startsWith('5000 of 5000')").await;
+    let cards = js(&client, "return document.querySelectorAll('.sample-card').length").await.as_u64().unwrap_or(0);
+    assert!(cards > 0 && cards <= 3 * 24, "{cards} cards drawn for 5000 samples");
+    js(&client, "document.querySelector('.category .more').click()").await;
+    until(&client, "more cards", &format!("document.querySelectorAll('.sample-card').length > {cards}")).await;
+    js(&client, "const f = document.getElementById('sample-filter'); f.value = 'user 4321'; f.dispatchEvent(new Event('input'))").await;
+    until(&client, "one match", "document.getElementById('sample-count').textContent.startsWith('1 of 5000') && document.querySelectorAll('.sample-card').length === 1").await;
+
+    // ---- The sample list fails: a readable message that survives a change of view.
+    client.set_window_size(1400, 1000).await.expect("wide again");
+    goto_view(&client, &broken, "").await;
+    let error = until(&client, "the list's error", "document.getElementById('sample-list').textContent.includes('could not be loaded') && document.getElementById('sample-list').textContent").await;
+    let error = error.as_str().unwrap_or_default();
+    assert!(error.contains("503 Service Unavailable") && !error.contains("<h1>"), "{error}");
+    route(&client, "#/interpolate").await;
+    let error = until(&client, "the message in Interpolate", "!document.getElementById('error').hidden && document.getElementById('error').textContent").await;
+    assert!(error.as_str().unwrap_or_default().contains("could not be loaded"), "{error}");
+    screenshot(&client, &shots, "1400-08-samples-failed.png").await;
 
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);
+    assert!(violations.is_empty(), "axe-core found serious or critical violations:\n{}", violations.join("\n"));
 }

@@ -106,7 +106,8 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     let label = label_size(unit);
     let top = canvas.title_band();
     let mapping = canvas.draw(|area| {
-        let body = area.margin(top as i32, (1.2 * label) as i32, (0.6 * label) as i32, (1.2 * label) as i32);
+        // The bottom margin holds the legend and the note, outside the data.
+        let body = area.margin(top as i32, (3.2 * label) as i32, (0.6 * label) as i32, (1.2 * label) as i32);
         let builder = || {
             let mut b = ChartBuilder::on(&body);
             b.x_label_area_size((2.0 * label) as u32).y_label_area_size((3.6 * label) as u32);
@@ -132,7 +133,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     for trace in &traces {
         draw_trace(canvas, trace, &mapping);
     }
-    draw_legend(canvas, &traces, (mapping.px.0 + 0.6 * label, mapping.py.0 + 0.6 * label));
+    draw_legend(canvas, &traces, (mapping.px.0, canvas.height as f64 - 2.1 * label));
     let note = match &analysis.metrics {
         Some(m) => format!("RMSE {:.3} · Fréchet {:.3} (normalised)   ● vertex 0", m.rmse, m.frechet),
         None => "● vertex 0".to_string(),
@@ -140,6 +141,30 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     let (w, h) = (canvas.width as f64, canvas.height as f64);
     canvas.text(&note, (w - 0.5 * label, h - 0.6 * label), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
     Ok(())
+}
+
+/// A mini drawing for a list of samples: the start border thin grey, the end border thick
+/// blue over it, as large as the picture allows; no text, axes or legend, which would be
+/// unreadable at this size.
+pub(crate) fn draw_thumbnail(canvas: &mut Canvas, analysis: &Analysis) {
+    let unit = canvas.unit();
+    let mut traces = traces(analysis, unit);
+    // Only the data: the prediction is for the full plot.
+    traces.retain(|t| t.name != "predicted end");
+    for t in &mut traces {
+        t.width = if t.name == "start" { line_width(unit, 0.012) } else { line_width(unit, 0.03) };
+        if t.name == "end" {
+            t.colour = [31, 111, 235];
+        }
+    }
+    let (x, y) = bounds(&traces);
+    let pad = 0.04 * unit;
+    let (w, h) = (canvas.width as f64, canvas.height as f64);
+    let (x, y) = equal_aspect(x, y, ((w - 2.0 * pad) as u32, (h - 2.0 * pad) as u32));
+    let mapping = Mapping { x, y, px: (pad, w - pad), py: (pad, h - pad) };
+    for trace in &traces {
+        draw_trace(canvas, trace, &mapping);
+    }
 }
 
 /// One border: its lower edges, then its raised edges (a folded layer) with a halo so they
@@ -179,21 +204,18 @@ fn runs(n: usize, keep: impl Fn(usize) -> bool) -> Vec<Vec<usize>> {
         .collect()
 }
 
-/// A boxed legend with its top-left corner at `corner`.
-fn draw_legend(canvas: &mut Canvas, traces: &[Trace], corner: (f64, f64)) {
+/// The legend in one row under the plot, starting at `start` (left end, vertical centre).
+fn draw_legend(canvas: &mut Canvas, traces: &[Trace], start: (f64, f64)) {
     let size = 0.85 * label_size(canvas.unit());
-    let row = 1.5 * size;
     let swatch = 2.2 * size;
-    let width = swatch + 0.6 * size + traces.iter().map(|t| super::raster::text_width(t.name, size)).fold(0.0, f64::max) + size;
-    let height = row * traces.len() as f64 + 0.5 * size;
-    let (x0, y0) = corner;
-    let (x1, y1) = (x0 + width, y0 + height);
-    canvas.fill_rect((x0, y0), (x1, y1), PAPER, 0.9);
-    canvas.stroke(&[(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)], 1.0, MUTED);
-    for (k, trace) in traces.iter().enumerate() {
-        let y = y0 + 0.25 * size + row * (k as f64 + 0.5);
-        canvas.stroke(&[(x0 + 0.5 * size, y), (x0 + 0.5 * size + swatch, y)], trace.width.max(2.0), trace.colour);
-        canvas.text(trace.name, (x0 + size + swatch, y), size, INK, (HPos::Left, VPos::Center));
+    let (mut x, y) = start;
+    for trace in traces {
+        // A wide line's round caps reach half its width past its ends.
+        let cap = trace.width.max(2.0) / 2.0;
+        canvas.stroke(&[(x + cap, y), (x + cap + swatch, y)], trace.width.max(2.0), trace.colour);
+        x += swatch + 2.0 * cap + 0.4 * size;
+        canvas.text(trace.name, (x, y), size, INK, (HPos::Left, VPos::Center));
+        x += super::raster::text_width(trace.name, size) + 1.2 * size;
     }
 }
 

@@ -50,7 +50,7 @@ fn caption(analysis: &Analysis, size: f64, width: f64) -> Vec<(String, [u8; 3])>
     if count == 0 {
         lines.push(("no fold detected".into(), MUTED));
     }
-    lines.extend(wrap(&analysis.label.text, |line| text_width(line, size) <= width).into_iter().map(|l| (l, MUTED)));
+    lines.extend(wrap(&analysis.label.text, |line| text_width(line, size) <= width).into_iter().map(|l| (l, INK)));
     lines
 }
 
@@ -93,7 +93,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     let top = canvas.title_band();
     let text_top = h - line_height * lines.len() as f64 - 0.4 * label;
     // Room outside the circle for corner numbers and fold names.
-    let pad = 3.2 * label;
+    let pad = 4.4 * label;
     let radius = ((w - 2.0 * pad) / 2.0).min((text_top - top - 2.0 * pad) / 2.0).max(4.0);
     let frame = Frame { cx: w / 2.0, cy: top + pad + radius, radius };
     shade_folded_sides(canvas, analysis, &frame)?;
@@ -102,8 +102,8 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     let tick = 0.4 * label / radius;
     canvas.stroke(&[frame.at(1.0, 0.0), frame.at(1.0 - tick, 0.0)], line_width(unit, 0.003), INK);
     canvas.text("0", frame.at(1.0 - 1.5 * tick, 0.0), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
-    draw_folds(canvas, analysis, &frame);
-    draw_corners(canvas, &analysis.corners, &frame);
+    let mut taken = draw_corners(canvas, &analysis.corners, &frame);
+    draw_folds(canvas, analysis, &frame, &mut taken);
     for (k, (text, colour)) in lines.iter().enumerate() {
         let y = text_top + line_height * (k as f64 + 0.5);
         canvas.text(text, (0.5 * label, y), label, *colour, (HPos::Left, VPos::Center));
@@ -126,23 +126,50 @@ fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -
     })
 }
 
-/// Corner dots, numbered 1… outside the circle when there are at most [`NUMBERED_CORNERS`].
-fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) {
+/// The pixel box [x0, y0, x1, y1] of `text` of `size` at `at` anchored `outward(theta)`.
+fn text_box(text: &str, at: (f64, f64), size: f64, theta: f64) -> [f64; 4] {
+    let (w, h) = (text_width(text, size), 0.8 * size);
+    let (hp, vp) = outward(theta);
+    let x0 = match hp {
+        HPos::Left => at.0,
+        HPos::Center => at.0 - w / 2.0,
+        HPos::Right => at.0 - w,
+    };
+    let y0 = match vp {
+        VPos::Top => at.1,
+        VPos::Center => at.1 - h / 2.0,
+        VPos::Bottom => at.1 - h,
+    };
+    [x0, y0, x0 + w, y0 + h]
+}
+
+/// True when two boxes overlap (with a small gap).
+fn overlaps(a: &[f64; 4], b: &[f64; 4], gap: f64) -> bool {
+    a[0] < b[2] + gap && b[0] < a[2] + gap && a[1] < b[3] + gap && b[1] < a[3] + gap
+}
+
+/// Corner dots, numbered 1… outside the circle when there are at most [`NUMBERED_CORNERS`];
+/// gives the boxes the numbers take.
+fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) -> Vec<[f64; 4]> {
     let unit = canvas.unit();
     let dot = (unit * 0.012).max(2.0);
     let size = label_size(unit);
+    let mut taken = Vec::new();
     for (k, &theta) in corners.iter().enumerate() {
         canvas.disc(frame.at(1.0, theta), dot + 1.5, PAPER);
         canvas.disc(frame.at(1.0, theta), dot, INK);
         if corners.len() <= NUMBERED_CORNERS {
-            let at = frame.at(1.0 + 1.8 * dot / frame.radius, theta);
-            canvas.text(&(k + 1).to_string(), at, size, INK, outward(theta));
+            let (at, text) = (frame.at(1.0 + 1.8 * dot / frame.radius, theta), (k + 1).to_string());
+            canvas.text(&text, at, size, INK, outward(theta));
+            taken.push(text_box(&text, at, size, theta));
         }
     }
+    taken
 }
 
-/// Each fold: its arc (the folded side), the chord (the fold line) and the named endpoints.
-fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
+/// Each fold: its arc (the folded side), the chord (the fold line) and the named endpoints,
+/// each name moved outwards until it clears the corner numbers and the names before it.
+fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame, taken: &mut Vec<[f64; 4]>) {
     let unit = canvas.unit();
     let count = analysis.folds.len();
     let size = label_size(unit);
@@ -155,9 +182,17 @@ fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
         for (e, &f) in fold.iter().enumerate() {
             canvas.disc(frame.at(1.0, f), marker + 1.5, PAPER);
             canvas.disc(frame.at(1.0, f), marker, colour);
-            // Beyond the corner numbers, so the two rarely collide.
-            let at = frame.at(1.0 + 2.2 * size / frame.radius, f);
-            canvas.text(&endpoint_name(k, e, count), at, size, colour, outward(f));
+            let name = endpoint_name(k, e, count);
+            let place = |step: f64| {
+                let at = frame.at(1.0 + (1.0 + 1.1 * step) * size / frame.radius, f);
+                (at, text_box(&name, at, size, f))
+            };
+            let (at, bounds) = (0..4)
+                .map(|step| place(step as f64))
+                .find(|(_, b)| !taken.iter().any(|t| overlaps(t, b, 0.15 * size)))
+                .unwrap_or_else(|| place(3.0));
+            canvas.text(&name, at, size, colour, outward(f));
+            taken.push(bounds);
         }
     }
 }
@@ -172,6 +207,18 @@ mod tests {
         assert_eq!(arc[0], 1.0);
         assert!((arc[2] - (0.5 + TAU)).abs() < 1e-12);
         assert!(arc.windows(2).all(|w| w[1] >= w[0]));
+    }
+
+    #[test]
+    fn boxes_overlap_only_when_they_meet() {
+        let a = [0.0, 0.0, 10.0, 10.0];
+        assert!(overlaps(&a, &[5.0, 5.0, 15.0, 15.0], 0.0));
+        assert!(!overlaps(&a, &[11.0, 0.0, 20.0, 10.0], 0.5));
+        assert!(overlaps(&a, &[10.2, 0.0, 20.0, 10.0], 0.5));
+        // A label anchored right of a point on the right of the circle starts at the point.
+        let b = text_box("12", (100.0, 50.0), 10.0, 0.0);
+        assert_eq!(b[0], 100.0);
+        assert!(b[2] > 100.0 && b[1] < 50.0 && b[3] > 50.0);
     }
 
     #[test]

@@ -19,7 +19,7 @@ use std::cmp::Ordering;
 pub const SCALE_PERCENTILE: f64 = 0.95;
 
 /// The robust scale s of a set of values (never zero, never NaN).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Scale {
     /// s in t = tanh(v / s).
     pub s: f64,
@@ -30,7 +30,12 @@ pub struct Scale {
 impl Scale {
     /// Scale of `values`, ignoring non-finite ones.
     pub fn of(values: &[f64]) -> Scale {
-        let mut abs: Vec<f64> = values.iter().filter(|v| v.is_finite()).map(|v| v.abs()).collect();
+        Scale::of_all(&[values])
+    }
+
+    /// One scale for several sets of values (panels that must share their colours).
+    pub fn of_all(sets: &[&[f64]]) -> Scale {
+        let mut abs: Vec<f64> = sets.iter().flat_map(|v| v.iter()).filter(|v| v.is_finite()).map(|v| v.abs()).collect();
         if abs.is_empty() {
             return Scale { s: 1.0, max: 0.0 };
         }
@@ -40,6 +45,12 @@ impl Scale {
         // A flat disk has nothing to show: any positive scale leaves it white.
         let s = if p > 0.0 { p } else if max > 0.0 { max } else { 1.0 };
         Scale { s, max }
+    }
+
+    /// A scale given by a caller (e.g. fixed through an animation), if it is usable:
+    /// s positive and finite, max finite and not negative.
+    pub fn fixed(s: f64, max: f64) -> Option<Scale> {
+        (s.is_finite() && s > 0.0 && max.is_finite() && max >= 0.0).then_some(Scale { s, max })
     }
 
     /// t = tanh(v / s) ∈ [−1, 1]; a non-finite value counts as 0.
@@ -118,6 +129,17 @@ mod tests {
         let mut sparse = vec![0.0; 50];
         sparse[3] = -4.0;
         assert_eq!(Scale::of(&sparse).s, 4.0);
+    }
+
+    #[test]
+    fn a_shared_scale_covers_every_panel() {
+        let (small, large) = ([0.5, -1.0, 0.2], [8.0, -32.0, 4.0]);
+        let shared = Scale::of_all(&[&small, &large]);
+        assert_eq!(shared.max, 32.0);
+        assert!(shared.s >= Scale::of(&small).s);
+        assert_eq!(Scale::fixed(0.0, 1.0), None);
+        assert_eq!(Scale::fixed(f64::NAN, 1.0), None);
+        assert_eq!(Scale::fixed(2.0, 3.0), Some(Scale { s: 2.0, max: 3.0 }));
     }
 
     #[test]

@@ -8,7 +8,12 @@
 //! from its polar coordinates — which is exact, leaves no seams between neighbouring
 //! sectors and costs O(pixels) whatever N is; the rim is anti-aliased by pixel coverage.
 //! Over a diff disk the fitted fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
-//! coordinates, with the fold points marked on the rim.
+//! coordinates, with the fold points marked on the rim: only the curves of the fold the
+//! step reports ([`fold_curves`]), and only on the disk of the two frames they were fitted
+//! on. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
+//! Geometric Shape-Agnostic Cloth State Representation" (the dGLI disk and the fold-curve
+//! fit on the diff disk). A ruler under the disk names the rings by pair distance d; the
+//! colour bar says its transform (tanh, see [`super::colour`]) and its scale.
 //!
 //! ```
 //! use close::render::disk::Layout;
@@ -24,9 +29,13 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::colour::{Ramp, Scale};
 use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
-use crate::analysis::Analysis;
+use crate::angle;
 use crate::disk::{condensed_index, Disk};
+use crate::fold::{Curve, FoldDetection};
 use crate::error::Result;
+
+/// Height of the ring ruler's band under the disk, in label sizes.
+const RULER_BAND: f64 = 2.4;
 
 /// Where the disk and its colour bar sit on a canvas, in pixels (y grows downwards).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,12 +59,15 @@ impl Layout {
         let bar_width = (0.035 * unit).max(4.0);
         let band = bar_width + 5.5 * label;
         let pad = 1.6 * label;
-        let (room_x, room_y) = ((w - band - 2.0 * pad) / 2.0, (h - top - 2.0 * pad) / 2.0);
+        // Below the disk: the angle mark, then the ring ruler and its labels.
+        let below = pad + RULER_BAND * label;
+        let (room_x, room_y) = ((w - band - 2.0 * pad) / 2.0, (h - top - pad - below) / 2.0);
         let radius = room_x.min(room_y).max(4.0);
         // Centred in the room left of the bar, below the title.
         let (cx, cy) = (pad + room_x.max(radius), top + pad + room_y.max(radius));
         let bar_left = (w - band + label) as i32;
-        let bar = [bar_left, (cy - 0.75 * radius) as i32, bar_left + bar_width as i32, (cy + 0.75 * radius) as i32];
+        // Room under the bar for the transform, the scale and N.
+        let bar = [bar_left, (cy - 0.85 * radius) as i32, bar_left + bar_width as i32, (cy + 0.45 * radius) as i32];
         Layout { cx, cy, radius, bar }
     }
 
@@ -76,18 +88,54 @@ pub fn sector_at(n: usize, r: f64, theta: f64) -> (usize, usize) {
     (d, a.rem_euclid(n as f64) as usize % n)
 }
 
-/// Draw `disk` with `ramp` under `title`; with `analysis`, its fold curves and points on top.
-pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, analysis: Option<&Analysis>) -> Result<()> {
+/// What is drawn over a diff disk: fold points on the rim and the fold curves.
+pub(crate) struct Marks<'a> {
+    /// (fold number, 0-based, in step order; (f1, f2)) of each fold to mark.
+    pub folds: Vec<(usize, [f64; 2])>,
+    /// How many folds the analysis has (names are numbered when more than one).
+    pub total: usize,
+    /// The curves to draw: those of the fold reported ([`fold_curves`]).
+    pub curves: Vec<&'a Curve>,
+    /// A short note shown above the colour bar ("no fold", …).
+    pub note: Option<String>,
+}
+
+/// A fitted curve belongs to a fold point when its rim lies within this many edges of it.
+pub const CURVE_MATCH_EDGES: f64 = 2.0;
+
+/// The fitted curves of the fold a step reports: for each fold point, the curve whose rim
+/// lies nearest it, if within [`CURVE_MATCH_EDGES`] edges. The fold points may come from
+/// the cut rather than the curves (the default method), so a curve far from both is
+/// evidence the method set aside, not the fold, and is not drawn.
+pub fn fold_curves(detection: &FoldDetection, n: usize) -> Vec<&Curve> {
+    let Some(fold) = detection.fold else { return Vec::new() };
+    let tolerance = CURVE_MATCH_EDGES * angle::edge(n);
+    let mut chosen: Vec<&Curve> = Vec::new();
+    for f in fold {
+        let nearest = detection.curves.iter().min_by(|a, b| angle::distance(a.rim, f).total_cmp(&angle::distance(b.rim, f)));
+        if let Some(curve) = nearest.filter(|c| angle::distance(c.rim, f) <= tolerance) {
+            if !chosen.iter().any(|c| std::ptr::eq(*c, curve)) {
+                chosen.push(curve);
+            }
+        }
+    }
+    chosen
+}
+
+/// Draw `disk` with `ramp` and colour `scale` under `title`; with `marks`, fold points and
+/// curves on top.
+pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, scale: &Scale, marks: Option<&Marks>) -> Result<()> {
     let layout = Layout::of(canvas.width, canvas.height);
-    let scale = Scale::of(disk.values());
-    paint_sectors(canvas, disk, ramp, &scale, &layout);
-    let t_range = bar_range(ramp, &scale);
+    paint_sectors(canvas, disk, ramp, scale, &layout);
+    let t_range = bar_range(ramp, scale);
     paint_bar(canvas, ramp, t_range, &layout);
     canvas.title(title);
-    draw_frame(canvas, &layout, disk.n());
-    draw_bar_ticks(canvas, &layout, &scale, t_range);
-    if let Some(analysis) = analysis {
-        draw_folds(canvas, &layout, analysis, disk.layers());
+    draw_frame(canvas, &layout);
+    draw_ring_ruler(canvas, &layout, disk.layers());
+    draw_bar_ticks(canvas, &layout, scale, t_range);
+    draw_bar_notes(canvas, &layout, scale, disk.n());
+    if let Some(marks) = marks {
+        draw_marks(canvas, &layout, marks, disk.layers());
     }
     Ok(())
 }
@@ -139,8 +187,8 @@ fn paint_bar(canvas: &mut Canvas, ramp: Ramp, (lo, hi): (f64, f64), layout: &Lay
     }
 }
 
-/// Rim outline, angle marks 0, π/2, π, 3π/2, and the vertex count under the colour bar.
-fn draw_frame(canvas: &mut Canvas, layout: &Layout, n: usize) {
+/// Rim outline and angle marks 0, π/2, π, 3π/2.
+fn draw_frame(canvas: &mut Canvas, layout: &Layout) {
     let size = label_size(canvas.unit()) * 0.85;
     canvas.ring((layout.cx, layout.cy), layout.radius, 1.0, MUTED);
     let gap = 0.3 * size / layout.radius;
@@ -149,15 +197,13 @@ fn draw_frame(canvas: &mut Canvas, layout: &Layout, n: usize) {
         canvas.stroke(&[layout.pixel(1.0, theta), layout.pixel(1.0 + gap, theta)], 1.0, MUTED);
         canvas.text(name, layout.pixel(1.0 + 2.0 * gap, theta), size, MUTED, outward(theta));
     }
-    let [left, _, _, bottom] = layout.bar;
-    canvas.text(&format!("N = {n}"), (left as f64, bottom as f64 + 1.8 * size), size, MUTED, (HPos::Left, VPos::Center));
 }
 
 /// Outline, ticks and value labels of the colour bar: 0, ±s (the robust scale) and ±max.
 fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi): (f64, f64)) {
     let [left, top, right, bottom] = layout.bar.map(|v| v as f64);
     canvas.stroke(&[(left, top), (right, top), (right, bottom), (left, bottom), (left, top)], 1.0, MUTED);
-    let size = label_size(canvas.unit()) * 0.85;
+    let size = label_size(canvas.unit());
     let y_of = |t: f64| top + (hi - t) / (hi - lo) * (bottom - top);
     let mut ticks = vec![(hi, scale.max)];
     if lo < 0.0 {
@@ -165,7 +211,7 @@ fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi):
     }
     ticks.push((0.0, 0.0));
     for t in [scale.squash(scale.s), -scale.squash(scale.s)] {
-        let clear = ticks.iter().all(|&(u, _)| (y_of(u) - y_of(t)).abs() > 1.3 * size);
+        let clear = ticks.iter().all(|&(u, _)| (y_of(u) - y_of(t)).abs() > 1.2 * size);
         if clear && t >= lo && t <= hi {
             ticks.push((t, scale.unsquash(t)));
         }
@@ -175,6 +221,42 @@ fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi):
         canvas.stroke(&[(right, y), (right + 0.4 * size, y)], 1.0, INK);
         canvas.text(&format_value(value), (right + 0.6 * size, y), size, INK, (HPos::Left, VPos::Center));
     }
+}
+
+/// Under the colour bar: the transform that maps a value to a colour (tanh, so the ticks
+/// are not evenly spaced), its scale s, and the vertex count.
+fn draw_bar_notes(canvas: &mut Canvas, layout: &Layout, scale: &Scale, n: usize) {
+    let size = 0.85 * label_size(canvas.unit());
+    let [left, _, _, bottom] = layout.bar.map(|v| v as f64);
+    let lines = ["colour =".to_string(), "tanh(v/s)".to_string(), format!("s = {}", format_value(scale.s)), format!("N = {n}")];
+    for (k, line) in lines.iter().enumerate() {
+        let y = bottom + (1.6 + 1.4 * k as f64) * size;
+        canvas.text(line, (left - 0.3 * size, y), size, if k < 2 { INK } else { MUTED }, (HPos::Left, VPos::Center));
+    }
+}
+
+/// A ruler under the disk, from the rim to the centre, naming the rings by the cyclic
+/// distance d of their edge pairs (d = 1 at the rim, d = L at the centre).
+fn draw_ring_ruler(canvas: &mut Canvas, layout: &Layout, layers: usize) {
+    let size = 0.85 * label_size(canvas.unit());
+    let l = layers.max(1);
+    let y = layout.cy + layout.radius + 1.6 * label_size(canvas.unit()) + 0.4 * size;
+    let x_of = |d: usize| layout.cx - layout.radius * (l - d) as f64 / l as f64 - 0.5 * layout.radius / l as f64;
+    canvas.stroke(&[(layout.cx - layout.radius, y), (layout.cx, y)], 1.0, MUTED);
+    // Ticks at d = 1, L and round steps between, no closer than four labels' width.
+    let room = (layout.radius / (3.0 * size)).max(1.0);
+    let step = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000].into_iter().find(|&s| (l / s) as f64 <= room).unwrap_or(l);
+    let mut ticks: Vec<usize> = (0..=l).step_by(step).filter(|&d| d > 1 && d + step / 2 < l).collect();
+    ticks.insert(0, 1);
+    if l > 1 {
+        ticks.push(l);
+    }
+    for d in ticks {
+        let x = x_of(d);
+        canvas.stroke(&[(x, y - 0.3 * size), (x, y + 0.3 * size)], 1.0, MUTED);
+        canvas.text(&d.to_string(), (x, y + 0.5 * size), size, INK, (HPos::Center, VPos::Top));
+    }
+    canvas.text("← ring: pair distance d", (layout.cx + 0.4 * size, y), size, MUTED, (HPos::Left, VPos::Center));
 }
 
 /// A value with about three significant digits.
@@ -190,12 +272,12 @@ pub(crate) fn format_value(v: f64) -> String {
     }
 }
 
-/// Every fitted fold curve of every step, and the fold points on the rim.
-fn draw_folds(canvas: &mut Canvas, layout: &Layout, analysis: &Analysis, layers: usize) {
+/// The fold curves and fold points of `marks`.
+fn draw_marks(canvas: &mut Canvas, layout: &Layout, marks: &Marks, layers: usize) {
     let unit = canvas.unit();
     let width = line_width(unit, 0.005);
     let inner = 1.0 / layers.max(1) as f64;
-    for curve in analysis.steps.iter().flat_map(|s| &s.detection.curves) {
+    for curve in &marks.curves {
         let points: Vec<(f64, f64)> = (0..=96)
             .map(|k| inner + (1.0 - inner) * k as f64 / 96.0)
             .map(|r| layout.pixel(r, curve.a0 + curve.a1 * r))
@@ -203,22 +285,22 @@ fn draw_folds(canvas: &mut Canvas, layout: &Layout, analysis: &Analysis, layers:
         // A white halo keeps the curve visible on dark and light cells alike.
         canvas.stroke(&points, width + 2.0, PAPER);
         canvas.stroke(&points, width, INK);
-        canvas.ring(layout.pixel(1.0, curve.rim), 1.5 * width + 1.0, width, INK);
     }
     let marker = (unit * 0.014).max(3.0);
     let size = label_size(unit);
-    for (k, fold) in analysis.folds.iter().enumerate() {
+    for &(k, fold) in &marks.folds {
         for (e, &f) in fold.iter().enumerate() {
             let colour = fold_colour(k);
             canvas.disc(layout.pixel(1.0, f), marker + 1.5, PAPER);
             canvas.disc(layout.pixel(1.0, f), marker, colour);
             let at = layout.pixel(1.0 + 1.6 * marker / layout.radius, f);
-            canvas.text(&endpoint_name(k, e, analysis.folds.len()), at, size, colour, outward(f));
+            canvas.text(&endpoint_name(k, e, marks.total), at, size, colour, outward(f));
         }
     }
-    if analysis.folds.is_empty() {
-        let [left, top, ..] = layout.bar;
-        canvas.text("no fold", (left as f64, top as f64 - 1.2 * size), 0.85 * size, MUTED, (HPos::Left, VPos::Center));
+    if let Some(note) = &marks.note {
+        // The top-left corner, outside the disk.
+        let y = layout.cy - layout.radius + 0.2 * size;
+        canvas.text(note, (0.5 * size, y), 0.85 * size, MUTED, (HPos::Left, VPos::Center));
     }
 }
 
@@ -248,6 +330,26 @@ mod tests {
 
     fn is_strong(c: [u8; 3]) -> bool {
         c.iter().max().unwrap() - c.iter().min().unwrap() > 80
+    }
+
+    #[test]
+    fn only_the_curves_of_the_reported_fold_are_drawn() {
+        let n = 40;
+        let edge = angle::edge(n);
+        let curve = |rim: f64| Curve { a0: rim, a1: 0.0, loss: -1.0, rim };
+        let mut detection = FoldDetection { fold: Some([1.0, 4.0]), curves: vec![curve(1.0 + 0.5 * edge), curve(2.5), curve(4.0 - 1.5 * edge)], cut: None, orientation: None };
+        let rims: Vec<f64> = fold_curves(&detection, n).iter().map(|c| c.rim).collect();
+        assert_eq!(rims, vec![1.0 + 0.5 * edge, 4.0 - 1.5 * edge]);
+        // A fold point with no curve near it gets none (its marker alone shows it).
+        detection.curves = vec![curve(1.0 + 3.0 * edge), curve(4.0)];
+        let rims: Vec<f64> = fold_curves(&detection, n).iter().map(|c| c.rim).collect();
+        assert_eq!(rims, vec![4.0]);
+        // Across angle 0 the distance wraps.
+        detection.fold = Some([0.01, 3.0]);
+        detection.curves = vec![curve(std::f64::consts::TAU - 0.01)];
+        assert_eq!(fold_curves(&detection, n).len(), 1);
+        detection.fold = None;
+        assert!(fold_curves(&detection, n).is_empty());
     }
 
     #[test]

@@ -33,7 +33,7 @@ use plotters::style::{register_font, FontStyle};
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::Analysis;
-use colour::Ramp;
+use colour::{Ramp, Scale};
 use crate::error::{Error, Result};
 
 /// Which picture of an analysis.
@@ -46,9 +46,12 @@ pub enum Picture {
     SignedDiff,
     Close,
     Borders,
+    /// A small drawing of the borders alone, for lists.
+    Thumbnail,
 }
 
 impl Picture {
+    /// The pictures an analysis lists (its `images`); [`Picture::Thumbnail`] is for lists.
     pub const ALL: [Picture; 6] =
         [Picture::DiskStart, Picture::DiskEnd, Picture::Diff, Picture::SignedDiff, Picture::Close, Picture::Borders];
 
@@ -61,12 +64,13 @@ impl Picture {
             Picture::SignedDiff => "signed_diff",
             Picture::Close => "close",
             Picture::Borders => "borders",
+            Picture::Thumbnail => "thumbnail",
         }
     }
 
     /// The picture of that name, if any.
     pub fn from_name(s: &str) -> Option<Picture> {
-        Picture::ALL.into_iter().find(|p| p.name() == s)
+        Picture::ALL.into_iter().chain([Picture::Thumbnail]).find(|p| p.name() == s)
     }
 }
 
@@ -78,37 +82,114 @@ pub const MIN_SIZE: u32 = 64;
 pub const MAX_SIZE: u32 = 2048;
 
 /// Draw one picture of `analysis` as a PNG of `width`×`height` pixels (each clamped to
-/// [`MIN_SIZE`]…[`MAX_SIZE`]).
+/// [`MIN_SIZE`]…[`MAX_SIZE`]): the whole analysis, start frame → end frame.
 pub fn render_png(analysis: &Analysis, picture: Picture, width: u32, height: u32) -> Result<Vec<u8>> {
+    render_step_png(analysis, picture, None, width, height)
+}
+
+/// Draw one picture of `analysis`; with `step` = Some(k) (1-based, step k goes from
+/// analysed frame k − 1 to frame k), the disk pictures of that step alone: its two disks
+/// and its diffs, with the fold curves fitted on that step. The start and end disks of a
+/// picture pair share one colour scale, so a colour means one value in both panels.
+pub fn render_step_png(analysis: &Analysis, picture: Picture, step: Option<usize>, width: u32, height: u32) -> Result<Vec<u8>> {
     let mut canvas = Canvas::new(width, height)?;
-    let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
-    let (start, end) = (&disk_of(0)?, &disk_of(analysis.frames.len() - 1)?);
     match picture {
-        Picture::DiskStart => {
-            let title = format!("dGLI disk · start (frame {})", analysis.start_frame);
-            disk::draw(&mut canvas, start, &title, Ramp::Diverging, None)?
-        }
-        Picture::DiskEnd => {
-            let title = format!("dGLI disk · end (frame {})", analysis.end_frame);
-            disk::draw(&mut canvas, end, &title, Ramp::Diverging, None)?
-        }
-        Picture::Diff => {
-            disk::draw(&mut canvas, &start.abs_diff(end), "Diff disk  | |end| − |start| |", Ramp::Sequential, Some(analysis))?
-        }
-        Picture::SignedDiff => {
-            disk::draw(&mut canvas, &start.signed_diff(end), "Signed diff  Δ = end − start", Ramp::Diverging, Some(analysis))?
+        Picture::Close | Picture::Borders | Picture::Thumbnail if step.is_some() => {
+            return Err(Error::InvalidArgument(format!("the {} picture shows the whole analysis: it takes no step", picture.name())));
         }
         Picture::Close => circle::draw(&mut canvas, analysis)?,
         Picture::Borders => borders::draw(&mut canvas, analysis)?,
+        Picture::Thumbnail => borders::draw_thumbnail(&mut canvas, analysis),
+        _ => {
+            let span = StepSpan::of(analysis, step)?;
+            let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
+            let (start, end) = (disk_of(span.from)?, disk_of(span.to)?);
+            let frame = |k: usize| analysis.start_frame + k;
+            match picture {
+                Picture::DiskStart | Picture::DiskEnd => {
+                    let shared = Scale::of_all(&[start.values(), end.values()]);
+                    let (disk, k) = if picture == Picture::DiskStart { (&start, span.from) } else { (&end, span.to) };
+                    let title = format!("dGLI disk · frame {}", frame(k));
+                    disk::draw(&mut canvas, disk, &title, Ramp::Diverging, &shared, None)?
+                }
+                _ => {
+                    let (diff, ramp, what) = if picture == Picture::Diff {
+                        (start.abs_diff(&end), Ramp::Sequential, "| |end| − |start| |")
+                    } else {
+                        (start.signed_diff(&end), Ramp::Diverging, "Δ = end − start")
+                    };
+                    let title = format!("{what} · frames {}→{}", frame(span.from), frame(span.to));
+                    let marks = span.marks(analysis, diff.n());
+                    disk::draw(&mut canvas, &diff, &title, ramp, &Scale::of(diff.values()), Some(&marks))?
+                }
+            }
+        }
     }
     canvas.png()
 }
 
+/// The frames a disk picture compares, and the step they are, if one.
+struct StepSpan {
+    from: usize,
+    to: usize,
+    step: Option<usize>,
+}
+
+impl StepSpan {
+    fn of(analysis: &Analysis, step: Option<usize>) -> Result<StepSpan> {
+        let steps = analysis.steps.len();
+        match step {
+            None => Ok(StepSpan { from: 0, to: analysis.frames.len() - 1, step: None }),
+            Some(k) if (1..=steps).contains(&k) => Ok(StepSpan { from: k - 1, to: k, step: Some(k) }),
+            Some(k) if steps == 0 => Err(Error::InvalidArgument(format!("step {k} does not exist: the analysis has one frame, no step"))),
+            Some(k) if steps == 1 => Err(Error::InvalidArgument(format!("step {k} does not exist: the analysis has one step, step=1"))),
+            Some(k) => Err(Error::InvalidArgument(format!("step {k} does not exist: the analysis has steps 1…{steps}"))),
+        }
+    }
+
+    /// What to draw over this span's diff: the fold points of the folds it holds, and the
+    /// curves fitted on exactly these two frames (a curve fitted on another pair of frames
+    /// would be drawn on a disk it was not read from).
+    fn marks<'a>(&self, analysis: &'a Analysis, n: usize) -> disk::Marks<'a> {
+        let total = analysis.folds.len();
+        // Fold number of each step's fold: folds are numbered in step order.
+        let numbered = analysis.steps.iter().scan(0, |count, s| {
+            let k = *count;
+            *count += usize::from(s.detection.fold.is_some());
+            Some((k, s))
+        });
+        let one_step = self.step.or((analysis.steps.len() == 1).then_some(1));
+        let mut marks = disk::Marks { folds: Vec::new(), total, curves: Vec::new(), note: None };
+        for (k, (fold_number, step)) in numbered.enumerate() {
+            let shown = self.step.is_none_or(|s| s == k + 1);
+            if let (true, Some(fold)) = (shown, step.detection.fold) {
+                marks.folds.push((fold_number, fold));
+            }
+            if one_step == Some(k + 1) {
+                marks.curves = disk::fold_curves(&step.detection, n);
+            }
+        }
+        if one_step.is_none() {
+            marks.note = Some("fold curves: see each step".into());
+        } else if marks.folds.is_empty() {
+            marks.note = Some("no fold".into());
+        }
+        marks
+    }
+}
+
 /// Draw a dGLI disk alone (diverging map, colour bar, `title`) as a PNG.
 pub fn disk_png(disk: &crate::disk::Disk, title: &str, width: u32, height: u32) -> Result<Vec<u8>> {
+    disk_png_scaled(disk, title, None, width, height).map(|(png, _)| png)
+}
+
+/// Draw a dGLI disk alone with a colour `scale` (its own when `None`, as [`disk_png`]);
+/// gives the PNG and the scale used, so a caller can keep one scale through an animation.
+pub fn disk_png_scaled(disk: &crate::disk::Disk, title: &str, scale: Option<Scale>, width: u32, height: u32) -> Result<(Vec<u8>, Scale)> {
     let mut canvas = Canvas::new(width, height)?;
-    disk::draw(&mut canvas, disk, title, Ramp::Diverging, None)?;
-    canvas.png()
+    let scale = scale.unwrap_or_else(|| Scale::of(disk.values()));
+    disk::draw(&mut canvas, disk, title, Ramp::Diverging, &scale, None)?;
+    Ok((canvas.png()?, scale))
 }
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVuSans-LICENSE.txt`).
@@ -308,6 +389,7 @@ pub(crate) mod tests {
             assert_eq!(Picture::from_name(p.name()), Some(p));
             assert_eq!(serde_json::to_string(&p).unwrap(), format!("\"{}\"", p.name()));
         }
+        assert_eq!(Picture::from_name("thumbnail"), Some(Picture::Thumbnail));
         assert_eq!(Picture::from_name("disk"), None);
     }
 
@@ -315,7 +397,7 @@ pub(crate) mod tests {
     fn every_picture_is_a_png_of_the_requested_size() {
         let analysis = folded_square(6, [PI / 4.0, 5.0 * PI / 4.0]);
         assert_eq!(analysis.folds.len(), 1, "the test square should show one fold");
-        for picture in Picture::ALL {
+        for picture in Picture::ALL.into_iter().chain([Picture::Thumbnail]) {
             for (w, h) in [(200, 150), (DEFAULT_SIZE, DEFAULT_SIZE)] {
                 let png_bytes = render_png(&analysis, picture, w, h).unwrap();
                 let (dw, dh, rgb) = decode(&png_bytes);
@@ -326,6 +408,58 @@ pub(crate) mod tests {
                 }
             }
         }
+    }
+
+    /// The analysis of a built-in sample.
+    fn builtin(id: &str) -> Analysis {
+        let entry = crate::dataset::Dataset::builtin().get(id).unwrap().clone();
+        analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap()
+    }
+
+    #[test]
+    fn second_folds_have_pictures_per_step() {
+        let analysis = builtin("napkin__half_then_half");
+        assert_eq!(analysis.steps.len(), 2);
+        for picture in [Picture::DiskStart, Picture::DiskEnd, Picture::Diff, Picture::SignedDiff] {
+            let whole = render_step_png(&analysis, picture, None, 240, 240).unwrap();
+            let steps: Vec<Vec<u8>> = (1..=2).map(|k| render_step_png(&analysis, picture, Some(k), 240, 240).unwrap()).collect();
+            // Step 2's start disk is frame 1's, a disk the whole-analysis pictures never show.
+            assert_ne!(steps[0], steps[1], "{picture:?}");
+            assert_ne!(whole, steps[1], "{picture:?}");
+            preview(&format!("step2_{}.png", picture.name()), &steps[1]);
+        }
+        for bad in [0, 3] {
+            let err = render_step_png(&analysis, Picture::Diff, Some(bad), 100, 100).unwrap_err();
+            assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
+        }
+        assert!(matches!(render_step_png(&analysis, Picture::Close, Some(1), 100, 100), Err(Error::InvalidArgument(_))));
+    }
+
+    #[test]
+    fn start_and_end_disks_share_one_colour_scale() {
+        // The first fold of a second-fold sample: the end disk holds far larger values.
+        let analysis = builtin("napkin__half_then_half");
+        let (start, end) = (analysis.disk(0).unwrap(), analysis.disk(2).unwrap());
+        assert!(Scale::of(end.values()).s > 1.5 * Scale::of(start.values()).s, "the test needs panels of different ranges");
+        let size = 400;
+        let layout = disk::Layout::of(size, size);
+        let pictures = [Picture::DiskStart, Picture::DiskEnd].map(|p| decode(&render_png(&analysis, p, size, size).unwrap()).2);
+        // Cells of equal value in both frames get the same colour in both panels.
+        let n = start.n();
+        let mut compared = 0;
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let (a, b) = (start.get(i, j), end.get(i, j));
+            if (a - b).abs() > 1e-9 * a.abs().max(1.0) || a.abs() < 1e-6 {
+                continue;
+            }
+            let p = crate::disk::position(n, i.min(j), i.max(j));
+            let (x, y) = layout.pixel(p.radius - 0.5 / (n / 2) as f64, p.angle);
+            let k = (y as usize * size as usize + x as usize) * 3;
+            assert_eq!(pictures[0][k..k + 3], pictures[1][k..k + 3], "cell ({i}, {j}) = {a}");
+            compared += 1;
+        }
+        assert!(compared > 0, "no cell kept its value");
     }
 
     #[test]

@@ -97,15 +97,6 @@ impl Canvas {
         }
     }
 
-    /// Blend `colour` over the pixels of the box from `a` to `b` with weight `alpha`.
-    pub(crate) fn fill_rect(&mut self, a: (f64, f64), b: (f64, f64), colour: [u8; 3], alpha: f64) {
-        for y in a.1.round() as i64..b.1.round() as i64 {
-            for x in a.0.round() as i64..b.0.round() as i64 {
-                self.blend(x, y, colour, alpha);
-            }
-        }
-    }
-
     /// A filled anti-aliased disc.
     pub(crate) fn disc(&mut self, centre: (f64, f64), radius: f64, colour: [u8; 3]) {
         self.stroke(&[centre], 2.0 * radius, colour);

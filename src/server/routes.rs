@@ -18,7 +18,8 @@ use crate::border::{prepare, Normalisation, Point};
 use crate::disk::Disk;
 use crate::error::Error;
 use crate::formats::{json::parse_sample, read_files, Sample};
-use crate::render::{disk_png, render_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
+use crate::render::colour::Scale;
+use crate::render::{disk_png_scaled, render_step_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
 /// Most vertices × steps an interpolation may return (its JSON grows with both).
 const MAX_INTERPOLATED_POINTS: usize = 2_000_000;
@@ -188,7 +189,7 @@ pub async fn samples(State(state): State<AppState>) -> Json<Value> {
                 "n": e.sample.border_frames().map_or(0, |b| b.len()),
                 "frames": frame_count(&e.sample),
                 "mesh": e.sample.mesh.is_some(),
-                "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/borders.png?size={THUMBNAIL_SIZE}", e.id),
+                "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/thumbnail.png?size={THUMBNAIL_SIZE}", e.id),
             })
         })
         .collect();
@@ -242,6 +243,8 @@ pub async fn recording(id: Result<Path<String>, PathRejection>) -> ApiError {
 #[serde(deny_unknown_fields)]
 pub struct ImageQuery {
     size: Option<u32>,
+    /// One step's disk pictures (1-based: step k goes from analysed frame k − 1 to k).
+    step: Option<usize>,
 }
 
 pub async fn image(
@@ -259,9 +262,11 @@ pub async fn image(
         (None, Some(id)) => sample_analysis(&state, id).await?,
         (None, None) => return Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
     };
-    let size = query.size.unwrap_or(DEFAULT_SIZE);
+    let (size, step) = (query.size.unwrap_or(DEFAULT_SIZE), query.step);
     let png = state
-        .cached_bytes(format!("{key}/{}/{size}", picture.name()), move || Ok(render_png(&analyzed.analysis, picture, size, size)?))
+        .cached_bytes(format!("{key}/{}/{size}/{step:?}", picture.name()), move || {
+            Ok(render_step_png(&analyzed.analysis, picture, step, size, size)?)
+        })
         .await?;
     // The key names the content, so the picture never changes.
     Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], png).into_response())
@@ -292,7 +297,25 @@ pub struct DiskRequest {
     #[serde(default)]
     reference: Option<Vec<[f64; 3]>>,
     size: Option<u32>,
+    /// A colour scale to keep (e.g. through an animation), as the `x-disk-scale` header of
+    /// an earlier answer gave it; by default the disk's own.
+    #[serde(default)]
+    scale: Option<Scale>,
 }
+
+/// The answer of `POST /api/disk`: the PNG, and in the header `x-disk-scale` the colour
+/// scale it used ("s max"), which a later request can send back as `scale`.
+fn disk_response(cached: Bytes) -> Response {
+    // The cache holds the scale's two floats ahead of the PNG.
+    let (head, png) = cached.split_at(16.min(cached.len()));
+    let float = |k: usize| head.get(8 * k..8 * k + 8).and_then(|b| b.try_into().ok()).map_or(0.0, f64::from_le_bytes);
+    let scale = format!("{} {}", float(0), float(1));
+    ([(header::CONTENT_TYPE, "image/png".to_string()), (header::CACHE_CONTROL, "no-store".to_string()), (DISK_SCALE, scale)], Bytes::copy_from_slice(png))
+        .into_response()
+}
+
+/// The header naming the colour scale of a disk picture.
+const DISK_SCALE: header::HeaderName = header::HeaderName::from_static("x-disk-scale");
 
 fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
     points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
@@ -302,8 +325,13 @@ pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>,
     let Json(req) = body?;
     let size = req.size.unwrap_or(DEFAULT_SIZE).clamp(MIN_SIZE, MAX_SIZE);
     let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
-    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
-    let png = state
+    let scale = match req.scale {
+        Some(s) => Some(Scale::fixed(s.s, s.max).ok_or_else(|| ApiError::BadRequest("\"scale\" needs s > 0 and max ≥ 0, both finite".into()))?),
+        None => None,
+    };
+    let scale_bytes: Vec<u8> = scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
+    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes(), &scale_bytes]);
+    let cached = state
         .cached_bytes(key, move || {
             let frames = match req.reference {
                 Some(reference) => vec![reference, req.border],
@@ -312,10 +340,11 @@ pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>,
             let border = prepare(frames)?;
             let (start, now) = (&border.frames[0], &border.frames[border.frames.len() - 1]);
             let disk = Disk::of_border(&Normalisation::of(start)?.apply_all(now));
-            Ok(disk_png(&disk, "dGLI disk · current state", size, size)?)
+            let (png, used) = disk_png_scaled(&disk, "dGLI disk · current state", scale, size, size)?;
+            Ok([used.s, used.max].iter().flat_map(|v| v.to_le_bytes()).chain(png).collect())
         })
         .await?;
-    Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "no-store")], png).into_response())
+    Ok(disk_response(cached))
 }
 
 pub async fn interpolate(State(state): State<AppState>, body: Result<Json<InterpolateRequest>, JsonRejection>) -> Result<Json<Value>, ApiError> {

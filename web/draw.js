@@ -1,0 +1,180 @@
+// Canvas drawing shared by the Interpolate and Plan views: a viewport from border
+// coordinates to pixels, cloth layers, fold lines, arrows and corner numbers.
+
+import { TAU, applyFold, foldLine, foldedVertices } from "./fold.mjs";
+
+/** Maps border points to a canvas, fitted to `bounds` {x0, x1, y0, y1} with `pad` pixels. */
+export function viewport(canvas, bounds, pad) {
+  const { width, height } = canvas;
+  const b = bounds;
+  const scale = Math.min((width - 2 * pad) / (b.x1 - b.x0 || 1), (height - 2 * pad) / (b.y1 - b.y0 || 1));
+  const ox = (width - scale * (b.x1 - b.x0)) / 2;
+  const oy = (height - scale * (b.y1 - b.y0)) / 2;
+  return { X: (p) => ox + scale * (p[0] - b.x0), Y: (p) => height - (oy + scale * (p[1] - b.y0)) };
+}
+
+/** XY bounds of several borders. */
+export function boundsOf(borders) {
+  const xs = borders.flatMap((b) => b.map((p) => p[0]));
+  const ys = borders.flatMap((b) => b.map((p) => p[1]));
+  return { x0: Math.min(...xs), x1: Math.max(...xs), y0: Math.min(...ys), y1: Math.max(...ys) };
+}
+
+/** Stroke (and optionally fill) the closed polygon `pts` through the viewport `v`. */
+export function polygon(ctx, v, pts, { stroke, fill, width = 2, dash = [] }) {
+  if (pts.length === 0) return;
+  ctx.beginPath();
+  pts.forEach((p, k) => (k ? ctx.lineTo(v.X(p), v.Y(p)) : ctx.moveTo(v.X(p), v.Y(p))));
+  ctx.closePath();
+  if (fill) {
+    ctx.fillStyle = fill;
+    ctx.fill("nonzero");
+  }
+  if (stroke) {
+    ctx.setLineDash(dash);
+    ctx.strokeStyle = stroke;
+    ctx.lineWidth = width;
+    ctx.stroke();
+    ctx.setLineDash([]);
+  }
+}
+
+/** Which side of the line a→b point p is on (sign of the cross product). */
+const side = (a, b, p) => (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+
+/** The part of polygon `pts` with side(a, b, ·)·sign ≥ 0 (Sutherland–Hodgman, one edge). */
+function clip(pts, a, b, sign) {
+  const out = [];
+  pts.forEach((p, k) => {
+    const q = pts[(k + 1) % pts.length];
+    const [sp, sq] = [sign * side(a, b, p), sign * side(a, b, q)];
+    if (sp >= 0) out.push(p);
+    if ((sp >= 0) !== (sq >= 0)) {
+      const t = sp / (sp - sq);
+      out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])]);
+    }
+  });
+  return out.length >= 3 ? out : [];
+}
+
+/** Reflect p across the XY line through a and b. */
+function reflect(p, a, b) {
+  const [dx, dy] = [b[0] - a[0], b[1] - a[1]];
+  const len2 = dx * dx + dy * dy || 1;
+  const t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2;
+  return [2 * (a[0] + t * dx) - p[0], 2 * (a[1] + t * dy) - p[1], p[2]];
+}
+
+/**
+ * The cloth's layers after `folds` (applied in order to `flat`), bottom first: each
+ * {points, flips}. A fold cuts every layer along its line; the parts on the folded side
+ * turn over onto the top, their stacking order reversed, as a folded stack lands. The
+ * outline of the border itself is `applyFold` applied in order; the layers are its fill.
+ */
+export function layers(flat, folds) {
+  let stack = [{ points: flat, flips: 0 }];
+  let border = flat;
+  for (const fold of folds) {
+    const moved = foldedVertices(border.length, fold);
+    const [a, b] = foldLine(border, fold);
+    if (moved.length && Math.hypot(b[0] - a[0], b[1] - a[1]) > 0) {
+      const centre = moved.reduce((s, v) => [s[0] + border[v][0], s[1] + border[v][1], 0], [0, 0, 0]).map((c) => c / moved.length);
+      const sign = Math.sign(side(a, b, centre)) || 1;
+      const keep = stack.map((l) => ({ ...l, points: clip(l.points, a, b, -sign) })).filter((l) => l.points.length);
+      const flipped = stack
+        .map((l) => ({ points: clip(l.points, a, b, sign).map((p) => reflect(p, a, b)), flips: l.flips + 1 }))
+        .filter((l) => l.points.length)
+        .reverse();
+      stack = [...keep, ...flipped];
+    }
+    border = applyFold(border, fold);
+  }
+  return { stack, border };
+}
+
+/** Layer fills: the cloth's top side blue, its underside (turned over once, thrice…) orange. */
+const LAYER_FILL = ["rgba(31, 111, 235, 0.22)", "rgba(221, 107, 32, 0.42)"];
+
+/** Draw the cloth after `folds`: each layer filled (flap over base, see-through), then the outline. */
+export function drawCloth(ctx, v, flat, folds, { outline = "#1f6feb", width = 2.5 } = {}) {
+  const { stack, border } = layers(flat, folds);
+  for (const layer of stack) polygon(ctx, v, layer.points, { fill: LAYER_FILL[layer.flips % 2], stroke: "rgba(17, 24, 39, 0.25)", width: 1 });
+  polygon(ctx, v, border, { stroke: outline, width });
+  return border;
+}
+
+/** A straight line between two border points. */
+export function line(ctx, v, p, q, color, width = 3) {
+  ctx.beginPath();
+  ctx.moveTo(v.X(p), v.Y(p));
+  ctx.lineTo(v.X(q), v.Y(q));
+  ctx.strokeStyle = color;
+  ctx.lineWidth = width;
+  ctx.stroke();
+}
+
+/** An arrow from p to q (border points) through the viewport `v`. */
+export function arrow(ctx, v, p, q, color) {
+  const [x1, y1, x2, y2] = [v.X(p), v.Y(p), v.X(q), v.Y(q)];
+  line(ctx, v, p, q, color, 2.5);
+  const ang = Math.atan2(y2 - y1, x2 - x1);
+  ctx.beginPath();
+  ctx.moveTo(x2, y2);
+  ctx.lineTo(x2 - 14 * Math.cos(ang - 0.4), y2 - 14 * Math.sin(ang - 0.4));
+  ctx.lineTo(x2 - 14 * Math.cos(ang + 0.4), y2 - 14 * Math.sin(ang + 0.4));
+  ctx.closePath();
+  ctx.fillStyle = color;
+  ctx.fill();
+  ctx.beginPath();
+  ctx.arc(x1, y1, 5, 0, TAU);
+  ctx.fill();
+}
+
+/** Vertex of a corner angle on a border of n vertices. */
+export const cornerVertex = (c, n) => Math.round((c * n) / TAU) % n;
+
+/**
+ * Dot and number the corners (angles) at their vertices of `points`; corners that a fold
+ * stacked on one another share one label ("1·4") instead of overprinting.
+ */
+export function labelCorners(ctx, v, points, corners, size) {
+  const spots = new Map();
+  corners.forEach((c, k) => {
+    const p = points[cornerVertex(c, points.length)];
+    const key = `${Math.round(v.X(p) / 4)},${Math.round(v.Y(p) / 4)}`;
+    if (!spots.has(key)) spots.set(key, { p, labels: [] });
+    spots.get(key).labels.push(k + 1);
+  });
+  ctx.font = `${size}px system-ui, sans-serif`;
+  for (const { p, labels } of spots.values()) {
+    ctx.fillStyle = "#111827";
+    ctx.beginPath();
+    ctx.arc(v.X(p), v.Y(p), size / 3, 0, TAU);
+    ctx.fill();
+    // A white halo keeps the number readable over the fills.
+    ctx.lineWidth = 3;
+    ctx.strokeStyle = "#fff";
+    ctx.strokeText(labels.join("·"), v.X(p) + size / 2, v.Y(p) - size / 2);
+    ctx.fillText(labels.join("·"), v.X(p) + size / 2, v.Y(p) - size / 2);
+  }
+}
+
+/**
+ * The folded border with every layer a fold turned over lifted a cloth's thickness (1% of
+ * the cloth's radius) above what it lies on, as the built-in dataset folds: two layers at
+ * the same height would give the disk near-singular values where they touch.
+ */
+export function stacked(flat, folds) {
+  const n = flat.length;
+  const centre = [0, 1].map((c) => flat.reduce((sum, p) => sum + p[c], 0) / n);
+  const radius = Math.max(...flat.map((p) => Math.hypot(p[0] - centre[0], p[1] - centre[1])));
+  let border = flat.map((p) => p.slice());
+  for (const fold of folds) {
+    const top = Math.max(...border.map((p) => p[2]));
+    const moved = foldedVertices(n, fold);
+    const folded = applyFold(border, fold);
+    for (const v of moved) folded[v][2] = 2 * top + 0.01 * radius - border[v][2];
+    border = folded;
+  }
+  return border;
+}

@@ -1,0 +1,359 @@
+// The Interpolate view: a cloth's flat border folded by reflection, any fold of its
+// analysis (or the whole sequence) animated, the dGLI disk of each state beside it with one
+// colour scale for the whole motion.
+
+import * as api from "./api.js";
+import * as store from "./store.js";
+import * as router from "./router.js";
+import { applyFold, foldAt, foldLine, foldPath, wrap, TAU } from "./fold.mjs";
+import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
+import { boundsOf, drawCloth, labelCorners, line, stacked, viewport } from "./draw.js";
+import { fmtFold } from "./format.js";
+
+const $ = (sel) => document.querySelector(sel);
+const SEQUENCE = "all";
+let showError = () => {};
+
+/**
+ * Keeps an <img> showing the dGLI disk of the latest border state asked for. One request is
+ * in flight at a time and only the newest waiting state is kept, so dragging the slider
+ * never queues up stale pictures. The colour scale is fixed per motion: the larger of the
+ * scales of its two end states, so a colour means one value all the way through.
+ */
+class DiskFollower {
+  constructor(img, status, size = 480) {
+    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null });
+  }
+
+  /** Show the disk of `border` under `key`; `ends` are the motion's two end states. */
+  show(key, border, reference, motion, ends) {
+    this.next = { key, border, reference, motion, ends };
+    if (!this.busy) this.pump();
+  }
+
+  async pump() {
+    this.busy = true;
+    while (this.next) {
+      const job = this.next;
+      this.next = null;
+      if (job.key === this.shown) continue;
+      try {
+        if (job.motion !== this.motion) {
+          this.status.textContent = "(fixing the colour scale…)";
+          const scales = [];
+          for (const border of job.ends) {
+            const { url, scale } = await api.disk({ border, reference: job.reference, size: 64 }, "disk-scale");
+            URL.revokeObjectURL(url);
+            scales.push(scale);
+          }
+          this.scale = scales.every(Boolean) ? { s: Math.max(...scales.map((s) => s.s)), max: Math.max(...scales.map((s) => s.max)) } : null;
+          this.motion = job.motion;
+        }
+        const { url } = await api.disk({ border: job.border, reference: job.reference, size: this.size, scale: this.scale || undefined }, "disk");
+        this.img.src = url;
+        await this.img.decode();
+        if (this.url) URL.revokeObjectURL(this.url);
+        this.url = url;
+        this.shown = job.key;
+        this.img.dataset.key = job.key;
+        this.status.textContent = "";
+      } catch (e) {
+        if (!api.isAbort(e)) this.status.textContent = `(not drawn: ${e.message})`;
+      }
+    }
+    this.busy = false;
+  }
+}
+
+const view = {
+  cloth: null,
+  result: null,
+  border: null,
+  corners: [],
+  /** Folds applied before the one animated. */
+  prior: [],
+  from: [0, 0],
+  to: [Math.PI / 4, (5 * Math.PI) / 4],
+  /** The step animated ("1", "2", …), SEQUENCE, or "free". */
+  mode: "1",
+  tau: 0,
+  bounds: null,
+  playing: false,
+  motion: 0,
+};
+
+/** The folds of the state at the slider: prior folds and the animated one. */
+function foldsNow() {
+  if (view.mode === SEQUENCE) {
+    const folds = view.result.folds;
+    const x = view.tau * folds.length;
+    const k = Math.min(Math.floor(x), folds.length - 1);
+    const f = folds[k];
+    return [...folds.slice(0, k), foldAt([f[0], f[0]], f, x - k)];
+  }
+  return [...view.prior, foldAt(view.from, view.to, view.tau)];
+}
+
+/** Every state of the motion, coarsely, for the drawing's bounds. */
+function motionStates() {
+  if (view.mode === SEQUENCE) return Array.from({ length: 41 }, (_, k) => foldsAtTau(k / 40));
+  return foldPath(view.from, view.to, 21).map((f) => [...view.prior, f]);
+}
+
+function foldsAtTau(t) {
+  const keep = view.tau;
+  view.tau = t;
+  const folds = foldsNow();
+  view.tau = keep;
+  return folds;
+}
+
+const applyAll = (border, folds) => folds.reduce((b, f) => applyFold(b, f), border);
+
+function fillCloths() {
+  const select = $("#interp-sample");
+  const cloths = store.cloths();
+  const value = view.cloth ? `${view.cloth.kind}:${view.cloth.id}` : select.value;
+  select.replaceChildren(...cloths.map((c) => new Option(c.name, `${c.kind}:${c.id}`)));
+  if (value) select.value = value;
+}
+
+function fillSteps() {
+  const select = $("#interp-step");
+  const folds = view.result ? view.result.folds : [];
+  const options = folds.map((f, k) => new Option(`fold ${k + 1} of the sample${k ? ` (after fold${k > 1 ? "s" : ""} 1${k > 1 ? `–${k}` : ""})` : ""}`, String(k + 1)));
+  if (folds.length > 1) options.push(new Option(`the whole sequence (${folds.length} folds)`, SEQUENCE));
+  options.push(new Option("free: the folds below, on the flat cloth", "free"));
+  select.replaceChildren(...options);
+  select.value = view.mode;
+}
+
+/** Take cloth `cloth` ({kind, id}): load its analysis and start on its first fold. */
+async function useCloth(cloth) {
+  view.cloth = cloth;
+  fillCloths();
+  try {
+    let result;
+    if (cloth.kind === "upload") {
+      result = store.get().uploads.find((u) => u.key === cloth.id)?.result;
+      if (!result) throw new Error("that upload is no longer in this page: upload it again");
+    } else {
+      result = await api.sample(cloth.id, "interp-cloth");
+    }
+    if (view.cloth !== cloth) return;
+    view.result = result;
+    view.border = result.start_border;
+    view.corners = result.corners;
+    view.mode = result.folds.length ? "1" : "free";
+    fillSteps();
+    setMode(view.mode);
+    document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
+  } catch (e) {
+    if (!api.isAbort(e)) showError(e.message);
+  }
+}
+
+/** Animate step `mode` of the cloth's folds (or the sequence, or free folds). */
+function setMode(mode) {
+  view.mode = mode;
+  const folds = view.result.folds;
+  const k = Number(mode);
+  if (Number.isInteger(k) && folds[k - 1]) {
+    view.prior = folds.slice(0, k - 1);
+    view.to = [wrap(folds[k - 1][0]), wrap(folds[k - 1][1])];
+    view.from = [view.to[0], view.to[0]];
+  } else if (mode === "free") {
+    view.prior = [];
+  }
+  const sequence = mode === SEQUENCE;
+  for (const id of ["#from-1", "#from-2", "#to-1", "#to-2", "#swap-folds"]) $(id).disabled = sequence;
+  changed();
+  setTau(0);
+}
+
+/** After folds or the cloth changed: new motion, bounds, inputs, circle. */
+function changed() {
+  if (!view.border) return;
+  view.motion += 1;
+  view.bounds = boundsOf(motionStates().map((folds) => applyAll(view.border, folds)));
+  inputs.write({ "from-1": view.from[0], "from-2": view.from[1], "to-1": view.to[0], "to-2": view.to[1] });
+  draw();
+}
+
+function setTau(tau) {
+  view.tau = Math.min(1, Math.max(0, tau));
+  $("#interp-slider").value = Math.round(view.tau * 1000);
+  draw();
+}
+
+/** Names the state drawn: the cloth, the motion and the folds. */
+export function diskKey() {
+  return `${view.cloth?.id}|${view.motion}|${foldsNow().map((f) => `${f[0].toFixed(9)},${f[1].toFixed(9)}`).join(";")}`;
+}
+
+function draw() {
+  if (!view.border || !view.bounds) return;
+  const folds = foldsNow();
+  const canvas = $("#interp-canvas");
+  const ctx = canvas.getContext("2d");
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const v = viewport(canvas, view.bounds, 40);
+  // The flat cloth dashed, then the layers of the folded one.
+  ctx.setLineDash([6, 6]);
+  ctx.strokeStyle = "#9aa4b2";
+  ctx.lineWidth = 1.5;
+  ctx.beginPath();
+  view.border.forEach((p, k) => (k ? ctx.lineTo(v.X(p), v.Y(p)) : ctx.moveTo(v.X(p), v.Y(p))));
+  ctx.closePath();
+  ctx.stroke();
+  ctx.setLineDash([]);
+  const folded = drawCloth(ctx, v, view.border, folds);
+  const size = Math.round(canvas.width / 50);
+  labelCorners(ctx, v, folded, view.corners, size);
+  // The line of the fold animated, on the state it folds.
+  const fold = folds[folds.length - 1];
+  const [a, c] = foldLine(applyAll(view.border, folds.slice(0, -1)), fold);
+  line(ctx, v, a, c, "#d1495b", 3);
+  ctx.font = `${size}px system-ui, sans-serif`;
+  for (const [p, label] of [[a, "f₁"], [c, "f₂"]]) {
+    ctx.beginPath();
+    ctx.arc(v.X(p), v.Y(p), 6, 0, TAU);
+    ctx.fillStyle = "#d1495b";
+    ctx.fill();
+    ctx.fillText(label, v.X(p) + 8, v.Y(p) + 18);
+  }
+  drawCircle(fold);
+  const which = view.mode === SEQUENCE ? `fold ${folds.length} of ${view.result.folds.length}` : "fold";
+  $("#interp-readout").textContent = `t = ${view.tau.toFixed(3)}   ${which} ${fmtFold(fold)}`;
+  // The disk only while it is on screen; showing the view draws again.
+  if (!$("#view-interpolate").hidden) {
+    const ends = motionEnds();
+    disk.show(diskKey(), stacked(view.border, folds), view.border, view.motion, ends);
+  }
+}
+
+/** The two end states of the motion, as the disk sees them. */
+function motionEnds() {
+  return [foldsAtTau(0), foldsAtTau(1)].map((folds) => stacked(view.border, folds));
+}
+
+function drawCircle(fold) {
+  const handles = [];
+  for (const [which, color, r, word] of [["from", "#2b6cb0", R + 14, "from"], ["to", "#c05621", R + 28, "to"]]) {
+    view[which].forEach((angle, k) => handles.push({ id: `${which}:${k}`, angle, color, label: k + 1, r, name: `${word} fold point ${k + 1}` }));
+  }
+  const arcs = view.prior.map((f) => ({ fold: f, color: "#9aa4b2" }));
+  arcs.push({ fold, color: "#d1495b" });
+  drawFoldCircle($("#fold-circle"), view.corners, arcs, view.mode === SEQUENCE ? [] : handles);
+}
+
+function play() {
+  if (view.playing) {
+    view.playing = false;
+    return;
+  }
+  view.playing = true;
+  $("#interp-play").textContent = "❚❚";
+  $("#interp-play").setAttribute("aria-label", "Pause");
+  if (view.tau >= 1) setTau(0);
+  let last = performance.now();
+  const seconds = 2.5 * (view.mode === SEQUENCE ? view.result.folds.length : 1);
+  const tick = (now) => {
+    if (!view.playing) {
+      $("#interp-play").textContent = "▶";
+      $("#interp-play").setAttribute("aria-label", "Play");
+      return;
+    }
+    setTau(view.tau + (now - last) / (1000 * seconds));
+    last = now;
+    if (view.tau >= 1) view.playing = false;
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+}
+
+/** Ask the server for the same motion and report the largest difference. */
+async function checkServer() {
+  const out = $("#interp-check");
+  const steps = 41;
+  // The sequence is checked one fold at a time on the state before it: here, the current one.
+  const folds = foldsNow();
+  const prior = view.mode === SEQUENCE ? folds.slice(0, -1) : view.prior;
+  const [from, to] = view.mode === SEQUENCE ? (() => {
+    const f = view.result.folds[folds.length - 1];
+    return [[f[0], f[0]], f];
+  })() : [view.from, view.to];
+  const base = applyAll(view.border, prior);
+  try {
+    const res = await api.interpolate({ border: base, from, to, steps });
+    let worst = 0;
+    foldPath(from, to, steps).forEach((f, k) => {
+      worst = Math.max(worst, Math.abs(f[0] - res.folds[k][0]), Math.abs(f[1] - res.folds[k][1]));
+      applyFold(base, f).forEach((p, v) => {
+        for (let c = 0; c < 3; c++) worst = Math.max(worst, Math.abs(p[c] - res.borders[k][v][c]));
+      });
+    });
+    out.textContent = `Server and browser agree on ${steps} steps: largest difference ${worst.toExponential(1)}.`;
+  } catch (e) {
+    if (!api.isAbort(e)) showError(e.message);
+  }
+}
+
+let disk = null;
+let inputs = null;
+
+export function setup(errors, planGoal) {
+  showError = errors;
+  disk = new DiskFollower($("#interp-disk"), $("#interp-disk-status"));
+  inputs = new AngleInputs(
+    Object.fromEntries(["from-1", "from-2", "to-1", "to-2"].map((id) => [id, $(`#${id}`)])),
+    $("#fold-input-status"),
+    (key, angle) => {
+      const [which, k] = key.split("-");
+      view[which] = view[which].map((a, i) => (i === Number(k) - 1 ? angle : a));
+      changed();
+    },
+    () => $("#deg").checked,
+  );
+  const slider = $("#interp-slider");
+  slider.addEventListener("input", () => {
+    view.playing = false;
+    setTau(slider.value / 1000);
+  });
+  $("#interp-play").addEventListener("click", play);
+  $("#interp-sample").addEventListener("change", (e) => {
+    const [kind, ...rest] = e.target.value.split(":");
+    store.set({ cloth: { kind, id: rest.join(":") } });
+    shown();
+  });
+  $("#interp-step").addEventListener("change", (e) => setMode(e.target.value));
+  $("#deg").addEventListener("change", () => inputs.write({ "from-1": view.from[0], "from-2": view.from[1], "to-1": view.to[0], "to-2": view.to[1] }));
+  $("#swap-folds").addEventListener("click", () => {
+    [view.from, view.to] = [view.to, view.from];
+    changed();
+  });
+  $("#check-server").addEventListener("click", checkServer);
+  $("#plan-goal").addEventListener("click", () => planGoal(view.cloth, view.to));
+  dragOnCircle($("#fold-circle"), (id, angle) => {
+    const [which, k] = id.split(":");
+    view[which] = view[which].map((a, i) => (i === Number(k) ? angle : a));
+    changed();
+  });
+  store.subscribe(() => fillCloths());
+}
+
+/** The view came on screen: follow the store's cloth, or take the first one. */
+export function shown() {
+  const { cloth } = store.get();
+  const wanted = cloth || store.cloths()[0] || null;
+  fillCloths();
+  if (wanted && (!view.cloth || view.cloth.kind !== wanted.kind || view.cloth.id !== wanted.id)) useCloth(wanted);
+  else if (view.cloth) {
+    document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
+    draw();
+  } else document.title = router.title("interpolate");
+}
+
+// For tests and the console.
+export const state = () => ({ ...view, folds: foldsNow() });
+export { setTau, setMode };
