@@ -235,7 +235,8 @@ pub fn prepare(raw: Vec<Vec<[f64; 3]>>) -> Result<BorderFrames> {
 fn check_later_frame(start: &Normalisation, frame: &[Point]) -> Result<(), DegenerateReason> {
     let unit = start.apply_all(frame);
     let farthest = unit.iter().map(|p| p.coords.norm()).fold(0.0, f64::max);
-    if !(farthest <= MAX_NORMALISED_DISTANCE) {
+    // Finite inputs give no NaN here; an overflow is +∞, which is beyond the limit.
+    if farthest > MAX_NORMALISED_DISTANCE {
         return Err(DegenerateReason::FarFromStart { limit: MAX_NORMALISED_DISTANCE });
     }
     match Normalisation::measure(&unit) {

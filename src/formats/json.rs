@@ -37,7 +37,8 @@ pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
     }
     EXCEEDED.set(None);
     let sample: Sample = serde_json::from_slice(bytes).map_err(|e| match EXCEEDED.take() {
-        Some((what, limit)) => Error::over_limit(what, limit),
+        Some((what, Some(got), limit)) => Error::too_large(what, got, limit),
+        Some((what, None, limit)) => Error::over_limit(what, limit),
         None => Error::Parse { format: Format::SampleJson, line: Some(e.line()), reason: e.to_string() },
     })?;
     if sample.frames.is_empty() && sample.mesh.is_none() {
@@ -56,12 +57,13 @@ pub fn to_json(sample: &Sample) -> String {
 thread_local! {
     /// The limit the parse on this thread stopped at: serde only carries a message, so the
     /// typed cause waits here for [`parse_sample`] to pick it up.
-    static EXCEEDED: Cell<Option<(&'static str, usize)>> = const { Cell::new(None) };
+    static EXCEEDED: Cell<Option<(&'static str, Option<usize>, usize)>> = const { Cell::new(None) };
 }
 
-fn exceeded<E: de::Error>(what: &'static str, limit: usize) -> E {
-    EXCEEDED.set(Some((what, limit)));
-    E::custom(format_args!("more than {limit} {what}"))
+/// The error for `got` (or, when uncounted, more than `limit`) of `what`.
+fn exceeded<E: de::Error>(what: &'static str, got: Option<usize>, limit: usize) -> E {
+    EXCEEDED.set(Some((what, got, limit)));
+    E::custom(format_args!("too many {what} (at most {limit})"))
 }
 
 /// A JSON array of at most `limit` items, each read by `item`.
@@ -91,7 +93,12 @@ impl<'de, S: DeserializeSeed<'de> + Copy> Visitor<'de> for Bounded<S> {
         let mut out = Vec::new();
         while let Some(item) = seq.next_element_seed(self.item)? {
             if out.len() == self.limit {
-                return Err(exceeded(self.what, self.limit));
+                // Count the rest without keeping it, so the message gives the true count.
+                let mut got = self.limit + 1;
+                while seq.next_element::<de::IgnoredAny>()?.is_some() {
+                    got += 1;
+                }
+                return Err(exceeded(self.what, Some(got), self.limit));
             }
             out.push(item);
         }
@@ -109,7 +116,7 @@ impl<'de> DeserializeSeed<'de> for Corner<'_> {
     fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<usize, D::Error> {
         let used = self.0.get() + 1;
         if used > MAX_FACE_CORNERS {
-            return Err(exceeded("face corners", MAX_FACE_CORNERS));
+            return Err(exceeded("face corners", None, MAX_FACE_CORNERS));
         }
         self.0.set(used);
         usize::deserialize(d)
@@ -124,7 +131,7 @@ fn frames<'de, D: Deserializer<'de>>(d: D, per_frame: usize, what: &'static str)
 
 /// `"frames"` of a border sample (a closing vertex may repeat vertex 0).
 pub(super) fn border_frames<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<[f64; 3]>>, D::Error> {
-    frames(d, MAX_VERTICES + 1, "border vertices in one frame")
+    frames(d, MAX_VERTICES + 1, "vertices in one border frame")
 }
 
 /// `"mesh"`: read through [`MeshJson`], whose every list is bounded.
@@ -150,7 +157,7 @@ fn faces<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<usize>>, D::Error> {
 }
 
 fn mesh_frames<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<[f64; 3]>>, D::Error> {
-    frames(d, MAX_MESH_VERTICES, "mesh vertices in one frame")
+    frames(d, MAX_MESH_VERTICES, "vertices in one mesh frame")
 }
 
 fn border_edges<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[usize; 2]>, D::Error> {
@@ -186,9 +193,10 @@ mod tests {
     #[test]
     fn counts_over_the_limits_are_too_large() {
         let frames = format!("{{\"frames\": [{}[]]}}", "[],".repeat(MAX_FRAMES));
-        assert_eq!(parse_sample(frames.as_bytes()).unwrap_err(), Error::over_limit("frames", MAX_FRAMES));
-        let vertices = format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,0,0],".repeat(MAX_VERTICES + 1));
-        assert!(matches!(parse_sample(vertices.as_bytes()), Err(Error::TooLarge { limit, .. }) if limit == MAX_VERTICES as u64 + 1));
+        assert_eq!(parse_sample(frames.as_bytes()).unwrap_err(), Error::too_large("frames", MAX_FRAMES + 1, MAX_FRAMES));
+        let vertices = format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,0,0],".repeat(MAX_VERTICES + 5));
+        let err = parse_sample(vertices.as_bytes()).unwrap_err();
+        assert_eq!(err.to_string(), format!("input too large: {} vertices in one border frame (at most {})", MAX_VERTICES + 6, MAX_VERTICES + 1));
         // A later, well-formed parse on the same thread is not confused by the last one.
         assert!(matches!(parse_sample(b"{\"frames\": [[1]]}"), Err(Error::Parse { .. })));
     }

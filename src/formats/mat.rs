@@ -275,7 +275,7 @@ impl Walk {
         let [rows, cols] = dims[..] else {
             return Err(bad(format!("{name}: a sparse array must be 2-D, not {dims:?}")));
         };
-        let cells = rows.checked_mul(cols).unwrap_or(usize::MAX);
+        let cells = rows.saturating_mul(cols);
         if cells > MAX_DENSE {
             return Err(Error::too_large("cells of one sparse matrix made dense", cells, MAX_DENSE));
         }

@@ -1,5 +1,8 @@
 //! Wavefront OBJ frames: `v x y z` vertices and `f a b c …` polygons (1-based, `a/t/n`
-//! forms and negative, relative indices allowed); every other statement is skipped.
+//! forms and negative, relative indices allowed); every other statement is skipped
+//! (format: Wavefront's "Object Files (.obj)", Advanced Visualizer manual, Appendix B).
+//! Vertex and corner counts are bounded while reading ([`MAX_MESH_VERTICES`],
+//! [`MAX_FACE_CORNERS`]).
 //!
 //! Read directly rather than with `tobj`: tobj renumbers vertices in the order faces first
 //! use them and drops unused ones (and reads `f32` unless a feature is on), while a

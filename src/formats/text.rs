@@ -1,5 +1,6 @@
 //! Plain text / CSV borders: one vertex per line, `x,y,z` or `x y z` (tabs and `;` too).
 //! Blank lines and lines starting with `#` are skipped; one header line of words is allowed.
+//! At most one border's vertices (and a closing repeat of vertex 0) are read.
 //!
 //! ```
 //! use close::formats::text::parse_frame;

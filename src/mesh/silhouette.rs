@@ -1,4 +1,6 @@
-//! The paper's silhouette border of a garment shell, seen from above.
+//! The silhouette border of a garment shell, seen from above: how Kamat, Borràs, Torras,
+//! "CloSE: A Geometric Shape-Agnostic Cloth State Representation" take the border of a
+//! garment mesh that has no single boundary loop.
 //!
 //! Frame 0 is rendered looking down −z onto a square-celled grid of at most
 //! [`GRID`]×[`GRID`] cells over the XY bounding box: a cell is covered when its centre lies
@@ -61,10 +63,11 @@ impl Silhouette {
             }
         }
         let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        if extent.is_infinite() {
+        // +∞: finite coordinates whose span overflows; −∞: no face at all.
+        if extent == f64::INFINITY {
             return Err(Error::Degenerate { frame: 0, reason: DegenerateReason::TooLargeToNormalise });
         }
-        if !(extent > 0.0) {
+        if extent <= 0.0 {
             return Err(MeshError::NoExtent.into());
         }
         let cell = extent / (GRID - 2 * MARGIN) as f64;
