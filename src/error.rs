@@ -67,6 +67,26 @@ pub enum Error {
     /// A picture could not be drawn or encoded (a bug, not a bad input).
     #[error("could not draw the picture: {0}")]
     Render(String),
+    /// A synthetic fold (the built-in dataset's generator) that cannot be made.
+    #[error("fold ({f1}, {f2}) cannot be made: {problem}")]
+    InvalidFold { f1: f64, f2: f64, problem: FoldProblem },
+}
+
+/// Why a synthetic fold along border parameters (f1, f2) cannot be made.
+#[derive(Debug, Error, Clone, Copy, PartialEq, Eq)]
+pub enum FoldProblem {
+    #[error("a parameter or the thickness is not finite")]
+    NotFinite,
+    #[error("the border has fewer than 3 vertices")]
+    TooFewVertices,
+    #[error("the two fold points coincide")]
+    PointsCoincide,
+    #[error("no vertex lies on the folded arc")]
+    EmptyArc,
+    #[error("the folded arc is not on one side of the fold line")]
+    ArcCrossesLine,
+    #[error("the fold line leaves the cloth")]
+    LeavesCloth,
 }
 
 /// Shorthand used across the crate.

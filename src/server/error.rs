@@ -57,7 +57,7 @@ impl ApiError {
 /// The status of a library error (no catch-all: a new variant must be given its status).
 fn input_status(e: &Error) -> StatusCode {
     match e {
-        Error::Parse { .. } | Error::Empty { .. } | Error::InvalidArgument(_) => StatusCode::BAD_REQUEST,
+        Error::Parse { .. } | Error::Empty { .. } | Error::InvalidArgument(_) | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
         Error::TooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
         Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate { .. } | Error::Mesh(_) => {
             StatusCode::UNPROCESSABLE_ENTITY
