@@ -39,12 +39,23 @@ pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
     let sample: Sample = serde_json::from_slice(bytes).map_err(|e| match EXCEEDED.take() {
         Some((what, Some(got), limit)) => Error::too_large(what, got, limit),
         Some((what, None, limit)) => Error::over_limit(what, limit),
-        None => Error::Parse { format: Format::SampleJson, line: Some(e.line()), reason: e.to_string() },
+        None => parse_error(&e),
     })?;
     if sample.frames.is_empty() && sample.mesh.is_none() {
         return Err(Error::Empty { what: "the sample has neither \"frames\" nor \"mesh\"" });
     }
     Ok(sample)
+}
+
+/// serde_json's error with its position moved into the typed `line` (the column stays in
+/// the reason); line 0 means serde_json knew no position.
+fn parse_error(e: &serde_json::Error) -> Error {
+    let message = e.to_string();
+    let position = format!(" at line {} column {}", e.line(), e.column());
+    match message.strip_suffix(&position) {
+        Some(reason) if e.line() > 0 => Error::parse_at(Format::SampleJson, e.line(), format!("{reason} (column {})", e.column())),
+        _ => Error::parse(Format::SampleJson, message),
+    }
 }
 
 /// Write a sample as compact JSON.
@@ -199,5 +210,11 @@ mod tests {
         assert_eq!(err.to_string(), format!("input too large: {} vertices in one border frame (at most {})", MAX_VERTICES + 6, MAX_VERTICES + 1));
         // A later, well-formed parse on the same thread is not confused by the last one.
         assert!(matches!(parse_sample(b"{\"frames\": [[1]]}"), Err(Error::Parse { .. })));
+    }
+
+    #[test]
+    fn the_position_is_said_once() {
+        let err = parse_sample(b"{\"frames\":\n [[[0, 0, 0]]],\n \"name\": 3}").unwrap_err();
+        assert_eq!(err.to_string(), "could not parse sample JSON at line 3: invalid type: integer `3`, expected a string (column 10)");
     }
 }
