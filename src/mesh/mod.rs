@@ -27,7 +27,7 @@ pub mod silhouette;
 
 use std::collections::HashMap;
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::border::{signed_area_xy, Point, MAX_FRAMES};
 use crate::error::{Error, MeshError, Result};
@@ -41,15 +41,16 @@ pub const MAX_FACE_CORNERS: usize = 16_000_000;
 /// A boundary loop is the outline when its XY area is at least this part of the silhouette.
 pub const ENCLOSES: f64 = 0.8;
 
-/// A triangle (or polygon) mesh followed through frames by vertex index.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// A triangle (or polygon) mesh followed through frames by vertex index. Serialised as
+/// Sample JSON's `"mesh"`; read back through [`crate::formats::json`], whose lists are
+/// bounded while reading.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MeshFrames {
-    #[serde(default)]
     pub faces: Vec<Vec<usize>>,
     pub frames: Vec<Vec<[f64; 3]>>,
     /// Border edges given by the file (the MATLAB data's `Eb`, 0-based here); when present
     /// they define the border and the faces may be empty.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub border_edges: Vec<[usize; 2]>,
 }
 
