@@ -171,6 +171,23 @@ fn mesh_frames<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<[f64; 3]>>, D:
     frames(d, MAX_MESH_VERTICES, "vertices in one mesh frame")
 }
 
+/// `truth.folds`: at most one fold per step between frames.
+pub(super) fn truth_folds<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
+    Bounded { what: "true folds", limit: MAX_FRAMES, item: PhantomData::<[f64; 2]> }.deserialize(d)
+}
+
+/// `truth.folded_vertices`: at most one entry per mesh vertex.
+pub(super) fn folded_vertices<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vec<usize>>, D::Error> {
+    /// The bounded list, as a type `Option` can wrap (null stays `None`).
+    struct Vertices(Vec<usize>);
+    impl<'de> Deserialize<'de> for Vertices {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            Bounded { what: "folded vertices", limit: MAX_MESH_VERTICES, item: PhantomData::<usize> }.deserialize(d).map(Vertices)
+        }
+    }
+    Ok(Option::<Vertices>::deserialize(d)?.map(|v| v.0))
+}
+
 fn border_edges<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[usize; 2]>, D::Error> {
     Bounded { what: "border edges", limit: MAX_MESH_VERTICES, item: PhantomData::<[usize; 2]> }.deserialize(d)
 }
@@ -210,6 +227,17 @@ mod tests {
         assert_eq!(err.to_string(), format!("input too large: {} vertices in one border frame (at most {})", MAX_VERTICES + 6, MAX_VERTICES + 1));
         // A later, well-formed parse on the same thread is not confused by the last one.
         assert!(matches!(parse_sample(b"{\"frames\": [[1]]}"), Err(Error::Parse { .. })));
+    }
+
+    #[test]
+    fn truth_is_bounded_and_may_be_null() {
+        let doc = |truth: &str| format!("{{\"frames\": [[[0,0,0]]], \"truth\": {truth}}}");
+        let s = parse_sample(doc(r#"{"folds": [[1, 2]], "folded_vertices": null}"#).as_bytes()).unwrap();
+        assert_eq!(s.truth, Some(crate::formats::Truth { folds: vec![[1.0, 2.0]], folded_vertices: None }));
+        let s = parse_sample(doc(r#"{"folded_vertices": [3, 4]}"#).as_bytes()).unwrap();
+        assert_eq!(s.truth.and_then(|t| t.folded_vertices), Some(vec![3, 4]));
+        let many = doc(&format!("{{\"folds\": [{}[0, 1]]}}", "[0, 1],".repeat(MAX_FRAMES)));
+        assert_eq!(parse_sample(many.as_bytes()).unwrap_err(), Error::too_large("true folds", MAX_FRAMES + 1, MAX_FRAMES));
     }
 
     #[test]

@@ -29,9 +29,9 @@ pub const MAX_FILE_BYTES: usize = 64 * 1024 * 1024;
 /// Known fold of a sample (ground truth), angles in the border convention (vertex k at 2πk/N).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Truth {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "json::truth_folds")]
     pub folds: Vec<[f64; 2]>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "json::folded_vertices")]
     pub folded_vertices: Option<Vec<usize>>,
 }
 
