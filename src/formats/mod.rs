@@ -106,7 +106,7 @@ pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
     };
     let name = base_name(first).to_string();
     match extension(first).as_str() {
-        "json" => json::parse_sample(single("Sample JSON")?),
+        "json" => json::parse_sample(single("Sample JSON")?).map_err(|e| e.in_file(first)),
         "mat" => mat::parse_sample(single("MATLAB .mat")?, &name).map_err(|e| e.in_file(first)),
         "obj" | "ply" => read_mesh_files(files, name),
         "txt" | "csv" | "xyz" | "dat" | "" => {
