@@ -120,22 +120,25 @@ fn scalar_size(t: &ScalarType) -> usize {
     }
 }
 
-/// Fewest payload bytes one element can take. Binary: its scalars plus each list's count
-/// (a list may be empty). ASCII: its own line, with at least a digit and a separator per
-/// property — so a property-less element still takes one byte, its newline.
+/// Payload bytes one element is counted for: at least what it takes, and at least one.
+/// Binary: its scalars plus each list's count (a list may be empty). ASCII: its own line,
+/// with at least a digit and a separator per property (a property-less element still takes
+/// its newline). A binary property-less element takes no byte at all: it is counted as
+/// one all the same, so an absurd count is refused rather than trusted.
 fn min_element_bytes(e: &ElementDef, encoding: Encoding) -> usize {
-    match encoding {
-        Encoding::Ascii => (2 * e.properties.len()).max(1),
+    let bytes = match encoding {
+        Encoding::Ascii => 2 * e.properties.len(),
         _ => e.properties.values().map(|p| match &p.data_type {
             PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_size(t),
         }).sum(),
-    }
+    };
+    bytes.max(1)
 }
 
 /// Refuse counts the limits forbid or the file cannot hold, before reading the payload:
 /// every element, property-less ones included, must fit in the bytes that follow the
 /// header, so no read loop can run on a count without consuming input. (A binary
-/// property-less element takes no byte at all, and is not read: see [`parse_frame`].)
+/// property-less element is not read at all: see [`parse_frame`].)
 fn check_counts(elements: &[&ElementDef], encoding: Encoding, payload_bytes: usize) -> Result<()> {
     let mut needed = 0usize;
     for e in elements {
@@ -275,16 +278,18 @@ mod tests {
     }
 
     #[test]
-    fn property_less_elements_are_counted_or_skipped() {
+    fn property_less_elements_are_counted_and_never_looped_over() {
         let junk = |format: &str, count: &str, after: &str| {
             format!("ply\nformat {format} 1.0\nelement vertex 1\nproperty uchar x\nproperty uchar y\nproperty uchar z\nelement junk {count}\nend_header\n{after}")
         };
-        // Binary: the element holds no byte, so even 2^62 of them cost nothing to skip.
-        let m = parse_frame(junk("binary_little_endian", "4611686018427387904", "\x01\x02\x03").as_bytes()).unwrap();
+        // 2^62 of them cannot fit in what follows, in either encoding.
+        for format in ["binary_little_endian", "ascii"] {
+            let err = parse_frame(junk(format, "4611686018427387904", "1 2 3\n\n").as_bytes()).unwrap_err().to_string();
+            assert!(err.contains("4611686018427387904 junk elements"), "{err}");
+        }
+        // Counts that fit: binary ones hold no byte and are skipped; ASCII ones are lines.
+        let m = parse_frame(junk("binary_little_endian", "1", "\x01\x02\x03").as_bytes()).unwrap();
         assert_eq!(m.vertices, vec![[1.0, 2.0, 3.0]]);
-        // ASCII: each takes a line, so the count must fit in what follows.
-        let err = parse_frame(junk("ascii", "4611686018427387904", "1 2 3\n\n").as_bytes()).unwrap_err().to_string();
-        assert!(err.contains("4611686018427387904 junk elements"), "{err}");
         assert_eq!(parse_frame(junk("ascii", "2", "1 2 3\n\n\n").as_bytes()).unwrap().vertices.len(), 1);
     }
 }
