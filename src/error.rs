@@ -55,8 +55,8 @@ pub enum Error {
     /// A mesh could not give a border.
     #[error("mesh problem: {0}")]
     Mesh(#[from] MeshError),
-    /// A request names a sample that does not exist.
-    #[error("no sample {id:?}")]
+    /// A dataset entry asked for by id does not exist.
+    #[error("no sample {id:?} in the datasets")]
     UnknownSample { id: String },
     /// One of several files is at fault: its name, then the cause.
     #[error("{file}: {error}")]
