@@ -107,7 +107,7 @@ pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
 pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis> {
     let range = options.frames;
     let Some(last) = sample.frames.len().checked_sub(1) else {
-        return Err(Error::Empty("the sample has no frame".into()));
+        return Err(Error::Empty { what: "the sample has no frame" });
     };
     let start = range.start.unwrap_or(0);
     let end = range.end.unwrap_or(last);
@@ -167,6 +167,6 @@ mod tests {
     #[test]
     fn a_sample_without_frames_is_an_error_not_a_panic() {
         let empty = BorderFrames { frames: Vec::new(), border_indices: Vec::new(), source: "border".into(), reversed: false, warnings: Vec::new() };
-        assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty(_))));
+        assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty { .. })));
     }
 }

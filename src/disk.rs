@@ -3,8 +3,9 @@
 //! Storage is the condensed pair vector of the reference: pairs (i, j), i < j, row-major,
 //! index `i·N − i(i+1)/2 + j − i − 1`.
 //!
-//! Layout (SPEC §1): pair (i, j) has cyclic distance d = min(|i−j|, N−|i−j|), 1 ≤ d ≤ L = ⌊N/2⌋.
-//! With a the edge from which walking d edges forward reaches the other, the pair sits on
+//! Layout (the dGLI disk of Kamat, Borràs, Torras, "CloSE: A Geometric Shape-Agnostic
+//! Cloth State Representation"): pair (i, j) has cyclic distance
+//! d = min(|i−j|, N−|i−j|), 1 ≤ d ≤ L = ⌊N/2⌋. With a the edge from which walking d edges forward reaches the other, the pair sits on
 //! layer d (1 is the rim), radius r = (L − d + 1)/L, angle θ = π(2a + d + 1)/N mod 2π: the
 //! midpoint between the two edge midpoints along the shorter arc, with vertex k at 2πk/N.
 //! When N is even, a pair with d = N/2 is reached from both ends and sits at both angles.

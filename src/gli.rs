@@ -1,4 +1,6 @@
-//! Gauss linking integral of two segments and its derivative along a vertical lift (dGLI).
+//! Gauss linking integral of two segments and its derivative along a vertical lift (dGLI),
+//! the cell value of the dGLI disk in Kamat, Borràs, Torras, "CloSE: A Geometric
+//! Shape-Agnostic Cloth State Representation" (the GLI itself after Levitt).
 //!
 //! **GLI** of segments AB and CD is Levitt's exact formula without the 1/4π factor: with
 //! n1 = unit(AC×AD), n2 = unit(AD×BD), n3 = unit(BD×BC), n4 = unit(BC×AC),

@@ -89,7 +89,7 @@ pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize)
         return Err(Error::TooFewVertices { got: border.len(), min: MIN_VERTICES });
     }
     if border.len() > MAX_VERTICES {
-        return Err(Error::TooLarge(format!("{} vertices (at most {MAX_VERTICES})", border.len())));
+        return Err(Error::too_large("border vertices", border.len(), MAX_VERTICES));
     }
     if let Some(v) = border.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
         return Err(Error::NonFinite { frame: 0, vertex: v });

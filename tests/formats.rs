@@ -7,7 +7,8 @@ use std::collections::HashSet;
 
 use close::border::Point;
 use close::fold::reflect::reflect_xy;
-use close::formats::{read_files, MeshFrames, Sample};
+use close::formats::{read_files, Sample};
+use close::mesh::MeshFrames;
 use close::{analyze, Analysis, Error, FrameRange};
 use proptest::prelude::*;
 
@@ -308,18 +309,254 @@ fn bad_meshes_are_clear_errors() {
     let s = read_files(&[("t.json".into(), json.to_vec())]).unwrap();
     assert!(s.border_frames().unwrap_err().to_string().contains("too few"));
     let huge = b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
-    assert!(matches!(read_files(&[("h.ply".into(), huge.to_vec())]), Err(Error::Parse { .. } | Error::TooLarge(_))));
+    let err = read_files(&[("h.ply".into(), huge.to_vec())]).unwrap_err();
+    assert!(matches!(err.cause(), Error::Parse { .. } | Error::TooLarge { .. }), "{err}");
+    assert!(err.to_string().starts_with("h.ply: "), "{err}");
 }
 
-// ---- Fuzzing: no input may panic ----
+// ---- Bombs: inputs a few bytes long that would make a reader spin or balloon ----
 
-/// Every reader, then the border, on one named file.
+/// `f()`, failing the test when it has not answered within `seconds` (the work is left
+/// behind on its thread: on a reader that spins, the test fails instead of hanging).
+fn answers_within<T: Send + 'static>(seconds: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || tx.send(f()));
+    rx.recv_timeout(std::time::Duration::from_secs(seconds)).unwrap_or_else(|_| panic!("no answer within {seconds} s"))
+}
+
+/// Generous: a few times what a debug build needs on a busy machine; the faults these
+/// tests guard against took minutes or forever.
+const SECONDS: u64 = 5;
+
+fn read_one(name: &'static str, bytes: Vec<u8>) -> Result<Sample, Error> {
+    answers_within(SECONDS, move || read_files(&[(name.to_string(), bytes)]))
+}
+
+#[test]
+fn ply_elements_without_properties_cannot_make_the_reader_spin() {
+    // The 267-byte upload of issue 11: a property-less element announced 2^62 times.
+    let (v, f) = grid(1, 1, |_, _| true, true);
+    let plain = ply(&v, &f, "binary_little_endian");
+    let bomb = [&plain[..], &[]].concat();
+    let text = String::from_utf8_lossy(&bomb).into_owned();
+    let header_end = text.find("element face").unwrap();
+    let mut with_junk = bomb[..header_end].to_vec();
+    with_junk.extend(b"element junk 4611686018427387904\n");
+    with_junk.extend(&bomb[header_end..]);
+    // Each element is counted for at least a byte: 2^62 cannot follow, in either encoding.
+    let ascii = String::from_utf8(ply(&v, &f, "ascii")).unwrap().replacen("element face", "element junk 4611686018427387904\nelement face", 1);
+    for bomb in [with_junk, ascii.into_bytes()] {
+        let err = read_one("junk.ply", bomb).unwrap_err();
+        assert!(matches!(err.cause(), Error::Parse { .. }) && err.to_string().contains("4611686018427387904 junk"), "{err}");
+    }
+}
+
+/// A MATLAB v5 file (little endian) of the given elements.
+fn mat_file(elements: &[Vec<u8>]) -> Vec<u8> {
+    let mut file = b"MATLAB 5.0 MAT-file, written by tests/formats.rs".to_vec();
+    file.resize(124, b' ');
+    file.extend([0, 1, b'I', b'M']);
+    elements.iter().for_each(|e| file.extend(e));
+    file
+}
+
+/// A tagged element, little endian, padded to 8 bytes.
+fn mat_element(kind: u32, data: &[u8]) -> Vec<u8> {
+    let mut v = kind.to_le_bytes().to_vec();
+    v.extend((data.len() as u32).to_le_bytes());
+    v.extend(data);
+    v.resize(8 + data.len().div_ceil(8) * 8, 0);
+    v
+}
+
+/// A double matrix (class 6) of `rows`×`cols` whose values are stored as `data_type`.
+fn mat_matrix(name: &str, rows: u32, cols: u32, data_type: u32, data: &[u8]) -> Vec<u8> {
+    let mut body = mat_element(6, &[6, 0, 0, 0, 0, 0, 0, 0]);
+    body.extend(mat_element(5, &[rows.to_le_bytes(), cols.to_le_bytes()].concat()));
+    body.extend(mat_element(1, name.as_bytes()));
+    body.extend(mat_element(data_type, data));
+    mat_element(14, &body)
+}
+
+fn compressed(element: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+    z.write_all(element).unwrap();
+    let packed = z.finish().unwrap();
+    // miCOMPRESSED is not padded.
+    [15u32.to_le_bytes().to_vec(), (packed.len() as u32).to_le_bytes().to_vec(), packed].concat()
+}
+
+#[test]
+fn mat_numbers_are_capped_once_widened_and_over_all_variables() {
+    use close::formats::mat::MAX_WIDENED;
+    // 17 M int8 values: 17 MB inflated, 136 MB once widened to f64, over the cap.
+    let count = 17_000_000u32;
+    assert!(count as u64 * 8 > MAX_WIDENED && (count as u64) < MAX_WIDENED);
+    let bomb = mat_file(&[compressed(&mat_matrix("phiPositions", count, 1, 1, &vec![0; count as usize]))]);
+    assert!(bomb.len() < 100_000, "{} bytes", bomb.len());
+    let err = read_one("bomb.mat", bomb).unwrap_err();
+    assert!(matches!(err.cause(), Error::TooLarge { limit, .. } if *limit == MAX_WIDENED), "{err}");
+    // Three variables each under the cap, over it together.
+    let third = (MAX_WIDENED / 8 / 3 + 1) as u32;
+    let var = compressed(&mat_matrix("Eb", third, 1, 1, &vec![0; third as usize]));
+    let err = read_one("three.mat", mat_file(&[var.clone(), var.clone(), var])).unwrap_err();
+    assert!(matches!(err.cause(), Error::TooLarge { limit, .. } if *limit == MAX_WIDENED), "{err}");
+    assert!(err.to_string().contains("widened"), "{err}");
+}
+
+#[test]
+fn an_obj_polygon_with_many_corners_is_checked_in_n_log_n() {
+    // One polygon through K = 100 000 distinct vertices: the repeated-vertex check was
+    // O(K²) (K = 480 000 took 28.6 s in a release build); sorted, it takes well under a
+    // second.
+    let k = 100_000;
+    let polygon = |repeat: Option<usize>| {
+        let mut doc: String = (0..k).map(|i| format!("v {i} {} 0\n", i % 7)).collect();
+        doc += &format!("f {}", (1..=k).map(|i| i.to_string()).collect::<Vec<_>>().join(" "));
+        doc += &repeat.map_or("\n".into(), |r| format!(" {r}\n"));
+        doc.into_bytes()
+    };
+    let check = |doc: Vec<u8>| {
+        answers_within(SECONDS, move || {
+            let mesh = read_files(&[("k.obj".into(), doc)])?.mesh.ok_or(Error::Empty { what: "no mesh" })?;
+            close::mesh::validate(&mesh)
+        })
+    };
+    assert_eq!(check(polygon(None)), Ok(()));
+    // A repeat among them is still found, naming the vertex (0-based).
+    let err = check(polygon(Some(5))).unwrap_err();
+    assert_eq!(err, Error::Mesh(close::error::MeshError::RepeatedVertex { face: 0, vertex: 4 }));
+}
+
+#[test]
+fn json_counts_and_nesting_are_refused_while_reading() {
+    use close::border::{MAX_FRAMES, MAX_VERTICES};
+    // More frames than allowed, each empty: refused at frame 1001, not after reading all.
+    let frames = format!("{{\"frames\": [{}[]]}}", "[],".repeat(10 * MAX_FRAMES));
+    let err = read_one("f.json", frames.into_bytes()).unwrap_err();
+    assert!(matches!(err.cause(), Error::TooLarge { what: "frames", limit, .. } if *limit == MAX_FRAMES as u64), "{err}");
+    // A frame with more vertices than a border may have.
+    let one = format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,1,2],".repeat(2 * MAX_VERTICES));
+    assert!(matches!(read_one("v.json", one.into_bytes()).unwrap_err().cause(), Error::TooLarge { .. }));
+    // A mesh with more frames than allowed.
+    let mesh = format!("{{\"mesh\": {{\"faces\": [[0,1,2]], \"frames\": [{}[]]}}}}", "[],".repeat(MAX_FRAMES + 1));
+    assert!(matches!(read_one("m.json", mesh.into_bytes()).unwrap_err().cause(), Error::TooLarge { what: "frames", .. }));
+    // Deep nesting, where a number is expected and in an ignored field: serde_json's
+    // recursion limit answers, quickly, as a parse error.
+    for doc in [format!("{{\"frames\": {}", "[".repeat(1_000_000)), format!("{{\"extra\": {}", "[".repeat(1_000_000))] {
+        let err = read_one("deep.json", doc.into_bytes()).unwrap_err();
+        assert!(matches!(err.cause(), Error::Parse { line: Some(1), .. }), "{err}");
+    }
+}
+
+#[test]
+fn degenerate_end_frames_are_refused_naming_the_frame() {
+    use close::error::DegenerateReason;
+    let square = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    let prepared = |end: Vec<[f64; 3]>| Sample::from_frames("s", "t", vec![square.to_vec(), end]).border_frames();
+    let reason = |r: Result<close::border::BorderFrames, Error>| match r {
+        Err(Error::Degenerate { frame: 1, reason }) => reason,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(reason(prepared(vec![[0.5, 0.5, 0.0]; 4])), DegenerateReason::Coincident);
+    assert!(matches!(reason(prepared(square.iter().map(|p| p.map(|c| c * 1e300)).collect())), DegenerateReason::FarFromStart { .. }));
+    // The start frame near 1e300: too large to normalise, not "all vertices coincide".
+    let huge: Vec<[f64; 3]> = square.iter().map(|p| p.map(|c| 1e300 + c * 1e299)).collect();
+    let err = Sample::from_frames("s", "t", vec![huge]).border_frames().unwrap_err();
+    assert_eq!(err, Error::Degenerate { frame: 0, reason: DegenerateReason::TooLargeToNormalise });
+    assert!(!err.to_string().contains("coincide"), "{err}");
+}
+
+// ---- Fuzzing: no input may panic, hang or balloon ----
+
+/// Every reader, then the border, on one named file. A case that takes seconds fails (a
+/// reader looping on a declared count); a huge allocation aborts the run.
 fn read_everything(name: &str, bytes: &[u8]) {
+    let start = std::time::Instant::now();
     if let Ok(sample) = read_files(&[(name.to_string(), bytes.to_vec())]) {
         if let Ok(b) = sample.border_frames() {
             let _ = analyze(&b, FrameRange::default());
         }
     }
+    assert!(start.elapsed().as_secs() < 5, "{name}: {} bytes took {:?}", bytes.len(), start.elapsed());
+}
+
+/// Element counts a header may announce: small, at the limits, and absurd.
+fn counts() -> impl Strategy<Value = u64> {
+    prop_oneof![0u64..6, Just(2_000_001), Just(4_000_000_000), Just(1 << 62), any::<u64>()]
+}
+
+/// A PLY header of random elements (vertex with x y z, face with an index list, property-
+/// less or odd ones) with any counts, then a short random payload.
+fn ply_with_counts() -> impl Strategy<Value = Vec<u8>> {
+    let scalar = prop::sample::select(vec!["char", "uchar", "short", "ushort", "int", "uint", "float", "double"]);
+    let element = (prop::sample::select(vec!["vertex", "face", "junk"]), counts(), scalar.clone(), scalar, 0usize..3);
+    let format = prop::sample::select(vec!["ascii", "binary_little_endian", "binary_big_endian"]);
+    (format, proptest::collection::vec(element, 0..4), proptest::collection::vec(any::<u8>(), 0..200), any::<bool>()).prop_map(
+        |(format, elements, payload, digits)| {
+            let mut head = format!("ply\nformat {format} 1.0\n");
+            for (name, count, t, u, extra) in elements {
+                head += &format!("element {name} {count}\n");
+                match name {
+                    "vertex" => ["x", "y", "z"].iter().for_each(|a| head += &format!("property {t} {a}\n")),
+                    "face" => head += &format!("property list {u} {t} vertex_indices\n"),
+                    _ => (0..extra).for_each(|k| head += &format!("property {t} p{k}\n")),
+                }
+            }
+            head += "end_header\n";
+            // ASCII payloads of digits reach deeper than random bytes.
+            let body = if digits { payload.iter().map(|b| b"0123456789 \n-"[*b as usize % 13]).collect() } else { payload };
+            [head.into_bytes(), body].concat()
+        },
+    )
+}
+
+/// OBJ statements with absurd indices and numbers.
+fn obj_with_counts() -> impl Strategy<Value = Vec<u8>> {
+    let index = prop_oneof![1i64..6, -5i64..0, Just(i64::MAX), Just(i64::MIN), any::<i64>()];
+    let line = prop_oneof![
+        (any::<f64>(), -2.0f64..2.0, prop_oneof![Just(1e308), Just(-1e308), Just(0.0)]).prop_map(|(x, y, z)| format!("v {x} {y} {z}")),
+        proptest::collection::vec(index, 0..8).prop_map(|f| format!("f {}", f.iter().map(|i| format!("{i}/1")).collect::<Vec<_>>().join(" "))),
+        Just("f 1 2 3 18446744073709551616".to_string()),
+    ];
+    proptest::collection::vec(line, 0..12).prop_map(|lines| (lines.join("\n") + "\n").into_bytes())
+}
+
+/// MATLAB elements whose tags, dimensions and classes claim anything, some compressed.
+fn mat_with_counts() -> impl Strategy<Value = Vec<u8>> {
+    let dims = prop_oneof![Just(vec![3u32, 4]), Just(vec![u32::MAX, u32::MAX]), Just(vec![1 << 31, 2]), proptest::collection::vec(any::<u32>(), 0..4)];
+    let matrix = (1u32..17, dims, 1u32..16, proptest::collection::vec(any::<u8>(), 0..64), any::<bool>(), any::<u32>()).prop_map(
+        |(class, dims, data_type, data, compress, claimed)| {
+            let mut body = mat_element(6, &[class as u8, 0, 0, 0, 0, 0, 0, 0]);
+            body.extend(mat_element(5, &dims.iter().flat_map(|d| d.to_le_bytes()).collect::<Vec<_>>()));
+            body.extend(mat_element(1, b"phiPositions"));
+            let mut data_el = mat_element(data_type, &data);
+            if claimed % 3 == 0 {
+                // A tag that claims more bytes than follow.
+                data_el[4..8].copy_from_slice(&claimed.to_le_bytes());
+            }
+            body.extend(data_el);
+            let element = mat_element(14, &body);
+            if compress { compressed(&element) } else { element }
+        },
+    );
+    proptest::collection::vec(matrix, 0..3).prop_map(|elements| mat_file(&elements))
+}
+
+/// Sample JSON with absurd indices, deep nesting and odd shapes.
+fn json_with_counts() -> impl Strategy<Value = Vec<u8>> {
+    let nested = (0usize..3000, any::<bool>()).prop_map(|(depth, closed)| format!("{}0{}", "[".repeat(depth), if closed { "]".repeat(depth) } else { String::new() }));
+    let index = prop_oneof![Just("0".to_string()), Just("18446744073709551616".to_string()), Just("1e30".to_string()), Just("-1".to_string()), any::<u64>().prop_map(|i| i.to_string())];
+    (nested, proptest::collection::vec(index, 0..6), 0usize..8, any::<bool>()).prop_map(|(nested, face, vertices, mesh)| {
+        let frame = format!("[{}]", vec!["[0, 0, 0]"; vertices].join(","));
+        let doc = if mesh {
+            format!("{{\"mesh\": {{\"faces\": [[{}]], \"frames\": [{frame}]}}, \"extra\": {nested}}}", face.join(","))
+        } else {
+            format!("{{\"frames\": [{frame}, {nested}], \"truth\": {{\"folded_vertices\": [{}]}}}}", face.join(","))
+        };
+        doc.into_bytes()
+    })
 }
 
 fn valid_files() -> Vec<(&'static str, Vec<u8>)> {
@@ -376,6 +613,19 @@ proptest! {
             bytes.truncate(cut.index(bytes.len()));
         }
         read_everything(name, &bytes);
+    }
+
+    #[test]
+    fn headers_with_any_counts_never_spin_or_balloon(
+        ply in ply_with_counts(),
+        obj in obj_with_counts(),
+        mat in mat_with_counts(),
+        json in json_with_counts(),
+    ) {
+        read_everything("x.ply", &ply);
+        read_everything("x.obj", &obj);
+        read_everything("x.mat", &mat);
+        read_everything("x.json", &json);
     }
 
     #[test]

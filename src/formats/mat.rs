@@ -13,7 +13,11 @@
 //! sample is a mesh without faces whose border is the loop the edges form.
 //!
 //! Every count is checked against the bytes actually present before it is used, so a
-//! corrupt file gives an error, not an allocation of what its header claims.
+//! corrupt file gives an error, not an allocation of what its header claims. Two budgets
+//! cover the whole file, not one variable: the bytes inflated from `miCOMPRESSED`
+//! elements ([`MAX_DECOMPRESSED`]), and the numbers produced, counted as f64 after
+//! widening ([`MAX_WIDENED`]: one `miINT8` byte becomes 8) — checked before each
+//! allocation. Format: MathWorks, "MAT-File Format" (Level 5 MAT-files).
 //!
 //! ```
 //! use close::formats::mat::parse_sample;
@@ -25,12 +29,17 @@ use std::io::Read;
 
 use flate2::read::ZlibDecoder;
 
-use super::{MeshFrames, Sample};
-use crate::error::{Error, Result};
-use crate::mesh::MAX_MESH_VERTICES;
+use std::cell::Cell;
 
-/// Most bytes one compressed variable may expand to.
+use super::Sample;
+use crate::error::{Error, Format, Result};
+use crate::mesh::{MeshFrames, MAX_MESH_VERTICES};
+
+/// Most bytes the compressed variables of one file may expand to, in all.
 pub const MAX_DECOMPRESSED: u64 = 256 * 1024 * 1024;
+/// Most bytes of f64 values (8 per number, sparse matrices counted dense) one file may
+/// produce, in all variables.
+pub const MAX_WIDENED: u64 = 128 * 1024 * 1024;
 /// Most cells a sparse matrix may expand to when made dense.
 const MAX_DENSE: usize = 3 * MAX_MESH_VERTICES;
 /// Cell arrays nested deeper than this are refused (the dataset has one level).
@@ -45,7 +54,7 @@ const MX_CELL: u32 = 1;
 const MX_SPARSE: u32 = 5;
 
 fn bad(message: impl ToString) -> Error {
-    Error::parse("MATLAB .mat", message)
+    Error::parse(Format::Mat, message)
 }
 
 /// A variable's value, as far as the dataset needs.
@@ -58,10 +67,12 @@ pub enum Value {
     Other(u32),
 }
 
-/// A byte order and the tagged-element walk over a buffer.
-#[derive(Clone, Copy)]
-struct Endian {
+/// The tagged-element walk over a file: its byte order and what it has spent of the
+/// file's budgets so far.
+struct Walk {
     big: bool,
+    inflated: Cell<u64>,
+    widened: Cell<u64>,
 }
 
 /// One data element: type, its data, and where the next element starts.
@@ -71,13 +82,42 @@ struct Element<'a> {
     next: usize,
 }
 
-impl Endian {
-    fn u32(self, b: &[u8]) -> u32 {
+impl Walk {
+    fn new(big: bool) -> Walk {
+        Walk { big, inflated: Cell::new(0), widened: Cell::new(0) }
+    }
+
+    /// Spend `values` numbers (8 bytes each as f64) of the file's budget, before allocating.
+    fn widen(&self, values: usize) -> Result<()> {
+        let total = self.widened.get().saturating_add((values as u64).saturating_mul(8));
+        if total > MAX_WIDENED {
+            return Err(Error::TooLarge { what: "bytes of numbers once widened to f64", got: Some(total), limit: MAX_WIDENED });
+        }
+        self.widened.set(total);
+        Ok(())
+    }
+
+    /// Inflate one `miCOMPRESSED` element within what is left of the file's budget.
+    fn inflate(&self, data: &[u8], pos: usize) -> Result<Vec<u8>> {
+        let left = MAX_DECOMPRESSED - self.inflated.get();
+        let mut inflated = Vec::new();
+        ZlibDecoder::new(data)
+            .take(left + 1)
+            .read_to_end(&mut inflated)
+            .map_err(|err| bad(format!("compressed variable at byte {pos}: {err}")))?;
+        if inflated.len() as u64 > left {
+            return Err(Error::over_limit("bytes decompressed", MAX_DECOMPRESSED as usize));
+        }
+        self.inflated.set(self.inflated.get() + inflated.len() as u64);
+        Ok(inflated)
+    }
+
+    fn u32(&self, b: &[u8]) -> u32 {
         let a = [b[0], b[1], b[2], b[3]];
         if self.big { u32::from_be_bytes(a) } else { u32::from_le_bytes(a) }
     }
 
-    fn element<'a>(self, buf: &'a [u8], pos: usize) -> Result<Element<'a>> {
+    fn element<'a>(&self, buf: &'a [u8], pos: usize) -> Result<Element<'a>> {
         let truncated = || bad(format!("truncated data element at byte {pos}"));
         let head = buf.get(pos..pos + 4).ok_or_else(truncated)?;
         let first = self.u32(head);
@@ -100,7 +140,7 @@ impl Endian {
     }
 
     /// Numbers of any numeric data type, as f64.
-    fn numbers(self, kind: u32, b: &[u8]) -> Result<Vec<f64>> {
+    fn numbers(&self, kind: u32, b: &[u8]) -> Result<Vec<f64>> {
         let size = match kind {
             1 | 2 => 1,
             3 | 4 => 2,
@@ -111,6 +151,7 @@ impl Endian {
         if !b.len().is_multiple_of(size) {
             return Err(bad(format!("{} bytes is not a whole number of {size}-byte values", b.len())));
         }
+        self.widen(b.len() / size)?;
         let word = |c: &[u8]| -> [u8; 8] {
             let mut w = [0u8; 8];
             if self.big { w[8 - c.len()..].copy_from_slice(c) } else { w[..c.len()].copy_from_slice(c) }
@@ -137,7 +178,7 @@ impl Endian {
     }
 
     /// Non-negative integers (dimensions, sparse indices).
-    fn counts(self, e: &Element, what: &str) -> Result<Vec<usize>> {
+    fn counts(&self, e: &Element, what: &str) -> Result<Vec<usize>> {
         self.numbers(e.kind, e.data)?
             .into_iter()
             .map(|v| if v >= 0.0 && v.fract() == 0.0 && v < 1e15 { Ok(v as usize) } else { Err(bad(format!("{what} holds {v}"))) })
@@ -145,21 +186,14 @@ impl Endian {
     }
 
     /// Every variable in `buf` (top level, or a decompressed element).
-    fn variables(self, buf: &[u8], out: &mut Vec<(String, Value)>, nested: bool) -> Result<()> {
+    fn variables(&self, buf: &[u8], out: &mut Vec<(String, Value)>, nested: bool) -> Result<()> {
         let mut pos = 0;
         while pos < buf.len() {
             let e = self.element(buf, pos)?;
             match e.kind {
                 MI_MATRIX => out.push(self.matrix(e.data, 0)?),
                 MI_COMPRESSED if !nested => {
-                    let mut inflated = Vec::new();
-                    ZlibDecoder::new(e.data)
-                        .take(MAX_DECOMPRESSED + 1)
-                        .read_to_end(&mut inflated)
-                        .map_err(|err| bad(format!("compressed variable at byte {pos}: {err}")))?;
-                    if inflated.len() as u64 > MAX_DECOMPRESSED {
-                        return Err(Error::TooLarge(format!("a compressed variable expands past {MAX_DECOMPRESSED} bytes")));
-                    }
+                    let inflated = self.inflate(e.data, pos)?;
                     self.variables(&inflated, out, true)?;
                 }
                 other => return Err(bad(format!("unexpected data type {other} at byte {pos} (expected a variable)"))),
@@ -170,7 +204,7 @@ impl Endian {
     }
 
     /// One `miMATRIX` body → its name and value.
-    fn matrix(self, body: &[u8], depth: usize) -> Result<(String, Value)> {
+    fn matrix(&self, body: &[u8], depth: usize) -> Result<(String, Value)> {
         if depth > MAX_DEPTH {
             return Err(bad(format!("cell arrays nested more than {MAX_DEPTH} deep")));
         }
@@ -237,11 +271,15 @@ impl Endian {
     }
 
     /// Expand compressed-column storage into a dense column-major matrix.
-    fn sparse(self, name: &str, dims: Vec<usize>, ir: Vec<usize>, jc: Vec<usize>, pr: Vec<f64>) -> Result<Value> {
+    fn sparse(&self, name: &str, dims: Vec<usize>, ir: Vec<usize>, jc: Vec<usize>, pr: Vec<f64>) -> Result<Value> {
         let [rows, cols] = dims[..] else {
             return Err(bad(format!("{name}: a sparse array must be 2-D, not {dims:?}")));
         };
-        let cells = rows.checked_mul(cols).filter(|&c| c <= MAX_DENSE).ok_or_else(|| Error::TooLarge(format!("{name}: sparse {rows}×{cols} (at most {MAX_DENSE} cells)")))?;
+        let cells = rows.saturating_mul(cols);
+        if cells > MAX_DENSE {
+            return Err(Error::too_large("cells of one sparse matrix made dense", cells, MAX_DENSE));
+        }
+        self.widen(cells)?;
         let corrupt = |why: &str| bad(format!("{name}: corrupt sparse array ({why})"));
         if jc.len() != cols + 1 || jc.windows(2).any(|w| w[0] > w[1]) {
             return Err(corrupt("column starts"));
@@ -281,7 +319,7 @@ pub fn variables(bytes: &[u8]) -> Result<Vec<(String, Value)>> {
         return Err(bad("not a MATLAB v5 .mat file (the header does not start with \"MATLAB\")"));
     }
     let mut out = Vec::new();
-    Endian { big }.variables(&bytes[128..], &mut out, false)?;
+    Walk::new(big).variables(&bytes[128..], &mut out, false)?;
     Ok(out)
 }
 
@@ -329,7 +367,7 @@ pub fn parse_sample(bytes: &[u8], name: &str) -> Result<Sample> {
         Value::Cell { items, .. } if !items.is_empty() => {
             items.iter().enumerate().map(|(k, m)| positions(m, &format!("phiPositions{{{}}}", k + 1))).collect::<Result<Vec<_>>>()?
         }
-        Value::Cell { .. } => return Err(Error::Empty("phiPositions is an empty cell array".into())),
+        Value::Cell { .. } => return Err(Error::Empty { what: "phiPositions is an empty cell array" }),
         _ => return Err(bad("phiPositions is not a cell array (one N×3 matrix per frame)")),
     };
     let border_edges = edges(find("Eb")?)?;
@@ -403,11 +441,11 @@ mod tests {
 
     #[test]
     fn sparse_arrays_expand_and_bad_ones_are_refused() {
-        let e = Endian { big: false };
+        let e = Walk::new(false);
         let m = e.sparse("s", vec![2, 2], vec![1, 0], vec![0, 1, 2], vec![5.0, 7.0]).unwrap();
         assert_eq!(m, Value::Matrix { dims: vec![2, 2], data: vec![0.0, 5.0, 7.0, 0.0] });
         assert!(e.sparse("s", vec![2, 2], vec![3, 0], vec![0, 1, 2], vec![5.0, 7.0]).is_err());
         assert!(e.sparse("s", vec![2, 2], vec![1], vec![0, 1, 2], vec![5.0]).is_err());
-        assert!(matches!(e.sparse("s", vec![1 << 40, 1 << 30], vec![], vec![], vec![]), Err(Error::TooLarge(_))));
+        assert!(matches!(e.sparse("s", vec![1 << 40, 1 << 30], vec![], vec![], vec![]), Err(Error::TooLarge { .. })));
     }
 }

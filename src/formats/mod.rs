@@ -18,38 +18,21 @@ pub mod text;
 
 use serde::{Deserialize, Serialize};
 
-use crate::border::{prepare, BorderFrames};
-use crate::error::{Error, Result};
+use crate::border::{prepare, BorderFrames, MAX_FRAMES};
+use crate::error::{Error, Format, MeshError, Result};
+// Mesh frames belong to `mesh` (formats reads files into them); re-exported for callers.
+pub use crate::mesh::MeshFrames;
 
 /// Largest input file the readers accept.
 pub const MAX_FILE_BYTES: usize = 64 * 1024 * 1024;
 
-/// Known fold of a sample (ground truth), angles in the SPEC convention (2πf/N).
+/// Known fold of a sample (ground truth), angles in the border convention (vertex k at 2πk/N).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Truth {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "json::truth_folds")]
     pub folds: Vec<[f64; 2]>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "json::folded_vertices")]
     pub folded_vertices: Option<Vec<usize>>,
-}
-
-/// A triangle (or polygon) mesh followed through frames by vertex index.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct MeshFrames {
-    #[serde(default)]
-    pub faces: Vec<Vec<usize>>,
-    pub frames: Vec<Vec<[f64; 3]>>,
-    /// Border edges given by the file (the MATLAB data's `Eb`, 0-based here); when present
-    /// they define the border and the faces may be empty.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub border_edges: Vec<[usize; 2]>,
-}
-
-impl MeshFrames {
-    /// A mesh from faces and frames of vertex positions.
-    pub fn new(faces: Vec<Vec<usize>>, frames: Vec<Vec<[f64; 3]>>) -> MeshFrames {
-        MeshFrames { faces, frames, border_edges: Vec::new() }
-    }
 }
 
 /// One mesh file: a frame's vertex positions and its faces (polygons of vertex indices).
@@ -66,9 +49,9 @@ pub struct Sample {
     pub name: String,
     #[serde(default)]
     pub category: String,
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "json::border_frames")]
     pub frames: Vec<Vec<[f64; 3]>>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "json::mesh")]
     pub mesh: Option<MeshFrames>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truth: Option<Truth>,
@@ -80,11 +63,11 @@ impl Sample {
         Sample { name: name.into(), category: category.into(), frames, mesh: None, truth: None }
     }
 
-    /// Validate and orient the border frames (SPEC §1, Border). For a mesh, the border is
+    /// Validate and orient the border frames ([`prepare`]). For a mesh, the border is
     /// found on frame 0 and `border_indices` are mesh vertex indices.
     pub fn border_frames(&self) -> Result<BorderFrames> {
         match (&self.mesh, self.frames.is_empty()) {
-            (Some(_), false) => Err(Error::parse("sample JSON", "give either \"frames\" or \"mesh\", not both")),
+            (Some(_), false) => Err(Error::parse(Format::SampleJson, "give either \"frames\" or \"mesh\", not both")),
             (Some(mesh), true) => {
                 let found = crate::mesh::border_of(mesh)?;
                 let raw = mesh.frames.iter().map(|frame| found.indices.iter().map(|&k| frame[k]).collect()).collect();
@@ -109,23 +92,11 @@ fn base_name(path: &str) -> &str {
     path.rsplit(['/', '\\']).next().unwrap_or(path)
 }
 
-/// Put the file's name in front of an error's message, so a user knows which file is bad.
-fn in_file(name: &str, error: Error) -> Error {
-    let name = base_name(name);
-    match error {
-        Error::Parse { format, message } => Error::Parse { format, message: format!("{name}: {message}") },
-        Error::Empty(m) => Error::Empty(format!("{name}: {m}")),
-        Error::TooLarge(m) => Error::TooLarge(format!("{name}: {m}")),
-        Error::Mesh(m) => Error::Mesh(format!("{name}: {m}")),
-        other => other,
-    }
-}
-
 /// Read a sample from named files: one Sample JSON or `.mat` file, text/CSV files with
 /// one frame each, or OBJ/PLY mesh files with one frame each (in the order given).
 pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
     let Some((first, _)) = files.first() else {
-        return Err(Error::Empty("no file given".into()));
+        return Err(Error::Empty { what: "no file given" });
     };
     let single = |what: &str| {
         if files.len() > 1 {
@@ -135,15 +106,15 @@ pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
     };
     let name = base_name(first).to_string();
     match extension(first).as_str() {
-        "json" => json::parse_sample(single("Sample JSON")?),
-        "mat" => mat::parse_sample(single("MATLAB .mat")?, &name).map_err(|e| in_file(first, e)),
+        "json" => json::parse_sample(single("Sample JSON")?).map_err(|e| e.in_file(first)),
+        "mat" => mat::parse_sample(single("MATLAB .mat")?, &name).map_err(|e| e.in_file(first)),
         "obj" | "ply" => read_mesh_files(files, name),
         "txt" | "csv" | "xyz" | "dat" | "" => {
             let frames = files
                 .iter()
                 .map(|(name, bytes)| {
-                    let text = std::str::from_utf8(bytes).map_err(|_| Error::parse("text", format!("{name} is not UTF-8 text")))?;
-                    text::parse_frame(text).map_err(|e| in_file(name, e))
+                    let text = std::str::from_utf8(bytes).map_err(|_| Error::parse(Format::Text, "not UTF-8 text").in_file(name))?;
+                    text::parse_frame(text).map_err(|e| e.in_file(name))
                 })
                 .collect::<Result<Vec<_>>>()?;
             Ok(Sample::from_frames(name, "upload", frames))
@@ -157,25 +128,26 @@ pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
 /// OBJ/PLY files, one frame each: faces from the first, the same vertex count in all.
 fn read_mesh_files(files: &[(String, Vec<u8>)], name: String) -> Result<Sample> {
     let mut faces = Vec::new();
-    let mut frames: Vec<Vec<[f64; 3]>> = Vec::with_capacity(files.len().min(crate::border::MAX_FRAMES));
-    if files.len() > crate::border::MAX_FRAMES {
-        return Err(Error::TooLarge(format!("{} frame files (at most {})", files.len(), crate::border::MAX_FRAMES)));
+    if files.len() > MAX_FRAMES {
+        return Err(Error::too_large("frame files", files.len(), MAX_FRAMES));
     }
+    let mut frames: Vec<Vec<[f64; 3]>> = Vec::with_capacity(files.len());
     for (k, (file, bytes)) in files.iter().enumerate() {
         let frame = match extension(file).as_str() {
             "obj" => obj::parse_frame(bytes),
             "ply" => ply::parse_frame(bytes),
             other => Err(Error::InvalidArgument(format!("a mesh sample takes .obj or .ply files, not .{other}"))),
         }
-        .map_err(|e| in_file(file, e))?;
+        .map_err(|e| e.in_file(file))?;
         if let Some(expected) = frames.first().map(Vec::len) {
             if frame.vertices.len() != expected {
-                return Err(Error::Mesh(format!(
-                    "{} has {} vertices but {} has {expected}: every frame file must list the same vertices in the same order",
-                    base_name(file),
-                    frame.vertices.len(),
-                    base_name(&files[0].0)
-                )));
+                return Err(MeshError::FrameFileMismatch {
+                    file: base_name(file).into(),
+                    got: frame.vertices.len(),
+                    first: base_name(&files[0].0).into(),
+                    expected,
+                }
+                .into());
             }
         }
         if k == 0 {
@@ -184,7 +156,7 @@ fn read_mesh_files(files: &[(String, Vec<u8>)], name: String) -> Result<Sample> 
         frames.push(frame.vertices);
     }
     if faces.is_empty() {
-        return Err(Error::Mesh(format!("{name} has no face: a mesh sample needs the faces in its first file")));
+        return Err(Error::from(MeshError::NoFaces).in_file(&name));
     }
     Ok(Sample { name, category: "upload".into(), frames: Vec::new(), mesh: Some(MeshFrames::new(faces, frames)), truth: None })
 }

@@ -1,5 +1,8 @@
 //! Wavefront OBJ frames: `v x y z` vertices and `f a b c …` polygons (1-based, `a/t/n`
-//! forms and negative, relative indices allowed); every other statement is skipped.
+//! forms and negative, relative indices allowed); every other statement is skipped
+//! (format: Wavefront's "Object Files (.obj)", Advanced Visualizer manual, Appendix B).
+//! Vertex and corner counts are bounded while reading ([`MAX_MESH_VERTICES`],
+//! [`MAX_FACE_CORNERS`]).
 //!
 //! Read directly rather than with `tobj`: tobj renumbers vertices in the order faces first
 //! use them and drops unused ones (and reads `f32` unless a feature is on), while a
@@ -14,19 +17,19 @@
 //! ```
 
 use super::{MeshFrame, MAX_FILE_BYTES};
-use crate::error::{Error, Result};
+use crate::error::{Error, Format, MeshError, Result};
 use crate::mesh::{MAX_FACE_CORNERS, MAX_MESH_VERTICES};
 
-fn bad(line: usize, message: impl std::fmt::Display) -> Error {
-    Error::parse("OBJ", format!("line {line}: {message}"))
+fn bad(line: usize, message: impl ToString) -> Error {
+    Error::parse_at(Format::Obj, line, message)
 }
 
 /// Parse one OBJ file.
 pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
     if bytes.len() > MAX_FILE_BYTES {
-        return Err(Error::TooLarge(format!("{} bytes of OBJ (at most {MAX_FILE_BYTES})", bytes.len())));
+        return Err(Error::too_large("bytes of OBJ", bytes.len(), MAX_FILE_BYTES));
     }
-    let text = std::str::from_utf8(bytes).map_err(|e| Error::parse("OBJ", format!("not UTF-8 text ({e})")))?;
+    let text = std::str::from_utf8(bytes).map_err(|e| Error::parse(Format::Obj, format!("not UTF-8 text ({e})")))?;
     let mut mesh = MeshFrame::default();
     let mut corners = 0usize;
     for (k, line) in text.lines().enumerate() {
@@ -35,7 +38,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         match words.next() {
             Some("v") => {
                 if mesh.vertices.len() >= MAX_MESH_VERTICES {
-                    return Err(Error::TooLarge(format!("more than {MAX_MESH_VERTICES} vertices")));
+                    return Err(Error::over_limit("mesh vertices", MAX_MESH_VERTICES));
                 }
                 let mut xyz = [0.0; 3];
                 for c in &mut xyz {
@@ -51,7 +54,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
                 }
                 corners += face.len();
                 if corners > MAX_FACE_CORNERS {
-                    return Err(Error::TooLarge(format!("more than {MAX_FACE_CORNERS} face corners")));
+                    return Err(Error::over_limit("face corners", MAX_FACE_CORNERS));
                 }
                 mesh.faces.push(face);
             }
@@ -59,11 +62,12 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         }
     }
     if mesh.vertices.is_empty() {
-        return Err(Error::Empty("the OBJ file holds no vertex".into()));
+        return Err(Error::Empty { what: "the OBJ file holds no vertex" });
     }
     let n = mesh.vertices.len();
     if let Some((k, &v)) = mesh.faces.iter().enumerate().find_map(|(k, f)| f.iter().find(|&&v| v >= n).map(|v| (k, v))) {
-        return Err(Error::Mesh(format!("face {k} uses vertex {} but the file has {n} vertices", v + 1)));
+        // OBJ counts vertices from 1: name the vertex as the file does.
+        return Err(MeshError::VertexOutOfRange { face: k, vertex: v + 1, vertices: n }.into());
     }
     Ok(mesh)
 }

@@ -1,5 +1,6 @@
 //! Plain text / CSV borders: one vertex per line, `x,y,z` or `x y z` (tabs and `;` too).
 //! Blank lines and lines starting with `#` are skipped; one header line of words is allowed.
+//! At most one border's vertices (and a closing repeat of vertex 0) are read.
 //!
 //! ```
 //! use close::formats::text::parse_frame;
@@ -10,12 +11,12 @@
 
 use super::MAX_FILE_BYTES;
 use crate::border::MAX_VERTICES;
-use crate::error::{Error, Result};
+use crate::error::{Error, Format, Result};
 
 /// Parse one frame of vertices.
 pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
     if text.len() > MAX_FILE_BYTES {
-        return Err(Error::TooLarge(format!("{} bytes of text (at most {MAX_FILE_BYTES})", text.len())));
+        return Err(Error::too_large("bytes of text", text.len(), MAX_FILE_BYTES));
     }
     let mut out = Vec::new();
     for (k, line) in text.lines().enumerate() {
@@ -28,18 +29,19 @@ pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
             Ok(numbers) => numbers,
             // A header line of words before any vertex.
             Err(_) if out.is_empty() && fields.iter().all(|f| f.chars().all(char::is_alphabetic)) => continue,
-            Err(_) => return Err(Error::parse("text", format!("line {}: {line:?} is not three numbers", k + 1))),
+            Err(_) => return Err(Error::parse_at(Format::Text, k + 1, format!("{line:?} is not three numbers"))),
         };
         if numbers.len() != 3 {
-            return Err(Error::parse("text", format!("line {}: expected x,y,z but found {} values", k + 1, numbers.len())));
+            return Err(Error::parse_at(Format::Text, k + 1, format!("expected x,y,z but found {} values", numbers.len())));
         }
+        // One more than a border's vertices: a closing vertex may repeat vertex 0.
         if out.len() > MAX_VERTICES {
-            return Err(Error::TooLarge(format!("more than {MAX_VERTICES} vertices")));
+            return Err(Error::over_limit("vertices in one frame", MAX_VERTICES + 1));
         }
         out.push([numbers[0], numbers[1], numbers[2]]);
     }
     if out.is_empty() {
-        return Err(Error::Empty("the text file holds no vertex".into()));
+        return Err(Error::Empty { what: "the text file holds no vertex" });
     }
     Ok(out)
 }
@@ -50,7 +52,8 @@ mod tests {
 
     #[test]
     fn bad_lines_are_named() {
-        assert!(matches!(parse_frame(""), Err(Error::Empty(_))));
+        assert!(matches!(parse_frame(""), Err(Error::Empty { .. })));
+        assert!(matches!(parse_frame(&"0 0 0\n".repeat(MAX_VERTICES + 2)), Err(Error::TooLarge { .. })));
         assert!(parse_frame("1,2\n").unwrap_err().to_string().contains("line 1"));
         assert!(parse_frame("0 0 0\n1 2 3 4\n").unwrap_err().to_string().contains("4 values"));
         // NaN parses as a number here; the border check names it.

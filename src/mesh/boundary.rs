@@ -16,7 +16,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use crate::error::{Error, Result};
+use crate::error::{MeshError, Result};
 
 /// Split undirected edges into closed loops, each starting at its lowest vertex; loops are
 /// listed by that vertex.
@@ -25,14 +25,14 @@ pub fn chain_loops(edges: &[[usize; 2]]) -> Result<Vec<Vec<usize>>> {
     let mut neighbours: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for &[a, b] in edges {
         if a == b {
-            return Err(Error::Mesh(format!("border edge [{a}, {b}] joins a vertex to itself")));
+            return Err(MeshError::SelfEdge { vertex: a }.into());
         }
         neighbours.entry(a).or_default().push(b);
         neighbours.entry(b).or_default().push(a);
     }
     if let Some((v, n)) = neighbours.iter().find(|(_, n)| n.len() != 2) {
-        let why = if n.len() < 2 { "the border edges do not close up" } else { "border loops touch there" };
-        return Err(Error::Mesh(format!("vertex {v} has {} border edges, not 2: {why}", n.len())));
+        let (vertex, edges) = (*v, n.len());
+        return Err(if edges < 2 { MeshError::OpenBorder { vertex, edges } } else { MeshError::TouchingLoops { vertex, edges } }.into());
     }
     let mut visited: HashMap<usize, ()> = HashMap::with_capacity(neighbours.len());
     let mut loops = Vec::new();
@@ -46,7 +46,7 @@ pub fn chain_loops(edges: &[[usize; 2]]) -> Result<Vec<Vec<usize>>> {
         let (mut prev, mut cur) = (start, neighbours[&start].iter().copied().min().unwrap_or(start));
         while cur != start {
             if visited.insert(cur, ()).is_some() {
-                return Err(Error::Mesh(format!("vertex {cur} is reached twice while chaining border edges")));
+                return Err(MeshError::ReachedTwice { vertex: cur }.into());
             }
             cycle.push(cur);
             let n = &neighbours[&cur];
@@ -63,9 +63,9 @@ pub fn chain_loops(edges: &[[usize; 2]]) -> Result<Vec<Vec<usize>>> {
 pub fn single_loop(edges: &[[usize; 2]]) -> Result<Vec<usize>> {
     let mut loops = chain_loops(edges)?;
     match loops.len() {
-        0 => Err(Error::Mesh("no border edge given".into())),
+        0 => Err(MeshError::NoBorderEdges.into()),
         1 => Ok(loops.remove(0)),
-        n => Err(Error::Mesh(format!("the border edges form {n} separate loops, not one"))),
+        loops => Err(MeshError::SeveralLoops { loops }.into()),
     }
 }
 

@@ -13,8 +13,7 @@
 //! mesh lists its faces; [`crate::border::prepare`] orients it anticlockwise afterwards.
 //!
 //! ```
-//! use close::formats::MeshFrames;
-//! use close::mesh::{border_of, BorderMethod};
+//! use close::mesh::{border_of, BorderMethod, MeshFrames};
 //! // A 2×1 strip of quads: its outline visits all six vertices.
 //! let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [2.0, 1.0, 0.0]];
 //! let mesh = MeshFrames::new(vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]], vec![v]);
@@ -28,9 +27,10 @@ pub mod silhouette;
 
 use std::collections::HashMap;
 
+use serde::Serialize;
+
 use crate::border::{signed_area_xy, Point, MAX_FRAMES};
-use crate::error::{Error, Result};
-use crate::formats::MeshFrames;
+use crate::error::{Error, MeshError, Result};
 
 /// Most vertices a mesh may have.
 pub const MAX_MESH_VERTICES: usize = 2_000_000;
@@ -40,6 +40,26 @@ pub const MAX_MESH_FACES: usize = 4_000_000;
 pub const MAX_FACE_CORNERS: usize = 16_000_000;
 /// A boundary loop is the outline when its XY area is at least this part of the silhouette.
 pub const ENCLOSES: f64 = 0.8;
+
+/// A triangle (or polygon) mesh followed through frames by vertex index. Serialised as
+/// Sample JSON's `"mesh"`; read back through [`crate::formats::json`], whose lists are
+/// bounded while reading.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MeshFrames {
+    pub faces: Vec<Vec<usize>>,
+    pub frames: Vec<Vec<[f64; 3]>>,
+    /// Border edges given by the file (the MATLAB data's `Eb`, 0-based here); when present
+    /// they define the border and the faces may be empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub border_edges: Vec<[usize; 2]>,
+}
+
+impl MeshFrames {
+    /// A mesh from faces and frames of vertex positions.
+    pub fn new(faces: Vec<Vec<usize>>, frames: Vec<Vec<[f64; 3]>>) -> MeshFrames {
+        MeshFrames { faces, frames, border_edges: Vec::new() }
+    }
+}
 
 /// How a mesh's border was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,17 +91,17 @@ pub struct MeshBorder {
 /// frame the same vertex count and finite coordinates, no edge has more than two faces.
 pub fn validate(mesh: &MeshFrames) -> Result<()> {
     let Some(first) = mesh.frames.first() else {
-        return Err(Error::Empty("the mesh has no frame".into()));
+        return Err(Error::Empty { what: "the mesh has no frame" });
     };
     let n = first.len();
     if n == 0 {
-        return Err(Error::Empty("frame 0 of the mesh has no vertex".into()));
+        return Err(Error::Empty { what: "frame 0 of the mesh has no vertex" });
     }
     if n > MAX_MESH_VERTICES {
-        return Err(Error::TooLarge(format!("{n} mesh vertices (at most {MAX_MESH_VERTICES})")));
+        return Err(Error::too_large("mesh vertices", n, MAX_MESH_VERTICES));
     }
     if mesh.frames.len() > MAX_FRAMES {
-        return Err(Error::TooLarge(format!("{} frames (at most {MAX_FRAMES})", mesh.frames.len())));
+        return Err(Error::too_large("frames", mesh.frames.len(), MAX_FRAMES));
     }
     for (f, frame) in mesh.frames.iter().enumerate() {
         if frame.len() != n {
@@ -91,23 +111,32 @@ pub fn validate(mesh: &MeshFrames) -> Result<()> {
             return Err(Error::NonFinite { frame: f, vertex: v });
         }
     }
-    if mesh.faces.len() > MAX_MESH_FACES || mesh.faces.iter().map(Vec::len).sum::<usize>() > MAX_FACE_CORNERS {
-        return Err(Error::TooLarge(format!("{} faces (at most {MAX_MESH_FACES})", mesh.faces.len())));
+    if mesh.faces.len() > MAX_MESH_FACES {
+        return Err(Error::too_large("mesh faces", mesh.faces.len(), MAX_MESH_FACES));
     }
+    let corners = mesh.faces.iter().map(Vec::len).sum::<usize>();
+    if corners > MAX_FACE_CORNERS {
+        return Err(Error::too_large("face corners", corners, MAX_FACE_CORNERS));
+    }
+    // One buffer for all faces: a face's repeated vertex is found sorted, O(K log K).
+    let mut sorted = Vec::new();
     for (k, face) in mesh.faces.iter().enumerate() {
         if face.len() < 3 {
-            return Err(Error::Mesh(format!("face {k} has {} vertices (a face needs at least 3)", face.len())));
+            return Err(MeshError::FaceTooSmall { face: k, corners: face.len() }.into());
         }
         if let Some(&v) = face.iter().find(|&&v| v >= n) {
-            return Err(Error::Mesh(format!("face {k} uses vertex {v}, but the mesh has {n} vertices (0…{})", n - 1)));
+            return Err(MeshError::VertexOutOfRange { face: k, vertex: v, vertices: n }.into());
         }
-        if (1..face.len()).any(|i| face[..i].contains(&face[i])) {
-            return Err(Error::Mesh(format!("face {k} {face:?} repeats a vertex")));
+        sorted.clear();
+        sorted.extend_from_slice(face);
+        sorted.sort_unstable();
+        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+            return Err(MeshError::RepeatedVertex { face: k, vertex: w[0] }.into());
         }
     }
     for &[a, b] in &mesh.border_edges {
         if a.max(b) >= n {
-            return Err(Error::Mesh(format!("border edge [{a}, {b}] uses a vertex beyond the mesh's {n}")));
+            return Err(MeshError::BorderEdgeOutOfRange { a, b, vertices: n }.into());
         }
     }
     edge_faces(&mesh.faces).map(|_| ())
@@ -123,7 +152,7 @@ pub fn edge_faces(faces: &[Vec<usize>]) -> Result<HashMap<[usize; 2], u8>> {
             let c = count.entry([a.min(b), a.max(b)]).or_default();
             *c += 1;
             if *c > 2 {
-                return Err(Error::Mesh(format!("non-manifold mesh: edge [{}, {}] is shared by 3 or more faces", a.min(b), a.max(b))));
+                return Err(MeshError::NonManifoldEdge { a: a.min(b), b: a.max(b) }.into());
             }
         }
     }
@@ -150,7 +179,7 @@ pub fn border_of(mesh: &MeshFrames) -> Result<MeshBorder> {
         return Ok(MeshBorder { indices: boundary::single_loop(&mesh.border_edges)?, method: BorderMethod::BorderEdges });
     }
     if mesh.faces.is_empty() {
-        return Err(Error::Mesh("the mesh has no face and no border edge".into()));
+        return Err(MeshError::NoFaces.into());
     }
     let seen = silhouette::Silhouette::render(vertices, &mesh.faces)?;
     // Touching boundary loops cannot give an outline; the silhouette still can.
@@ -165,10 +194,7 @@ pub fn border_of(mesh: &MeshFrames) -> Result<MeshBorder> {
     }
     let mut indices = seen.border(vertices, silhouette::EPSILON)?;
     if indices.len() < crate::border::MIN_VERTICES {
-        return Err(Error::Mesh(format!(
-            "the silhouette seen from +z gives only {} border vertices: no usable border",
-            indices.len()
-        )));
+        return Err(MeshError::SilhouetteTooSmall { vertices: indices.len() }.into());
     }
     let lowest = indices.iter().enumerate().min_by_key(|&(_, &v)| v).map_or(0, |(k, _)| k);
     indices.rotate_left(lowest);

@@ -1,4 +1,6 @@
-//! The paper's silhouette border of a garment shell, seen from above.
+//! The silhouette border of a garment shell, seen from above: how Kamat, Borràs, Torras,
+//! "CloSE: A Geometric Shape-Agnostic Cloth State Representation" take the border of a
+//! garment mesh that has no single boundary loop.
 //!
 //! Frame 0 is rendered looking down −z onto a square-celled grid of at most
 //! [`GRID`]×[`GRID`] cells over the XY bounding box: a cell is covered when its centre lies
@@ -24,12 +26,16 @@
 use std::collections::{HashSet, VecDeque};
 
 use crate::border::{Normalisation, Point};
-use crate::error::{Error, Result};
+use crate::error::{DegenerateReason, Error, MeshError, Result};
 
 /// Cells along the longer side of the bounding box (plus a margin of empty cells).
 pub const GRID: usize = 256;
 /// The paper's ε of the ε-cover, in normalised units (farthest vertex at distance 1).
 pub const EPSILON: f64 = 0.04;
+/// Most cell tests one rendering may make (triangles × the cells of their bounding boxes).
+/// A polygon of many corners fans into long, thin triangles that each span the grid, so
+/// the work is refused up front rather than left to grow with corners × grid area.
+pub const MAX_CELL_TESTS: usize = 1 << 25;
 /// Empty cells around the box, so every contour is closed inside the grid.
 const MARGIN: usize = 2;
 const NO_VERTEX: u32 = u32::MAX;
@@ -57,23 +63,44 @@ impl Silhouette {
             }
         }
         let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        if !(extent > 0.0 && extent.is_finite()) {
-            return Err(Error::Mesh("the mesh has no extent seen from +z: no silhouette".into()));
+        // +∞: finite coordinates whose span overflows; −∞: no face at all.
+        if extent == f64::INFINITY {
+            return Err(Error::Degenerate { frame: 0, reason: DegenerateReason::TooLargeToNormalise });
+        }
+        if extent <= 0.0 {
+            return Err(MeshError::NoExtent.into());
         }
         let cell = extent / (GRID - 2 * MARGIN) as f64;
         let cells = |a: usize| ((hi[a] - lo[a]) / cell).ceil() as usize + 2 * MARGIN;
         let (nx, ny) = (cells(0), cells(1));
         let origin = [lo[0] - MARGIN as f64 * cell, lo[1] - MARGIN as f64 * cell];
         let mut s = Silhouette { nx, ny, cell, depth: vec![f64::NEG_INFINITY; nx * ny], visible: vec![NO_VERTEX; nx * ny] };
-        for face in faces {
-            for k in 1..face.len().saturating_sub(1) {
-                s.fill_triangle([face[0], face[k], face[k + 1]], vertices, origin);
-            }
+        let triangles = || faces.iter().flat_map(|face| (1..face.len().saturating_sub(1)).map(|k| [face[0], face[k], face[k + 1]]));
+        let work = triangles().fold(0usize, |sum, tri| {
+            let [cols, rows] = s.bounding_cells(&tri.map(|k| vertices[k]), origin);
+            sum.saturating_add(cols.count().saturating_mul(rows.count()))
+        });
+        if work > MAX_CELL_TESTS {
+            return Err(Error::too_large("silhouette cell tests (face triangles × cells of their bounding boxes)", work, MAX_CELL_TESTS));
+        }
+        for tri in triangles() {
+            s.fill_triangle(tri, vertices, origin);
         }
         if s.visible.iter().all(|&v| v == NO_VERTEX) {
-            return Err(Error::Mesh("the mesh covers no area seen from +z: no silhouette".into()));
+            return Err(MeshError::NoArea.into());
         }
         Ok(s)
+    }
+
+    /// The columns and rows of the cells whose centres lie in the triangle's bounding box.
+    fn bounding_cells(&self, p: &[[f64; 3]; 3], origin: [f64; 2]) -> [std::ops::Range<usize>; 2] {
+        [(0, self.nx), (1, self.ny)].map(|(a, n)| {
+            let lo = p.iter().map(|v| v[a]).fold(f64::INFINITY, f64::min);
+            let hi = p.iter().map(|v| v[a]).fold(f64::NEG_INFINITY, f64::max);
+            let first = ((lo - origin[a]) / self.cell - 0.5).ceil().max(0.0) as usize;
+            let last = (((hi - origin[a]) / self.cell - 0.5).floor().max(0.0) as usize).min(n - 1);
+            first..last + 1
+        })
     }
 
     fn fill_triangle(&mut self, tri: [usize; 3], vertices: &[[f64; 3]], origin: [f64; 2]) {
@@ -82,18 +109,12 @@ impl Silhouette {
         if det.abs() <= f64::EPSILON * self.cell * self.cell {
             return; // seen edge-on: covers nothing
         }
-        let range = |a: usize, n: usize| {
-            let lo = p.iter().map(|v| v[a]).fold(f64::INFINITY, f64::min);
-            let hi = p.iter().map(|v| v[a]).fold(f64::NEG_INFINITY, f64::max);
-            let first = ((lo - origin[a]) / self.cell - 0.5).ceil().max(0.0) as usize;
-            let last = (((hi - origin[a]) / self.cell - 0.5).floor().max(0.0) as usize).min(n - 1);
-            first..=last
-        };
+        let [cols, rows] = self.bounding_cells(&p, origin);
         // Centres exactly on a shared edge count for both triangles, so no gap opens.
         let tolerance = -1e-9;
-        for j in range(1, self.ny) {
+        for j in rows {
             let y = origin[1] + (j as f64 + 0.5) * self.cell;
-            for i in range(0, self.nx) {
+            for i in cols.clone() {
                 let x = origin[0] + (i as f64 + 0.5) * self.cell;
                 let b1 = ((x - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (y - p[0][1])) / det;
                 let b2 = ((p[1][0] - p[0][0]) * (y - p[0][1]) - (x - p[0][0]) * (p[1][1] - p[0][1])) / det;
@@ -226,6 +247,19 @@ mod tests {
         ];
         let f = vec![vec![0, 1, 2, 3, 6], vec![6, 3, 4, 5]];
         (v, f)
+    }
+
+    #[test]
+    fn a_polygon_of_many_corners_is_refused_before_rendering() {
+        // 20 000 corners on a circle fan into triangles that each span the grid.
+        let k = 20_000;
+        let v: Vec<[f64; 3]> = (0..k).map(|i| (i as f64 / k as f64 * std::f64::consts::TAU).sin_cos()).map(|(s, c)| [c, s, 0.0]).collect();
+        let err = Silhouette::render(&v, &[(0..k).collect()]).unwrap_err();
+        assert!(matches!(err, Error::TooLarge { limit, .. } if limit == MAX_CELL_TESTS as u64), "{err}");
+        // The same circle as a fan of 64 corners renders.
+        let v: Vec<[f64; 3]> = (0..64).map(|i| (i as f64 / 64.0 * std::f64::consts::TAU).sin_cos()).map(|(s, c)| [c, s, 0.0]).collect();
+        let s = Silhouette::render(&v, &[(0..64).collect()]).unwrap();
+        assert!((s.area() - std::f64::consts::PI).abs() < 0.05, "{}", s.area());
     }
 
     #[test]

@@ -35,16 +35,7 @@ pub enum ApiError {
 impl ApiError {
     pub fn status(&self) -> StatusCode {
         match self {
-            // No catch-all: a new library error must be given its status here.
-            ApiError::Input(e) => match e {
-                Error::Parse { .. } | Error::Empty(_) | Error::InvalidArgument(_) | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
-                Error::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
-                Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
-                    StatusCode::UNPROCESSABLE_ENTITY
-                }
-                // A picture or recording that cannot be written is our bug, not bad input.
-                Error::Render(_) | Error::Recording(_) => StatusCode::INTERNAL_SERVER_ERROR,
-            },
+            ApiError::Input(e) => input_status(e),
             ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::BadRequest(_) => StatusCode::BAD_REQUEST,
@@ -60,6 +51,22 @@ impl ApiError {
             ApiError::Rejected(status, m) if *status == StatusCode::PAYLOAD_TOO_LARGE => format!("request body too large: {m}"),
             ApiError::Rejected(_, m) => m.clone(),
         }
+    }
+}
+
+/// The status of a library error (no catch-all: a new variant must be given its status).
+fn input_status(e: &Error) -> StatusCode {
+    match e {
+        Error::Parse { .. } | Error::Empty { .. } | Error::InvalidArgument(_) | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
+        Error::TooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+        Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate { .. } | Error::Mesh(_) => {
+            StatusCode::UNPROCESSABLE_ENTITY
+        }
+        Error::UnknownSample { .. } => StatusCode::NOT_FOUND,
+        // Naming the file does not change what is wrong with it.
+        Error::InFile { error, .. } => input_status(error),
+        // A picture or recording that cannot be written is our bug, not bad input.
+        Error::Render(_) | Error::Recording(_) => StatusCode::INTERNAL_SERVER_ERROR,
     }
 }
 
@@ -115,9 +122,10 @@ mod tests {
     #[test]
     fn input_errors_are_4xx_and_our_failures_5xx() {
         let status = |e: Error| ApiError::from(e).status();
-        assert_eq!(status(Error::parse("text", "x")), StatusCode::BAD_REQUEST);
-        assert_eq!(status(Error::TooLarge("x".into())), StatusCode::PAYLOAD_TOO_LARGE);
-        assert_eq!(status(Error::Mesh("no boundary".into())), StatusCode::UNPROCESSABLE_ENTITY);
+        assert_eq!(status(Error::parse(crate::error::Format::Text, "x")), StatusCode::BAD_REQUEST);
+        assert_eq!(status(Error::too_large("frames", 2000, 1000).in_file("a.json")), StatusCode::PAYLOAD_TOO_LARGE);
+        assert_eq!(status(Error::Mesh(crate::error::MeshError::NoFaces)), StatusCode::UNPROCESSABLE_ENTITY);
+        assert_eq!(status(Error::UnknownSample { id: "x".into() }), StatusCode::NOT_FOUND);
         assert_eq!(status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }), StatusCode::UNPROCESSABLE_ENTITY);
         assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);
         assert_eq!(status(Error::Recording("encoder".into())), StatusCode::INTERNAL_SERVER_ERROR);

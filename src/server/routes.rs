@@ -132,7 +132,7 @@ impl Upload {
             (false, _, _) => return Err(ApiError::BadRequest("send either \"sample\" or \"start\"/\"end\" files, not both".into())),
             (true, Some(s), e) => std::iter::once(s).chain(e).collect(),
             (true, None, Some(_)) => return Err(ApiError::BadRequest("an \"end\" file needs a \"start\" file".into())),
-            (true, None, None) => return Err(Error::Empty("the form holds no file: send \"sample\", or \"start\" and \"end\"".into()).into()),
+            (true, None, None) => return Err(Error::Empty { what: "the form holds no file: send \"sample\", or \"start\" and \"end\"" }.into()),
         };
         Ok(Upload::Files(files))
     }
@@ -350,12 +350,7 @@ pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>,
 pub async fn interpolate(State(state): State<AppState>, body: Result<Json<InterpolateRequest>, JsonRejection>) -> Result<Json<Value>, ApiError> {
     let Json(req) = body?;
     if req.border.len().saturating_mul(req.steps) > MAX_INTERPOLATED_POINTS {
-        return Err(Error::TooLarge(format!(
-            "{} vertices × {} steps (at most {MAX_INTERPOLATED_POINTS} points in one answer)",
-            req.border.len(),
-            req.steps
-        ))
-        .into());
+        return Err(Error::too_large("points in one answer (vertices × steps)", req.border.len().saturating_mul(req.steps), MAX_INTERPOLATED_POINTS).into());
     }
     let border: Vec<Point> = req.border.iter().map(|&p| Point::from(p)).collect();
     let motion = state.run_cpu(move || Ok(crate::interpolate::interpolate(&border, req.from, req.to, req.steps)?)).await?;
