@@ -34,6 +34,13 @@ pub enum Error {
     /// A mesh could not give a border (no boundary, out-of-range face, …).
     #[error("mesh problem: {0}")]
     Mesh(String),
+    /// A VR-Folding Zarr store (or one of its groups or arrays) is missing, malformed or
+    /// unreadable; `path` is the group or array inside the store.
+    #[error("VR-Folding store {store}, {path}: {problem}")]
+    Store { store: String, path: String, problem: String },
+    /// A dataset entry asked for by id does not exist.
+    #[error("no sample {id:?} in the datasets")]
+    UnknownSample { id: String },
     /// A recording could not be written (feature `rerun`).
     #[error("recording failed: {0}")]
     Recording(String),

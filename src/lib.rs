@@ -26,6 +26,8 @@ pub mod record;
 pub mod render;
 pub mod rng;
 pub mod server;
+#[cfg(feature = "vrfolding")]
+pub mod vrfolding;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use fold::FoldMethod;

@@ -42,6 +42,9 @@ impl ApiError {
                 Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
                     StatusCode::UNPROCESSABLE_ENTITY
                 }
+                // A user's dataset file that cannot be read is bad input; an unknown id is a 404.
+                Error::Store { .. } => StatusCode::UNPROCESSABLE_ENTITY,
+                Error::UnknownSample { .. } => StatusCode::NOT_FOUND,
                 // A picture or recording that cannot be written is our bug, not bad input.
                 Error::Render(_) | Error::Recording(_) => StatusCode::INTERNAL_SERVER_ERROR,
             },
