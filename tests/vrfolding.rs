@@ -53,3 +53,113 @@ fn eval_gives_table_rows_per_category_and_fold() {
     let table = report.table();
     assert!(table.contains("Trousers/fold2") && table.contains("dropped"));
 }
+
+/// A private copy of the fixture's Skirt category (a whole store) to break.
+fn copy_store(name: &str) -> PathBuf {
+    fn copy(from: &Path, to: &Path) {
+        std::fs::create_dir_all(to).unwrap();
+        for entry in std::fs::read_dir(from).unwrap() {
+            let entry = entry.unwrap();
+            let target = to.join(entry.file_name());
+            if entry.file_type().unwrap().is_dir() {
+                copy(&entry.path(), &target);
+            } else {
+                std::fs::copy(entry.path(), target).unwrap();
+            }
+        }
+    }
+    let to = std::env::temp_dir().join(format!("close-vrfolding-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&to);
+    std::fs::create_dir_all(&to).unwrap();
+    std::fs::copy(fixture().join(".zgroup"), to.join(".zgroup")).unwrap();
+    copy(&fixture().join("Skirt"), &to.join("Skirt"));
+    to
+}
+
+/// The first video's error after `breaking` a copy of the store (path: frame 0's group).
+fn error_after(name: &str, breaking: impl FnOnce(&Path)) -> String {
+    let root = copy_store(name);
+    let store = Store::open(&root).unwrap();
+    let video = store.videos().unwrap().remove(0);
+    breaking(&root.join(video.frames[0].trim_start_matches('/')));
+    let error = store.folds(&video).unwrap_err();
+    assert!(matches!(error, Error::Store { .. }), "{error:?}");
+    std::fs::remove_dir_all(&root).unwrap();
+    error.to_string()
+}
+
+fn edit_json(path: &Path, edit: impl FnOnce(&mut serde_json::Value)) {
+    let mut value: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    edit(&mut value);
+    std::fs::write(path, value.to_string()).unwrap();
+}
+
+#[test]
+fn a_missing_group_is_named() {
+    let e = error_after("missing-group", |frame| std::fs::remove_dir_all(frame.join("grip_vertex_id")).unwrap());
+    assert!(e.contains("grip_vertex_id/left_grip_vertex_id") && e.contains("missing"), "{e}");
+    let root = copy_store("no-samples");
+    std::fs::rename(root.join("Skirt/samples"), root.join("Skirt/frames")).unwrap();
+    let e = Store::open(&root).err().unwrap().to_string();
+    assert!(e.contains("samples/"), "{e}");
+    std::fs::remove_dir_all(&root).unwrap();
+    let e = Store::open(&fixture().join("Skirt/samples/nothing-here")).err().unwrap().to_string();
+    assert!(e.contains("not a folder"), "{e}");
+}
+
+#[test]
+fn an_array_of_the_wrong_shape_or_type_is_named() {
+    let e = error_after("shape", |frame| {
+        edit_json(&frame.join("mesh/cloth_verts/.zarray"), |z| {
+            let rows = z["shape"][0].as_u64().unwrap();
+            z["shape"] = serde_json::json!([rows * 3]);
+            z["chunks"] = serde_json::json!([rows * 3]);
+        })
+    });
+    assert!(e.contains("cloth_verts") && e.contains("expected [rows, 3]"), "{e}");
+    let e = error_after("type", |frame| edit_json(&frame.join("mesh/cloth_verts/.zarray"), |z| {
+        z["dtype"] = "<i4".into();
+        z["fill_value"] = 0.into();
+    }));
+    assert!(e.contains("data type int32, expected float32 or float64"), "{e}");
+    let e = error_after("face-type", |frame| edit_json(&frame.join("mesh/cloth_faces_tri/.zarray"), |z| z["dtype"] = "<f4".into()));
+    assert!(e.contains("cloth_faces_tri") && e.contains("expected integers"), "{e}");
+}
+
+#[test]
+fn an_unknown_codec_is_named() {
+    let e = error_after("codec", |frame| edit_json(&frame.join("mesh/cloth_verts/.zarray"), |z| z["compressor"]["id"] = "nosuchcodec".into()));
+    assert!(e.contains("cloth_verts") && e.contains("nosuchcodec"), "{e}");
+}
+
+#[test]
+fn a_truncated_chunk_is_an_error() {
+    let e = error_after("truncated", |frame| {
+        let chunk = frame.join("mesh/cloth_verts/0.0");
+        let bytes = std::fs::read(&chunk).unwrap();
+        std::fs::write(&chunk, &bytes[..bytes.len() / 2]).unwrap();
+    });
+    assert!(e.contains("cloth_verts") && e.contains("cannot decode"), "{e}");
+}
+
+#[test]
+fn grip_ids_out_of_range_and_videos_without_action_are_errors() {
+    let bad = fixture().parent().unwrap().join("bad");
+    for (store, expected) in [("grip_out_of_range.zarr", "gripped vertex 10000 is out of range"), ("no_action.zarr", "no fold action")] {
+        let store = Store::open(&bad.join(store)).unwrap();
+        let video = store.videos().unwrap().remove(0);
+        let e = store.folds(&video).unwrap_err().to_string();
+        assert!(e.contains(expected), "{e}");
+        // In an evaluation the video is one error in its row, not a panic.
+        let rows = evaluate(&store, &video, FoldMethod::default());
+        assert_eq!((rows.len(), rows[0].category.as_str(), rows[0].error.is_some()), (1, "Skirt/fold1", true));
+    }
+}
+
+#[test]
+fn a_category_folder_is_a_store_of_one_category() {
+    assert!(is_store(&fixture()) && is_store(&fixture().join("Top")) && !is_store(&fixture().join("Top/samples/missing")));
+    let store = Store::open(&fixture().join("Top")).unwrap();
+    assert_eq!(store.categories(), ["Top"]);
+    assert_eq!(store.videos().unwrap().len(), 2);
+}
