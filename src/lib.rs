@@ -6,6 +6,7 @@
 //! the whole pipeline.
 
 pub mod analysis;
+pub mod catalog;
 pub mod angle;
 pub mod border;
 pub mod close;

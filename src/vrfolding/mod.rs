@@ -271,7 +271,8 @@ impl Store {
         Ok(self.retrieve::<T>(array, path)?.into_iter().map(Into::into).collect())
     }
 
-    /// Gripped vertex ids of one hand in one frame, checked against the mesh's `vertices`.
+    /// Whether one hand grips in one frame; its vertex ids are checked against the mesh's
+    /// `vertices`.
     fn grip(&self, frame: &str, hand: &str, vertices: usize) -> Result<bool> {
         let path = format!("{frame}/grip_vertex_id/{hand}_grip_vertex_id");
         let (_, ids) = self.ints(&path, None)?;
@@ -281,11 +282,30 @@ impl Store {
         Ok(cut::holds(&ids))
     }
 
-    /// Cut `video` into actions and read the border frames of its first [`FOLDS`] folds.
-    pub fn folds(&self, video: &Video) -> Result<VideoFolds> {
+    /// Cut `video` into fold actions from its grips alone (no mesh is read); a video with
+    /// no finished action is an error.
+    pub fn cut(&self, video: &Video) -> Result<cut::Actions> {
         let Some(first) = video.frames.first() else {
             return Err(self.error(&video.id, "the video has no frame"));
         };
+        let (_, vertices, _) = self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3))?;
+        let grips = video
+            .frames
+            .iter()
+            .map(|f| Ok(self.grip(f, "left", vertices)? | self.grip(f, "right", vertices)?))
+            .collect::<Result<Vec<bool>>>()?;
+        let cut = cut::actions(&grips);
+        if cut.actions.is_empty() {
+            let why = if cut.unfinished { "a hand grips until the last frame and never lets go" } else { "no hand grips in any frame" };
+            return Err(self.error(&format!("video {}", video.id), format!("no fold action in its {} frames: {why}", video.frames.len())));
+        }
+        Ok(cut)
+    }
+
+    /// Cut `video` into actions and read the border frames of its first [`FOLDS`] folds.
+    pub fn folds(&self, video: &Video) -> Result<VideoFolds> {
+        let cut = self.cut(video)?;
+        let first = &video.frames[0];
         let verts0 = self.points(&format!("{first}/mesh/cloth_verts"))?;
         let vertices = verts0.len();
         if vertices < crate::border::MIN_VERTICES {
@@ -298,16 +318,6 @@ impl Store {
         }
         let canonical = broken::max_edge_zscore(&nocs, &faces);
         drop(nocs);
-        let grips = video
-            .frames
-            .iter()
-            .map(|f| Ok(self.grip(f, "left", vertices)? | self.grip(f, "right", vertices)?))
-            .collect::<Result<Vec<bool>>>()?;
-        let cut = cut::actions(&grips);
-        if cut.actions.is_empty() {
-            let why = if cut.unfinished { "a hand grips until the last frame and never lets go" } else { "no hand grips in any frame" };
-            return Err(self.error(&format!("video {}", video.id), format!("no fold action in its {} frames: {why}", video.frames.len())));
-        }
         let faces_poly: Vec<Vec<usize>> = faces.iter().map(|f| f.to_vec()).collect();
         let border_indices = Silhouette::render(&verts0, &faces_poly)?.border(&verts0, EPSILON)?;
         if border_indices.len() < crate::border::MIN_VERTICES {
