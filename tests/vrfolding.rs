@@ -163,3 +163,115 @@ fn a_category_folder_is_a_store_of_one_category() {
     assert_eq!(store.categories(), ["Top"]);
     assert_eq!(store.videos().unwrap().len(), 2);
 }
+
+fn close_cli(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_close")).args(args).output().unwrap()
+}
+
+#[test]
+fn the_cli_evaluates_analyses_and_exports_a_store() {
+    let store = fixture();
+    let store = store.to_str().unwrap();
+    let out = close_cli(&["eval", store, "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows: Vec<&str> = v["categories"].as_array().unwrap().iter().map(|c| c["category"].as_str().unwrap()).collect();
+    assert_eq!(rows.len(), 8, "{rows:?}");
+    assert_eq!((v["overall"]["count"].as_u64(), v["overall"]["dropped"].as_u64()), (Some(15), Some(1)));
+
+    let out = close_cli(&["analyze", store, "--video", "Tshirt/00001", "--fold", "2"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let a: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((a["fold"].as_u64(), a["steps"].as_array().map(Vec::len)), (Some(2), Some(2)));
+    assert_eq!(a["actions"], serde_json::json!([{"start": 1, "end": 4}, {"start": 6, "end": 8}]));
+    // border_indices are mesh vertex ids.
+    assert!(a["border_indices"].as_array().unwrap().iter().any(|i| i.as_u64().unwrap() >= a["n"].as_u64().unwrap()));
+    for (args, expected) in [
+        (vec!["analyze", store, "--video", "00004", "--fold", "2"], "broken"),
+        (vec!["analyze", store, "--video", "nope"], "no video \"nope\""),
+        (vec!["analyze", store], "--video"),
+        (vec!["analyze", store, "--video", "00001", "--fold", "3"], "3"),
+    ] {
+        let out = close_cli(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && stderr.contains(expected) && !stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+
+    let dir = std::env::temp_dir().join(format!("close-vrfolding-export-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = close_cli(&["dataset", dir.to_str().unwrap(), "--from", store]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 15);
+    // The exported folds score as the store's rows do.
+    let exported: serde_json::Value = serde_json::from_slice(&close_cli(&["eval", dir.to_str().unwrap(), "--json"]).stdout).unwrap();
+    for (a, b) in exported["categories"].as_array().unwrap().iter().zip(v["categories"].as_array().unwrap()) {
+        assert_eq!(a["category"], b["category"]);
+        let (x, y) = (a["rmse"]["mean"].as_f64().unwrap(), b["rmse"]["mean"].as_f64().unwrap());
+        assert!((x - y).abs() < 1e-9, "{}: {x} vs {y}", a["category"]);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+mod server {
+    use super::*;
+    use axum::body::{to_bytes, Body};
+    use axum::http::{Request, StatusCode};
+    use close::server::{app, AppState, Config};
+    use serde_json::Value;
+    use tower::ServiceExt;
+
+    async fn get(app: &axum::Router, uri: &str) -> (StatusCode, Value) {
+        let response = app.clone().oneshot(Request::get(uri).body(Body::empty()).unwrap()).await.unwrap();
+        let status = response.status();
+        let body = to_bytes(response.into_body(), usize::MAX).await.unwrap();
+        (status, serde_json::from_slice(&body).unwrap())
+    }
+
+    #[tokio::test]
+    async fn datasets_are_listed_filtered_paged_and_analysed_lazily() {
+        let folder = std::env::temp_dir().join(format!("close-vrfolding-dataset-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&folder);
+        std::fs::create_dir_all(&folder).unwrap();
+        std::fs::write(folder.join("oops.json"), "not json").unwrap();
+        let state = AppState::with_config(Config { datasets: vec![fixture(), folder.clone()], ..Config::default() });
+        let app = app(state);
+
+        let (status, all) = get(&app, "/api/samples").await;
+        assert_eq!(status, StatusCode::OK);
+        let samples = all["samples"].as_array().unwrap();
+        let builtin = samples.iter().filter(|s| s["source"] == "builtin").count();
+        assert!(builtin > 100);
+        // 8 videos × 2 folds, one unreadable file; the broken fold is found on loading.
+        assert_eq!(samples.len(), builtin + 16 + 1);
+        assert_eq!(all["total"].as_u64(), Some(samples.len() as u64));
+        for s in samples {
+            for key in ["id", "name", "category", "n", "frames", "source", "error"] {
+                assert!(s.get(key).is_some(), "{key} missing in {s}");
+            }
+        }
+        let oops = samples.iter().find(|s| s["name"] == "oops.json").unwrap();
+        assert!(oops["error"].as_str().unwrap().contains("parse"), "{oops}");
+
+        let (_, tshirts) = get(&app, "/api/samples?category=Tshirt&offset=1&limit=2").await;
+        assert_eq!((tshirts["total"].as_u64(), tshirts["samples"].as_array().unwrap().len()), (Some(4), 2));
+        assert!(tshirts["samples"].as_array().unwrap().iter().all(|s| s["category"] == "Tshirt"));
+        let (_, found) = get(&app, "/api/samples?q=00003%20fold%202").await;
+        assert_eq!(found["total"].as_u64(), Some(1), "{found}");
+        let (status, _) = get(&app, "/api/samples?offset=many").await;
+        assert_eq!(status, StatusCode::BAD_REQUEST);
+
+        let id = found["samples"][0]["id"].as_str().unwrap();
+        let (status, analysis) = get(&app, &format!("/api/samples/{id}")).await;
+        assert_eq!(status, StatusCode::OK, "{analysis}");
+        assert_eq!((analysis["steps"].as_array().map(Vec::len), analysis["id"].as_str()), (Some(2), Some(id)));
+        let (_, broken) = get(&app, "/api/samples?q=00004%20fold%202").await;
+        let (status, error) = get(&app, &format!("/api/samples/{}", broken["samples"][0]["id"].as_str().unwrap())).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+        assert!(error["error"].as_str().unwrap().contains("broken"), "{error}");
+        let (status, _) = get(&app, &format!("/api/samples/{}", oops["id"].as_str().unwrap())).await;
+        assert!(status.is_client_error());
+        let (status, _) = get(&app, "/api/samples/no-such-id").await;
+        assert_eq!(status, StatusCode::NOT_FOUND);
+        std::fs::remove_dir_all(&folder).unwrap();
+    }
+}
