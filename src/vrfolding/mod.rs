@@ -185,21 +185,30 @@ impl Store {
     /// Every video of every category: frames grouped by `video_id` (else `instance_id`) and
     /// sorted by `sample_id`. Reads each frame's attributes once.
     pub fn videos(&self) -> Result<Vec<Video>> {
+        use rayon::prelude::*;
         let mut out = Vec::new();
         for (category, samples) in &self.categories {
+            // Opening a group is a few small file reads: the frames are read in parallel.
+            let frames = self
+                .children(samples)?
+                .into_par_iter()
+                .map(|frame| {
+                    let path = format!("{samples}/{frame}");
+                    let group = self.group(&path)?;
+                    let attrs = group.attributes();
+                    let video = attr_text(attrs, "video_id")
+                        .or_else(|| attr_text(attrs, "instance_id"))
+                        .ok_or_else(|| self.error(&path, "the frame's attributes have no video_id or instance_id"))?;
+                    let sample_id = attrs
+                        .get("sample_id")
+                        .and_then(Value::as_i64)
+                        .ok_or_else(|| self.error(&path, "the frame's attributes have no integer sample_id"))?;
+                    let garment = attr_text(attrs, "garment_name").unwrap_or_else(|| category.clone());
+                    Ok((video, sample_id, path, garment))
+                })
+                .collect::<Result<Vec<_>>>()?;
             let mut videos: BTreeMap<String, Vec<(i64, String, String)>> = BTreeMap::new();
-            for frame in self.children(samples)? {
-                let path = format!("{samples}/{frame}");
-                let group = self.group(&path)?;
-                let attrs = group.attributes();
-                let video = attr_text(attrs, "video_id")
-                    .or_else(|| attr_text(attrs, "instance_id"))
-                    .ok_or_else(|| self.error(&path, "the frame's attributes have no video_id or instance_id"))?;
-                let sample_id = attrs
-                    .get("sample_id")
-                    .and_then(Value::as_i64)
-                    .ok_or_else(|| self.error(&path, "the frame's attributes have no integer sample_id"))?;
-                let garment = attr_text(attrs, "garment_name").unwrap_or_else(|| category.clone());
+            for (video, sample_id, path, garment) in frames {
                 videos.entry(video).or_default().push((sample_id, path, garment));
             }
             for (id, mut frames) in videos {
