@@ -61,6 +61,10 @@ pub enum Error {
     /// One of several files is at fault: its name, then the cause.
     #[error("{file}: {error}")]
     InFile { file: String, error: Box<Error> },
+    /// A VR-Folding Zarr store (or one of its groups or arrays) is missing, malformed or
+    /// unreadable; `path` is the group or array inside the store.
+    #[error("VR-Folding store {store}, {path}: {problem}")]
+    Store { store: String, path: String, problem: String },
     /// A recording could not be written (feature `rerun`).
     #[error("recording failed: {0}")]
     Recording(String),

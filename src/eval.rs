@@ -4,6 +4,9 @@
 //! the predicted end (SPEC metrics), and, where `truth` is given, the angular error of f1
 //! and f2 against the true fold. Samples with several steps (a fold, then a second fold)
 //! are also scored step by step, so first and second folds get rows of their own.
+//! [`evaluate_steps`] scores a sequence fold by fold into rows `<category>/fold<k>` (the
+//! VR-Folding rows of Table I), and a fold that could not be scored (a broken mesh) is
+//! counted as dropped ([`SampleResult::dropped`]), apart from the errors.
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -27,6 +30,9 @@ pub struct SampleResult {
     /// Angular error of f1 and f2 against the true first fold, radians.
     pub angle_error: Option<[f64; 2]>,
     pub error: Option<String>,
+    /// Why the sample was left out of the scores (e.g. a broken mesh), when it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dropped: Option<String>,
     /// Step k (frame k → k+1): the prediction with the folds found so far.
     pub steps: Vec<StepResult>,
 }
@@ -44,15 +50,25 @@ pub struct StepResult {
 impl SampleResult {
     /// The result of a sample that could not be read.
     pub fn unreadable(name: &str, error: &str) -> SampleResult {
+        SampleResult { error: Some(error.to_string()), ..SampleResult::empty(name, "unreadable") }
+    }
+
+    /// A sample left out of the scores on purpose (`reason`), counted as dropped in its row.
+    pub fn dropped(name: &str, category: &str, reason: &str) -> SampleResult {
+        SampleResult { dropped: Some(reason.to_string()), ..SampleResult::empty(name, category) }
+    }
+
+    fn empty(name: &str, category: &str) -> SampleResult {
         SampleResult {
             name: name.to_string(),
-            category: "unreadable".into(),
+            category: category.to_string(),
             folds: 0,
             expected_folds: 0,
             rmse: None,
             frechet: None,
             angle_error: None,
-            error: Some(error.to_string()),
+            error: None,
+            dropped: None,
             steps: Vec::new(),
         }
     }
@@ -86,6 +102,8 @@ pub struct Summary {
     /// Samples whose fold count differs from what they should have.
     pub fold_count_misses: usize,
     pub errors: usize,
+    /// Samples left out of the scores (not in `count`), e.g. folds with a broken mesh.
+    pub dropped: usize,
     pub f1_error: Option<Stat>,
     pub f2_error: Option<Stat>,
     /// For categories with multi-step samples: fold 1, fold 2, … scored apart.
@@ -127,15 +145,8 @@ pub fn evaluate(sample: &Sample) -> SampleResult {
 pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
     let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
     let mut result = SampleResult {
-        name: sample.name.clone(),
-        category: if sample.category.is_empty() { "uncategorised".into() } else { sample.category.clone() },
-        folds: 0,
         expected_folds: truth_folds.as_ref().map_or(sample.frames.len().saturating_sub(1), Vec::len),
-        rmse: None,
-        frechet: None,
-        angle_error: None,
-        error: None,
-        steps: Vec::new(),
+        ..SampleResult::empty(&sample.name, category_of(sample))
     };
     match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
         Ok(a) => {
@@ -163,6 +174,43 @@ pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
     result
 }
 
+fn category_of(sample: &Sample) -> &str {
+    if sample.category.is_empty() {
+        "uncategorised"
+    } else {
+        &sample.category
+    }
+}
+
+/// Score a sequence fold by fold: one analysis of all its frames, and for each step k one
+/// result named `<name>/fold<k>` in category `<category>/fold<k>`, scored on that step alone
+/// (the folds found before it applied, as the analysis does): one fold expected per step.
+pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> {
+    let rows = sample.frames.len().saturating_sub(1);
+    let row = |k: usize| SampleResult {
+        expected_folds: 1,
+        ..SampleResult::empty(&format!("{}/fold{k}", sample.name), &format!("{}/fold{k}", category_of(sample)))
+    };
+    match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
+        Ok(a) => a
+            .steps
+            .iter()
+            .enumerate()
+            .map(|(k, step)| {
+                let found = step.detection.fold.is_some();
+                SampleResult {
+                    folds: usize::from(found),
+                    rmse: Some(step.metrics.rmse),
+                    frechet: Some(step.metrics.frechet),
+                    steps: vec![StepResult { fold_found: found, rmse: step.metrics.rmse, frechet: step.metrics.frechet, angle_error: None }],
+                    ..row(k + 1)
+                }
+            })
+            .collect(),
+        Err(e) => (1..=rows.max(1)).map(|k| SampleResult { error: Some(e.to_string()), ..row(k) }).collect(),
+    }
+}
+
 fn stat_of<T>(items: &[T], f: impl Fn(&T) -> Option<f64>) -> Option<Stat> {
     Stat::of(&items.iter().filter_map(f).collect::<Vec<_>>())
 }
@@ -186,7 +234,9 @@ fn by_fold(results: &[&SampleResult]) -> Vec<FoldSummary> {
         .collect()
 }
 
-fn summarise(category: &str, results: &[&SampleResult]) -> Summary {
+fn summarise(category: &str, all: &[&SampleResult]) -> Summary {
+    let results: Vec<&SampleResult> = all.iter().copied().filter(|r| r.dropped.is_none()).collect();
+    let results = results.as_slice();
     let pick = |f: &dyn Fn(&SampleResult) -> Option<f64>| stat_of(results, |r| f(r));
     Summary {
         category: category.to_string(),
@@ -195,6 +245,7 @@ fn summarise(category: &str, results: &[&SampleResult]) -> Summary {
         frechet: pick(&|r| r.frechet),
         fold_count_misses: results.iter().filter(|r| r.error.is_none() && r.folds != r.expected_folds).count(),
         errors: results.iter().filter(|r| r.error.is_some()).count(),
+        dropped: all.len() - results.len(),
         f1_error: pick(&|r| r.angle_error.map(|a| a[0])),
         f2_error: pick(&|r| r.angle_error.map(|a| a[1])),
         by_fold: by_fold(results),
@@ -215,12 +266,13 @@ pub fn report(samples: Vec<SampleResult>) -> Report {
 impl Report {
     /// The table as aligned text.
     pub fn table(&self) -> String {
-        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "f1 err°", "f2 err°"].map(String::from));
+        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "dropped", "f1 err°", "f2 err°"].map(String::from));
         for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
-            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.f1_error, s.f2_error], s.fold_count_misses, &s.errors.to_string()));
+            let counts = [s.errors, s.dropped].map(|c| c.to_string());
+            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.f1_error, s.f2_error], s.fold_count_misses, counts));
             for f in &s.by_fold {
                 let label = format!("  fold {}", f.fold);
-                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.f1_error, f.f2_error], f.count - f.found, ""));
+                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.f1_error, f.f2_error], f.count - f.found, [String::new(), String::new()]));
             }
         }
         out
@@ -228,13 +280,13 @@ impl Report {
 }
 
 /// One aligned line of the table.
-fn row(cells: [String; 10]) -> String {
-    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9] = cells;
-    format!("{c0:<20} {c1:>5} {c2:>9} {c3:>9} {c4:>9} {c5:>9} {c6:>7} {c7:>6} {c8:>9} {c9:>9}\n")
+fn row(cells: [String; 11]) -> String {
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10] = cells;
+    format!("{c0:<20} {c1:>5} {c2:>9} {c3:>9} {c4:>9} {c5:>9} {c6:>7} {c7:>6} {c8:>7} {c9:>9} {c10:>9}\n")
 }
 
 /// A row from statistics: RMSE and Fréchet with their variances, angle errors in degrees.
-fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 4], misses: usize, errors: &str) -> String {
+fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 4], misses: usize, [errors, dropped]: [String; 2]) -> String {
     let mean = |s: Option<Stat>, scale: f64| s.map_or("-".to_string(), |s| format!("{:.4}", s.mean * scale));
     let var = |s: Option<Stat>| s.map_or("-".to_string(), |s| format!("{:.5}", s.var));
     let degrees = 180.0 / PI;
@@ -246,7 +298,8 @@ fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 
         mean(frechet, 1.0),
         var(frechet),
         misses.to_string(),
-        errors.to_string(),
+        errors,
+        dropped,
         mean(f1, degrees),
         mean(f2, degrees),
     ])

@@ -30,6 +30,7 @@
 //! ```
 
 pub mod analysis;
+pub mod catalog;
 pub mod angle;
 pub mod border;
 pub mod close;
@@ -50,6 +51,8 @@ pub mod record;
 pub mod render;
 pub mod rng;
 pub mod server;
+#[cfg(feature = "vrfolding")]
+pub mod vrfolding;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use fold::FoldMethod;

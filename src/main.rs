@@ -20,10 +20,18 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Analyse a sample: one Sample JSON, or one text/CSV file per frame.
+    /// Analyse a sample: one Sample JSON, or one text/CSV file per frame; or one fold of a
+    /// video of a VR-Folding Zarr store (`close analyze STORE --video ID --fold 2`).
     Analyze {
         #[arg(required = true)]
         files: Vec<PathBuf>,
+        /// The video to analyse, when the path is a VR-Folding store (`ID` or `Category/ID`).
+        #[arg(long)]
+        video: Option<String>,
+        /// Which fold of the video: 1 (start → end of action 1) or 2 (start → end of
+        /// action 1 → end of action 2; the fold is its second step).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+        fold: u8,
         /// First frame (default: the first).
         #[arg(long)]
         start: Option<usize>,
@@ -40,7 +48,8 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Method::Cut)]
         method: Method,
     },
-    /// Evaluate every sample under the given files or folders.
+    /// Evaluate every sample under the given files or folders, and every fold of every video
+    /// of a VR-Folding Zarr store (or of one category folder of it).
     Eval {
         #[arg(required_unless_present = "builtin")]
         paths: Vec<PathBuf>,
@@ -54,9 +63,13 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Method::Cut)]
         method: Method,
     },
-    /// Write the built-in dataset as Sample JSON files into a folder.
+    /// Write the built-in dataset as Sample JSON files into a folder; with `--from STORE`,
+    /// the folds of a VR-Folding store instead (one file per video and fold).
     Dataset {
         out: PathBuf,
+        /// A VR-Folding Zarr store (or category folder) to export instead of the built-in set.
+        #[arg(long)]
+        from: Vec<PathBuf>,
     },
     /// Plan how to reach a goal fold from a sample's end state (SPEC "Planning").
     Plan {
@@ -85,6 +98,11 @@ enum Command {
         /// Address to listen on.
         #[arg(long, default_value = DEFAULT_ADDR)]
         addr: String,
+        /// A folder of the user's own samples (Sample JSON, CSV, OBJ, PLY, .mat; one sample
+        /// per file or per sub-folder of frames) or a VR-Folding Zarr store, shown in Browse
+        /// next to the built-in set. Repeatable.
+        #[arg(long = "dataset")]
+        datasets: Vec<PathBuf>,
     },
 }
 
@@ -126,11 +144,24 @@ fn load_sample(paths: &[PathBuf]) -> Result<Sample, String> {
     read_files(&files).map_err(|e| e.to_string())
 }
 
-fn run_analyze(files: &[PathBuf], options: Options, disks: bool) -> Result<(), String> {
-    let sample = load_sample(files)?;
+fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Options, disks: bool) -> Result<(), String> {
+    let (sample, mesh_indices, extra) = match video {
+        Some(id) => store_fold(files, id, fold)?,
+        None if files.len() == 1 && files[0].join(".zgroup").is_file() => {
+            return Err(format!("{} is a Zarr store: choose a video with --video ID (and --fold 1|2)", files[0].display()));
+        }
+        None => (load_sample(files)?, None, serde_json::Value::Null),
+    };
     let frames = sample.border_frames().map_err(|e| e.to_string())?;
-    let analysis = analyze_with(&frames, options).map_err(|e| e.to_string())?;
+    let mut analysis = analyze_with(&frames, options).map_err(|e| e.to_string())?;
+    if let Some(mesh) = mesh_indices {
+        // The border was gathered from the mesh: report mesh vertex ids.
+        analysis.border_indices = analysis.border_indices.iter().map(|&k| mesh[k]).collect();
+    }
     let mut out = serde_json::to_value(&analysis).map_err(|e| e.to_string())?;
+    if let serde_json::Value::Object(extra) = extra {
+        out.as_object_mut().into_iter().for_each(|o| o.extend(extra.clone()));
+    }
     if disks {
         let last = analysis.frames.len() - 1;
         for (key, k) in [("disk_start", 0), ("disk_end", last)] {
@@ -140,6 +171,39 @@ fn run_analyze(files: &[PathBuf], options: Options, disks: bool) -> Result<(), S
     emit(&out.to_string())?;
     Ok(())
 }
+
+/// Fold `fold` of video `id` of the store at `files[0]`: the border sample, the mesh vertex of
+/// each border vertex, and what to add to the output (video, fold, actions).
+#[cfg(feature = "vrfolding")]
+fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> Result<(Sample, Option<Vec<usize>>, serde_json::Value), String> {
+    let [path] = files else {
+        return Err("--video takes one VR-Folding store (or category folder)".into());
+    };
+    let store = close::vrfolding::Store::open(path).map_err(|e| e.to_string())?;
+    let videos = store.videos().map_err(|e| e.to_string())?;
+    let video = videos
+        .iter()
+        .find(|v| v.id == id || format!("{}/{}", v.category, v.id) == id)
+        .ok_or_else(|| format!("no video {id:?} in {} (videos are named by video_id, or Category/video_id)", path.display()))?;
+    let folds = store.folds(video).map_err(|e| e.to_string())?;
+    let sample = folds.sample(video, fold).ok_or_else(|| {
+        if fold <= folds.broken.len() {
+            format!("fold {fold} of video {id} is dropped: a mesh it uses is broken (BiFold's z-score test)")
+        } else {
+            format!("video {id} has {} fold action(s), not {fold}", folds.actions.len())
+        }
+    })?;
+    let extra = serde_json::json!({ "video": video.id, "category": video.category, "fold": fold, "actions": folds.actions });
+    Ok((sample, Some(folds.border_indices), extra))
+}
+
+#[cfg(not(feature = "vrfolding"))]
+fn store_fold(_: &[PathBuf], _: &str, _: usize) -> Result<(Sample, Option<Vec<usize>>, serde_json::Value), String> {
+    Err(NO_VRFOLDING.into())
+}
+
+#[cfg(not(feature = "vrfolding"))]
+const NO_VRFOLDING: &str = "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
 
 /// Every `.json` file under the given files and folders, sorted.
 fn sample_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
@@ -159,32 +223,70 @@ fn sample_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
     Ok(out)
 }
 
+/// One unit of evaluation work (one progress-bar tick).
+enum Work<'a> {
+    File(PathBuf),
+    Builtin(&'a close::dataset::Entry),
+    #[cfg(feature = "vrfolding")]
+    Video(std::sync::Arc<close::vrfolding::Store>, close::vrfolding::Video),
+}
+
+impl Work<'_> {
+    fn evaluate(&self, method: FoldMethod) -> Vec<eval::SampleResult> {
+        match self {
+            Work::File(path) => {
+                let sample = read(path).and_then(|f| close::formats::json::parse_sample(&f.1).map_err(|e| e.to_string()));
+                vec![match sample {
+                    Ok(sample) => eval::evaluate_with(&sample, method),
+                    Err(e) => eval::SampleResult::unreadable(&path.display().to_string(), &e),
+                }]
+            }
+            Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
+            #[cfg(feature = "vrfolding")]
+            Work::Video(store, video) => close::vrfolding::evaluate(store, video, method),
+        }
+    }
+}
+
+/// The videos of every VR-Folding store among `paths`; the other paths are returned.
+#[cfg(feature = "vrfolding")]
+fn store_work(paths: &[PathBuf]) -> Result<(Vec<Work<'static>>, Vec<PathBuf>), String> {
+    let (stores, rest): (Vec<PathBuf>, Vec<PathBuf>) = paths.iter().cloned().partition(|p| close::vrfolding::is_store(p));
+    let mut work = Vec::new();
+    for path in stores {
+        let store = std::sync::Arc::new(close::vrfolding::Store::open(&path).map_err(|e| e.to_string())?);
+        let videos = store.videos().map_err(|e| e.to_string())?;
+        work.extend(videos.into_iter().map(|v| Work::Video(store.clone(), v)));
+    }
+    Ok((work, rest))
+}
+
+#[cfg(not(feature = "vrfolding"))]
+fn store_work(paths: &[PathBuf]) -> Result<(Vec<Work<'static>>, Vec<PathBuf>), String> {
+    match paths.iter().find(|p| p.join(".zgroup").is_file()) {
+        Some(p) => Err(format!("{}: {NO_VRFOLDING}", p.display())),
+        None => Ok((Vec::new(), paths.to_vec())),
+    }
+}
+
 fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> Result<(), String> {
-    let files = sample_files(paths)?;
-    let mut samples: Vec<(String, Result<Sample, String>)> = files
-        .iter()
-        .map(|path| {
-            let sample = read(path).and_then(|f| close::formats::json::parse_sample(&f.1).map_err(|e| e.to_string()));
-            (path.display().to_string(), sample)
-        })
-        .collect();
+    let dataset = close::dataset::Dataset::builtin();
+    let (mut work, rest) = store_work(paths)?;
+    work.extend(sample_files(&rest)?.into_iter().map(Work::File));
     if builtin {
-        samples.extend(close::dataset::Dataset::builtin().entries().iter().map(|e| (e.id.clone(), Ok(e.sample.clone()))));
+        work.extend(dataset.entries().iter().map(Work::Builtin));
     }
-    if samples.is_empty() {
-        return Err("no Sample JSON file found".into());
+    if work.is_empty() {
+        return Err("no Sample JSON file or VR-Folding video found".into());
     }
-    let bar = if std::io::stderr().is_terminal() { ProgressBar::new(samples.len() as u64) } else { ProgressBar::hidden() };
-    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} samples {elapsed} {msg}").expect("valid template"));
-    let results: Vec<eval::SampleResult> = samples
+    let bar = if std::io::stderr().is_terminal() { ProgressBar::new(work.len() as u64) } else { ProgressBar::hidden() };
+    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} samples/videos {elapsed} eta {eta}").expect("valid template"));
+    let results: Vec<eval::SampleResult> = work
         .par_iter()
-        .map(|(name, sample)| {
-            let result = match sample {
-                Ok(sample) => eval::evaluate_with(sample, method),
-                Err(e) => eval::SampleResult::unreadable(name, e),
-            };
+        .flat_map_iter(|w| {
+            let rows = w.evaluate(method);
             bar.inc(1);
-            result
+            rows
         })
         .collect();
     bar.finish_and_clear();
@@ -200,15 +302,58 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
     Ok(())
 }
 
-fn run_dataset(out: &Path) -> Result<(), String> {
+fn run_dataset(out: &Path, from: &[PathBuf]) -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let write = |name: &str, sample: &Sample| {
+        let path = out.join(format!("{}.json", name.replace(['/', '\\'], "_")));
+        std::fs::write(&path, close::formats::json::to_json(sample)).map_err(|e| format!("{}: {e}", path.display()))
+    };
+    if !from.is_empty() {
+        return export_stores(from, &write);
+    }
     let dataset = close::dataset::Dataset::builtin();
     for entry in dataset.entries() {
-        let path = out.join(format!("{}.json", entry.id));
-        std::fs::write(&path, close::formats::json::to_json(&entry.sample)).map_err(|e| format!("{}: {e}", path.display()))?;
+        write(&entry.id, &entry.sample)?;
     }
     eprintln!("wrote {} samples to {}", dataset.entries().len(), out.display());
     Ok(())
+}
+
+/// Every usable fold of every video of the stores as Sample JSON (`<Category>_<video>_fold<k>`,
+/// category `<Category>/fold<k>`); broken folds and unreadable videos are reported and skipped.
+#[cfg(feature = "vrfolding")]
+fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> Result<(), String> + Sync)) -> Result<(), String> {
+    let (work, rest) = store_work(from)?;
+    if let Some(p) = rest.first() {
+        return Err(format!("{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)", p.display()));
+    }
+    let counts = work
+        .par_iter()
+        .map(|w| {
+            let Work::Video(store, video) = w else { return Ok::<_, String>([0, 0, 0]) };
+            match store.folds(video) {
+                Ok(folds) => {
+                    for k in 1..=folds.usable() {
+                        if let Some(sample) = folds.sample(video, k) {
+                            write(&format!("{}_{}_fold{k}", video.category, video.id), &sample)?;
+                        }
+                    }
+                    Ok([folds.usable(), folds.dropped(), 0])
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    Ok([0, 0, 1])
+                }
+            }
+        })
+        .try_reduce(|| [0, 0, 0], |a, b| Ok([a[0] + b[0], a[1] + b[1], a[2] + b[2]]))?;
+    eprintln!("wrote {} folds of {} videos ({} dropped: broken mesh; {} videos unreadable)", counts[0], work.len(), counts[1], counts[2]);
+    Ok(())
+}
+
+#[cfg(not(feature = "vrfolding"))]
+fn export_stores(_: &[PathBuf], _: &(dyn Fn(&str, &Sample) -> Result<(), String> + Sync)) -> Result<(), String> {
+    Err(NO_VRFOLDING.into())
 }
 
 /// Analyse the sample, then plan from its start border, corners and folds to `goal`;
@@ -253,15 +398,16 @@ fn run_record(files: &[PathBuf], out: &Path) -> Result<(), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
-        Some(Command::Analyze { files, start, end, json: _, disks, method }) => {
-            run_analyze(&files, Options { frames: FrameRange { start, end }, method: method.into() }, disks)
+        Some(Command::Analyze { files, video, fold, start, end, json: _, disks, method }) => {
+            let options = Options { frames: FrameRange { start, end }, method: method.into() };
+            run_analyze(&files, video.as_deref(), usize::from(fold), options, disks)
         }
         Some(Command::Eval { paths, builtin, json, method }) => run_eval(&paths, builtin, json, method.into()),
-        Some(Command::Dataset { out }) => run_dataset(&out),
+        Some(Command::Dataset { out, from }) => run_dataset(&out, &from),
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out }) => run_record(&files, &out),
-        Some(Command::Serve { addr }) => close::server::run(&addr),
+        Some(Command::Serve { addr, datasets }) => close::server::run_with(&addr, close::server::Config { datasets, ..Default::default() }),
         None => close::server::run(DEFAULT_ADDR),
     };
     match outcome {

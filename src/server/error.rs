@@ -62,6 +62,8 @@ fn input_status(e: &Error) -> StatusCode {
         Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate { .. } | Error::Mesh(_) => {
             StatusCode::UNPROCESSABLE_ENTITY
         }
+        // A user's dataset file that cannot be read is bad input; an unknown id is a 404.
+        Error::Store { .. } => StatusCode::UNPROCESSABLE_ENTITY,
         Error::UnknownSample { .. } => StatusCode::NOT_FOUND,
         // Naming the file does not change what is wrong with it.
         Error::InFile { error, .. } => input_status(error),

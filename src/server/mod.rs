@@ -17,10 +17,12 @@
 
 mod assets;
 pub mod cache;
+mod datasets;
 mod error;
 mod routes;
 
 use std::net::SocketAddr;
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::Duration;
 
@@ -58,6 +60,8 @@ pub struct Config {
     pub image_cache_bytes: usize,
     /// Analyses and renders running at once.
     pub workers: usize,
+    /// The user's own datasets (`--dataset`): folders of samples or VR-Folding stores.
+    pub datasets: Vec<PathBuf>,
 }
 
 impl Default for Config {
@@ -70,6 +74,7 @@ impl Default for Config {
             cached_images: 512,
             image_cache_bytes: 64 * 1024 * 1024,
             workers: std::thread::available_parallelism().map_or(2, |n| n.get()),
+            datasets: Vec::new(),
         }
     }
 }
@@ -80,6 +85,8 @@ struct Inner {
     images: Mutex<Lru<Bytes>>,
     cpu: Arc<Semaphore>,
     dataset: Dataset,
+    /// The user's datasets, listed at start.
+    catalog: Arc<crate::catalog::Catalog>,
 }
 
 /// What every request shares: the configuration, the caches and the worker permits.
@@ -98,8 +105,10 @@ impl AppState {
     }
 
     pub fn with_config(config: Config) -> Self {
+        let catalog = Arc::new(crate::catalog::Catalog::open(&config.datasets));
         AppState(Arc::new(Inner {
             dataset: Dataset::builtin(),
+            catalog,
             analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
             images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
             cpu: Arc::new(Semaphore::new(config.workers.max(1))),
@@ -114,6 +123,11 @@ impl AppState {
     /// The built-in samples.
     pub fn dataset(&self) -> &Dataset {
         &self.0.dataset
+    }
+
+    /// The user's datasets.
+    pub fn catalog(&self) -> &Arc<crate::catalog::Catalog> {
+        &self.0.catalog
     }
 
     /// Run CPU-heavy `work` on a blocking thread once a worker permit is free.
@@ -194,8 +208,8 @@ pub fn app(state: AppState) -> Router {
         .route("/assets/{file}", get(assets::asset))
         .route("/healthz", get(routes::healthz))
         .route("/api/analyze", post(routes::analyze))
-        .route("/api/samples", get(routes::samples))
-        .route("/api/samples/{id}", get(routes::sample))
+        .route("/api/samples", get(datasets::samples))
+        .route("/api/samples/{id}", get(datasets::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate))
@@ -230,10 +244,15 @@ pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
 
 /// `close serve`: log to stderr (`RUST_LOG` overrides), start a runtime, serve.
 pub fn run(addr: &str) -> Result<(), String> {
+    run_with(addr, Config::default())
+}
+
+/// `close serve` with a configuration (e.g. `--dataset` folders).
+pub fn run_with(addr: &str, config: Config) -> Result<(), String> {
     let addr: SocketAddr = addr.parse().map_err(|e| format!("--addr {addr}: {e} (expected e.g. 127.0.0.1:8080)"))?;
     let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "close=info,tower_http=info".into());
     // Already initialised (e.g. by an embedding program) is fine.
     let _ = tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr).try_init();
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().map_err(|e| e.to_string())?;
-    runtime.block_on(serve(addr, AppState::new())).map_err(|e| format!("cannot serve on {addr}: {e}"))
+    runtime.block_on(serve(addr, AppState::with_config(config))).map_err(|e| format!("cannot serve on {addr}: {e}"))
 }

@@ -49,7 +49,7 @@ fn points(border: &[Point]) -> Vec<[f64; 3]> {
 }
 
 /// Analyse `sample` and write the response: the CLI's JSON plus what the app draws.
-fn analyzed(key: String, sample: &Sample, range: FrameRange, extra: Value) -> Result<Analyzed, ApiError> {
+pub(super) fn analyzed(key: String, sample: &Sample, range: FrameRange, extra: Value) -> Result<Analyzed, ApiError> {
     let analysis = run_analysis(&sample.border_frames()?, range)?;
     let mut body = serde_json::to_value(&analysis).map_err(|e| ApiError::Internal(e.to_string()))?;
     let images: serde_json::Map<String, Value> =
@@ -71,7 +71,7 @@ fn analyzed(key: String, sample: &Sample, range: FrameRange, extra: Value) -> Re
     Ok(Analyzed { key, analysis, response })
 }
 
-fn json_response(body: Bytes) -> Response {
+pub(super) fn json_response(body: Bytes) -> Response {
     ([(header::CONTENT_TYPE, "application/json")], body).into_response()
 }
 
