@@ -40,6 +40,12 @@ pub enum Error {
     /// A picture could not be drawn or encoded (a bug, not a bad input).
     #[error("could not draw the picture: {0}")]
     Render(String),
+    /// The estimated work is over a [`crate::budget::Budget`] limit (refused before starting).
+    #[error("too much work: {what} is {got}, over the limit of {limit}")]
+    OverBudget { what: &'static str, got: u64, limit: u64 },
+    /// The job was stopped by its [`crate::budget::Deadline`] (time-out or cancelled request).
+    #[error("the work was stopped: it ran past its deadline or its request went away")]
+    Cancelled,
 }
 
 /// Shorthand used across the crate.

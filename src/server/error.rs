@@ -38,7 +38,9 @@ impl ApiError {
             // No catch-all: a new library error must be given its status here.
             ApiError::Input(e) => match e {
                 Error::Parse { .. } | Error::Empty(_) | Error::InvalidArgument(_) => StatusCode::BAD_REQUEST,
-                Error::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
+                Error::TooLarge(_) | Error::OverBudget { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+                // The request's time ran out (its answer is usually the time-out layer's 408).
+                Error::Cancelled => StatusCode::REQUEST_TIMEOUT,
                 Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate(_) | Error::Mesh(_) => {
                     StatusCode::UNPROCESSABLE_ENTITY
                 }
@@ -117,6 +119,8 @@ mod tests {
         let status = |e: Error| ApiError::from(e).status();
         assert_eq!(status(Error::parse("text", "x")), StatusCode::BAD_REQUEST);
         assert_eq!(status(Error::TooLarge("x".into())), StatusCode::PAYLOAD_TOO_LARGE);
+        assert_eq!(status(Error::OverBudget { what: "cells", got: 2, limit: 1 }), StatusCode::PAYLOAD_TOO_LARGE);
+        assert_eq!(status(Error::Cancelled), StatusCode::REQUEST_TIMEOUT);
         assert_eq!(status(Error::Mesh("no boundary".into())), StatusCode::UNPROCESSABLE_ENTITY);
         assert_eq!(status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }), StatusCode::UNPROCESSABLE_ENTITY);
         assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);

@@ -8,7 +8,14 @@
 //! 5xx) with `{"error": "..."}`. Analyses and renders run on blocking threads, at most one
 //! per core at a time, and are cached by content: an analysis under the hash of the request
 //! body and frame range (a built-in sample under its id), a PNG under (analysis, picture,
-//! size); both caches are bounded.
+//! clamped size); both caches are bounded.
+//!
+//! Bounded work: each CPU job is estimated first (a [`Budget`]: analysed frames × N² dGLI
+//! cells, interpolated points; 413 over the limit) and carries a [`Deadline`] that is
+//! cancelled when its request is dropped (the 408 of the time-out, a closed connection), so
+//! its loops stop and its worker permit is freed. Bodies in flight share one byte budget;
+//! connections are capped and closed when their headers do not arrive in time (which also
+//! closes idle keep-alive connections); `Host` and `Origin` are checked ([`guard`]).
 //!
 //! ```no_run
 //! // Tests drive the router without a socket:
@@ -18,37 +25,58 @@
 mod assets;
 pub mod cache;
 mod error;
+mod extract;
+pub mod guard;
 mod routes;
 
+use std::future::Future;
 use std::net::SocketAddr;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 use std::time::Duration;
 
 use axum::body::Bytes;
 use axum::extract::DefaultBodyLimit;
-use axum::http::{header, StatusCode};
+use axum::http::{header, HeaderValue, Method, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::Router;
+use hyper_util::rt::{TokioIo, TokioTimer};
+use tokio::net::TcpListener;
 use tokio::sync::Semaphore;
-use tower::ServiceBuilder;
+use tower::{ServiceBuilder, ServiceExt};
 use tower_http::compression::CompressionLayer;
+use tower_http::cors::{AllowOrigin, CorsLayer};
 use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::timeout::TimeoutLayer;
 use tower_http::trace::TraceLayer;
 
 pub use error::ApiError;
+pub use extract::{AppJson, AppPath, AppQuery};
 pub use routes::Analyzed;
 
+use crate::budget::{Budget, Deadline};
+use crate::dataset::Entry;
 use cache::Lru;
+use guard::{Doors, ServedAt, UploadBudget};
 
 /// Limits and sizes of a server.
 #[derive(Debug, Clone)]
 pub struct Config {
-    /// Largest request body, in bytes.
+    /// Largest request body, in bytes (uploads to `/api/analyze`).
     pub body_limit: usize,
-    /// Longest a request may take.
+    /// Largest JSON body of the other POST routes (a border, a fold, a goal).
+    pub json_body_limit: usize,
+    /// Bytes of request bodies held at once, across all requests.
+    pub upload_budget: usize,
+    /// Longest a request may take; its CPU job is stopped then too.
     pub timeout: Duration,
+    /// Longest a connection may take to send a request's headers, and may stay idle
+    /// between requests.
+    pub header_timeout: Duration,
+    /// Connections open at once; more wait to be accepted.
+    pub max_connections: usize,
+    /// What one analysis or interpolation may cost.
+    pub budget: Budget,
     /// Analyses kept in memory, and their largest total size in bytes.
     pub cached_analyses: usize,
     pub analysis_cache_bytes: usize,
@@ -57,18 +85,29 @@ pub struct Config {
     pub image_cache_bytes: usize,
     /// Analyses and renders running at once.
     pub workers: usize,
+    /// Host names served besides loopback names and the address listened on.
+    pub allowed_hosts: Vec<String>,
+    /// Origins whose pages may call the API (CORS); none by default.
+    pub cors_origins: Vec<String>,
 }
 
 impl Default for Config {
     fn default() -> Self {
         Config {
             body_limit: 64 * 1024 * 1024,
+            json_body_limit: 8 * 1024 * 1024,
+            upload_budget: 256 * 1024 * 1024,
             timeout: Duration::from_secs(30),
+            header_timeout: Duration::from_secs(10),
+            max_connections: 256,
+            budget: Budget::SERVER,
             cached_analyses: 256,
             analysis_cache_bytes: 256 * 1024 * 1024,
             cached_images: 512,
             image_cache_bytes: 64 * 1024 * 1024,
             workers: std::thread::available_parallelism().map_or(2, |n| n.get()),
+            allowed_hosts: Vec::new(),
+            cors_origins: Vec::new(),
         }
     }
 }
@@ -78,15 +117,28 @@ struct Inner {
     analyses: Mutex<Lru<Arc<Analyzed>>>,
     images: Mutex<Lru<Bytes>>,
     cpu: Arc<Semaphore>,
+    dataset: &'static [Entry],
+    /// `GET /api/samples`, written once: the dataset never changes.
+    sample_list: OnceLock<Bytes>,
 }
 
-/// What every request shares: the configuration, the caches and the worker permits.
+/// What every request shares: the configuration, the dataset, the caches and the worker
+/// permits.
 #[derive(Clone)]
 pub struct AppState(Arc<Inner>);
 
 /// A poisoned lock only means a worker panicked mid-insert; the map itself is still valid.
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Cancels a job's deadline when the request that waits for it is dropped (or done).
+struct CancelOnDrop(Deadline);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0.cancel();
+    }
 }
 
 impl AppState {
@@ -96,12 +148,13 @@ impl AppState {
     }
 
     pub fn with_config(config: Config) -> Self {
-        // Build the dataset now rather than on the first request.
-        crate::dataset::builtin();
         AppState(Arc::new(Inner {
             analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
             images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
             cpu: Arc::new(Semaphore::new(config.workers.max(1))),
+            // Built now rather than on the first request.
+            dataset: crate::dataset::builtin(),
+            sample_list: OnceLock::new(),
             config,
         }))
     }
@@ -110,12 +163,33 @@ impl AppState {
         &self.0.config
     }
 
-    /// Run CPU-heavy `work` on a blocking thread once a worker permit is free.
-    async fn run_cpu<T: Send + 'static>(&self, work: impl FnOnce() -> Result<T, ApiError> + Send + 'static) -> Result<T, ApiError> {
+    /// The built-in samples.
+    fn entries(&self) -> &[Entry] {
+        self.0.dataset
+    }
+
+    /// The built-in sample `id`.
+    fn entry(&self, id: &str) -> Option<&Entry> {
+        self.0.dataset.iter().find(|e| e.id == id)
+    }
+
+    /// Worker permits free now (all of them when no job runs).
+    pub fn idle_workers(&self) -> usize {
+        self.0.cpu.available_permits()
+    }
+
+    /// Run CPU-heavy `work` on a blocking thread once a worker permit is free. The work gets
+    /// a deadline of the request time-out, cancelled as soon as this future is dropped, so
+    /// a request that timed out or went away stops its work and frees the permit.
+    async fn run_cpu<T: Send + 'static>(&self, work: impl FnOnce(&Deadline) -> Result<T, ApiError> + Send + 'static) -> Result<T, ApiError> {
+        let deadline = Deadline::after(self.config().timeout);
+        let _cancel = CancelOnDrop(deadline.clone());
         let permit = self.0.cpu.clone().acquire_owned().await.map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
         tokio::task::spawn_blocking(move || {
             let _permit = permit;
-            work()
+            // Waiting for the permit may have used up the time.
+            deadline.check()?;
+            work(&deadline)
         })
         .await
         .map_err(|e| ApiError::Internal(format!("the analysis stopped unexpectedly: {e}")))?
@@ -125,12 +199,12 @@ impl AppState {
     async fn analysis(
         &self,
         key: String,
-        compute: impl FnOnce(String) -> Result<Analyzed, ApiError> + Send + 'static,
+        compute: impl FnOnce(String, &Deadline) -> Result<Analyzed, ApiError> + Send + 'static,
     ) -> Result<Arc<Analyzed>, ApiError> {
         if let Some(hit) = lock(&self.0.analyses).get(&key) {
             return Ok(hit);
         }
-        let analyzed = Arc::new(self.run_cpu(move || compute(key)).await?);
+        let analyzed = Arc::new(self.run_cpu(move |deadline| compute(key, deadline)).await?);
         lock(&self.0.analyses).insert(analyzed.key.clone(), analyzed.clone(), analyzed.bytes());
         Ok(analyzed)
     }
@@ -141,7 +215,11 @@ impl AppState {
 
     /// The cached file (a PNG, a recording) under `key`, or `render` it (off the runtime)
     /// and cache it.
-    async fn cached_bytes(&self, key: String, render: impl FnOnce() -> Result<Vec<u8>, ApiError> + Send + 'static) -> Result<Bytes, ApiError> {
+    async fn cached_bytes(
+        &self,
+        key: String,
+        render: impl FnOnce(&Deadline) -> Result<Vec<u8>, ApiError> + Send + 'static,
+    ) -> Result<Bytes, ApiError> {
         if let Some(hit) = lock(&self.0.images).get(&key) {
             return Ok(hit);
         }
@@ -180,9 +258,20 @@ where
     ApiError::Rejected(status, message).into_response()
 }
 
+/// CORS for the `--cors` origins only; none (the browser's same-origin rule) by default.
+fn cors(origins: &[String]) -> Option<CorsLayer> {
+    let origins: Vec<HeaderValue> = origins.iter().filter_map(|o| HeaderValue::from_str(o.trim_end_matches('/')).ok()).collect();
+    (!origins.is_empty()).then(|| {
+        CorsLayer::new().allow_origin(AllowOrigin::list(origins)).allow_methods([Method::GET, Method::POST]).allow_headers([header::CONTENT_TYPE])
+    })
+}
+
 /// The router of the web app.
 pub fn app(state: AppState) -> Router {
     let config = state.config().clone();
+    let doors = Arc::new(Doors { hosts: config.allowed_hosts.clone(), origins: config.cors_origins.clone() });
+    let uploads = Arc::new(UploadBudget::new(config.upload_budget, config.body_limit));
+    let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
         .route("/", get(assets::index))
         .route("/assets/{file}", get(assets::asset))
@@ -192,17 +281,20 @@ pub fn app(state: AppState) -> Router {
         .route("/api/samples/{id}", get(routes::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
         .route("/api/images/{key}/{file}", get(routes::image))
-        .route("/api/interpolate", post(routes::interpolate))
-        .route("/api/disk", post(routes::disk))
-        .route("/api/plan", post(routes::plan))
+        .route("/api/interpolate", post(routes::interpolate).layer(small_bodies))
+        .route("/api/disk", post(routes::disk).layer(small_bodies))
+        .route("/api/plan", post(routes::plan).layer(small_bodies))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))
         .layer(
             ServiceBuilder::new()
                 .layer(TraceLayer::new_for_http())
+                .option_layer(cors(&config.cors_origins))
                 .layer(CompressionLayer::new())
                 .layer(axum::middleware::map_response(json_errors))
+                .layer(axum::middleware::from_fn_with_state(doors, guard::doors))
                 .layer(TimeoutLayer::with_status_code(StatusCode::REQUEST_TIMEOUT, config.timeout))
+                .layer(axum::middleware::from_fn_with_state(uploads, guard::upload_budget))
                 .layer(RequestBodyLimitLayer::new(config.body_limit)),
         )
         .with_state(state)
@@ -210,24 +302,75 @@ pub fn app(state: AppState) -> Router {
 
 /// Serve the app on `addr` until Ctrl-C.
 pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
-    let listener = tokio::net::TcpListener::bind(addr).await?;
+    let listener = TcpListener::bind(addr).await?;
     println!("CloSE web app: http://{}/  (Ctrl-C to stop)", listener.local_addr()?);
-    axum::serve(listener, app(state))
-        .with_graceful_shutdown(async {
-            // If the signal cannot be listened to, run until killed.
-            if tokio::signal::ctrl_c().await.is_err() {
-                std::future::pending::<()>().await;
+    serve_with(listener, state, async {
+        // If the signal cannot be listened to, run until killed.
+        if tokio::signal::ctrl_c().await.is_err() {
+            std::future::pending::<()>().await;
+        }
+    })
+    .await
+}
+
+/// Serve the app on `listener` until `shutdown` completes, then let open requests finish.
+///
+/// At most [`Config::max_connections`] connections are served at once (the others wait in
+/// the listen queue); a connection that does not send a request's headers within
+/// [`Config::header_timeout`], first or between keep-alive requests, is closed.
+pub async fn serve_with(listener: TcpListener, state: AppState, shutdown: impl Future<Output = ()>) -> std::io::Result<()> {
+    let config = state.config().clone();
+    let app = app(state);
+    let slots = Arc::new(Semaphore::new(config.max_connections.max(1)));
+    let mut http = hyper::server::conn::http1::Builder::new();
+    http.timer(TokioTimer::new()).header_read_timeout(config.header_timeout);
+    let graceful = hyper_util::server::graceful::GracefulShutdown::new();
+    tokio::pin!(shutdown);
+    loop {
+        let slot = tokio::select! {
+            slot = slots.clone().acquire_owned() => slot.map_err(std::io::Error::other)?,
+            () = &mut shutdown => break,
+        };
+        let stream = tokio::select! {
+            accepted = listener.accept() => match accepted {
+                Ok((stream, _)) => stream,
+                Err(e) => {
+                    // Out of descriptors and the like: wait for connections to close.
+                    tracing::warn!(error = %e, "accept failed");
+                    tokio::time::sleep(Duration::from_millis(50)).await;
+                    continue;
+                }
+            },
+            () = &mut shutdown => break,
+        };
+        let served_at = stream.local_addr().ok().map(ServedAt);
+        // Answers are small and written at once: do not wait for more to send.
+        let _ = stream.set_nodelay(true);
+        let service = app.clone().map_request(move |mut request: axum::http::Request<hyper::body::Incoming>| {
+            if let Some(at) = served_at {
+                request.extensions_mut().insert(at);
             }
-        })
-        .await
+            request
+        });
+        let connection = graceful.watch(http.serve_connection(TokioIo::new(stream), hyper_util::service::TowerToHyperService::new(service)));
+        tokio::spawn(async move {
+            let _slot = slot;
+            if let Err(e) = connection.await {
+                tracing::debug!(error = %e, "connection closed");
+            }
+        });
+    }
+    // Open requests may finish, within one request time-out.
+    let _ = tokio::time::timeout(config.timeout, graceful.shutdown()).await;
+    Ok(())
 }
 
 /// `close serve`: log to stderr (`RUST_LOG` overrides), start a runtime, serve.
-pub fn run(addr: &str) -> Result<(), String> {
+pub fn run(addr: &str, config: Config) -> Result<(), String> {
     let addr: SocketAddr = addr.parse().map_err(|e| format!("--addr {addr}: {e} (expected e.g. 127.0.0.1:8080)"))?;
     let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "close=info,tower_http=info".into());
     // Already initialised (e.g. by an embedding program) is fine.
     let _ = tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr).try_init();
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().map_err(|e| e.to_string())?;
-    runtime.block_on(serve(addr, AppState::new())).map_err(|e| format!("cannot serve on {addr}: {e}"))
+    runtime.block_on(serve(addr, AppState::with_config(config))).map_err(|e| format!("cannot serve on {addr}: {e}"))
 }
