@@ -116,7 +116,14 @@ struct Inner {
     config: Config,
     analyses: Mutex<Lru<Arc<Analyzed>>>,
     images: Mutex<Lru<Bytes>>,
+    /// Permits of light jobs (one per worker).
     cpu: Arc<Semaphore>,
+    /// Permits of heavy jobs: one fewer than the workers (at least one), so light jobs
+    /// always find a worker.
+    heavy: Arc<Semaphore>,
+    /// Heavy jobs' parallel loops run on this pool, so they never queue the light jobs'
+    /// loops behind theirs on rayon's global pool (the OS shares the cores between both).
+    heavy_pool: Option<Arc<rayon::ThreadPool>>,
     dataset: &'static [Entry],
     /// `GET /api/samples`, written once: the dataset never changes.
     sample_list: OnceLock<Bytes>,
@@ -126,6 +133,27 @@ struct Inner {
 /// permits.
 #[derive(Clone)]
 pub struct AppState(Arc<Inner>);
+
+/// Jobs of more dGLI cells than this (e.g. two frames of 1400 vertices) are heavy.
+const HEAVY_CELLS: u64 = 4_000_000;
+
+/// Which permits a CPU job takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Lane {
+    Light,
+    Heavy,
+}
+
+impl Lane {
+    /// The lane of a job that computes `cells` dGLI cells.
+    fn of(cells: u64) -> Lane {
+        if cells > HEAVY_CELLS {
+            Lane::Heavy
+        } else {
+            Lane::Light
+        }
+    }
+}
 
 /// A poisoned lock only means a worker panicked mid-insert; the map itself is still valid.
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -152,6 +180,14 @@ impl AppState {
             analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
             images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
             cpu: Arc::new(Semaphore::new(config.workers.max(1))),
+            heavy: Arc::new(Semaphore::new(config.workers.saturating_sub(1).max(1))),
+            // Without its own pool (threads refused), heavy loops share the global one.
+            heavy_pool: rayon::ThreadPoolBuilder::new()
+                .num_threads(config.workers.max(1))
+                .thread_name(|k| format!("close-heavy-{k}"))
+                .build()
+                .ok()
+                .map(Arc::new),
             // Built now rather than on the first request.
             dataset: crate::dataset::builtin(),
             sample_list: OnceLock::new(),
@@ -173,59 +209,72 @@ impl AppState {
         self.0.dataset.iter().find(|e| e.id == id)
     }
 
-    /// Worker permits free now (all of them when no job runs).
+    /// Worker permits free now, light and heavy (all of them when no job runs).
     pub fn idle_workers(&self) -> usize {
-        self.0.cpu.available_permits()
+        self.0.cpu.available_permits() + self.0.heavy.available_permits()
     }
 
-    /// Run CPU-heavy `work` on a blocking thread once a worker permit is free. The work gets
-    /// a deadline of the request time-out, cancelled as soon as this future is dropped, so
-    /// a request that timed out or went away stops its work and frees the permit.
-    async fn run_cpu<T: Send + 'static>(&self, work: impl FnOnce(&Deadline) -> Result<T, ApiError> + Send + 'static) -> Result<T, ApiError> {
+    /// Worker permits of an idle server.
+    pub fn workers(&self) -> usize {
+        self.config().workers.max(1) + self.config().workers.saturating_sub(1).max(1)
+    }
+
+    /// Run CPU-heavy `work` on a blocking thread once a permit of `lane` is free. The work
+    /// gets a deadline of the request time-out, cancelled as soon as this future is dropped,
+    /// so a request that timed out or went away stops its work and frees the permit.
+    async fn run_cpu<T: Send + 'static>(
+        &self,
+        lane: Lane,
+        work: impl FnOnce(&Deadline) -> Result<T, ApiError> + Send + 'static,
+    ) -> Result<T, ApiError> {
         let deadline = Deadline::after(self.config().timeout);
         let _cancel = CancelOnDrop(deadline.clone());
-        let permit = self.0.cpu.clone().acquire_owned().await.map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
+        let permits = match lane {
+            Lane::Light => &self.0.cpu,
+            Lane::Heavy => &self.0.heavy,
+        };
+        let permit = permits.clone().acquire_owned().await.map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
+        let pool = self.0.heavy_pool.clone().filter(|_| lane == Lane::Heavy);
         tokio::task::spawn_blocking(move || {
             let _permit = permit;
             // Waiting for the permit may have used up the time.
             deadline.check()?;
-            work(&deadline)
+            match pool {
+                Some(pool) => pool.install(|| work(&deadline)),
+                None => work(&deadline),
+            }
         })
         .await
         .map_err(|e| ApiError::Internal(format!("the analysis stopped unexpectedly: {e}")))?
     }
 
-    /// The cached analysis under `key`, or `compute` it (off the runtime) and cache it.
-    async fn analysis(
-        &self,
-        key: String,
-        compute: impl FnOnce(String, &Deadline) -> Result<Analyzed, ApiError> + Send + 'static,
-    ) -> Result<Arc<Analyzed>, ApiError> {
-        if let Some(hit) = lock(&self.0.analyses).get(&key) {
-            return Ok(hit);
-        }
-        let analyzed = Arc::new(self.run_cpu(move |deadline| compute(key, deadline)).await?);
-        lock(&self.0.analyses).insert(analyzed.key.clone(), analyzed.clone(), analyzed.bytes());
-        Ok(analyzed)
+    /// Pictures (and recordings) in the cache now.
+    pub fn cached_pictures(&self) -> usize {
+        lock(&self.0.images).len()
     }
 
     fn cached_analysis(&self, key: &str) -> Option<Arc<Analyzed>> {
         lock(&self.0.analyses).get(key)
     }
 
-    /// The cached file (a PNG, a recording) under `key`, or `render` it (off the runtime)
-    /// and cache it.
+    /// The cached file (a PNG, a recording) under `key`, or `render` it (off the runtime,
+    /// in the lane of `cells` dGLI cells) and cache it.
     async fn cached_bytes(
         &self,
         key: String,
+        cells: u64,
         render: impl FnOnce(&Deadline) -> Result<Vec<u8>, ApiError> + Send + 'static,
     ) -> Result<Bytes, ApiError> {
         if let Some(hit) = lock(&self.0.images).get(&key) {
             return Ok(hit);
         }
-        let png = Bytes::from(self.run_cpu(render).await?);
+        let png = Bytes::from(self.run_cpu(Lane::of(cells), render).await?);
         lock(&self.0.images).insert(key, png.clone(), png.len());
         Ok(png)
+    }
+
+    fn cache_analysis(&self, analyzed: &Arc<Analyzed>) {
+        lock(&self.0.analyses).insert(analyzed.key.clone(), analyzed.clone(), analyzed.bytes());
     }
 }
 

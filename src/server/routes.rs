@@ -14,9 +14,9 @@ use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
 use super::cache::content_key;
-use super::{ApiError, AppJson, AppPath, AppQuery, AppState};
+use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
 use crate::analysis::{analyze_with, Analysis, FrameRange, Options};
-use crate::border::to_xyz;
+use crate::border::{to_xyz, BorderFrames};
 use crate::budget::Deadline;
 use crate::error::{Error, Result};
 use crate::formats::{json::parse_sample, read_files, Sample};
@@ -85,27 +85,94 @@ struct AnalyzeResponse<'a> {
     builtin: Option<BuiltinFields<'a>>,
 }
 
-/// Analyse `sample` with `options` and write the response.
-fn analyzed(key: String, sample: &Sample, options: Options, builtin: Option<BuiltinFields>) -> Result<Analyzed, ApiError> {
-    let analysis = analyze_with(&sample.border_frames()?, options)?;
-    let images = Picture::ALL.iter().map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()))).collect();
-    let response = to_json(&AnalyzeResponse {
-        key: &key,
-        name: &sample.name,
-        category: &sample.category,
-        frames: frame_count(sample),
-        analysis: &analysis,
-        start_border: analysis.start_border().iter().map(to_xyz).collect(),
-        end_border: analysis.end_border().iter().map(to_xyz).collect(),
-        images,
-        builtin,
-    })?;
-    Ok(Analyzed { key, analysis, response })
+/// A sample read and validated, ready to be analysed.
+struct Loaded {
+    key: String,
+    name: String,
+    category: String,
+    frames: usize,
+    border: BorderFrames,
+    range: FrameRange,
+    /// The id of a built-in sample, whose answer includes the sample.
+    builtin: Option<String>,
 }
 
-/// The analysis options of a request: its frames, the server's budget, the job's deadline.
-fn options(state: &AppState, frames: FrameRange, deadline: &Deadline) -> Options {
-    Options { frames, budget: state.config().budget, deadline: deadline.clone(), ..Options::default() }
+impl Loaded {
+    fn of(key: String, sample: &Sample, range: FrameRange, builtin: Option<String>) -> Result<Loaded, ApiError> {
+        Ok(Loaded {
+            key,
+            name: sample.name.clone(),
+            category: sample.category.clone(),
+            frames: frame_count(sample),
+            border: sample.border_frames()?,
+            range,
+            builtin,
+        })
+    }
+
+    /// dGLI cells of every frame: at least what the analysis of any range costs.
+    fn cells(&self) -> u64 {
+        let n = self.border.len() as u64;
+        (self.border.frames.len() as u64).saturating_mul(n * n)
+    }
+
+    /// Analyse, with the server's budget and the job's deadline, and write the response.
+    fn analyze(self, state: &AppState, deadline: &Deadline) -> Result<Analyzed, ApiError> {
+        let options = Options { frames: self.range, budget: state.config().budget, deadline: deadline.clone(), ..Options::default() };
+        let analysis = analyze_with(&self.border, options)?;
+        let key = self.key;
+        let images = Picture::ALL.iter().map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()))).collect();
+        let builtin = self.builtin.as_deref().and_then(|id| state.entry(id)).map(|entry| BuiltinFields {
+            id: &entry.id,
+            sample: &entry.sample,
+            recording: cfg!(feature = "rerun").then(|| format!("/api/samples/{}/recording.rrd", entry.id)),
+        });
+        let response = to_json(&AnalyzeResponse {
+            key: &key,
+            name: &self.name,
+            category: &self.category,
+            frames: self.frames,
+            analysis: &analysis,
+            start_border: analysis.start_border().iter().map(to_xyz).collect(),
+            end_border: analysis.end_border().iter().map(to_xyz).collect(),
+            images,
+            builtin,
+        })?;
+        Ok(Analyzed { key, analysis, response })
+    }
+}
+
+/// The cached analysis under `key`, or `load` the sample and analyse it. Both run on a
+/// worker: a light analysis in the same job as its loading, a heavy one (over
+/// [`Lane::of`]'s threshold) in the heavy lane, so it never holds the light workers.
+async fn analysis(
+    state: &AppState,
+    key: String,
+    load: impl FnOnce(String) -> Result<Loaded, ApiError> + Send + 'static,
+) -> Result<Arc<Analyzed>, ApiError> {
+    if let Some(hit) = state.cached_analysis(&key) {
+        return Ok(hit);
+    }
+    let job = state.clone();
+    let loaded = state
+        .run_cpu(Lane::Light, move |deadline| {
+            let loaded = load(key)?;
+            match Lane::of(loaded.cells()) {
+                Lane::Light => loaded.analyze(&job, deadline).map(Ok),
+                Lane::Heavy => Ok(Err(loaded)),
+            }
+        })
+        .await?;
+    let analyzed = match loaded {
+        Ok(done) => done,
+        Err(heavy) => {
+            let job = state.clone();
+            state.run_cpu(Lane::Heavy, move |deadline| heavy.analyze(&job, deadline)).await?
+        }
+    };
+    let analyzed = Arc::new(analyzed);
+    state.cache_analysis(&analyzed);
+    Ok(analyzed)
 }
 
 #[derive(Serialize)]
@@ -208,9 +275,13 @@ pub async fn analyze(State(state): State<AppState>, AppQuery(range): AppQuery<Ra
     let upload = Upload::from_request(request, &state).await?;
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
-    let job = state.clone();
-    let done = state.analysis(key, move |key, deadline| analyzed(key, &upload.sample()?, options(&job, frames, deadline), None)).await?;
+    let done = analysis(&state, key, move |key| Loaded::of(key, &upload.sample()?, frames, None)).await?;
     Ok(JsonBytes(done.response.clone()))
+}
+
+/// dGLI cells of the pictures of `analysis` (two disks at most).
+fn cells(analysis: &Analysis) -> u64 {
+    2 * (analysis.n as u64).pow(2)
 }
 
 /// Frames of a border or mesh sample.
@@ -243,7 +314,7 @@ pub async fn samples(State(state): State<AppState>) -> Result<JsonBytes, ApiErro
     // A mesh's border vertex count takes finding its border: a worker's job, done once.
     let job = state.clone();
     let list = state
-        .run_cpu(move |_| {
+        .run_cpu(Lane::Light, move |_| {
             let samples = job
                 .entries()
                 .iter()
@@ -273,14 +344,11 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<Analyzed>, Ap
         return Err(unknown_sample(id));
     }
     let (job, id) = (state.clone(), id.to_string());
-    state
-        .analysis(format!("{SAMPLE_KEY}{id}"), move |key, deadline| {
-            let entry = job.entry(&id).ok_or_else(|| unknown_sample(&id))?;
-            let recording = cfg!(feature = "rerun").then(|| format!("/api/samples/{id}/recording.rrd"));
-            let builtin = BuiltinFields { id: &entry.id, sample: &entry.sample, recording };
-            analyzed(key, &entry.sample, options(&job, FrameRange::default(), deadline), Some(builtin))
-        })
-        .await
+    analysis(state, format!("{SAMPLE_KEY}{id}"), move |key| {
+        let entry = job.entry(&id).ok_or_else(|| unknown_sample(&id))?;
+        Loaded::of(key, &entry.sample, FrameRange::default(), Some(id))
+    })
+    .await
 }
 
 pub async fn sample(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<JsonBytes, ApiError> {
@@ -294,7 +362,7 @@ pub async fn recording(State(state): State<AppState>, AppPath(id): AppPath<Strin
     let job = state.clone();
     let sample_id = id.clone();
     let rrd = state
-        .cached_bytes(format!("{}/recording.rrd", analyzed.key), move |_| {
+        .cached_bytes(format!("{}/recording.rrd", analyzed.key), cells(&analyzed.analysis), move |_| {
             let entry = job.entry(&sample_id).ok_or_else(|| unknown_sample(&sample_id))?;
             Ok(crate::record::record(&analyzed.analysis, &entry.sample.border_frames()?)?)
         })
@@ -337,7 +405,9 @@ pub async fn image(
     };
     let size = picture_size(query.size);
     let png = state
-        .cached_bytes(format!("{key}/{}/{size}", picture.name()), move |_| Ok(render_png(&analyzed.analysis, picture, size, size)?))
+        .cached_bytes(format!("{key}/{}/{size}", picture.name()), cells(&analyzed.analysis), move |_| {
+            Ok(render_png(&analyzed.analysis, picture, size, size)?)
+        })
         .await?;
     // The key names the content, so the picture never changes.
     Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], png).into_response())
@@ -359,7 +429,9 @@ pub struct InterpolateRequest {
 
 pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<JsonBytes, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
-    let answer = state.run_cpu(move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.from, req.to, req.steps)?)).await?;
+    let answer = state
+        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.from, req.to, req.steps)?))
+        .await?;
     Ok(JsonBytes(answer))
 }
 
@@ -384,8 +456,9 @@ pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskReque
     let size = picture_size(req.size);
     let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
     let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
+    let n = req.border.len() as u64;
     let png = state
-        .cached_bytes(key, move |deadline| {
+        .cached_bytes(key, n * n, move |deadline| {
             let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
             Ok(disk_png(&disk, "dGLI disk · current state", size, size)?)
         })
@@ -440,19 +513,13 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
         }
         Some(b'{') => {
             let key = content_key(&[b"plan", raw.as_bytes()]);
-            let job = state.clone();
-            state
-                .analysis(key, move |key, deadline| {
-                    let sample = parse_sample(req.sample.get().as_bytes())?;
-                    analyzed(key, &sample, options(&job, FrameRange::default(), deadline), None)
-                })
-                .await?
+            analysis(&state, key, move |key| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None)).await?
         }
         _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
     };
     let goal = req.goal;
     let answer = state
-        .run_cpu(move |_| {
+        .run_cpu(Lane::Light, move |_| {
             let a = &analyzed.analysis;
             let plan = plan_for(a, goal)?;
             to_json(&PlanResponse {
