@@ -13,7 +13,7 @@
 //! - **Upload budget**: every request with a body holds, while it is served, permits for
 //!   its announced length (or the body limit when it announces none) from one semaphore of
 //!   [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead of
-//!   multiplying the memory they take.
+//!   multiplying the memory they take; after a large one, freed memory goes back to the OS.
 //!
 //! ```
 //! use close::server::guard::host_name;
@@ -156,10 +156,28 @@ pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Req
         return next.run(request).await;
     }
     let kib = u32::try_from(announced.unwrap_or(budget.body_limit).div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, budget.total_kib);
-    let Ok(_held) = budget.permits.clone().acquire_many_owned(kib).await else {
+    let Ok(held) = budget.permits.clone().acquire_many_owned(kib).await else {
         return ApiError::Internal("the upload budget is closed".into()).into_response();
     };
-    next.run(request).await
+    let response = next.run(request).await;
+    drop(held);
+    if kib >= RELEASE_AFTER_KIB {
+        release_memory();
+    }
+    response
+}
+
+/// Requests holding this much of the budget give their freed memory back when answered.
+const RELEASE_AFTER_KIB: u32 = 16 * 1024;
+
+/// Hand the heap pages freed by a large request back to the OS. glibc keeps them in its
+/// arenas otherwise: a burst of large uploads would stay resident as hundreds of MB.
+fn release_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    tokio::task::spawn_blocking(|| {
+        // SAFETY: malloc_trim takes no pointer; it walks glibc's own arenas under their locks.
+        unsafe { libc::malloc_trim(0) };
+    });
 }
 
 #[cfg(test)]

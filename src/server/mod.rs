@@ -28,6 +28,7 @@ mod error;
 mod extract;
 pub mod guard;
 mod routes;
+mod workers;
 
 use std::future::Future;
 use std::net::SocketAddr;
@@ -58,6 +59,7 @@ use crate::budget::{Budget, Deadline};
 use crate::dataset::Entry;
 use cache::Lru;
 use guard::{Doors, ServedAt, UploadBudget};
+use workers::Workers;
 
 /// Limits and sizes of a server.
 #[derive(Debug, Clone)]
@@ -116,14 +118,11 @@ struct Inner {
     config: Config,
     analyses: Mutex<Lru<Arc<Analyzed>>>,
     images: Mutex<Lru<Bytes>>,
-    /// Permits of light jobs (one per worker).
-    cpu: Arc<Semaphore>,
-    /// Permits of heavy jobs: one fewer than the workers (at least one), so light jobs
-    /// always find a worker.
-    heavy: Arc<Semaphore>,
-    /// Heavy jobs' parallel loops run on this pool, so they never queue the light jobs'
-    /// loops behind theirs on rayon's global pool (the OS shares the cores between both).
-    heavy_pool: Option<Arc<rayon::ThreadPool>>,
+    /// Light jobs: one worker per core, each on one thread.
+    light: Workers,
+    /// Heavy jobs: one fewer than the cores (at least one), so light jobs always find a
+    /// worker; each on as many threads as cores (the OS shares them with light jobs).
+    heavy: Workers,
     dataset: &'static [Entry],
     /// `GET /api/samples`, written once: the dataset never changes.
     sample_list: OnceLock<Bytes>,
@@ -179,15 +178,8 @@ impl AppState {
         AppState(Arc::new(Inner {
             analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
             images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
-            cpu: Arc::new(Semaphore::new(config.workers.max(1))),
-            heavy: Arc::new(Semaphore::new(config.workers.saturating_sub(1).max(1))),
-            // Without its own pool (threads refused), heavy loops share the global one.
-            heavy_pool: rayon::ThreadPoolBuilder::new()
-                .num_threads(config.workers.max(1))
-                .thread_name(|k| format!("close-heavy-{k}"))
-                .build()
-                .ok()
-                .map(Arc::new),
+            light: Workers::new("light", config.workers, 1),
+            heavy: Workers::new("heavy", config.workers.saturating_sub(1), config.workers),
             // Built now rather than on the first request.
             dataset: crate::dataset::builtin(),
             sample_list: OnceLock::new(),
@@ -209,19 +201,19 @@ impl AppState {
         self.0.dataset.iter().find(|e| e.id == id)
     }
 
-    /// Worker permits free now, light and heavy (all of them when no job runs).
+    /// Workers free now, light and heavy (all of them when no job runs).
     pub fn idle_workers(&self) -> usize {
-        self.0.cpu.available_permits() + self.0.heavy.available_permits()
+        self.0.light.idle() + self.0.heavy.idle()
     }
 
-    /// Worker permits of an idle server.
+    /// Workers of this server, light and heavy.
     pub fn workers(&self) -> usize {
-        self.config().workers.max(1) + self.config().workers.saturating_sub(1).max(1)
+        self.0.light.count() + self.0.heavy.count()
     }
 
-    /// Run CPU-heavy `work` on a blocking thread once a permit of `lane` is free. The work
-    /// gets a deadline of the request time-out, cancelled as soon as this future is dropped,
-    /// so a request that timed out or went away stops its work and frees the permit.
+    /// Run CPU-heavy `work` on a worker of `lane` once one is free. The work gets a deadline
+    /// of the request time-out, cancelled as soon as this future is dropped, so a request
+    /// that timed out or went away stops its work and frees the worker.
     async fn run_cpu<T: Send + 'static>(
         &self,
         lane: Lane,
@@ -229,23 +221,11 @@ impl AppState {
     ) -> Result<T, ApiError> {
         let deadline = Deadline::after(self.config().timeout);
         let _cancel = CancelOnDrop(deadline.clone());
-        let permits = match lane {
-            Lane::Light => &self.0.cpu,
+        let workers = match lane {
+            Lane::Light => &self.0.light,
             Lane::Heavy => &self.0.heavy,
         };
-        let permit = permits.clone().acquire_owned().await.map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
-        let pool = self.0.heavy_pool.clone().filter(|_| lane == Lane::Heavy);
-        tokio::task::spawn_blocking(move || {
-            let _permit = permit;
-            // Waiting for the permit may have used up the time.
-            deadline.check()?;
-            match pool {
-                Some(pool) => pool.install(|| work(&deadline)),
-                None => work(&deadline),
-            }
-        })
-        .await
-        .map_err(|e| ApiError::Internal(format!("the analysis stopped unexpectedly: {e}")))?
+        workers.run(deadline, work).await
     }
 
     /// Pictures (and recordings) in the cache now.

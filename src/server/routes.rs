@@ -17,7 +17,7 @@ use super::cache::content_key;
 use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
 use crate::analysis::{analyze_with, Analysis, FrameRange, Options};
 use crate::border::{to_xyz, BorderFrames};
-use crate::budget::Deadline;
+use crate::budget::{Budget, Deadline};
 use crate::error::{Error, Result};
 use crate::formats::{json::parse_sample, read_files, Sample};
 use crate::plan::{Plan, PlanStep};
@@ -98,7 +98,13 @@ struct Loaded {
 }
 
 impl Loaded {
-    fn of(key: String, sample: &Sample, range: FrameRange, builtin: Option<String>) -> Result<Loaded, ApiError> {
+    /// Validate `sample`. A border sample over the cell budget is refused before its
+    /// border is prepared (a copy of every frame); a mesh's border, shorter than its vertex
+    /// list, is known only then, and the analysis checks the budget again on it.
+    fn of(key: String, sample: &Sample, range: FrameRange, builtin: Option<String>, budget: &Budget) -> Result<Loaded, ApiError> {
+        if let (Some(first), Ok((start, end))) = (sample.frames.first(), range.resolve(sample.frames.len())) {
+            budget.analysis(end - start + 1, first.len())?;
+        }
         Ok(Loaded {
             key,
             name: sample.name.clone(),
@@ -275,7 +281,8 @@ pub async fn analyze(State(state): State<AppState>, AppQuery(range): AppQuery<Ra
     let upload = Upload::from_request(request, &state).await?;
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
-    let done = analysis(&state, key, move |key| Loaded::of(key, &upload.sample()?, frames, None)).await?;
+    let budget = state.config().budget;
+    let done = analysis(&state, key, move |key| Loaded::of(key, &upload.sample()?, frames, None, &budget)).await?;
     Ok(JsonBytes(done.response.clone()))
 }
 
@@ -346,7 +353,7 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<Analyzed>, Ap
     let (job, id) = (state.clone(), id.to_string());
     analysis(state, format!("{SAMPLE_KEY}{id}"), move |key| {
         let entry = job.entry(&id).ok_or_else(|| unknown_sample(&id))?;
-        Loaded::of(key, &entry.sample, FrameRange::default(), Some(id))
+        Loaded::of(key, &entry.sample, FrameRange::default(), Some(id), &job.config().budget)
     })
     .await
 }
@@ -513,7 +520,8 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
         }
         Some(b'{') => {
             let key = content_key(&[b"plan", raw.as_bytes()]);
-            analysis(&state, key, move |key| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None)).await?
+            let budget = state.config().budget;
+            analysis(&state, key, move |key| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None, &budget)).await?
         }
         _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
     };
