@@ -158,7 +158,10 @@ fn mat_bomb(variables: &[(&str, usize)]) -> Vec<u8> {
         let mut e = kind.to_le_bytes().to_vec();
         e.extend((data.len() as u32).to_le_bytes());
         e.extend_from_slice(data);
-        e.resize(e.len().next_multiple_of(8), 0);
+        // Data is padded to 8 bytes, but for compressed elements.
+        if kind != 15 {
+            e.resize(e.len().next_multiple_of(8), 0);
+        }
         e
     };
     for (name, count) in variables {
