@@ -533,6 +533,33 @@ async fn slow_and_silent_connections_are_closed() {
     assert_eq!(server.healthz().await, 200, "served right after");
 }
 
+// A body that trickles in is cut by the request time-out (408), and the connection closed.
+async fn a_trickling_body_is_answered_408_at_the_time_out() {
+    let server = Server::start(Config { timeout: Duration::from_secs(2), ..Config::default() }).await;
+    let mut stream = TcpStream::connect(server.addr).await.unwrap();
+    let head = format!("POST /api/analyze HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: 100000\r\n\r\n", server.addr);
+    stream.write_all(head.as_bytes()).await.unwrap();
+    let t = Instant::now();
+    let mut answer = Vec::new();
+    let mut buf = [0u8; 4096];
+    // One byte every 100 ms: 100 000 bytes would take hours.
+    while t.elapsed() < Duration::from_secs(8) {
+        match tokio::time::timeout(Duration::from_millis(100), stream.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => break,
+            Ok(Ok(k)) => answer.extend_from_slice(&buf[..k]),
+            Err(_) => {
+                if stream.write_all(b"[").await.is_err() {
+                    break;
+                }
+            }
+        }
+    }
+    let text = String::from_utf8_lossy(&answer);
+    assert!(text.starts_with("HTTP/1.1 408"), "after {:?}: {text:.200}", t.elapsed());
+    assert!(t.elapsed() < Duration::from_secs(5), "answered after {:?}", t.elapsed());
+    assert_eq!(server.healthz().await, 200, "served right after");
+}
+
 // Issue 11 item 6: a cap on connections; the silent ones go within the header time-out,
 // and the server answers again.
 async fn connections_are_capped_and_freed() {
@@ -662,6 +689,11 @@ mod cases {
     #[test]
     fn slow_and_silent_connections_are_closed() {
         super::run(super::slow_and_silent_connections_are_closed());
+    }
+
+    #[test]
+    fn a_trickling_body_is_answered_408_at_the_time_out() {
+        super::run(super::a_trickling_body_is_answered_408_at_the_time_out());
     }
 
     #[test]
