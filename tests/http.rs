@@ -199,6 +199,12 @@ async fn uploads_of_each_kind_give_the_same_analysis() {
     let (ct, body) = multipart(&[("start", "start.txt", &start), ("end", "end.txt", &end)]);
     let by_text = post(&app, "/api/analyze", &ct, body).await.json();
 
+    // The analysis, flattened into the typed answer with what the app draws.
+    for key in ["key", "name", "category", "frames", "n", "close", "folds", "start_border", "end_border", "images"] {
+        assert!(!by_json[key].is_null(), "missing {key}");
+    }
+    assert_eq!(by_json["close"]["folds"], by_json["folds"]);
+    assert_eq!(by_json["name"], entry.sample.name.as_str());
     for v in [&by_file, &by_text] {
         assert_same(&v["folds"], &by_json["folds"], "folds");
         assert_same(&v["corners"], &by_json["corners"], "corners");
@@ -324,6 +330,7 @@ async fn interpolation_moves_from_one_fold_to_the_other() {
     assert_eq!((folds.len(), borders.len()), (9, 9));
     assert_eq!((folds[0], folds[8]), ([0.5, 3.6], [1.0, 4.0]));
     assert!(borders.iter().all(|b| b.len() == border.len()));
+    assert_eq!(v["border_indices"], json!((0..border.len()).collect::<Vec<_>>()));
 
     for (body, status, words) in [
         (json!({"border": border, "from": [0, 1], "to": [1, 2], "steps": 1}), StatusCode::BAD_REQUEST, "steps"),
