@@ -1,14 +1,15 @@
-//! The web app: an axum server over the library (SPEC §4), same JSON as `close analyze --json`.
+//! The web app: an axum server over the library, same JSON as `close analyze --json`.
 //!
 //! Routes: `GET /` (the app in `web/`, embedded), `GET /healthz`, `POST /api/analyze`,
 //! `GET /api/samples`, `GET /api/samples/{id}`, `GET /api/images/{key}/{picture}.png`,
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
-//! 5xx) with `{"error": "..."}`. Analyses and renders run on blocking threads, at most one
-//! per core at a time, and are cached by content: an analysis under the hash of the request
-//! body and frame range (a built-in sample under its id), a PNG under (analysis, picture,
-//! clamped size); both caches are bounded.
+//! 5xx) with `{"error": "..."}`. Analyses, renders and large answers run on CPU workers
+//! (one light worker per core, a heavy lane of one fewer for jobs of many dGLI cells), never
+//! on the async threads. Results are cached by content: an analysis under the hash of the
+//! request body and frame range (a built-in sample under its id), a PNG under (analysis,
+//! picture, clamped size); both caches are bounded.
 //!
 //! Bounded work: each CPU job is estimated first (a [`Budget`]: analysed frames × N² dGLI
 //! cells, interpolated points; 413 over the limit) and carries a [`Deadline`] that is
