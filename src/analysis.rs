@@ -23,23 +23,6 @@ pub struct FrameRange {
     pub end: Option<usize>,
 }
 
-impl FrameRange {
-    /// The first and last analysed frame of a sample of `frames` frames.
-    pub fn resolve(&self, frames: usize) -> Result<(usize, usize)> {
-        let Some(last) = frames.checked_sub(1) else {
-            return Err(Error::Empty("the sample has no frame".into()));
-        };
-        let (start, end) = (self.start.unwrap_or(0), self.end.unwrap_or(last));
-        if start > last || end > last {
-            return Err(Error::InvalidArgument(format!("frame {} does not exist (the sample has frames 0…{last})", start.max(end))));
-        }
-        if end < start {
-            return Err(Error::InvalidArgument(format!("end frame {end} comes before start frame {start}")));
-        }
-        Ok((start, end))
-    }
-}
-
 /// How to analyse: which frames, how fold points are chosen, and what it may cost.
 #[derive(Debug, Clone, Default)]
 pub struct Options {
@@ -129,7 +112,18 @@ pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
 /// The disks are computed as a stream, one step at a time: at most two are alive at once,
 /// whatever the number of frames.
 pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis> {
-    let (start, end) = options.frames.resolve(sample.frames.len())?;
+    let range = options.frames;
+    let Some(last) = sample.frames.len().checked_sub(1) else {
+        return Err(Error::Empty("the sample has no frame".into()));
+    };
+    let start = range.start.unwrap_or(0);
+    let end = range.end.unwrap_or(last);
+    if start > last || end > last {
+        return Err(Error::InvalidArgument(format!("frame {} does not exist (the sample has frames 0…{last})", start.max(end))));
+    }
+    if end < start {
+        return Err(Error::InvalidArgument(format!("end frame {end} comes before start frame {start}")));
+    }
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;

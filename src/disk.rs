@@ -174,9 +174,9 @@ pub fn of_state(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, deadlin
         None => vec![border],
     };
     let prepared = prepare(frames)?;
-    let (Some(start), Some(now)) = (prepared.frames.first(), prepared.frames.last()) else {
-        return Err(Error::Empty("the border state has no frame".into()));
-    };
+    // prepare gives one frame per frame given: the reference first, the state last.
+    let start = prepared.frames.first().map_or(&[][..], Vec::as_slice);
+    let now = prepared.frames.last().map_or(&[][..], Vec::as_slice);
     Disk::of_border_until(&Normalisation::of(start)?.apply_all(now), deadline)
 }
 

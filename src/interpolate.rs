@@ -28,7 +28,8 @@
 use serde::Serialize;
 
 use crate::angle::{wrap_pi, wrap_tau, TAU};
-use crate::border::{prepare, to_xyz, Point};
+use crate::border::{prepare, to_xyz};
+use crate::border::{Point, MAX_VERTICES, MIN_VERTICES};
 use crate::error::{Error, Result};
 use crate::fold::reflect::apply_fold;
 
@@ -72,14 +73,23 @@ pub fn fold_path(from: [f64; 2], to: [f64; 2], steps: usize) -> Vec<[f64; 2]> {
 }
 
 /// The border folded along each fold of [`fold_path`]; `border` is taken as given (an
-/// anticlockwise border, e.g. an analysis's start border): see [`interpolate_border`] for
-/// a user's input.
+/// anticlockwise border, e.g. an analysis's start border), checked for size and finite
+/// coordinates only: see [`interpolate_border`] for a user's input.
 pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
     if !STEPS.contains(&steps) {
         return Err(Error::InvalidArgument(format!("steps must be in {}..={}, got {steps}", STEPS.start(), STEPS.end())));
     }
     if let Some(bad) = from.iter().chain(&to).find(|a| !a.is_finite()) {
         return Err(Error::InvalidArgument(format!("fold angles must be finite numbers, got {bad}")));
+    }
+    if border.len() < MIN_VERTICES {
+        return Err(Error::TooFewVertices { got: border.len(), min: MIN_VERTICES });
+    }
+    if border.len() > MAX_VERTICES {
+        return Err(Error::TooLarge(format!("{} vertices (at most {MAX_VERTICES})", border.len())));
+    }
+    if let Some(v) = border.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
+        return Err(Error::NonFinite { frame: 0, vertex: v });
     }
     let folds = fold_path(from, to, steps);
     let borders = folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
@@ -98,7 +108,8 @@ pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize)
 /// ```
 pub fn interpolate_border(border: Vec<[f64; 3]>, from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
     let prepared = prepare(vec![border])?;
-    let start = prepared.frames.first().ok_or_else(|| Error::Empty("the border has no frame".into()))?;
+    // prepare gives one frame per frame given: this one.
+    let start = prepared.frames.first().map_or(&[][..], Vec::as_slice);
     let motion = interpolate(start, from, to, steps)?;
     Ok(Interpolation { border_indices: prepared.border_indices, ..motion })
 }
@@ -206,6 +217,7 @@ mod tests {
         let sq = square(2);
         assert!(interpolate(&sq, [0.0, 1.0], [1.0, 2.0], 1).unwrap_err().to_string().contains("steps"));
         assert!(interpolate(&sq, [f64::NAN, 1.0], [1.0, 2.0], 5).unwrap_err().to_string().contains("finite"));
+        assert!(matches!(interpolate(&sq[..3], [0.0, 1.0], [1.0, 2.0], 5), Err(Error::TooFewVertices { .. })));
     }
 
     #[test]

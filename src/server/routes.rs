@@ -98,12 +98,13 @@ struct Loaded {
 }
 
 impl Loaded {
-    /// Validate `sample`. A border sample over the cell budget is refused before its
-    /// border is prepared (a copy of every frame); a mesh's border, shorter than its vertex
-    /// list, is known only then, and the analysis checks the budget again on it.
+    /// Validate `sample`. A border sample whose every frame is analysed is refused over the
+    /// cell budget before its border is prepared (a copy of every frame); otherwise (a frame
+    /// range, a mesh's border shorter than its vertex list) the analysis checks the budget
+    /// once the border is known.
     fn of(key: String, sample: &Sample, range: FrameRange, builtin: Option<String>, budget: &Budget) -> Result<Loaded, ApiError> {
-        if let (Some(first), Ok((start, end))) = (sample.frames.first(), range.resolve(sample.frames.len())) {
-            budget.analysis(end - start + 1, first.len())?;
+        if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), range) {
+            budget.analysis(sample.frames.len(), first.len())?;
         }
         Ok(Loaded {
             key,
