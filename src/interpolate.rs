@@ -96,21 +96,30 @@ pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize)
     Ok(Interpolation { folds, borders, border_indices: (0..border.len()).collect() })
 }
 
-/// [`interpolate`] a user's border: validated and oriented by [`prepare`], as an analysis
-/// validates its start frame.
+/// [`interpolate`] a user's border, validated by [`prepare`] as an analysis validates its
+/// frames: `border` is the state to fold and `reference` the flat border whose orientation
+/// applies (an analysis's start frame; by default `border` itself, which must then be a
+/// valid start frame). A border already folded overlaps itself, so its own area and
+/// orientation are no guide: send the flat one as `reference`.
 ///
 /// ```
 /// use close::interpolate::interpolate_border;
 /// let square = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
-/// assert_eq!(interpolate_border(square, [0.0, 3.1], [0.5, 3.6], 5).unwrap().borders.len(), 5);
+/// assert_eq!(interpolate_border(square.clone(), None, [0.0, 3.1], [0.5, 3.6], 5).unwrap().borders.len(), 5);
 /// let line = vec![[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [2.0, 2.0, 0.0], [3.0, 3.0, 0.0]];
-/// assert!(interpolate_border(line, [0.0, 3.1], [0.5, 3.6], 5).is_err());
+/// assert!(interpolate_border(line.clone(), None, [0.0, 3.1], [0.5, 3.6], 5).is_err());
+/// // A state with no area of its own is fine against a flat reference.
+/// assert!(interpolate_border(line, Some(square), [0.0, 3.1], [0.5, 3.6], 5).is_ok());
 /// ```
-pub fn interpolate_border(border: Vec<[f64; 3]>, from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
-    let prepared = prepare(vec![border])?;
-    // prepare gives one frame per frame given: this one.
-    let start = prepared.frames.first().map_or(&[][..], Vec::as_slice);
-    let motion = interpolate(start, from, to, steps)?;
+pub fn interpolate_border(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
+    let frames = match reference {
+        Some(reference) => vec![reference, border],
+        None => vec![border],
+    };
+    let prepared = prepare(frames)?;
+    // prepare gives one frame per frame given: the state is the last.
+    let state = prepared.frames.last().map_or(&[][..], Vec::as_slice);
+    let motion = interpolate(state, from, to, steps)?;
     Ok(Interpolation { border_indices: prepared.border_indices, ..motion })
 }
 
@@ -223,17 +232,26 @@ mod tests {
     #[test]
     fn a_users_border_is_validated_as_an_analysis_validates_it() {
         let raw: Vec<[f64; 3]> = square(2).iter().map(to_xyz).collect();
-        let ok = interpolate_border(raw.clone(), [0.0, 1.0], [1.0, 2.0], 5).unwrap();
+        let ok = interpolate_border(raw.clone(), None, [0.0, 1.0], [1.0, 2.0], 5).unwrap();
         assert_eq!(ok.border_indices, (0..8).collect::<Vec<_>>());
         for bad in [raw[..3].to_vec(), vec![[1.0, 2.0, 0.0]; 8], (0..8).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect()] {
-            let ours = interpolate_border(bad.clone(), [0.0, 1.0], [1.0, 2.0], 5).unwrap_err();
+            let ours = interpolate_border(bad.clone(), None, [0.0, 1.0], [1.0, 2.0], 5).unwrap_err();
             assert_eq!(ours, prepare(vec![bad]).unwrap_err(), "the same refusal as the analysis");
         }
         // A clockwise border is walked anticlockwise, vertex 0 first, as the analysis does.
         let mut cw = raw.clone();
         cw[1..].reverse();
-        let reversed = interpolate_border(cw, [0.0, 1.0], [1.0, 2.0], 5).unwrap();
+        let reversed = interpolate_border(cw, None, [0.0, 1.0], [1.0, 2.0], 5).unwrap();
         assert_eq!(reversed.border_indices, [0, 7, 6, 5, 4, 3, 2, 1]);
         assert_eq!(reversed.borders, ok.borders);
+        // A square folded in half has no area of its own: against the flat one, it folds on,
+        // in its own vertex order; against a reference of another vertex count, it is refused.
+        let half: Vec<[f64; 3]> = apply_fold(&square(2), [PI / 4.0, 1.25 * PI]).iter().map(to_xyz).collect();
+        assert!(interpolate_border(half.clone(), None, [0.0, 1.0], [1.0, 2.0], 5).is_err());
+        let on = interpolate_border(half.clone(), Some(raw.clone()), [0.0, 1.0], [1.0, 2.0], 5).unwrap();
+        assert_eq!(on.border_indices, (0..8).collect::<Vec<_>>());
+        let half_points: Vec<Point> = half.iter().map(crate::border::from_xyz).collect();
+        assert_eq!(on.borders, interpolate(&half_points, [0.0, 1.0], [1.0, 2.0], 5).unwrap().borders);
+        assert!(matches!(interpolate_border(half, Some(raw[..6].to_vec()), [0.0, 1.0], [1.0, 2.0], 5), Err(Error::FrameSizeMismatch { .. })));
     }
 }

@@ -331,6 +331,12 @@ async fn interpolation_moves_from_one_fold_to_the_other() {
     assert_eq!((folds[0], folds[8]), ([0.5, 3.6], [1.0, 4.0]));
     assert!(borders.iter().all(|b| b.len() == border.len()));
     assert_eq!(v["border_indices"], json!((0..border.len()).collect::<Vec<_>>()));
+    // A folded state folds on against its flat reference, in its own vertex order.
+    let on = post_json(&app, "/api/interpolate", &json!({"border": borders[8], "reference": border, "from": [1.0, 4.0], "to": [0.5, 3.0], "steps": 3})).await;
+    assert_eq!(on.status, StatusCode::OK, "{}", String::from_utf8_lossy(&on.body));
+    let folded: Vec<close::border::Point> = borders[8].iter().map(close::border::from_xyz).collect();
+    let expected = close::interpolate::interpolate(&folded, [1.0, 4.0], [0.5, 3.0], 3).unwrap();
+    assert_eq!(on.json()["borders"], json!(expected.borders));
 
     for (body, status, words) in [
         (json!({"border": border, "from": [0, 1], "to": [1, 2], "steps": 1}), StatusCode::BAD_REQUEST, "steps"),

@@ -429,6 +429,10 @@ fn default_steps() -> usize {
 #[serde(deny_unknown_fields)]
 pub struct InterpolateRequest {
     border: Vec<[f64; 3]>,
+    /// The flat border whose orientation applies when `border` is already folded (as
+    /// `POST /api/disk` takes it); by default `border` itself.
+    #[serde(default)]
+    reference: Option<Vec<[f64; 3]>>,
     from: [f64; 2],
     to: [f64; 2],
     #[serde(default = "default_steps")]
@@ -438,7 +442,7 @@ pub struct InterpolateRequest {
 pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<JsonBytes, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
     let answer = state
-        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.from, req.to, req.steps)?))
+        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, req.from, req.to, req.steps)?))
         .await?;
     Ok(JsonBytes(answer))
 }
