@@ -8,6 +8,7 @@
 use serde::Serialize;
 
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
+use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close, Corners};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
@@ -22,11 +23,17 @@ pub struct FrameRange {
     pub end: Option<usize>,
 }
 
-/// How to analyse: which frames, and how fold points are chosen.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+/// How to analyse: which frames, how fold points are chosen, and what it may cost.
+#[derive(Debug, Clone, Default)]
 pub struct Options {
     pub frames: FrameRange,
     pub method: FoldMethod,
+    /// Checked while the disks are computed and between steps: once expired, the analysis
+    /// stops with [`Error::Cancelled`]. The default never expires.
+    pub deadline: Deadline,
+    /// Refuses, before any disk is computed, more analysed frames × N² than it allows. The
+    /// default is unlimited.
+    pub budget: Budget,
 }
 
 /// One step between consecutive frames.
@@ -118,15 +125,17 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
         return Err(Error::InvalidArgument(format!("end frame {end} comes before start frame {start}")));
     }
     let frames = &sample.frames[start..=end];
+    options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;
-    let disk_of = |k: usize| Disk::of_border(&norm.apply_all(&frames[k]));
-    let mut before = disk_of(0);
+    let disk_of = |k: usize| Disk::of_border_until(&norm.apply_all(&frames[k]), &options.deadline);
+    let mut before = disk_of(0)?;
     let found: Corners = corners(&before);
     let mut predicted = frames[0].clone();
     let mut steps = Vec::with_capacity(frames.len() - 1);
     for (k, frame) in frames.iter().enumerate().skip(1) {
-        let after = disk_of(k);
+        let after = disk_of(k)?;
         let detection = detect(&before, &after, options.method);
+        options.deadline.check()?;
         if let Some(fold) = detection.fold {
             predicted = apply_fold(&predicted, fold);
         }
@@ -168,5 +177,27 @@ mod tests {
     fn a_sample_without_frames_is_an_error_not_a_panic() {
         let empty = BorderFrames { frames: Vec::new(), border_indices: Vec::new(), source: "border".into(), reversed: false, warnings: Vec::new() };
         assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty { .. })));
+    }
+
+    fn square_frames(frames: usize) -> BorderFrames {
+        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
+        BorderFrames { frames: vec![square; frames], border_indices: (0..4).collect(), source: "border".into(), reversed: false, warnings: Vec::new() }
+    }
+
+    #[test]
+    fn the_budget_is_checked_before_any_disk() {
+        let budget = Budget { max_cells: 2 * 16, ..Budget::default() };
+        let over = analyze_with(&square_frames(3), Options { budget, ..Options::default() });
+        assert!(matches!(over, Err(Error::OverBudget { got: 48, limit: 32, .. })));
+        // Only the analysed frames count.
+        let range = FrameRange { start: Some(1), end: Some(2) };
+        assert!(analyze_with(&square_frames(3), Options { budget, frames: range, ..Options::default() }).is_ok());
+    }
+
+    #[test]
+    fn an_expired_deadline_stops_the_analysis() {
+        let deadline = Deadline::default();
+        deadline.cancel();
+        assert_eq!(analyze_with(&square_frames(2), Options { deadline, ..Options::default() }), Err(Error::Cancelled));
     }
 }

@@ -24,7 +24,8 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::border::Point;
+use crate::border::{prepare, Normalisation, Point};
+use crate::budget::Deadline;
 use crate::error::{Error, Result};
 use crate::gli::dgli_fast;
 
@@ -58,22 +59,16 @@ pub struct Disk {
 impl Disk {
     /// The dGLI of every edge pair of the closed border `points` (both cores, row by row).
     pub fn of_border(points: &[Point]) -> Disk {
-        let n = points.len();
-        let mut values = vec![0.0; n * n.saturating_sub(1) / 2];
-        let mut rows: Vec<(usize, &mut [f64])> = Vec::with_capacity(n);
-        let mut rest = values.as_mut_slice();
-        for i in 0..n.saturating_sub(1) {
-            let (row, tail) = rest.split_at_mut(n - 1 - i);
-            rows.push((i, row));
-            rest = tail;
-        }
-        rows.into_par_iter().with_min_len(4).for_each(|(i, row)| {
-            let (a, b) = (&points[i], &points[(i + 1) % n]);
-            for (slot, j) in row.iter_mut().zip(i + 1..n) {
-                *slot = dgli_fast(a, b, &points[j], &points[(j + 1) % n]);
-            }
-        });
-        Disk { n, values }
+        // A default deadline never expires: every row is computed.
+        Disk { n: points.len(), values: pair_values(points, &Deadline::default()) }
+    }
+
+    /// [`Disk::of_border`] that gives up with [`Error::Cancelled`] once `deadline` expires,
+    /// checked before every row (N dGLI values), so a stopped job frees its core at once.
+    pub fn of_border_until(points: &[Point], deadline: &Deadline) -> Result<Disk> {
+        let values = pair_values(points, deadline);
+        deadline.check()?;
+        Ok(Disk { n: points.len(), values })
     }
 
     /// A disk from a condensed vector; errors when the length is not N(N−1)/2.
@@ -138,6 +133,54 @@ impl Disk {
     }
 }
 
+/// The condensed pair vector of `points`, rows in parallel; rows started after `deadline`
+/// expired are left at zero (the caller checks the deadline).
+fn pair_values(points: &[Point], deadline: &Deadline) -> Vec<f64> {
+    let n = points.len();
+    let mut values = vec![0.0; n * n.saturating_sub(1) / 2];
+    let mut rows: Vec<(usize, &mut [f64])> = Vec::with_capacity(n);
+    let mut rest = values.as_mut_slice();
+    for i in 0..n.saturating_sub(1) {
+        let (row, tail) = rest.split_at_mut(n - 1 - i);
+        rows.push((i, row));
+        rest = tail;
+    }
+    rows.into_par_iter().with_min_len(4).for_each(|(i, row)| {
+        if deadline.expired() {
+            return;
+        }
+        let (a, b) = (&points[i], &points[(i + 1) % n]);
+        for (slot, j) in row.iter_mut().zip(i + 1..n) {
+            *slot = dgli_fast(a, b, &points[j], &points[(j + 1) % n]);
+        }
+    });
+    values
+}
+
+/// The dGLI disk of one border state, as an analysis computes its frames' disks: `border`
+/// and its `reference` (the flat start frame whose normalisation and orientation apply,
+/// since dGLI scales with 1/size; by default `border` itself) are validated together by
+/// [`prepare`], then `border` is normalised by the reference's transform.
+///
+/// ```
+/// use close::{budget::Deadline, disk};
+/// let square = vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 2.0, 0.0], [0.0, 2.0, 0.0]];
+/// let d = disk::of_state(square.clone(), None, &Deadline::default()).unwrap();
+/// assert_eq!(d.n(), 4);
+/// assert!(disk::of_state(vec![[0.0; 3]; 4], None, &Deadline::default()).is_err());
+/// ```
+pub fn of_state(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, deadline: &Deadline) -> Result<Disk> {
+    let frames = match reference {
+        Some(reference) => vec![reference, border],
+        None => vec![border],
+    };
+    let prepared = prepare(frames)?;
+    // prepare gives one frame per frame given: the reference first, the state last.
+    let start = prepared.frames.first().map_or(&[][..], Vec::as_slice);
+    let now = prepared.frames.last().map_or(&[][..], Vec::as_slice);
+    Disk::of_border_until(&Normalisation::of(start)?.apply_all(now), deadline)
+}
+
 /// Where pair (i, j) of an N-edge border sits on the disk (see the module doc).
 pub fn position(n: usize, i: usize, j: usize) -> Position {
     let (lo, hi) = if i < j { (i, j) } else { (j, i) };
@@ -187,6 +230,31 @@ mod tests {
         let p = position(n, 1, 5);
         let reference = (1 + 5) as f64 * PI / n as f64;
         assert!((p.angle - PI / n as f64 - reference).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_cancelled_disk_stops_with_an_error() {
+        let ring: Vec<Point> = (0..40).map(|k| Point::new((k as f64 * 0.157).cos(), (k as f64 * 0.157).sin(), 0.0)).collect();
+        let full = Disk::of_border_until(&ring, &Deadline::default()).unwrap();
+        assert_eq!(full, Disk::of_border(&ring));
+        let stopped = Deadline::default();
+        stopped.cancel();
+        assert_eq!(Disk::of_border_until(&ring, &stopped), Err(Error::Cancelled));
+    }
+
+    #[test]
+    fn a_state_is_normalised_by_its_reference() {
+        let square = |s: f64, dx: f64| vec![[dx, 0.0, 0.0], [dx + s, 0.0, 0.0], [dx + s, s, 0.0], [dx, s, 0.0]];
+        let never = Deadline::default();
+        // Position and size of the reference do not matter when the state is the reference.
+        let a = of_state(square(1.0, 0.0), None, &never).unwrap();
+        assert_eq!(a, of_state(square(1.0, 0.0), Some(square(1.0, 0.0)), &never).unwrap());
+        let b = of_state(square(3.0, 5.0), None, &never).unwrap();
+        assert!(a.values().iter().zip(b.values()).all(|(x, y)| (x - y).abs() < 1e-9));
+        // A small state against a large reference is a different disk: dGLI scales with 1/size.
+        let small = of_state(square(1.0, 0.0), Some(square(3.0, 0.0)), &never).unwrap();
+        assert_ne!(small, a);
+        assert!(matches!(of_state(square(1.0, 0.0)[..3].to_vec(), None, &never), Err(Error::TooFewVertices { .. })));
     }
 
     #[test]

@@ -58,13 +58,13 @@ pub enum Error {
     /// A dataset entry asked for by id does not exist.
     #[error("no sample {id:?} in the datasets")]
     UnknownSample { id: String },
-    /// One of several files is at fault: its name, then the cause.
-    #[error("{file}: {error}")]
-    InFile { file: String, error: Box<Error> },
     /// A VR-Folding Zarr store (or one of its groups or arrays) is missing, malformed or
     /// unreadable; `path` is the group or array inside the store.
     #[error("VR-Folding store {store}, {path}: {problem}")]
     Store { store: String, path: String, problem: String },
+    /// One of several files is at fault: its name, then the cause.
+    #[error("{file}: {error}")]
+    InFile { file: String, error: Box<Error> },
     /// A recording could not be written (feature `rerun`).
     #[error("recording failed: {0}")]
     Recording(String),
@@ -74,6 +74,12 @@ pub enum Error {
     /// A synthetic fold (the built-in dataset's generator) that cannot be made.
     #[error("fold ({f1}, {f2}) cannot be made: {problem}")]
     InvalidFold { f1: f64, f2: f64, problem: FoldProblem },
+    /// The estimated work is over a [`crate::budget::Budget`] limit (refused before starting).
+    #[error("too much work: {what} is {got}, over the limit of {limit}")]
+    OverBudget { what: &'static str, got: u64, limit: u64 },
+    /// The job was stopped by its [`crate::budget::Deadline`] (time-out or cancelled request).
+    #[error("the work was stopped: it ran past its deadline or its request went away")]
+    Cancelled,
 }
 
 /// Why a synthetic fold along border parameters (f1, f2) cannot be made.

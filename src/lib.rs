@@ -33,6 +33,7 @@ pub mod analysis;
 pub mod catalog;
 pub mod angle;
 pub mod border;
+pub mod budget;
 pub mod close;
 pub mod dataset;
 pub mod disk;

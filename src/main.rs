@@ -103,7 +103,50 @@ enum Command {
         /// next to the built-in set. Repeatable.
         #[arg(long = "dataset")]
         datasets: Vec<PathBuf>,
+        #[command(flatten)]
+        limits: ServeFlags,
     },
+}
+
+/// Who may reach the server and what it may spend; unset flags keep the server's defaults.
+#[derive(clap::Args)]
+struct ServeFlags {
+    /// Also answer requests whose Host header names NAME (repeatable). Loopback names and
+    /// the address listened on are always answered; others are refused (DNS rebinding).
+    #[arg(long = "allow-host", value_name = "NAME")]
+    allow_host: Vec<String>,
+    /// Let pages from ORIGIN (e.g. https://example.org) call the API (repeatable). Off by
+    /// default: state-changing requests from other origins are refused.
+    #[arg(long, value_name = "ORIGIN")]
+    cors: Vec<String>,
+    /// Seconds a request may take before it is answered 408 and its work stopped [default: 30].
+    #[arg(long, value_name = "SECS")]
+    timeout: Option<u64>,
+    /// Seconds a connection may take to send its request headers, or stay idle [default: 10].
+    #[arg(long, value_name = "SECS")]
+    header_timeout: Option<u64>,
+    /// Connections served at once [default: 256].
+    #[arg(long, value_name = "N")]
+    max_connections: Option<usize>,
+    /// Most dGLI cells (analysed frames × N²) one analysis may cost [default: 100000000].
+    #[arg(long, value_name = "N")]
+    max_cells: Option<u64>,
+    /// MiB of request bodies held at once across all requests [default: 256].
+    #[arg(long, value_name = "MIB")]
+    upload_budget: Option<usize>,
+}
+
+impl ServeFlags {
+    fn config(self) -> close::server::Config {
+        let mut config = close::server::Config { allowed_hosts: self.allow_host, cors_origins: self.cors, ..Default::default() };
+        let secs = std::time::Duration::from_secs;
+        config.timeout = self.timeout.map_or(config.timeout, secs);
+        config.header_timeout = self.header_timeout.map_or(config.header_timeout, secs);
+        config.max_connections = self.max_connections.unwrap_or(config.max_connections);
+        config.budget.max_cells = self.max_cells.unwrap_or(config.budget.max_cells);
+        config.upload_budget = self.upload_budget.map_or(config.upload_budget, |mib| mib.saturating_mul(1 << 20));
+        config
+    }
 }
 
 /// Fold point methods, as the command line names them.
@@ -399,7 +442,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
         Some(Command::Analyze { files, video, fold, start, end, json: _, disks, method }) => {
-            let options = Options { frames: FrameRange { start, end }, method: method.into() };
+            let options = Options { frames: FrameRange { start, end }, method: method.into(), ..Options::default() };
             run_analyze(&files, video.as_deref(), usize::from(fold), options, disks)
         }
         Some(Command::Eval { paths, builtin, json, method }) => run_eval(&paths, builtin, json, method.into()),
@@ -407,8 +450,8 @@ fn main() -> ExitCode {
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out }) => run_record(&files, &out),
-        Some(Command::Serve { addr, datasets }) => close::server::run_with(&addr, close::server::Config { datasets, ..Default::default() }),
-        None => close::server::run(DEFAULT_ADDR),
+        Some(Command::Serve { addr, datasets, limits }) => close::server::run(&addr, close::server::Config { datasets, ..limits.config() }),
+        None => close::server::run(DEFAULT_ADDR, close::server::Config::default()),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

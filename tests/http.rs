@@ -200,6 +200,12 @@ async fn uploads_of_each_kind_give_the_same_analysis() {
     let (ct, body) = multipart(&[("start", "start.txt", &start), ("end", "end.txt", &end)]);
     let by_text = post(&app, "/api/analyze", &ct, body).await.json();
 
+    // The analysis, flattened into the typed answer with what the app draws.
+    for key in ["key", "name", "category", "frames", "n", "close", "folds", "start_border", "end_border", "images"] {
+        assert!(!by_json[key].is_null(), "missing {key}");
+    }
+    assert_eq!(by_json["close"]["folds"], by_json["folds"]);
+    assert_eq!(by_json["name"], entry.sample.name.as_str());
     for v in [&by_file, &by_text] {
         assert_same(&v["folds"], &by_json["folds"], "folds");
         assert_same(&v["corners"], &by_json["corners"], "corners");
@@ -325,6 +331,13 @@ async fn interpolation_moves_from_one_fold_to_the_other() {
     assert_eq!((folds.len(), borders.len()), (9, 9));
     assert_eq!((folds[0], folds[8]), ([0.5, 3.6], [1.0, 4.0]));
     assert!(borders.iter().all(|b| b.len() == border.len()));
+    assert_eq!(v["border_indices"], json!((0..border.len()).collect::<Vec<_>>()));
+    // A folded state folds on against its flat reference, in its own vertex order.
+    let on = post_json(&app, "/api/interpolate", &json!({"border": borders[8], "reference": border, "from": [1.0, 4.0], "to": [0.5, 3.0], "steps": 3})).await;
+    assert_eq!(on.status, StatusCode::OK, "{}", String::from_utf8_lossy(&on.body));
+    let folded: Vec<close::border::Point> = borders[8].iter().map(close::border::from_xyz).collect();
+    let expected = close::interpolate::interpolate(&folded, [1.0, 4.0], [0.5, 3.0], 3).unwrap();
+    assert_eq!(on.json()["borders"], json!(expected.borders));
 
     for (body, status, words) in [
         (json!({"border": border, "from": [0, 1], "to": [1, 2], "steps": 1}), StatusCode::BAD_REQUEST, "steps"),

@@ -285,7 +285,7 @@ async function checkServer() {
   })() : [view.from, view.to];
   const base = applyAll(view.border, prior);
   try {
-    const res = await api.interpolate({ border: base, from, to, steps });
+    const res = await api.interpolate({ border: base, reference: view.border, from, to, steps });
     let worst = 0;
     foldPath(from, to, steps).forEach((f, k) => {
       worst = Math.max(worst, Math.abs(f[0] - res.folds[k][0]), Math.abs(f[1] - res.folds[k][1]));

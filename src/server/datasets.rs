@@ -6,22 +6,20 @@
 //! list. `GET /api/samples/{id}` answers built-in ids as before and falls back to the
 //! catalog: the sample is loaded and analysed on first request and cached like any analysis.
 
-use axum::extract::rejection::{PathRejection, QueryRejection};
-use axum::extract::{Path, Query, State};
-use axum::response::Response;
-use axum::Json;
+use axum::extract::State;
 use serde_json::{json, Value};
 
-use super::{routes, ApiError, AppState};
+use super::routes::{self, JsonBytes, Listed, Loaded};
+use super::{ApiError, AppPath, AppQuery, AppState};
 use crate::analysis::FrameRange;
 use crate::catalog;
 
 /// Cache keys of dataset samples start with this.
 const DATASET_KEY: &str = "dataset:";
 
-pub async fn samples(State(state): State<AppState>, query: Result<Query<catalog::Query>, QueryRejection>) -> Result<Json<Value>, ApiError> {
-    let Query(query) = query.map_err(|e| ApiError::BadRequest(format!("bad list query: {e} (expected ?category=&q=&offset=&limit=)")))?;
-    let Json(builtin) = routes::samples(State(state.clone())).await;
+pub async fn samples(State(state): State<AppState>, AppQuery(query): AppQuery<catalog::Query>) -> Result<JsonBytes, ApiError> {
+    let JsonBytes(builtin) = routes::samples(State(state.clone())).await?;
+    let builtin: Value = serde_json::from_slice(&builtin).map_err(|e| ApiError::Internal(format!("the built-in list: {e}")))?;
     let text = |v: &Value, key: &str| v[key].as_str().unwrap_or_default().to_string();
     let mut all: Vec<Value> = builtin["samples"]
         .as_array()
@@ -47,21 +45,20 @@ pub async fn samples(State(state): State<AppState>, query: Result<Query<catalog:
     let total = matching.len();
     let page: Vec<Value> = matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
     let categories: Vec<Value> = categories.into_iter().map(|(name, count)| json!({ "name": name, "count": count })).collect();
-    Ok(Json(json!({ "samples": page, "total": total, "offset": query.offset, "limit": query.limit, "categories": categories })))
+    let body = json!({ "samples": page, "total": total, "offset": query.offset, "limit": query.limit, "categories": categories });
+    Ok(JsonBytes(serde_json::to_vec(&body).map_err(|e| ApiError::Internal(e.to_string()))?.into()))
 }
 
-pub async fn sample(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
-    let dataset_id = match &id {
-        Ok(Path(id)) if state.dataset().get(id).is_none() && state.catalog().get(id).is_some() => id.clone(),
-        _ => return routes::sample(State(state), id).await,
-    };
-    let catalog = state.catalog().clone();
-    let done = state
-        .analysis(format!("{DATASET_KEY}{dataset_id}"), move |key| {
-            let sample = catalog.load(&dataset_id)?;
-            let source = catalog.get(&dataset_id).map(|e| e.source.clone());
-            routes::analyzed(key, &sample, FrameRange::default(), json!({ "id": dataset_id, "source": source, "sample": *sample }))
-        })
-        .await?;
-    Ok(routes::json_response(done.response.clone()))
+pub async fn sample(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<JsonBytes, ApiError> {
+    if state.dataset().get(&id).is_some() || state.catalog().get(&id).is_none() {
+        return routes::sample(State(state), AppPath(id)).await;
+    }
+    let (catalog, budget) = (state.catalog().clone(), state.config().budget);
+    let done = routes::analysis(&state, format!("{DATASET_KEY}{id}"), move |key| {
+        let sample = catalog.load(&id)?;
+        let source = catalog.get(&id).map(|e| e.source.clone()).unwrap_or_default();
+        Loaded::of(key, &sample.clone(), FrameRange::default(), Some(Listed::Dataset { id, source, sample }), &budget)
+    })
+    .await?;
+    Ok(JsonBytes(done.response.clone()))
 }

@@ -58,7 +58,9 @@ impl ApiError {
 fn input_status(e: &Error) -> StatusCode {
     match e {
         Error::Parse { .. } | Error::Empty { .. } | Error::InvalidArgument(_) | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
-        Error::TooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+        Error::TooLarge { .. } | Error::OverBudget { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+        // The request's time ran out (its answer is usually the time-out layer's 408).
+        Error::Cancelled => StatusCode::REQUEST_TIMEOUT,
         Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate { .. } | Error::Mesh(_) => {
             StatusCode::UNPROCESSABLE_ENTITY
         }
@@ -128,6 +130,8 @@ mod tests {
         assert_eq!(status(Error::too_large("frames", 2000, 1000).in_file("a.json")), StatusCode::PAYLOAD_TOO_LARGE);
         assert_eq!(status(Error::Mesh(crate::error::MeshError::NoFaces)), StatusCode::UNPROCESSABLE_ENTITY);
         assert_eq!(status(Error::UnknownSample { id: "x".into() }), StatusCode::NOT_FOUND);
+        assert_eq!(status(Error::OverBudget { what: "cells", got: 2, limit: 1 }), StatusCode::PAYLOAD_TOO_LARGE);
+        assert_eq!(status(Error::Cancelled), StatusCode::REQUEST_TIMEOUT);
         assert_eq!(status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }), StatusCode::UNPROCESSABLE_ENTITY);
         assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);
         assert_eq!(status(Error::Recording("encoder".into())), StatusCode::INTERNAL_SERVER_ERROR);

@@ -1,28 +1,29 @@
-//! The handlers of the HTTP API (SPEC §4).
+//! The handlers of the HTTP API: each reads a typed request, runs the library on a blocking
+//! worker (with the request's deadline and the server's budget), and writes a typed response
+//! there too, so the async threads only move bytes.
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use axum::body::Bytes;
-use axum::extract::rejection::{JsonRejection, PathRejection, QueryRejection};
-use axum::extract::{FromRequest, Multipart, Path, Query, Request, State};
+use axum::extract::{FromRequest, Multipart, Request, State};
 use axum::http::{header, Uri};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
-use serde::Deserialize;
-use serde_json::{json, Value};
+use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
 
 use super::cache::content_key;
-use super::{ApiError, AppState};
-use crate::analysis::{analyze as run_analysis, Analysis, FrameRange};
-use crate::border::{prepare, Normalisation, Point};
-use crate::disk::Disk;
-use crate::error::Error;
+use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
+use crate::analysis::{analyze_with, Analysis, FrameRange, Options};
+use crate::border::{to_xyz, BorderFrames};
+use crate::budget::{Budget, Deadline};
+use crate::error::{Error, Result};
 use crate::formats::{json::parse_sample, read_files, Sample};
+use crate::plan::{Plan, PlanStep};
 use crate::render::colour::Scale;
 use crate::render::{disk_png_scaled, render_step_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
-/// Most vertices × steps an interpolation may return (its JSON grows with both).
-const MAX_INTERPOLATED_POINTS: usize = 2_000_000;
 /// Thumbnail size in the sample list.
 const THUMBNAIL_SIZE: u32 = 160;
 /// Cache keys of built-in samples start with this; uploads are hex digests.
@@ -44,39 +45,165 @@ impl Analyzed {
     }
 }
 
-fn points(border: &[Point]) -> Vec<[f64; 3]> {
-    border.iter().map(|p| [p.x, p.y, p.z]).collect()
-}
+/// A JSON answer already serialised (on a worker, not on the async runtime).
+pub struct JsonBytes(pub(super) Bytes);
 
-/// Analyse `sample` and write the response: the CLI's JSON plus what the app draws.
-pub(super) fn analyzed(key: String, sample: &Sample, range: FrameRange, extra: Value) -> Result<Analyzed, ApiError> {
-    let analysis = run_analysis(&sample.border_frames()?, range)?;
-    let mut body = serde_json::to_value(&analysis).map_err(|e| ApiError::Internal(e.to_string()))?;
-    let images: serde_json::Map<String, Value> =
-        Picture::ALL.iter().map(|p| (p.name().to_string(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()).into())).collect();
-    let fields = [
-        ("key", json!(key)),
-        ("name", json!(sample.name)),
-        ("category", json!(sample.category)),
-        ("frames", json!(frame_count(sample))),
-        ("start_border", json!(points(analysis.start_border()))),
-        ("end_border", json!(points(analysis.end_border()))),
-        ("images", Value::Object(images)),
-    ];
-    if let (Value::Object(map), Value::Object(more)) = (&mut body, extra) {
-        map.extend(fields.into_iter().map(|(k, v)| (k.to_string(), v)));
-        map.extend(more);
+impl IntoResponse for JsonBytes {
+    fn into_response(self) -> Response {
+        ([(header::CONTENT_TYPE, "application/json")], self.0).into_response()
     }
-    let response = Bytes::from(serde_json::to_vec(&body).map_err(|e| ApiError::Internal(e.to_string()))?);
-    Ok(Analyzed { key, analysis, response })
 }
 
-pub(super) fn json_response(body: Bytes) -> Response {
-    ([(header::CONTENT_TYPE, "application/json")], body).into_response()
+fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
+    serde_json::to_vec(value).map(Bytes::from).map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))
 }
 
-pub async fn healthz() -> Json<Value> {
-    Json(json!({ "status": "ok" }))
+/// What a listed sample's analysis adds: its id, the sample itself, and where its
+/// recording is (built-in samples) or which dataset it came from (`--dataset`).
+#[derive(Serialize)]
+struct ListedFields<'a> {
+    id: &'a str,
+    sample: &'a Sample,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    recording: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    source: Option<&'a str>,
+}
+
+/// A sample of a list: a built-in one (by id) or one of the user's datasets.
+pub(super) enum Listed {
+    Builtin(String),
+    Dataset { id: String, source: String, sample: Arc<Sample> },
+}
+
+/// `POST /api/analyze` and `GET /api/samples/{id}`: the CLI's analysis JSON plus what the
+/// app draws.
+#[derive(Serialize)]
+struct AnalyzeResponse<'a> {
+    key: &'a str,
+    name: &'a str,
+    category: &'a str,
+    /// Frames of the sample (all of them, not only the analysed range).
+    frames: usize,
+    #[serde(flatten)]
+    analysis: &'a Analysis,
+    start_border: Vec<[f64; 3]>,
+    end_border: Vec<[f64; 3]>,
+    /// Picture name → URL of its PNG.
+    images: BTreeMap<&'static str, String>,
+    #[serde(flatten)]
+    listed: Option<ListedFields<'a>>,
+}
+
+/// A sample read and validated, ready to be analysed.
+pub(super) struct Loaded {
+    key: String,
+    name: String,
+    category: String,
+    frames: usize,
+    border: BorderFrames,
+    range: FrameRange,
+    /// A listed sample, whose answer includes the sample.
+    listed: Option<Listed>,
+}
+
+impl Loaded {
+    /// Validate `sample`. A border sample whose every frame is analysed is refused over the
+    /// cell budget before its border is prepared (a copy of every frame); otherwise (a frame
+    /// range, a mesh's border shorter than its vertex list) the analysis checks the budget
+    /// once the border is known.
+    pub(super) fn of(key: String, sample: &Sample, range: FrameRange, listed: Option<Listed>, budget: &Budget) -> Result<Loaded, ApiError> {
+        if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), range) {
+            budget.analysis(sample.frames.len(), first.len())?;
+        }
+        Ok(Loaded {
+            key,
+            name: sample.name.clone(),
+            category: sample.category.clone(),
+            frames: frame_count(sample),
+            border: sample.border_frames()?,
+            range,
+            listed,
+        })
+    }
+
+    /// dGLI cells of every frame: at least what the analysis of any range costs.
+    fn cells(&self) -> u64 {
+        let n = self.border.len() as u64;
+        (self.border.frames.len() as u64).saturating_mul(n * n)
+    }
+
+    /// Analyse, with the server's budget and the job's deadline, and write the response.
+    fn analyze(self, state: &AppState, deadline: &Deadline) -> Result<Analyzed, ApiError> {
+        let options = Options { frames: self.range, budget: state.config().budget, deadline: deadline.clone(), ..Options::default() };
+        let analysis = analyze_with(&self.border, options)?;
+        let key = self.key;
+        let images = Picture::ALL.iter().map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()))).collect();
+        let listed = match &self.listed {
+            Some(Listed::Builtin(id)) => state.entry(id).map(|entry| ListedFields {
+                id: &entry.id,
+                sample: &entry.sample,
+                recording: cfg!(feature = "rerun").then(|| format!("/api/samples/{}/recording.rrd", entry.id)),
+                source: None,
+            }),
+            Some(Listed::Dataset { id, source, sample }) => Some(ListedFields { id, sample, recording: None, source: Some(source) }),
+            None => None,
+        };
+        let response = to_json(&AnalyzeResponse {
+            key: &key,
+            name: &self.name,
+            category: &self.category,
+            frames: self.frames,
+            analysis: &analysis,
+            start_border: analysis.start_border().iter().map(to_xyz).collect(),
+            end_border: analysis.end_border().iter().map(to_xyz).collect(),
+            images,
+            listed,
+        })?;
+        Ok(Analyzed { key, analysis, response })
+    }
+}
+
+/// The cached analysis under `key`, or `load` the sample and analyse it. Both run on a
+/// worker: a light analysis in the same job as its loading, a heavy one (over
+/// [`Lane::of`]'s threshold) in the heavy lane, so it never holds the light workers.
+pub(super) async fn analysis(
+    state: &AppState,
+    key: String,
+    load: impl FnOnce(String) -> Result<Loaded, ApiError> + Send + 'static,
+) -> Result<Arc<Analyzed>, ApiError> {
+    if let Some(hit) = state.cached_analysis(&key) {
+        return Ok(hit);
+    }
+    let job = state.clone();
+    let loaded = state
+        .run_cpu(Lane::Light, move |deadline| {
+            let loaded = load(key)?;
+            match Lane::of(loaded.cells()) {
+                Lane::Light => loaded.analyze(&job, deadline).map(Ok),
+                Lane::Heavy => Ok(Err(loaded)),
+            }
+        })
+        .await?;
+    let analyzed = match loaded {
+        Ok(done) => done,
+        Err(heavy) => {
+            let job = state.clone();
+            state.run_cpu(Lane::Heavy, move |deadline| heavy.analyze(&job, deadline)).await?
+        }
+    };
+    let analyzed = Arc::new(analyzed);
+    state.cache_analysis(&analyzed);
+    Ok(analyzed)
+}
+
+#[derive(Serialize)]
+pub struct Health {
+    status: &'static str,
+}
+
+pub async fn healthz() -> Json<Health> {
+    Json(Health { status: "ok" })
 }
 
 pub async fn not_found(uri: Uri) -> ApiError {
@@ -113,18 +240,26 @@ impl Upload {
         )))
     }
 
-    /// Form files `sample` (one or more), or `start` and `end`.
+    /// Form files `sample` (one or more: one per frame), or one `start` and at most one `end`.
     async fn files(mut form: Multipart) -> Result<Upload, ApiError> {
         let (mut samples, mut start, mut end) = (Vec::new(), None, None);
         while let Some(field) = form.next_field().await? {
             let name = field.name().unwrap_or_default().to_string();
-            let file = field.file_name().filter(|f| !f.is_empty()).map(str::to_string);
-            let bytes = field.bytes().await?.to_vec();
-            match name.as_str() {
-                "sample" => samples.push((file.unwrap_or_else(|| "sample.json".into()), bytes)),
-                "start" => start = Some((file.unwrap_or_else(|| "start.txt".into()), bytes)),
-                "end" => end = Some((file.unwrap_or_else(|| "end.txt".into()), bytes)),
+            let (slot, default_name) = match name.as_str() {
+                "sample" => (None, "sample.json"),
+                "start" => (Some(&mut start), "start.txt"),
+                "end" => (Some(&mut end), "end.txt"),
                 other => return Err(ApiError::BadRequest(format!("unknown form field {other:?}: send files named \"sample\", or \"start\" and \"end\""))),
+            };
+            // A second part of the same name would silently replace the first.
+            if slot.as_ref().is_some_and(|s| s.is_some()) {
+                return Err(ApiError::BadRequest(format!("the form holds two {name:?} files: send one")));
+            }
+            let file = field.file_name().filter(|f| !f.is_empty()).unwrap_or(default_name).to_string();
+            let bytes = field.bytes().await?.to_vec();
+            match slot {
+                Some(slot) => *slot = Some((file, bytes)),
+                None => samples.push((file, bytes)),
             }
         }
         let files = match (samples.is_empty(), start, end) {
@@ -150,7 +285,7 @@ impl Upload {
         }
     }
 
-    fn sample(&self) -> Result<Sample, Error> {
+    fn sample(&self) -> Result<Sample> {
         match self {
             Upload::Json(bytes) => parse_sample(bytes),
             Upload::Files(files) => read_files(files),
@@ -158,17 +293,18 @@ impl Upload {
     }
 }
 
-pub async fn analyze(
-    State(state): State<AppState>,
-    range: Result<Query<RangeQuery>, QueryRejection>,
-    request: Request,
-) -> Result<Response, ApiError> {
-    let Query(range) = range?;
+pub async fn analyze(State(state): State<AppState>, AppQuery(range): AppQuery<RangeQuery>, request: Request) -> Result<JsonBytes, ApiError> {
     let upload = Upload::from_request(request, &state).await?;
     let key = upload.key(&range);
-    let range = FrameRange { start: range.start, end: range.end };
-    let done = state.analysis(key, move |key| analyzed(key, &upload.sample()?, range, json!({}))).await?;
-    Ok(json_response(done.response.clone()))
+    let frames = FrameRange { start: range.start, end: range.end };
+    let budget = state.config().budget;
+    let done = analysis(&state, key, move |key| Loaded::of(key, &upload.sample()?, frames, None, &budget)).await?;
+    Ok(JsonBytes(done.response.clone()))
+}
+
+/// dGLI cells of the pictures of `analysis` (two disks at most).
+fn cells(analysis: &Analysis) -> u64 {
+    2 * (analysis.n as u64).pow(2)
 }
 
 /// Frames of a border or mesh sample.
@@ -176,53 +312,81 @@ fn frame_count(sample: &Sample) -> usize {
     sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len())
 }
 
-pub async fn samples(State(state): State<AppState>) -> Json<Value> {
-    let list: Vec<Value> = state
-        .dataset()
-        .entries()
-        .iter()
-        .map(|e| {
-            json!({
-                "id": e.id,
-                "name": e.sample.name,
-                "category": e.sample.category,
-                "n": e.sample.border_frames().map_or(0, |b| b.len()),
-                "frames": frame_count(&e.sample),
-                "mesh": e.sample.mesh.is_some(),
-                "thumbnail": format!("/api/images/{SAMPLE_KEY}{}/thumbnail.png?size={THUMBNAIL_SIZE}", e.id),
-            })
+/// One row of `GET /api/samples`.
+#[derive(Serialize)]
+struct SampleSummary<'a> {
+    id: &'a str,
+    name: &'a str,
+    category: &'a str,
+    /// Border vertices (0 when the border cannot be found).
+    n: usize,
+    frames: usize,
+    mesh: bool,
+    thumbnail: String,
+}
+
+#[derive(Serialize)]
+struct SampleList<'a> {
+    samples: Vec<SampleSummary<'a>>,
+}
+
+pub async fn samples(State(state): State<AppState>) -> Result<JsonBytes, ApiError> {
+    if let Some(list) = state.0.sample_list.get() {
+        return Ok(JsonBytes(list.clone()));
+    }
+    // A mesh's border vertex count takes finding its border: a worker's job, done once.
+    let job = state.clone();
+    let list = state
+        .run_cpu(Lane::Light, move |_| {
+            let samples = job
+                .entries()
+                .iter()
+                .map(|e| SampleSummary {
+                    id: &e.id,
+                    name: &e.sample.name,
+                    category: &e.sample.category,
+                    n: e.sample.border_frames().map_or(0, |b| b.len()),
+                    frames: frame_count(&e.sample),
+                    mesh: e.sample.mesh.is_some(),
+                    thumbnail: format!("/api/images/{SAMPLE_KEY}{}/thumbnail.png?size={THUMBNAIL_SIZE}", e.id),
+                })
+                .collect();
+            to_json(&SampleList { samples })
         })
-        .collect();
-    Json(json!({ "samples": list }))
+        .await?;
+    Ok(JsonBytes(state.0.sample_list.get_or_init(|| list).clone()))
+}
+
+fn unknown_sample(id: &str) -> ApiError {
+    ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them"))
 }
 
 /// The analysis of built-in sample `id`, cached under its id.
-async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<super::Analyzed>, ApiError> {
-    let entry = state.dataset().get(id).cloned().ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them")))?;
-    state
-        .analysis(format!("{SAMPLE_KEY}{id}"), move |key| {
-            let mut extra = json!({ "id": entry.id, "sample": entry.sample });
-            if cfg!(feature = "rerun") {
-                extra["recording"] = json!(format!("/api/samples/{}/recording.rrd", entry.id));
-            }
-            analyzed(key, &entry.sample, FrameRange::default(), extra)
-        })
-        .await
+async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<Analyzed>, ApiError> {
+    if state.entry(id).is_none() {
+        return Err(unknown_sample(id));
+    }
+    let (job, id) = (state.clone(), id.to_string());
+    analysis(state, format!("{SAMPLE_KEY}{id}"), move |key| {
+        let entry = job.entry(&id).ok_or_else(|| unknown_sample(&id))?;
+        Loaded::of(key, &entry.sample, FrameRange::default(), Some(Listed::Builtin(id)), &job.config().budget)
+    })
+    .await
 }
 
-pub async fn sample(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
-    let Path(id) = id?;
-    Ok(json_response(sample_analysis(&state, &id).await?.response.clone()))
+pub async fn sample(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<JsonBytes, ApiError> {
+    Ok(JsonBytes(sample_analysis(&state, &id).await?.response.clone()))
 }
 
 /// `GET /api/samples/{id}/recording.rrd`: the sample's analysis as a Rerun recording.
 #[cfg(feature = "rerun")]
-pub async fn recording(State(state): State<AppState>, id: Result<Path<String>, PathRejection>) -> Result<Response, ApiError> {
-    let Path(id) = id?;
+pub async fn recording(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<Response, ApiError> {
     let analyzed = sample_analysis(&state, &id).await?;
-    let entry = state.dataset().get(&id).cloned().ok_or_else(|| ApiError::NotFound(format!("no built-in sample {id:?}")))?;
+    let job = state.clone();
+    let sample_id = id.clone();
     let rrd = state
-        .cached_bytes(format!("{}/recording.rrd", analyzed.key), move || {
+        .cached_bytes(format!("{}/recording.rrd", analyzed.key), cells(&analyzed.analysis), move |_| {
+            let entry = job.entry(&sample_id).ok_or_else(|| unknown_sample(&sample_id))?;
             Ok(crate::record::record(&analyzed.analysis, &entry.sample.border_frames()?)?)
         })
         .await?;
@@ -232,11 +396,8 @@ pub async fn recording(State(state): State<AppState>, id: Result<Path<String>, P
 
 /// Without the `rerun` feature there is no recording to give: say why.
 #[cfg(not(feature = "rerun"))]
-pub async fn recording(id: Result<Path<String>, PathRejection>) -> ApiError {
-    let name = id.map(|Path(id)| id).unwrap_or_default();
-    ApiError::NotFound(format!(
-        "no recording of {name:?}: this server was built without the `rerun` feature (cargo run --features rerun)"
-    ))
+pub async fn recording(AppPath(id): AppPath<String>) -> ApiError {
+    ApiError::NotFound(format!("no recording of {id:?}: this server was built without the `rerun` feature (cargo run --features rerun)"))
 }
 
 #[derive(Debug, Deserialize)]
@@ -247,12 +408,17 @@ pub struct ImageQuery {
     step: Option<usize>,
 }
 
+/// A picture's side in pixels as drawn: the request's, clamped. The cache is keyed by it,
+/// so every size past the limit is one picture, not one per number.
+fn picture_size(asked: Option<u32>) -> u32 {
+    asked.unwrap_or(DEFAULT_SIZE).clamp(MIN_SIZE, MAX_SIZE)
+}
+
 pub async fn image(
     State(state): State<AppState>,
-    path: Result<Path<(String, String)>, PathRejection>,
-    query: Result<Query<ImageQuery>, QueryRejection>,
+    AppPath((key, file)): AppPath<(String, String)>,
+    AppQuery(query): AppQuery<ImageQuery>,
 ) -> Result<Response, ApiError> {
-    let (Path((key, file)), Query(query)) = (path?, query?);
     let picture = file.strip_suffix(".png").and_then(Picture::from_name).ok_or_else(|| {
         let names: Vec<&str> = Picture::ALL.iter().map(|p| p.name()).collect();
         ApiError::NotFound(format!("no picture {file:?}: expected one of {}.png", names.join(".png, ")))
@@ -262,9 +428,9 @@ pub async fn image(
         (None, Some(id)) => sample_analysis(&state, id).await?,
         (None, None) => return Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
     };
-    let (size, step) = (query.size.unwrap_or(DEFAULT_SIZE), query.step);
+    let (size, step) = (picture_size(query.size), query.step);
     let png = state
-        .cached_bytes(format!("{key}/{}/{size}/{step:?}", picture.name()), move || {
+        .cached_bytes(format!("{key}/{}/{size}/{step:?}", picture.name()), cells(&analyzed.analysis), move |_| {
             Ok(render_step_png(&analyzed.analysis, picture, step, size, size)?)
         })
         .await?;
@@ -280,10 +446,22 @@ fn default_steps() -> usize {
 #[serde(deny_unknown_fields)]
 pub struct InterpolateRequest {
     border: Vec<[f64; 3]>,
+    /// The flat border whose orientation applies when `border` is already folded (as
+    /// `POST /api/disk` takes it); by default `border` itself.
+    #[serde(default)]
+    reference: Option<Vec<[f64; 3]>>,
     from: [f64; 2],
     to: [f64; 2],
     #[serde(default = "default_steps")]
     steps: usize,
+}
+
+pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<JsonBytes, ApiError> {
+    state.config().budget.interpolation(req.border.len(), req.steps)?;
+    let answer = state
+        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, req.from, req.to, req.steps)?))
+        .await?;
+    Ok(JsonBytes(answer))
 }
 
 /// `POST /api/disk`: the dGLI disk of one border state (e.g. a frame of an interpolation).
@@ -321,9 +499,8 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
     points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
 }
 
-pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>, JsonRejection>) -> Result<Response, ApiError> {
-    let Json(req) = body?;
-    let size = req.size.unwrap_or(DEFAULT_SIZE).clamp(MIN_SIZE, MAX_SIZE);
+pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskRequest>) -> Result<Response, ApiError> {
+    let size = picture_size(req.size);
     let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
     let scale = match req.scale {
         Some(s) => Some(Scale::fixed(s.s, s.max).ok_or_else(|| ApiError::BadRequest("\"scale\" needs s > 0 and max ≥ 0, both finite".into()))?),
@@ -331,15 +508,10 @@ pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>,
     };
     let scale_bytes: Vec<u8> = scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
     let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes(), &scale_bytes]);
+    let n = req.border.len() as u64;
     let cached = state
-        .cached_bytes(key, move || {
-            let frames = match req.reference {
-                Some(reference) => vec![reference, req.border],
-                None => vec![req.border],
-            };
-            let border = prepare(frames)?;
-            let (start, now) = (&border.frames[0], &border.frames[border.frames.len() - 1]);
-            let disk = Disk::of_border(&Normalisation::of(start)?.apply_all(now));
+        .cached_bytes(key, n * n, move |deadline| {
+            let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
             let (png, used) = disk_png_scaled(&disk, "dGLI disk · current state", scale, size, size)?;
             Ok([used.s, used.max].iter().flat_map(|v| v.to_le_bytes()).chain(png).collect())
         })
@@ -347,61 +519,73 @@ pub async fn disk(State(state): State<AppState>, body: Result<Json<DiskRequest>,
     Ok(disk_response(cached))
 }
 
-pub async fn interpolate(State(state): State<AppState>, body: Result<Json<InterpolateRequest>, JsonRejection>) -> Result<Json<Value>, ApiError> {
-    let Json(req) = body?;
-    if req.border.len().saturating_mul(req.steps) > MAX_INTERPOLATED_POINTS {
-        return Err(Error::too_large("points in one answer (vertices × steps)", req.border.len().saturating_mul(req.steps), MAX_INTERPOLATED_POINTS).into());
-    }
-    let border: Vec<Point> = req.border.iter().map(|&p| Point::from(p)).collect();
-    let motion = state.run_cpu(move || Ok(crate::interpolate::interpolate(&border, req.from, req.to, req.steps)?)).await?;
-    Ok(Json(json!(motion)))
-}
-
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanRequest {
-    /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis.
-    sample: Value,
+    /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis; kept
+    /// raw so a sample is parsed once, on a worker.
+    sample: Box<RawValue>,
     goal: [f64; 2],
 }
 
-pub async fn plan(State(state): State<AppState>, body: Result<Json<PlanRequest>, JsonRejection>) -> Result<Json<Value>, ApiError> {
-    let Json(req) = body?;
+/// `POST /api/plan`'s answer: the plan, and the state it starts from.
+#[derive(Serialize)]
+struct PlanResponse<'a> {
+    case: &'a str,
+    steps: &'a [PlanStep],
+    goal: [f64; 2],
+    folds: &'a [[f64; 2]],
+    corners: &'a [f64],
+    start_border: Vec<[f64; 3]>,
+    border_indices: &'a [usize],
+}
+
+/// The plan from the analysis's start border, corners and folds to `goal`, with picks
+/// counted in INPUT vertex indices (the planner counts border vertices).
+fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
+    let mut plan = crate::plan::plan(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, goal)?;
+    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
+        pick.vertex = analysis.border_indices.get(pick.vertex).copied().unwrap_or(pick.vertex);
+    }
+    Ok(plan)
+}
+
+pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanRequest>) -> Result<JsonBytes, ApiError> {
     if req.goal.iter().any(|g| !g.is_finite()) {
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
-    let analyzed = match req.sample {
+    let raw = req.sample.get();
+    let analyzed = match raw.trim_start().as_bytes().first() {
         // An analysis still cached (an upload's "key") or a built-in sample's id.
-        Value::String(id) => match state.cached_analysis(&id) {
-            Some(hit) => hit,
-            None => sample_analysis(&state, &id).await?,
-        },
-        Value::Object(_) => {
-            let sample = parse_sample(req.sample.to_string().as_bytes())?;
-            let key = content_key(&[b"plan", &serde_json::to_vec(&sample).unwrap_or_default()]);
-            state.analysis(key, move |key| analyzed(key, &sample, FrameRange::default(), json!({}))).await?
+        Some(b'"') => {
+            let id: String = serde_json::from_str(raw).map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
+            match state.cached_analysis(&id) {
+                Some(hit) => hit,
+                None => sample_analysis(&state, &id).await?,
+            }
+        }
+        Some(b'{') => {
+            let key = content_key(&[b"plan", raw.as_bytes()]);
+            let budget = state.config().budget;
+            analysis(&state, key, move |key| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None, &budget)).await?
         }
         _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
     };
     let goal = req.goal;
-    let result = state
-        .run_cpu(move || {
+    let answer = state
+        .run_cpu(Lane::Light, move |_| {
             let a = &analyzed.analysis;
-            let mut plan = crate::plan::plan(a.start_border(), &a.corner_vertices, &a.folds, goal)?;
-            // The planner counts border vertices; the user knows their input's indices.
-            for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
-                pick.vertex = a.border_indices.get(pick.vertex).copied().unwrap_or(pick.vertex);
-            }
-            Ok(json!({
-                "case": plan.case,
-                "steps": plan.steps,
-                "goal": goal,
-                "folds": a.folds,
-                "corners": a.corners,
-                "start_border": points(a.start_border()),
-                "border_indices": a.border_indices,
-            }))
+            let plan = plan_for(a, goal)?;
+            to_json(&PlanResponse {
+                case: &plan.case,
+                steps: &plan.steps,
+                goal,
+                folds: &a.folds,
+                corners: &a.corners,
+                start_border: a.start_border().iter().map(to_xyz).collect(),
+                border_indices: &a.border_indices,
+            })
         })
         .await?;
-    Ok(Json(result))
+    Ok(JsonBytes(answer))
 }
