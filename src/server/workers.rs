@@ -72,14 +72,15 @@ impl Workers {
         let pool = lease.pool.clone();
         let (answer, answered) = tokio::sync::oneshot::channel();
         let job = move || {
-            // Dropped in reverse: the pool is back before the permit is.
-            let _permit = permit;
-            let _lease = lease;
             let result = catch_unwind(AssertUnwindSafe(|| {
                 // Waiting for the worker may have used up the time.
                 deadline.check()?;
                 work(&deadline)
             }));
+            // The worker is free before its answer is sent (the pool back before the
+            // permit), so whoever reads the answer finds the worker idle.
+            drop(lease);
+            drop(permit);
             // The request may be gone: nobody to answer then.
             let _ = answer.send(result.unwrap_or_else(|_| Err(ApiError::Internal("the job failed unexpectedly".into()))));
         };
