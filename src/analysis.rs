@@ -127,7 +127,7 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let norm = Normalisation::of(&frames[0])?;
     let mut before_border = norm.apply_all(&frames[0]);
     let mut before = Disk::of_border(&before_border);
-    let found: Corners = corners(&before);
+    let found: Corners = corners(&before, &before_border);
     let mut predicted = frames[0].clone();
     let mut steps = Vec::with_capacity(frames.len() - 1);
     for (k, frame) in frames.iter().enumerate().skip(1) {

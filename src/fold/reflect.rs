@@ -23,7 +23,8 @@ use crate::border::{point_at, Point};
 
 use super::synth::Line;
 
-/// Indices of the vertices strictly inside the anticlockwise arc from angle f1 to f2.
+/// Indices of the vertices strictly inside the anticlockwise arc from angle f1 to f2, in
+/// walking order.
 pub fn folded_vertices(n: usize, fold: [f64; 2]) -> Vec<usize> {
     vertices_in_arc(n, angle_to_param(fold[0], n), angle_to_param(fold[1], n))
 }
@@ -74,7 +75,7 @@ mod tests {
     fn folded_arc_wraps_through_zero() {
         let n = 8;
         let q = edge(n);
-        assert_eq!(folded_vertices(n, [6.5 * q, 1.5 * q]), vec![0, 1, 7]);
+        assert_eq!(folded_vertices(n, [6.5 * q, 1.5 * q]), vec![7, 0, 1]);
         // Endpoints on vertices are not folded.
         assert_eq!(folded_vertices(n, [2.0 * q, 5.0 * q]), vec![3, 4]);
     }
