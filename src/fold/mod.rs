@@ -113,19 +113,23 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
             }
         }
         FoldMethod::Cut => {
-            // A flat start: the cut, oriented; a stacked one: the best line turned over.
-            let guess = if flat {
+            // A flat start: the cut, oriented, refined; a stacked one: the best of the lines
+            // turned over, each refined.
+            let refined = if flat {
                 found.cut.filter(|c| c.same_to_cross <= MAX_SAME_TO_CROSS).map(|c| {
                     let (p, q) = (param_to_angle(c.p1, n), param_to_angle(c.p2, n));
                     let (fold, orientation) = orientation::orient(start, end, p, q);
                     found.orientation = Some(orientation);
-                    (fold.map(|f| angle_to_param(f, n)), None)
+                    synth::refine(before, end, fold.map(|f| angle_to_param(f, n)))
                 })
             } else {
-                synth::search_line(before, end).map(|(line, phi)| (line.s, Some(phi)))
+                synth::search_line(before, end)
+                    .into_iter()
+                    .map(|line| synth::refine(before, end, line.s))
+                    .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
+                    .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch))
             };
-            if let Some((s, phi)) = guess {
-                let refined = synth::refine(before, end, s, phi);
+            if let Some(refined) = refined {
                 found.fold = Some(refined.s.map(|s| wrap_tau(param_to_angle(s, n))));
                 found.synthesis = Some(refined);
             }

@@ -39,6 +39,8 @@ pub const REACH: f64 = 1.0;
 const STEP: f64 = 0.125;
 /// Fold points closer than this many mean edge lengths give no direction.
 pub const COINCIDE_EDGES: f64 = 3.0;
+/// Distinct arcs of the line search refined in full.
+const CANDIDATES: usize = 3;
 /// Scale of the compression of dGLI values before comparing.
 const SCALE: f64 = 1.0;
 /// Edges on each side of a fold point whose rows are probed in full.
@@ -183,8 +185,9 @@ fn mean_edge(points: &[Point]) -> f64 {
 /// on the step's start border `before` (normalised) against the measured `end` disk, by a
 /// pattern search (all eight neighbours in (s1, s2), so a line sliding along both sides
 /// at once is followed; the step halves when none is better). When the two points
-/// coincide the direction is searched too, from `phi` if given.
-pub fn refine(before: &[Point], end: &Disk, s: [f64; 2], phi: Option<f64>) -> Synthesis {
+/// coincide the direction is searched too: first over [`DIRECTIONS`] per half turn, then
+/// with the points.
+pub fn refine(before: &[Point], end: &Disk, s: [f64; 2]) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
     let probe = Probe::new(end, s);
@@ -193,14 +196,20 @@ pub fn refine(before: &[Point], end: &Disk, s: [f64; 2], phi: Option<f64>) -> Sy
         line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&turn_over(before, s, &line)) * per_pair)
     };
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
-    let mut phi = phi;
-    if (a.xy() - b.xy()).norm() >= COINCIDE_EDGES * mean_edge(before) {
-        phi = None;
-    } else if phi.is_none() {
-        let grid = (0..2 * DIRECTIONS).map(|k| PI * k as f64 / DIRECTIONS as f64);
-        phi = best_of(grid, |p| cost(s, Some(p)));
-    }
-    let mut best = (s, phi, cost(s, phi));
+    let phi = if (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before) {
+        best_of((0..DIRECTIONS).map(|k| PI * k as f64 / DIRECTIONS as f64), |p| cost(s, Some(p)))
+    } else {
+        None
+    };
+    // Start from the best of the given points and their snaps to the nearest vertex and
+    // half edge: exact data folds through those, and its optimum is needle sharp.
+    let snaps = |x: f64| [x, x.round(), (2.0 * x).round() / 2.0];
+    let start = snaps(s[0])
+        .into_iter()
+        .flat_map(|a| snaps(s[1]).into_iter().map(move |b| [a, b]))
+        .map(|t| (t, cost(t.map(|x| x.rem_euclid(nf)), phi)))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    let mut best = start.map_or((s, phi, f64::INFINITY), |(t, c)| (t, phi, c));
     let (mut h, mut h_phi) = (0.5, PI / DIRECTIONS as f64 / 2.0);
     while h >= STEP {
         let mut moved = false;
@@ -235,12 +244,14 @@ fn best_of(candidates: impl Iterator<Item = f64>, cost: impl Fn(f64) -> f64) -> 
 /// When an earlier fold has stacked layers, a pair of edges on the same side of the new fold
 /// can change a lot (the layers slide, and the dGLI of stacked edges grows like 1/height),
 /// so the cut ([`super::cut`]) loses its footing. We try lines instead: [`2·DIRECTIONS`]
-/// directions and offsets one mean edge apart across the state; each turns over the
-/// vertices to its left, and is kept when those form one arc of the border. The line whose
-/// synthesised disk matches the measured `end` disk best (on a strided sample of all
-/// pairs) gives the fold points, where the border crosses it, and its direction. `None`
-/// when no line beats leaving the state as it was by [`MAX_MISMATCH_RATIO`].
-pub fn search_line(before: &[Point], end: &Disk) -> Option<(Synthesis, f64)> {
+/// directions and offsets one mean edge apart across the state; each turns over one arc of
+/// the border that lies to its left (a fold may turn the top layer only). The line whose
+/// synthesised disks match the measured `end` disk best (on a strided sample of all pairs)
+/// give the candidates, best first: [`CANDIDATES`] distinct arcs, each with the points
+/// where the border crosses its line, and the line's direction. None of them when no line
+/// beats leaving the state as it was by [`MAX_MISMATCH_RATIO`]. The exact optimum is
+/// needle sharp on stacked layers, so the caller refines each ([`refine`]).
+pub fn search_line(before: &[Point], end: &Disk) -> Vec<Synthesis> {
     let n = before.len();
     let stride = n.div_ceil(SAMPLES).max(1);
     let sampled: Vec<usize> = (0..n).step_by(stride).collect();
@@ -252,44 +263,55 @@ pub fn search_line(before: &[Point], end: &Disk) -> Option<(Synthesis, f64)> {
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
     let step = mean_edge(before).max(reach / 200.0);
     let offsets = (2.0 * reach / step).ceil() as usize;
-    let best = (0..2 * DIRECTIONS)
+    let mut found: Vec<([f64; 2], f64, f64, bool)> = (0..2 * DIRECTIONS)
         .into_par_iter()
         .flat_map_iter(|k| (0..offsets).map(move |m| (PI * k as f64 / DIRECTIONS as f64, -reach + m as f64 * step)))
-        .filter_map(|(phi, rho)| {
+        .flat_map_iter(|(phi, rho)| {
             let line = Line { point: [-rho * phi.sin(), rho * phi.cos()], direction: [phi.cos(), phi.sin()] };
-            let s = crossings(before, &line)?;
-            Some((s, phi, probe.cost(&turn_over(before, s, &line)) * per_pair))
+            // Each arc on the turned side alone: a fold may turn one layer's flap only.
+            let arcs = arcs_left_of(before, &line);
+            let whole = arcs.len() == 1;
+            arcs.into_iter().map(move |s| (s, phi, line, whole))
         })
-        .min_by(|a, b| a.2.total_cmp(&b.2))?;
-    (best.2 < MAX_MISMATCH_RATIO * unfolded)
-        .then_some((Synthesis { s: best.0, direction: None, mismatch: best.2, unfolded_mismatch: unfolded }, best.1))
-}
-
-/// Where the border crosses `line`, when the vertices left of it form one arc: the border
-/// parameters of its two crossings, the arc anticlockwise from the first. `None` otherwise.
-fn crossings(before: &[Point], line: &Line) -> Option<[f64; 2]> {
-    let n = before.len();
-    let [ux, uy] = line.direction;
-    let side = |p: &Point| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0]);
-    let d: Vec<f64> = before.iter().map(side).collect();
-    let (mut enter, mut leave) = (None, None);
-    for k in 0..n {
-        let (a, b) = (d[k], d[(k + 1) % n]);
-        let at = || k as f64 + a / (a - b);
-        if a <= 0.0 && b > 0.0 {
-            if enter.is_some() {
-                return None;
+        .map(|(s, phi, line, whole)| (s, phi, probe.cost(&turn_over(before, s, &line)) * per_pair, whole))
+        .collect();
+    found.sort_by(|a, b| a.2.total_cmp(&b.2));
+    // The best few distinct arcs (by their ends, to the vertex), among lines that turn all
+    // they cross and among those that turn one of several arcs: on exactly stacked layers
+    // the grid misses the needle of the true line, and the partial turns of other lines
+    // would crowd it out.
+    let mut kept: Vec<Synthesis> = Vec::new();
+    for whole in [true, false] {
+        let mut taken = 0;
+        for &(s, phi, mismatch, _) in found.iter().filter(|f| f.3 == whole) {
+            if taken == CANDIDATES || mismatch >= MAX_MISMATCH_RATIO * unfolded {
+                break;
             }
-            enter = Some(at());
-        } else if a > 0.0 && b <= 0.0 {
-            if leave.is_some() {
-                return None;
+            if kept.iter().all(|k| k.s.map(f64::round) != s.map(f64::round)) {
+                kept.push(Synthesis { s, direction: Some([phi.cos(), phi.sin()]), mismatch, unfolded_mismatch: unfolded });
+                taken += 1;
             }
-            leave = Some(at());
         }
     }
-    let s = [enter?, leave?];
-    // At least two vertices turn over, and at least two stay.
-    let turned = vertices_in_arc(n, s[0], s[1]).len();
-    (turned >= 2 && turned + 2 <= n).then_some(s)
+    kept
+}
+
+/// The arcs of the border left of `line`, each as the border parameters where it enters and
+/// leaves that side (anticlockwise from the first). An arc of fewer than two vertices, or
+/// one that leaves fewer than two behind, is left out.
+fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
+    let n = before.len();
+    let [ux, uy] = line.direction;
+    let d: Vec<f64> = before.iter().map(|p| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0])).collect();
+    let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[(k + 1) % n]);
+    let enters = (0..n).filter(|&k| d[k] <= 0.0 && d[(k + 1) % n] > 0.0);
+    enters
+        .filter_map(|k| {
+            // The arc runs until the first edge that leaves the side.
+            let leave = (k + 1..k + 1 + n).map(|j| j % n).find(|&j| d[j] > 0.0 && d[(j + 1) % n] <= 0.0)?;
+            let s = [crossing(k), crossing(leave)];
+            let turned = vertices_in_arc(n, s[0], s[1]).len();
+            (turned >= 2 && turned + 2 <= n).then_some(s)
+        })
+        .collect()
 }
