@@ -1,12 +1,17 @@
-//! Fold coordinates from the dGLI disks.
+//! Fold coordinates from the dGLI disks (Kamat, Borràs, Torras, "CloSE", Sec. III-C).
 //!
-//! One step (start frame → end frame) is read from the abs diff disk
-//! g = | |end| − |start| |: fold curves are fitted with the paper's loss ([`loss`], [`fit`]),
-//! the two lowest-loss distinct curves give the two fold coordinates at the rim, and the
-//! signed diff Δ = end − start orders them ([`orientation`]). A step whose diff disk is flat
-//! (nothing changed) or shows fewer than two curves has no fold.
+//! One step (start state → end state) is read from the abs diff disk
+//! g = | |end| − |start| |. The paper fits fold curves with its loss ([`loss`], [`fit`]);
+//! they are kept for drawing and as [`FoldMethod::Paper`]. By default, on a flat start the
+//! cut of least same-side change ([`cut`]) says which edges turned over, to half an edge,
+//! the signed diff Δ = end − start orders its points ([`orientation`]), and analysis by
+//! synthesis on the disks ([`synth`]) places each fold point within its edge. On a stacked
+//! start (an earlier fold) the cut loses its footing and [`synth::search_line`] tries lines
+//! instead. A step whose diff disk is flat, whose change has no side to it, or that no
+//! candidate fold explains, has no fold.
 //!
-//! Honesty rule (SPEC §1): nothing here sees a border, only disks.
+//! Honesty rule: the fold is read from the disks only. The step's start border is used to
+//! synthesise the disks of candidate folds; the end border's coordinates are never read.
 
 pub mod cut;
 pub mod fit;
@@ -120,12 +125,12 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
                     let (p, q) = (param_to_angle(c.p1, n), param_to_angle(c.p2, n));
                     let (fold, orientation) = orientation::orient(start, end, p, q);
                     found.orientation = Some(orientation);
-                    synth::refine(before, end, fold.map(|f| angle_to_param(f, n)))
+                    synth::refine(before, end, fold.map(|f| angle_to_param(f, n)), None)
                 })
             } else {
                 synth::search_line(before, end)
                     .into_iter()
-                    .map(|line| synth::refine(before, end, line.s))
+                    .map(|line| synth::refine(before, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
                     .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
                     .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch))
             };
@@ -136,4 +141,70 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
         }
     }
     found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::angle::edge;
+
+    /// A square of `4·per_side` vertices, slightly jittered.
+    fn square(per_side: usize) -> Vec<Point> {
+        (0..4 * per_side)
+            .map(|k| {
+                let t = (k % per_side) as f64 / per_side as f64;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
+                Point::new(x - 0.5 + 1e-6 * (k as f64).sin(), y - 0.5, 0.0)
+            })
+            .collect()
+    }
+
+    /// The square with the vertices x > c turned over the line x = c, a layer above.
+    fn folded(points: &[Point], c: f64) -> Vec<Point> {
+        points.iter().map(|p| if p.x > c + 1e-9 { Point::new(2.0 * c - p.x, p.y, p.z + 0.02) } else { *p }).collect()
+    }
+
+    fn run(before: &[Point], after: &[Point]) -> FoldDetection {
+        detect(before, &Disk::of_border(before), &Disk::of_border(after), FoldMethod::Cut)
+    }
+
+    #[test]
+    fn nothing_changed_is_no_fold() {
+        let s = square(6);
+        let found = run(&s, &s);
+        assert_eq!(found.fold, None);
+        assert!(found.cut.is_none() && found.curves.is_empty());
+    }
+
+    #[test]
+    fn a_fold_inside_edges_is_placed_within_the_edge() {
+        // x = 0.1 cuts the bottom side at vertex 3.6 and the top side at 14.4 (per side 6).
+        let s = square(6);
+        let found = run(&s, &folded(&s, 0.1));
+        let [f1, f2] = found.fold.unwrap();
+        let n = s.len();
+        let e = edge(n);
+        assert!(crate::angle::distance(f1, param_to_angle(3.6, n)) < 0.2 * e, "{}", f1 / e);
+        assert!(crate::angle::distance(f2, param_to_angle(14.4, n)) < 0.2 * e, "{}", f2 / e);
+        assert!(found.orientation.is_some() && found.synthesis.is_some());
+    }
+
+    #[test]
+    fn a_stacked_second_fold_is_found_by_its_line() {
+        // Right half over the left (x = 0), then the stack's top half down (y = 0).
+        let s = square(6);
+        let half = folded(&s, 0.0);
+        let top = half.iter().map(|p| if p.y > 1e-9 { Point::new(p.x, -p.y, 0.1 - p.z) } else { *p }).collect::<Vec<_>>();
+        let found = run(&half, &top);
+        let [f1, f2] = found.fold.unwrap();
+        let n = s.len();
+        // The folded arc runs from the right side's middle (vertex 9) to the left side's (21),
+        // both on the line, where they lie on top of each other: within an edge of them.
+        assert!(crate::angle::distance(f1, param_to_angle(9.0, n)) <= edge(n) + 1e-9, "{}", f1 / edge(n));
+        assert!(crate::angle::distance(f2, param_to_angle(21.0, n)) <= edge(n) + 1e-9, "{}", f2 / edge(n));
+        // The line came from the disks: horizontal.
+        let direction = found.synthesis.and_then(|s| s.direction).expect("the fold points coincide");
+        assert!(direction[1].abs() < 0.1, "{direction:?}");
+        assert!(found.orientation.is_none(), "a stacked start is not oriented by flips");
+    }
 }

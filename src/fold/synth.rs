@@ -185,31 +185,32 @@ fn mean_edge(points: &[Point]) -> f64 {
 /// on the step's start border `before` (normalised) against the measured `end` disk, by a
 /// pattern search (all eight neighbours in (s1, s2), so a line sliding along both sides
 /// at once is followed; the step halves when none is better). When the two points
-/// coincide the direction is searched too: first over [`DIRECTIONS`] per half turn, then
-/// with the points.
-pub fn refine(before: &[Point], end: &Disk, s: [f64; 2]) -> Synthesis {
+/// coincide the direction is searched too: from `heading` (the direction of a line that
+/// gave `s`, radians) or else the best of [`DIRECTIONS`] per half turn, again over a half
+/// turn from the best start, then with the points.
+pub fn refine(before: &[Point], end: &Disk, s: [f64; 2], heading: Option<f64>) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
     let probe = Probe::new(end, s);
     let per_pair = 1.0 / probe.pairs.len().max(1) as f64;
     let cost = |s: [f64; 2], phi: Option<f64>| {
-        line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&turn_over(before, s, &line)) * per_pair)
+        line_of(before, s.map(|x| x.rem_euclid(nf)), phi).map_or(f64::INFINITY, |line| probe.cost(&turn_over(before, s.map(|x| x.rem_euclid(nf)), &line)) * per_pair)
     };
+    let half_turn = |s: [f64; 2]| best_of((0..DIRECTIONS).map(|k| PI * k as f64 / DIRECTIONS as f64), |p| cost(s, Some(p)));
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
-    let phi = if (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before) {
-        best_of((0..DIRECTIONS).map(|k| PI * k as f64 / DIRECTIONS as f64), |p| cost(s, Some(p)))
-    } else {
-        None
-    };
-    // Start from the best of the given points and their snaps to the nearest vertex and
-    // half edge: exact data folds through those, and its optimum is needle sharp.
-    let snaps = |x: f64| [x, x.round(), (2.0 * x).round() / 2.0];
+    let coincide = (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before);
+    let phi = if coincide { heading.or_else(|| half_turn(s)) } else { None };
+    // Start from the best of the given points and their snaps to the vertices either side and
+    // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
+    let snaps = |x: f64| [x, x.floor(), x.ceil(), (2.0 * x).round() / 2.0];
     let start = snaps(s[0])
         .into_iter()
         .flat_map(|a| snaps(s[1]).into_iter().map(move |b| [a, b]))
-        .map(|t| (t, cost(t.map(|x| x.rem_euclid(nf)), phi)))
-        .min_by(|a, b| a.1.total_cmp(&b.1));
-    let mut best = start.map_or((s, phi, f64::INFINITY), |(t, c)| (t, phi, c));
+        .map(|t| (t, cost(t, phi)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(s, |(t, _)| t);
+    let phi = if coincide { half_turn(start) } else { None };
+    let mut best = (start, phi, cost(start, phi));
     let (mut h, mut h_phi) = (0.5, PI / DIRECTIONS as f64 / 2.0);
     while h >= STEP {
         let mut moved = false;
@@ -221,7 +222,7 @@ pub fn refine(before: &[Point], end: &Disk, s: [f64; 2]) -> Synthesis {
                 continue;
             }
             let p = centre_phi.map(|p| p + dp * h_phi);
-            let c = cost(t.map(|x| x.rem_euclid(nf)), p);
+            let c = cost(t, p);
             if c < best.2 {
                 (best, moved) = ((t, p, c), true);
             }
