@@ -29,7 +29,8 @@
 //! let p = plan(&square, &[0, 1, 2, 3], &[], [0.0, PI]).unwrap();
 //! assert_eq!(p.case, "fold");
 //! assert_eq!(p.steps[0].corners, vec![2]);
-//! assert_eq!(p.steps[0].picks[0].to, [0.0, 1.0, 0.0]);
+//! let to = p.steps[0].picks[0].to;
+//! assert!(to[0].abs() < 1e-12 && (to[1] - 1.0).abs() < 1e-12 && to[2] == 0.0);
 //! ```
 
 use std::collections::BTreeSet;

@@ -87,18 +87,22 @@ fn random_folds_are_found_and_predicted() {
     assert_eq!(one_fold, 40, "one fold on {one_fold} of 40");
     assert!(mean_rmse <= MEAN_RMSE, "mean RMSE {mean_rmse}");
     assert!(worst <= WORST_RMSE, "worst RMSE {worst}");
-    // Each fold point within a few edges of where it was made (the noisy ones blur it).
+    // Each fold point within a fraction of an edge of where it was made.
+    let mut worst_edges = 0.0f64;
     for (sample, r) in samples.iter().zip(&results) {
         let n = sample.frames[0].len();
         let e = r.angle_error.map(|[a, b]| a.max(b) * n as f64 / TAU).unwrap();
+        println!("{}: {e:.3} edges", sample.name);
+        worst_edges = worst_edges.max(e);
         assert!(e <= EDGES, "{}: {e:.2} edges off", sample.name);
     }
+    println!("worst fold point {worst_edges:.3} edges");
 }
 
-/// Bounds of the random folds, about twice what is measured.
-const MEAN_RMSE: f64 = 0.01;
-const WORST_RMSE: f64 = 0.06;
-const EDGES: f64 = 2.0;
+/// Bounds of the random folds, about twice what is measured (mean RMSE 0.0038, worst 0.0094).
+const MEAN_RMSE: f64 = 0.008;
+const WORST_RMSE: f64 = 0.02;
+const EDGES: f64 = 1.0;
 
 /// The no-fold rule sits between pure noise and noisy folds: on the same cloths, an end
 /// frame that is the start plus noise has a same-to-cross ratio above
