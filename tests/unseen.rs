@@ -99,10 +99,11 @@ fn random_folds_are_found_and_predicted() {
     println!("worst fold point {worst_edges:.3} edges");
 }
 
-/// Bounds of the random folds, about twice what is measured (mean RMSE 0.0038, worst 0.0094).
+/// Bounds of the random folds, about twice what is measured (mean RMSE 0.0038, worst 0.0094,
+/// fold points at most 0.42 edges off).
 const MEAN_RMSE: f64 = 0.008;
 const WORST_RMSE: f64 = 0.02;
-const EDGES: f64 = 1.0;
+const EDGES: f64 = 0.85;
 
 /// The no-fold rule sits between pure noise and noisy folds: on the same cloths, an end
 /// frame that is the start plus noise has a same-to-cross ratio above
