@@ -12,7 +12,8 @@ use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close, Corners};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::{detect, reflect::apply_fold, FoldDetection, FoldMethod};
+use crate::fold::reflect::{apply_fold_line, fold_line};
+use crate::fold::{detect, FoldDetection, FoldMethod, Line};
 use crate::label::{label, Label};
 use crate::metrics::Metrics;
 
@@ -43,6 +44,11 @@ pub struct Step {
     pub to_frame: usize,
     #[serde(flatten)]
     pub detection: FoldDetection,
+    /// The line this step's fold was applied along in `predicted_end` (input coordinates,
+    /// XY: a point and a unit direction): through the border points at f1 and f2 of the
+    /// predicted state, or, when those coincide, through their midpoint in the direction the
+    /// disks gave. `None` without a fold.
+    pub line: Option<Line>,
     /// The start border with the folds found up to this step applied, against this
     /// step's true end frame.
     pub metrics: Metrics,
@@ -127,21 +133,24 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;
-    let disk_of = |k: usize| Disk::of_border_until(&norm.apply_all(&frames[k]), &options.deadline);
-    let mut before = disk_of(0)?;
-    let found: Corners = corners(&before);
+    let mut before_border = norm.apply_all(&frames[0]);
+    let mut before = Disk::of_border_until(&before_border, &options.deadline)?;
+    let found: Corners = corners(&before, &before_border);
     let mut predicted = frames[0].clone();
     let mut steps = Vec::with_capacity(frames.len() - 1);
     for (k, frame) in frames.iter().enumerate().skip(1) {
-        let after = disk_of(k)?;
-        let detection = detect(&before, &after, options.method);
+        let after_border = norm.apply_all(frame);
+        let after = Disk::of_border_until(&after_border, &options.deadline)?;
+        let detection = detect(&before_border, &before, &after, options.method);
         options.deadline.check()?;
-        if let Some(fold) = detection.fold {
-            predicted = apply_fold(&predicted, fold);
-        }
+        let line = detection.fold.and_then(|fold| {
+            let line = fold_line(&predicted, fold, detection.synthesis.and_then(|s| s.direction))?;
+            predicted = apply_fold_line(&predicted, fold, &line);
+            Some(line)
+        });
         let metrics = Metrics::measure(&norm, &predicted, frame);
-        steps.push(Step { from_frame: start + k - 1, to_frame: start + k, detection, metrics });
-        before = after;
+        steps.push(Step { from_frame: start + k - 1, to_frame: start + k, detection, line, metrics });
+        (before_border, before) = (after_border, after);
     }
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);

@@ -5,7 +5,11 @@
 //! inside the folded arc; for each folded corner the share of each adjacent side that is
 //! folded; and a class. A corner within half an edge of a fold point lies on the fold line:
 //! it is reported as such and never counted as folded, so a fold that ends exactly on a
-//! corner gets one answer, not a coin flip.
+//! corner gets one answer, not a coin flip. A cloth with no corner (or a circular one) has
+//! its folds told by their share of the border and the border points they run between
+//! ("the border from 90° to 270° is folded over"), as angles 2πs/N of the border.
+//!
+//! The classes are those of Kamat, Borràs, Torras, "CloSE", Sec. IV (semantic labelling).
 //!
 //! ```
 //! use close::label::{label, FoldClass};
@@ -16,9 +20,9 @@
 //! assert_eq!(l.folds[0].folded_corners, vec![2]);
 //! ```
 
-use std::f64::consts::PI;
-
 use serde::Serialize;
+
+use crate::angle::{angle_to_param, wrap_tau};
 
 /// More corners than this and the cloth is called circular.
 pub const CIRCULAR_CORNERS: usize = 20;
@@ -88,6 +92,8 @@ pub struct FoldLabel {
     pub cut_sides: Vec<SideFold>,
     /// Share of the border (by vertex parameter) on the folded arc.
     pub folded_percent: f64,
+    /// The folded arc's ends on the border, in degrees [0, 360): from f1 anticlockwise to f2.
+    pub border_degrees: [f64; 2],
     pub text: String,
 }
 
@@ -118,6 +124,8 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]]) -> Label {
     let fold_labels: Vec<FoldLabel> = folds.iter().map(|&f| label_fold(n, corner_vertices, f, circular)).collect();
     let mut text = if corner_vertices.len() > CIRCULAR_CORNERS {
         format!("Cloth is circular ({} corners).", corner_vertices.len())
+    } else if corner_vertices.is_empty() {
+        "Cloth has no corners.".to_string()
     } else {
         format!("Cloth has {} corners.", corner_vertices.len())
     };
@@ -136,8 +144,8 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]]) -> Label {
 
 fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> FoldLabel {
     let nf = n as f64;
-    let s1 = fold[0].rem_euclid(2.0 * PI) * nf / (2.0 * PI);
-    let span = (fold[1] - fold[0]).rem_euclid(2.0 * PI) * nf / (2.0 * PI);
+    let s1 = angle_to_param(fold[0], n);
+    let span = angle_to_param(fold[1] - fold[0], n);
     let folded_percent = 100.0 * span / nf;
     let offset = |v: f64| (v - s1).rem_euclid(nf);
     let near = |v: f64, s: f64| {
@@ -203,8 +211,12 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
             }
         }
     };
-    let text = fold_text(class, folded_percent, &folded_corners, &on_line, &corner_sides, &cut_sides);
-    FoldLabel { class, folded_corners, corners_on_fold_line: on_line, corner_sides, cut_sides, folded_percent, text }
+    let border_degrees = fold.map(|f| wrap_tau(f).to_degrees());
+    let mut text = fold_text(class, folded_percent, &folded_corners, &on_line, &corner_sides, &cut_sides);
+    if circular {
+        text.push_str(&format!(" The border from {:.0}° to {:.0}° is folded over.", border_degrees[0], border_degrees[1]));
+    }
+    FoldLabel { class, folded_corners, corners_on_fold_line: on_line, corner_sides, cut_sides, folded_percent, border_degrees, text }
 }
 
 fn list(items: &[usize]) -> String {
@@ -253,10 +265,12 @@ fn fold_text(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::angle::param_to_angle;
+    use std::f64::consts::PI;
 
     const SQUARE: [usize; 4] = [0, 19, 38, 57];
     fn angle(s: f64) -> f64 {
-        2.0 * PI * s / 76.0
+        param_to_angle(s, 76)
     }
 
     #[test]
@@ -300,5 +314,17 @@ mod tests {
         assert!(l.text.starts_with("Cloth is circular"));
         let unfolded = label(64, &corners, &[]);
         assert!(unfolded.text.contains("not folded"));
+    }
+
+    #[test]
+    fn a_cloth_without_corners_is_told_by_its_border() {
+        let l = label(160, &[], &[[PI / 2.0, 3.0 * PI / 2.0]]);
+        assert_eq!(l.corners, 0);
+        assert!(l.text.starts_with("Cloth has no corners."), "{}", l.text);
+        let fold = &l.folds[0];
+        assert_eq!(fold.class, FoldClass::FoldedInHalf);
+        assert!(fold.folded_corners.is_empty() && fold.corner_sides.is_empty() && fold.cut_sides.is_empty());
+        assert!((fold.border_degrees[0] - 90.0).abs() < 1e-9 && (fold.border_degrees[1] - 270.0).abs() < 1e-9);
+        assert!(fold.text.contains("The border from 90° to 270° is folded over."), "{}", fold.text);
     }
 }

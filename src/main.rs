@@ -408,11 +408,7 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
     let sample = load_sample(files)?;
     let frames = sample.border_frames().map_err(|e| e.to_string())?;
     let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
-    let mut plan = close::plan::plan(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, [g1, g2])
-        .map_err(|e| e.to_string())?;
-    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
-        pick.vertex = analysis.border_indices[pick.vertex];
-    }
+    let plan = close::plan::plan_for(&analysis, [g1, g2]).map_err(|e| e.to_string())?;
     if json {
         return emit(&serde_json::to_string(&plan).map_err(|e| e.to_string())?);
     }

@@ -1,16 +1,21 @@
-//! Planning a fold (SPEC §1 "Planning"): which corners to grasp and where to put them.
+//! Planning a fold (Kamat, Borràs, Torras, "CloSE", Sec. V, manipulation planning with the
+//! representation): which corners to grasp and where to put them.
 //!
 //! **High level.** The corners a fold moves are the corners strictly inside its folded arc
 //! (anticlockwise from f1 to f2), more than half an edge from its ends. If the goal fold (g1, g2) moves the same corners as the
 //! current folds together, one step moves them straight to the goal (`"direct"`);
 //! otherwise the current folds are undone, last first, and the goal is folded from the
-//! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`.
+//! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`. When the
+//! cloth already is in the goal state (one current fold, within [`SAME_FOLD_EDGES`] of the
+//! goal at both ends) the plan is `"already_there"`, with no step. Goal angles are taken
+//! into [0, 2π) before anything else, and come back that way.
 //!
 //! **Low level.** A step grasps at most two of the corners it moves: of more, the pair
 //! whose quadrilateral with the fold-line end points (P1, c_a, c_b, P2, ordered so that it
 //! is simple) has the largest XY area. A folded corner goes to its reflection across the
 //! fold line (in XY, z kept); an unfolded one back to where it was. A folded side with no
-//! corner (a round cloth, a flap) is grasped at its vertex farthest from the fold line.
+//! corner (a round cloth, a flap) is grasped at its vertex farthest from the fold line:
+//! such a pick names no corner, only the border point (its `angle`, 2πv/N).
 //!
 //! All positions are in the flat border's frame: a fold line runs through the border
 //! points at its parameters (angle f ↦ parameter fN/2π) of the border it is applied to.
@@ -24,23 +29,28 @@
 //! let p = plan(&square, &[0, 1, 2, 3], &[], [0.0, PI]).unwrap();
 //! assert_eq!(p.case, "fold");
 //! assert_eq!(p.steps[0].corners, vec![2]);
-//! assert_eq!(p.steps[0].picks[0].to, [0.0, 1.0, 0.0]);
+//! let to = p.steps[0].picks[0].to;
+//! assert!(to[0].abs() < 1e-12 && (to[1] - 1.0).abs() < 1e-12 && to[2] == 0.0);
 //! ```
 
 use std::collections::BTreeSet;
-use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use crate::border::{point_at, Point};
+use crate::analysis::Analysis;
+use crate::angle::{angle_to_param, distance, edge, param_to_angle, wrap_tau};
+use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
 use crate::fold::reflect::{apply_fold, folded_vertices, reflect_xy};
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Pick {
-    /// Border vertex index (callers map it to input indices through `border_indices`).
+    /// Border vertex index ([`plan_for`] maps it to the input's index through
+    /// `border_indices`).
     pub vertex: usize,
+    /// Where the grasped point sits on the border, as an angle (2πv/N, border order).
+    pub angle: f64,
     pub from: [f64; 3],
     pub to: [f64; 3],
 }
@@ -61,18 +71,17 @@ pub struct PlanStep {
 /// The plan from the current state to the goal fold.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Plan {
-    /// `"fold"` (from flat), `"direct"` or `"unfold_then_fold"`.
+    /// `"fold"` (from flat), `"direct"`, `"unfold_then_fold"`, or `"already_there"` (no step).
     pub case: String,
     pub steps: Vec<PlanStep>,
 }
 
-fn to_array(p: &Point) -> [f64; 3] {
-    [p.x, p.y, p.z]
-}
+/// A current fold within this many edges of the goal at both ends is the goal.
+pub const SAME_FOLD_EDGES: f64 = 0.5;
 
 /// Border parameter of angle `f` on a border of `n` vertices.
 fn param(f: f64, n: usize) -> f64 {
-    f.rem_euclid(2.0 * PI) * n as f64 / (2.0 * PI)
+    angle_to_param(f, n)
 }
 
 /// Twice the signed XY area of a polygon (shoelace).
@@ -154,7 +163,7 @@ fn step(action: &str, before: &[Point], corners: &[usize], fold: [f64; 2], from_
         .map(|v| {
             let folded = reflect_xy(&before[v], &p1, &p2);
             let (from, to) = if action == "unfold" { (folded, before[v]) } else { (from_state[v], folded) };
-            Pick { vertex: v, from: to_array(&from), to: to_array(&to) }
+            Pick { vertex: v, angle: param_to_angle(v as f64, n), from: to_xyz(&from), to: to_xyz(&to) }
         })
         .collect();
     let number = |c: usize| corners.iter().position(|&k| k == c).map_or(0, |i| i + 1);
@@ -165,9 +174,8 @@ fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
     if !(fold[0].is_finite() && fold[1].is_finite()) {
         return Err(Error::InvalidArgument(format!("{name} ({}, {}) is not finite", fold[0], fold[1])));
     }
-    let gap = (fold[1] - fold[0]).rem_euclid(2.0 * PI);
-    let edge = 2.0 * PI / n as f64;
-    if gap.min(2.0 * PI - gap) <= edge {
+    let edge = edge(n);
+    if distance(fold[0], fold[1]) <= edge {
         return Err(Error::InvalidArgument(format!(
             "{name} ({:.4}, {:.4}): its two angles must be more than one edge ({edge:.4} rad) apart",
             fold[0], fold[1]
@@ -190,6 +198,7 @@ pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]
         return Err(Error::InvalidArgument(format!("corner vertex {c} does not exist (the border has {n} vertices)")));
     }
     check_fold("the goal fold", goal, n)?;
+    let goal = goal.map(wrap_tau);
     for (k, &f) in current_folds.iter().enumerate() {
         check_fold(&format!("current fold {}", k + 1), f, n)?;
     }
@@ -201,6 +210,12 @@ pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]
         states
     });
     let current = states.last().expect("the flat state");
+    if let [only] = current_folds {
+        let same = |a: f64, b: f64| distance(a, b) <= SAME_FOLD_EDGES * edge(n);
+        if same(only[0], goal[0]) && same(only[1], goal[1]) {
+            return Ok(Plan { case: "already_there".into(), steps: Vec::new() });
+        }
+    }
     if current_folds.is_empty() {
         return Ok(Plan { case: "fold".into(), steps: vec![step("fold", flat, &corners, goal, flat)] });
     }
@@ -215,9 +230,23 @@ pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]
     Ok(Plan { case: "unfold_then_fold".into(), steps })
 }
 
+/// Plan from an analysis to the goal fold: from its start border, corners and folds, with
+/// every pick's `vertex` given as the index in the analysis's INPUT (through
+/// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
+pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
+    let mut plan = plan(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, goal)?;
+    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
+        pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
+            Error::InvalidArgument(format!("border vertex {} has no input index ({} known)", pick.vertex, analysis.border_indices.len()))
+        })?;
+    }
+    Ok(plan)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::{PI, TAU};
 
     /// A closed polygon with `per_side` segments on every side.
     fn polygon(corners: &[[f64; 2]], per_side: usize) -> (Vec<Point>, Vec<usize>) {
@@ -232,7 +261,7 @@ mod tests {
     }
 
     fn angle(s: f64, n: usize) -> f64 {
-        2.0 * PI * s / n as f64
+        param_to_angle(s, n)
     }
 
     /// Angles are fractions of 2π, so positions come back to within rounding.
@@ -306,8 +335,8 @@ mod tests {
     fn a_fold_ending_a_hair_past_a_corner_does_not_fold_it() {
         let (sq, corners) = square();
         // A detected diagonal fold just short of 2π and just past π: still corner 2 alone.
-        let detected = [2.0 * PI - 1e-9, PI + 1e-9];
-        let p = plan(&sq, &corners, &[detected], [0.0, PI]).unwrap();
+        let detected = [TAU - 1e-9, PI + 1e-9];
+        let p = plan(&sq, &corners, &[detected], [angle(1.0, 16), angle(7.0, 16)]).unwrap();
         assert_eq!(p.case, "direct");
         assert_eq!(p.steps[0].corners, vec![2]);
         let pick = &p.steps[0].picks[0];
@@ -362,12 +391,34 @@ mod tests {
     }
 
     #[test]
+    fn the_goal_already_reached_needs_no_step() {
+        let (sq, corners) = square();
+        let current = [angle(2.0, 16), angle(10.0, 16)];
+        // The same fold, given one turn further round: already there, no motion.
+        let p = plan(&sq, &corners, &[current], [current[0] + TAU, current[1] - TAU]).unwrap();
+        assert_eq!(p.case, "already_there");
+        assert!(p.steps.is_empty());
+        // A quarter of an edge off is the same fold; a whole edge is not.
+        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]]).unwrap().case, "already_there");
+        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]]).unwrap().case, "direct");
+    }
+
+    #[test]
+    fn goal_angles_come_back_wrapped() {
+        let (sq, corners) = square();
+        let p = plan(&sq, &corners, &[], [7.0, 100.0]).unwrap();
+        let [g1, g2] = p.steps[0].fold;
+        assert!((0.0..TAU).contains(&g1) && (0.0..TAU).contains(&g2));
+        assert!((g1 - (7.0 - TAU)).abs() < 1e-12 && (g2 - 100.0f64.rem_euclid(TAU)).abs() < 1e-12);
+    }
+
+    #[test]
     fn bad_goals_are_named() {
         let (sq, corners) = square();
         let message = |r: Result<Plan>| r.unwrap_err().to_string();
         assert!(message(plan(&sq, &corners, &[], [f64::NAN, 1.0])).contains("not finite"));
         assert!(message(plan(&sq, &corners, &[], [1.0, 1.0 + angle(1.0, 16)])).contains("more than one edge"));
-        assert!(message(plan(&sq, &corners, &[], [0.1, 0.1 + 2.0 * PI])).contains("more than one edge"));
+        assert!(message(plan(&sq, &corners, &[], [0.1, 0.1 + TAU])).contains("more than one edge"));
         assert!(message(plan(&sq, &[3, 99], &[], [0.0, PI])).contains("corner vertex 99"));
         assert!(message(plan(&sq[..3], &[], &[], [0.0, PI])).contains("too few vertices"));
     }

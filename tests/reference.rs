@@ -61,27 +61,36 @@ struct CornerInfo {
     capped_start: usize,
 }
 
-/// Where the reference has no capped (NaN) cells, its corners are ours: its angle
-/// 2π(v − ½)/N and ours 2πv/N name the same vertex v.
+/// Where the reference has no capped (NaN) cells, its corners are ours on every polygon:
+/// its angle 2π(v − ½)/N and ours 2πv/N name the same vertex v. Its round cloth is the
+/// exception: the reference takes all 64 vertices (each passes the paper's threshold), we
+/// take none (the border turns alike everywhere, by 22.5° over 5 % of its length).
 #[test]
-fn corners_match_the_reference_where_it_has_no_nan() {
+fn corners_match_the_reference_on_polygons_and_a_round_cloth_has_none() {
     let info: HashMap<String, CornerInfo> = serde_json::from_slice(&std::fs::read(fixture("reference_corners.json")).unwrap()).unwrap();
-    let mut compared = 0;
+    let (mut compared, mut round) = (0, 0);
     for sample in reference_samples() {
         let reference = &info[&sample.name];
+        let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+        if sample.category == "disk" {
+            assert!(analysis.corner_vertices.is_empty(), "{}: {:?}", sample.name, analysis.corner_vertices);
+            assert_eq!(reference.corners_vertex.len(), 64, "{}", sample.name);
+            round += 1;
+            continue;
+        }
         if reference.capped_start > 0 {
             continue;
         }
-        let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
         let mut theirs = reference.corners_vertex.clone();
         theirs.sort_unstable();
         assert_eq!(analysis.corner_vertices, theirs, "{}", sample.name);
         compared += 1;
     }
-    assert!(compared >= 60, "{compared}");
+    assert!(compared >= 50 && round >= 15, "{compared} polygons, {round} round cloths");
 }
 
-/// The fold is found on the reference samples, well oriented, and predicts the end border.
+/// The fold is found on the reference samples, well oriented, and predicts the end border,
+/// per category within about twice what is measured.
 #[test]
 fn folds_on_the_reference_samples() {
     let samples = reference_samples();
@@ -90,26 +99,44 @@ fn folds_on_the_reference_samples() {
     assert_eq!(folded.len(), 95);
     let nofold = results.iter().find(|r| r.name == "napkin__nofold").unwrap();
     assert_eq!(nofold.folds, 0, "a step where nothing changed has no fold");
+    assert!(folded.iter().all(|r| r.folds == 1), "one fold on every folded sample");
 
-    let one_fold = folded.iter().filter(|r| r.folds == 1).count();
-    assert!(one_fold >= 94, "one fold on {one_fold} of 95");
-    // Oriented right: each endpoint within two edges of its own true endpoint, in order.
-    let oriented = folded.iter().filter(|r| r.angle_error.is_some_and(|e| e[0].max(e[1]) < 2.0 * 2.0 * PI / 64.0)).count();
-    assert!(oriented >= 93, "oriented right on {oriented} of 95");
-
-    let mean = |rs: &[&&close::eval::SampleResult]| rs.iter().map(|r| r.rmse.unwrap()).sum::<f64>() / rs.len() as f64;
+    // Per sample: both fold points within a fraction of an edge of the truth (N = 64 here;
+    // measured at most 0.49 edges, on a noisy sample, and 0.13 on every other).
+    for r in &folded {
+        let e = r.angle_error.map(|[a, b]| a.max(b) * 64.0 / (2.0 * PI)).unwrap();
+        assert!(e <= 1.0, "{}: {e:.2} edges off", r.name);
+    }
+    let mean = |rs: &[&&close::eval::SampleResult]| rs.iter().map(|r| r.rmse.unwrap()).sum::<f64>() / rs.len().max(1) as f64;
+    // Measured mean RMSE per category: disk 0.0033, napkin 0.0016, towel 0.0025,
+    // trousers 0.0027, tshirt 0.0021; overall 0.0024, worst 0.0155.
+    for (category, bound) in [("disk", 0.0066), ("napkin", 0.0032), ("towel", 0.005), ("trousers", 0.0054), ("tshirt", 0.0042)] {
+        let rows: Vec<_> = folded.iter().filter(|r| r.category == category).collect();
+        assert!(rows.len() >= 15, "{category}: {} samples", rows.len());
+        assert!(mean(&rows) <= bound, "{category}: mean RMSE {} > {bound}", mean(&rows));
+    }
     let all: Vec<_> = folded.iter().collect();
-    let jitter: Vec<_> = folded.iter().filter(|r| r.name.contains("jitter")).collect();
-    assert!(jitter.len() >= 40);
-    assert!(mean(&all) <= 0.05, "mean RMSE {}", mean(&all));
-    assert!(mean(&jitter) <= 0.02, "jitter mean RMSE {}", mean(&jitter));
+    assert!(mean(&all) <= 0.003, "mean RMSE {}", mean(&all));
+    let worst = folded.iter().map(|r| r.rmse.unwrap()).fold(0.0, f64::max);
+    assert!(worst <= 0.02, "worst RMSE {worst}");
 
     let table = report(results).table();
     assert!(table.contains("overall"));
     println!("{table}");
 }
 
-/// Rotated and translated copies of a jittered fold give the same fold (to the rim
+/// A fold across exactly straight sides lands where it was made, not an edge toward the
+/// folded side: `towel__half_long` (truth 150° / 330°).
+#[test]
+fn a_half_fold_of_the_towel_lands_on_its_truth() {
+    let sample = reference_samples().into_iter().find(|s| s.name == "towel__half_long").unwrap();
+    let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+    let truth = sample.truth.as_ref().unwrap().folds[0];
+    assert!(common::error_in_edges(analysis.folds[0], truth, analysis.n) < 0.25, "{:?} vs {truth:?}", analysis.folds);
+    assert!(analysis.metrics.unwrap().rmse < 0.005);
+}
+
+/// Rotated and translated copies of a jittered fold give the same fold (to the
 /// refinement's tolerance, far below an edge).
 #[test]
 fn rigid_copies_give_the_same_fold() {

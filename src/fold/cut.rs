@@ -1,5 +1,8 @@
 //! Fold points as the cut of the border that leaves no change within either side.
 //!
+//! (Kamat, Borràs, Torras, "CloSE", Sec. III-C reads fold coordinates from the diff disk;
+//! this reads them from the same disk by its structure rather than by fitting curves.)
+//!
 //! A fold reflects the folded arc A in a vertical plane and lifts it. For a pair of edges
 //! that both lie on A, the dGLI only changes sign (reflection reverses linking, and a
 //! vertical lift commutes with it); for a pair that both lie off A it does not change at
@@ -105,6 +108,21 @@ fn arc_edges(n: usize, h1: usize, h2: usize) -> (usize, usize) {
 }
 
 /// The cut of least same-side mass of the diff disk `g`; `None` when g holds no change.
+///
+/// ```
+/// use close::disk::Disk;
+/// use close::fold::cut::find_cut;
+/// // Six edges; only the pairs across a cut between edges {0, 1, 2} and {3, 4, 5} changed.
+/// let n = 6;
+/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+///     .map(|(i, j)| if (i < 3) != (j < 3) { 1.0 } else { 0.0 })
+///     .collect();
+/// let cut = find_cut(&Disk::from_values(n, values).unwrap()).unwrap();
+/// assert_eq!(cut.residual, 0.0);
+/// let mut points = [cut.p1, cut.p2];
+/// points.sort_by(f64::total_cmp);
+/// assert_eq!(points, [0.0, 3.0]);
+/// ```
 pub fn find_cut(g: &Disk) -> Option<Cut> {
     let n = g.n();
     let sums = PairSums::new(g);
@@ -157,7 +175,7 @@ mod tests {
     use super::*;
     use crate::border::Point;
     use crate::fold::reflect::apply_fold;
-    use std::f64::consts::PI;
+    use crate::angle::param_to_angle;
 
     fn square(per_side: usize) -> Vec<Point> {
         let s = per_side as f64;
@@ -171,8 +189,7 @@ mod tests {
     }
 
     fn cut_of(points: &[Point], f: [f64; 2]) -> Cut {
-        let n = points.len() as f64;
-        let mut end = apply_fold(points, [2.0 * PI * f[0] / n, 2.0 * PI * f[1] / n]);
+        let mut end = apply_fold(points, [param_to_angle(f[0], points.len()), param_to_angle(f[1], points.len())]);
         for (e, s) in end.iter_mut().zip(points) {
             if e != s {
                 e.z = 0.01;

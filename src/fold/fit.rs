@@ -1,5 +1,5 @@
-//! Fitting fold curves: the paper's 20 starting lines, minimised with L-BFGS, with the
-//! SPEC's three fixes.
+//! Fitting fold curves (Kamat, Borràs, Torras, "CloSE", Sec. III-C): the paper's 20
+//! starting lines, minimised with L-BFGS, with three fixes that make it work in practice.
 //!
 //! 1. The loss repeats in a1 with period 2πL, so a1 is bounded to [−π, π] (through
 //!    a1 = π·sin u, which keeps L-BFGS unconstrained) and minima on the bound are dropped.
@@ -16,7 +16,8 @@ use argmin::solver::brent::BrentOpt;
 use argmin::solver::linesearch::MoreThuenteLineSearch;
 use argmin::solver::quasinewton::LBFGS;
 
-use super::loss::{exact_loss, ring_cells, wrap, Cell, RingTables};
+use super::loss::{exact_loss, ring_cells, Cell, RingTables};
+use crate::angle::{edge, wrap_pi as wrap, wrap_tau, TAU};
 use crate::disk::Disk;
 
 /// Starting curves a0 = 2πm/STARTS, a1 = 0.
@@ -72,19 +73,31 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
         .ok()?;
     let state = result.state();
     let x = state.get_best_param()?;
-    Some((x[0].rem_euclid(2.0 * PI), A1_BOUND * x[1].sin(), state.get_best_cost()))
+    Some((wrap_tau(x[0]), A1_BOUND * x[1].sin(), state.get_best_cost()))
 }
 
 /// Every distinct local minimum with negative loss, lowest loss first, rim coordinates refined.
+///
+/// ```
+/// use close::disk::{position, Disk};
+/// use close::fold::fit::fit_curves;
+/// // A diff disk whose change runs along the radial line at 1 rad.
+/// let n = 40;
+/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+///     .map(|(i, j)| (-(close::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp())
+///     .collect();
+/// let curves = fit_curves(&Disk::from_values(n, values).unwrap());
+/// assert!(close::angle::distance(curves[0].rim, 1.0) < close::angle::edge(n));
+/// ```
 pub fn fit_curves(g: &Disk) -> Vec<Curve> {
     let n = g.n();
     let tables = RingTables::new(g);
     let mut minima: Vec<(f64, f64, f64)> = (0..STARTS)
-        .filter_map(|m| minimise(&tables, 2.0 * PI * m as f64 / STARTS as f64))
+        .filter_map(|m| minimise(&tables, TAU * m as f64 / STARTS as f64))
         .filter(|&(_, a1, loss)| loss < 0.0 && a1.abs() < A1_BOUND * (1.0 - 1e-3))
         .collect();
     minima.sort_by(|a, b| a.2.total_cmp(&b.2));
-    let merge = MERGE_EDGES * 2.0 * PI / n as f64;
+    let merge = MERGE_EDGES * edge(n);
     let mut kept: Vec<(f64, f64, f64)> = Vec::new();
     for m in minima {
         let rim = m.0 + m.1;
@@ -93,10 +106,10 @@ pub fn fit_curves(g: &Disk) -> Vec<Curve> {
         }
     }
     let rim_cells = rim_cells(g);
-    let reach = RIM_SEARCH_EDGES * 2.0 * PI / n as f64;
+    let reach = RIM_SEARCH_EDGES * edge(n);
     kept.into_iter()
         .map(|(a0, a1, loss)| {
-            let rim = (a0 + a1).rem_euclid(2.0 * PI);
+            let rim = wrap_tau(a0 + a1);
             // A refinement that runs to the edge of its range found no minimum near the line.
             let refined = refine_rim(&rim_cells, n, rim, rim - reach, rim + reach)
                 .filter(|r| (wrap(r - rim).abs() - reach).abs() > 1e-3 * reach)
@@ -126,7 +139,7 @@ pub fn rim_cells(g: &Disk) -> Vec<Cell> {
 /// Refine a rim coordinate on the rim rings near it, with the curve held radial, searching
 /// angles in [lo, hi]. `None` when the rim holds no change there or the solver fails.
 pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> Option<f64> {
-    let edge = 2.0 * PI / n as f64;
+    let edge = edge(n);
     let near: Vec<Cell> = rim_cells
         .iter()
         .filter(|c| wrap(c.angle - rim).abs() <= RIM_WINDOW_EDGES * edge)
@@ -148,5 +161,44 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> O
         .run()
         .ok()
         .and_then(|r| r.state().get_best_param().copied())
-        .map(|a| a.rem_euclid(2.0 * PI))
+        .map(wrap_tau)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::disk::position;
+
+    /// A diff disk with a ridge of change along each of the radial lines at `angles`.
+    fn ridges(n: usize, angles: &[f64]) -> Disk {
+        let values = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .map(|(i, j)| angles.iter().map(|&a| (-(wrap(position(n, i, j).angle - a) * 8.0).powi(2)).exp()).sum())
+            .collect();
+        Disk::from_values(n, values).unwrap()
+    }
+
+    #[test]
+    fn two_ridges_give_two_curves_at_their_angles() {
+        let n = 60;
+        let curves = fit_curves(&ridges(n, &[1.0, 4.0]));
+        assert!(curves.len() >= 2, "{curves:?}");
+        let mut rims = [curves[0].rim, curves[1].rim];
+        rims.sort_by(f64::total_cmp);
+        assert!((rims[0] - 1.0).abs() < edge(n) && (rims[1] - 4.0).abs() < edge(n), "{rims:?}");
+        assert!(curves.iter().all(|c| c.loss < 0.0 && c.a1.abs() < A1_BOUND));
+    }
+
+    #[test]
+    fn minima_closer_than_the_merge_distance_are_one_curve() {
+        let n = 60;
+        let curves = fit_curves(&ridges(n, &[2.0]));
+        let near: Vec<_> = curves.iter().filter(|c| wrap(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
+        assert_eq!(near.len(), 1, "{curves:?}");
+    }
+
+    #[test]
+    fn no_change_gives_no_curve() {
+        assert!(fit_curves(&Disk::from_values(20, vec![0.0; 190]).unwrap()).is_empty());
+    }
 }

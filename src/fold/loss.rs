@@ -1,8 +1,13 @@
 //! The paper's fold-curve loss and a fast way to evaluate it.
 //!
-//! A fold curve is the line θ̂ = a0 + a1·r on the diff disk. Each cell i (value g_i ≥ 0 at
-//! radius r_i, angle θ_i) adds `k1·δ²·p1·√g − k2·p2·g` with δ = wrap(θ_i − θ̂(r_i)) ∈ (−π, π],
-//! p1 = exp(−δ²/(2τ²)), p2 = 1/(k3 + δ²), k1 = 0.1, k2 = 0.05, k3 = 0.1, τ = π/4.
+//! Kamat, Borràs, Torras, "CloSE", Sec. III-C (fold coordinates): a fold curve is the line
+//! θ̂ = a0 + a1·r on the diff disk, fitted by minimising
+//!
+//! L(a0, a1) = Σ_i k1·δ_i²·p1(δ_i)·√g_i − k2·p2(δ_i)·g_i,
+//! δ_i = wrap_pi(θ_i − θ̂(r_i)) ∈ (−π, π], p1(δ) = exp(−δ²/(2τ²)), p2(δ) = 1/(k3 + δ²),
+//!
+//! over the cells i of the diff disk (value g_i ≥ 0 at radius r_i, angle θ_i), with
+//! k1 = 0.1, k2 = 0.05, k3 = 0.1, τ = π/4.
 //!
 //! The term is `√g·A(δ) − g·B(δ)`, so on one ring (one radius) the loss of every curve is a
 //! circular cross-correlation of the ring's √g and g profiles with the kernels A and B.
@@ -14,23 +19,13 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
+use crate::angle::wrap_pi;
 use crate::disk::{ring_angle, Disk};
 
 pub const K1: f64 = 0.1;
 pub const K2: f64 = 0.05;
 pub const K3: f64 = 0.1;
 pub const TAU: f64 = PI / 4.0;
-
-/// Wrap an angle difference into (−π, π].
-#[inline]
-pub fn wrap(delta: f64) -> f64 {
-    let d = (delta + PI).rem_euclid(2.0 * PI) - PI;
-    if d == -PI {
-        PI
-    } else {
-        d
-    }
-}
 
 /// Kernel of the √g term: k1·δ²·exp(−δ²/2τ²).
 #[inline]
@@ -70,7 +65,7 @@ pub fn ring_cells(disk: &Disk, d: usize) -> impl Iterator<Item = Cell> + '_ {
 
 /// Exact loss of the curve θ̂ = a0 + a1·r over the given cells.
 pub fn exact_loss(cells: &[Cell], a0: f64, a1: f64) -> f64 {
-    cells.iter().map(|c| cell_loss(c.value, wrap(c.angle - a0 - a1 * c.radius))).sum()
+    cells.iter().map(|c| cell_loss(c.value, wrap_pi(c.angle - a0 - a1 * c.radius))).sum()
 }
 
 /// The loss of every ring tabulated on an angular grid (see the module doc).
@@ -97,9 +92,9 @@ impl RingTables {
         // cells share grid points (their weights add), which bounds the work for huge N.
         let per_edge = if n <= 128 { 4 } else { 2 };
         let grid = (per_edge * n).min(Self::MAX_GRID);
-        let step = 2.0 * PI / grid as f64;
+        let step = crate::angle::TAU / grid as f64;
         // Kernels indexed by (mm − p) mod grid, i.e. at δ = −(mm − p)·step.
-        let kernel = |f: fn(f64) -> f64| -> Vec<f64> { (0..grid).map(|t| f(wrap(-(t as f64) * step))).collect() };
+        let kernel = |f: fn(f64) -> f64| -> Vec<f64> { (0..grid).map(|t| f(wrap_pi(-(t as f64) * step))).collect() };
         let (ka, kb) = (kernel(kernel_sqrt_g), kernel(kernel_g));
         let l = g.layers();
         let stride = l.div_ceil(Self::MAX_RINGS).max(1);
@@ -174,17 +169,10 @@ mod tests {
         for i in 0..n {
             for j in i + 1..n {
                 let p = position(n, i, j);
-                values.push((-(wrap(p.angle - fold_angle) * n as f64 / 6.0).powi(2)).exp());
+                values.push((-(wrap_pi(p.angle - fold_angle) * n as f64 / 6.0).powi(2)).exp());
             }
         }
         Disk::from_values(n, values).unwrap()
-    }
-
-    #[test]
-    fn wrap_is_half_open() {
-        assert_eq!(wrap(PI), PI);
-        assert_eq!(wrap(-PI), PI);
-        assert!((wrap(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-12);
     }
 
     #[test]

@@ -1,4 +1,6 @@
-//! Which side of a fold was folded over, read from the signed diff disk.
+//! Which side of a fold was folded over, read from the signed diff disk (Kamat, Borràs,
+//! Torras, "CloSE", Sec. III-C: the fold coordinates are ordered so that the folded side
+//! runs anticlockwise from f1 to f2).
 //!
 //! A fold reflects the folded arc in a vertical plane and lifts it: the dGLI of a pair of
 //! edges that both lie on the folded arc changes sign (reflection reverses linking; a
@@ -12,8 +14,7 @@
 //! arc with fewer vertices is the folded one (a cloth is folded smaller part over larger),
 //! and for equal arcs the one that starts at the smaller angle.
 
-use std::f64::consts::PI;
-
+use crate::angle::{arc_contains, param_to_angle, wrap_tau};
 use crate::disk::Disk;
 
 /// Flip scores closer than this are a tie.
@@ -34,11 +35,7 @@ pub struct Orientation {
 
 /// Edges lying wholly inside the anticlockwise arc from angle `from` to angle `to`.
 fn edges_inside(n: usize, from: f64, to: f64) -> Vec<usize> {
-    let span = (to - from).rem_euclid(2.0 * PI);
-    let inside = |v: usize| {
-        let offset = (2.0 * PI * v as f64 / n as f64 - from).rem_euclid(2.0 * PI);
-        offset > 0.0 && offset < span
-    };
+    let inside = |v: usize| arc_contains(from, to, param_to_angle(v as f64, n));
     (0..n).filter(|&e| inside(e) && inside((e + 1) % n)).collect()
 }
 
@@ -59,6 +56,24 @@ fn flip_score(start: &Disk, end: &Disk, edges: &[usize]) -> f64 {
 }
 
 /// Order the fold points `(p, q)` so that the folded side runs anticlockwise from the first.
+///
+/// ```
+/// use close::border::Point;
+/// use close::disk::Disk;
+/// use close::fold::orientation::orient;
+/// // A square of 16 vertices; the arc from vertex 2 to vertex 10 (its right half) folded.
+/// let square: Vec<Point> = (0..16).map(|k| {
+///     let t = (k % 4) as f64 / 4.0;
+///     let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / 4];
+///     Point::new(x, y, 0.0)
+/// }).collect();
+/// let end: Vec<Point> = square.iter().map(|p| if p.x > 0.5 { Point::new(1.0 - p.x, p.y, 0.02) } else { *p }).collect();
+/// let (p, q) = (close::angle::param_to_angle(10.0, 16), close::angle::param_to_angle(2.0, 16));
+/// // Given the wrong way round, the points are swapped.
+/// let (fold, how) = orient(&Disk::of_border(&square), &Disk::of_border(&end), p, q);
+/// assert_eq!(fold, [q, p]);
+/// assert!(how.swapped && !how.tie_break);
+/// ```
 pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> ([f64; 2], Orientation) {
     let n = start.n();
     let forward = edges_inside(n, p, q);
@@ -67,7 +82,7 @@ pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> ([f64; 2], Orientatio
     let flip_backward = flip_score(start, end, &backward);
     let tie_break = (flip_forward - flip_backward).abs() < TIE_MARGIN;
     let swapped = if tie_break {
-        let (span_forward, span_backward) = ((q - p).rem_euclid(2.0 * PI), (p - q).rem_euclid(2.0 * PI));
+        let (span_forward, span_backward) = (wrap_tau(q - p), wrap_tau(p - q));
         if (span_forward - span_backward).abs() > 1e-9 {
             span_backward < span_forward
         } else {
@@ -78,4 +93,46 @@ pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> ([f64; 2], Orientatio
     };
     let fold = if swapped { [q, p] } else { [p, q] };
     (fold, Orientation { flip_forward, flip_backward, tie_break, swapped })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::border::Point;
+
+    fn square() -> Vec<Point> {
+        (0..16)
+            .map(|k| {
+                let t = (k % 4) as f64 / 4.0;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / 4];
+                Point::new(x + 1e-6 * (k as f64).sin(), y, 0.0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_flipping_side_is_the_folded_one() {
+        let start = square();
+        // The bottom-left corner's flap (vertices 15, 0, 1) folded over the diagonal.
+        let end: Vec<Point> = start.iter().map(|p| if p.x + p.y < 0.5 - 1e-3 { Point::new(0.5 - p.y, 0.5 - p.x, 0.02) } else { *p }).collect();
+        let (a, b) = (param_to_angle(14.0, 16), param_to_angle(2.0, 16));
+        let (fold, how) = orient(&Disk::of_border(&start), &Disk::of_border(&end), a, b);
+        assert_eq!(fold, [a, b]);
+        assert!(!how.swapped && how.flip_forward > how.flip_backward + TIE_MARGIN, "{how:?}");
+    }
+
+    #[test]
+    fn without_signal_the_shorter_arc_is_folded() {
+        let start = square();
+        let disk = Disk::of_border(&start);
+        let (a, b) = (param_to_angle(3.0, 16), param_to_angle(6.0, 16));
+        let (fold, how) = orient(&disk, &disk, b, a);
+        assert!(how.tie_break && how.swapped);
+        assert_eq!(fold, [a, b]);
+    }
+
+    #[test]
+    fn edges_inside_an_arc_through_zero() {
+        assert_eq!(edges_inside(8, param_to_angle(6.5, 8), param_to_angle(1.5, 8)), vec![0, 7]);
+    }
 }

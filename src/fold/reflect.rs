@@ -14,57 +14,68 @@
 //! let folded = apply_fold(&square, [0.0, PI]);
 //! assert!((folded[1] - square[3]).norm() < 1e-12);
 //! ```
+//!
+//! When the two fold points coincide (a second fold through two stacked layers) the line
+//! runs through them in the direction the disks gave ([`fold_line`]).
 
-use std::f64::consts::PI;
-
+use crate::angle::{angle_to_param, vertices_in_arc};
 use crate::border::{point_at, Point};
 
-/// Indices of the vertices strictly inside the anticlockwise arc from angle f1 to f2.
+use super::synth::Line;
+
+/// Indices of the vertices strictly inside the anticlockwise arc from angle f1 to f2, in
+/// walking order.
 pub fn folded_vertices(n: usize, fold: [f64; 2]) -> Vec<usize> {
-    let s1 = fold[0].rem_euclid(2.0 * PI) * n as f64 / (2.0 * PI);
-    let span = (fold[1] - fold[0]).rem_euclid(2.0 * PI) * n as f64 / (2.0 * PI);
-    (0..n)
-        .filter(|&v| {
-            let offset = (v as f64 - s1).rem_euclid(n as f64);
-            offset > 1e-9 && offset < span - 1e-9
-        })
-        .collect()
+    vertices_in_arc(n, angle_to_param(fold[0], n), angle_to_param(fold[1], n))
 }
 
 /// Reflect `p` across the XY line through `a` and `b` (z kept); `p` itself when a = b in XY.
 pub fn reflect_xy(p: &Point, a: &Point, b: &Point) -> Point {
-    let (dx, dy) = (b.x - a.x, b.y - a.y);
-    let len2 = dx * dx + dy * dy;
-    if len2 <= f64::EPSILON * (a.coords.norm_squared() + b.coords.norm_squared()).max(f64::MIN_POSITIVE) {
-        return *p;
-    }
-    let (px, py) = (p.x - a.x, p.y - a.y);
-    let t = (px * dx + py * dy) / len2;
-    let (fx, fy) = (a.x + t * dx, a.y + t * dy);
-    Point::new(2.0 * fx - p.x, 2.0 * fy - p.y, p.z)
+    Line::through(a, b).map_or(*p, |line| line.reflect(p))
 }
 
-/// The border after folding it along (f1, f2).
-pub fn apply_fold(points: &[Point], fold: [f64; 2]) -> Vec<Point> {
+/// The line a fold (f1, f2) of `points` is made along: through the border points at f1 and
+/// f2, or, when a `direction` is given (the two points coincide, see
+/// [`super::synth`]), through their midpoint in that direction. `None` when the two points
+/// coincide and no direction is given.
+pub fn fold_line(points: &[Point], fold: [f64; 2], direction: Option<[f64; 2]>) -> Option<Line> {
     let n = points.len();
-    let to_param = |f: f64| f.rem_euclid(2.0 * PI) * n as f64 / (2.0 * PI);
-    let (a, b) = (point_at(points, to_param(fold[0])), point_at(points, to_param(fold[1])));
+    let (a, b) = (point_at(points, angle_to_param(fold[0], n)), point_at(points, angle_to_param(fold[1], n)));
+    match direction {
+        Some(direction) => Some(Line { point: [(a.x + b.x) / 2.0, (a.y + b.y) / 2.0], direction }),
+        None => Line::through(&a, &b),
+    }
+}
+
+/// The border after folding it along (f1, f2) across `line`: the folded arc reflected in XY,
+/// z kept.
+pub fn apply_fold_line(points: &[Point], fold: [f64; 2], line: &Line) -> Vec<Point> {
     let mut out = points.to_vec();
-    for v in folded_vertices(n, fold) {
-        out[v] = reflect_xy(&points[v], &a, &b);
+    for v in folded_vertices(points.len(), fold) {
+        out[v] = line.reflect(&points[v]);
     }
     out
+}
+
+/// The border after folding it along (f1, f2), across the line through the two fold points.
+pub fn apply_fold(points: &[Point], fold: [f64; 2]) -> Vec<Point> {
+    match fold_line(points, fold, None) {
+        Some(line) => apply_fold_line(points, fold, &line),
+        None => points.to_vec(),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    use crate::angle::edge;
+
     #[test]
     fn folded_arc_wraps_through_zero() {
         let n = 8;
-        let q = 2.0 * PI / n as f64;
-        assert_eq!(folded_vertices(n, [6.5 * q, 1.5 * q]), vec![0, 1, 7]);
+        let q = edge(n);
+        assert_eq!(folded_vertices(n, [6.5 * q, 1.5 * q]), vec![7, 0, 1]);
         // Endpoints on vertices are not folded.
         assert_eq!(folded_vertices(n, [2.0 * q, 5.0 * q]), vec![3, 4]);
     }

@@ -337,7 +337,7 @@ mod tests {
         let n = 40;
         let edge = angle::edge(n);
         let curve = |rim: f64| Curve { a0: rim, a1: 0.0, loss: -1.0, rim };
-        let mut detection = FoldDetection { fold: Some([1.0, 4.0]), curves: vec![curve(1.0 + 0.5 * edge), curve(2.5), curve(4.0 - 1.5 * edge)], cut: None, orientation: None };
+        let mut detection = FoldDetection { fold: Some([1.0, 4.0]), curves: vec![curve(1.0 + 0.5 * edge), curve(2.5), curve(4.0 - 1.5 * edge)], cut: None, orientation: None, synthesis: None };
         let rims: Vec<f64> = fold_curves(&detection, n).iter().map(|c| c.rim).collect();
         assert_eq!(rims, vec![1.0 + 0.5 * edge, 4.0 - 1.5 * edge]);
         // A fold point with no curve near it gets none (its marker alone shows it).

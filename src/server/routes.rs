@@ -20,7 +20,7 @@ use crate::border::{to_xyz, BorderFrames};
 use crate::budget::{Budget, Deadline};
 use crate::error::{Error, Result};
 use crate::formats::{json::parse_sample, read_files, Sample};
-use crate::plan::{Plan, PlanStep};
+use crate::plan::PlanStep;
 use crate::render::colour::Scale;
 use crate::render::{disk_png_scaled, render_step_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
@@ -540,16 +540,6 @@ struct PlanResponse<'a> {
     border_indices: &'a [usize],
 }
 
-/// The plan from the analysis's start border, corners and folds to `goal`, with picks
-/// counted in INPUT vertex indices (the planner counts border vertices).
-fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
-    let mut plan = crate::plan::plan(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, goal)?;
-    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
-        pick.vertex = analysis.border_indices.get(pick.vertex).copied().unwrap_or(pick.vertex);
-    }
-    Ok(plan)
-}
-
 pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanRequest>) -> Result<JsonBytes, ApiError> {
     if req.goal.iter().any(|g| !g.is_finite()) {
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
@@ -575,7 +565,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
     let answer = state
         .run_cpu(Lane::Light, move |_| {
             let a = &analyzed.analysis;
-            let plan = plan_for(a, goal)?;
+            let plan = crate::plan::plan_for(a, goal)?;
             to_json(&PlanResponse {
                 case: &plan.case,
                 steps: &plan.steps,

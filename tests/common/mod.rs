@@ -1,11 +1,12 @@
 //! Helpers shared by the integration tests: fixture loading and synthetic folds.
+//!
+//! The folds here are written independently of `close::fold`, so that a fault shared by
+//! the generator and the predictor cannot cancel out.
 #![allow(dead_code)] // each test binary uses its own subset
 
-use std::f64::consts::PI;
+use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 
-use close::border::Point;
-use close::fold::reflect::apply_fold;
 use close::formats::{json::parse_sample, Sample};
 
 pub fn fixture(path: &str) -> PathBuf {
@@ -39,20 +40,45 @@ pub fn napkin(per_side: usize) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// Fold `start` along border parameters (f1, f2) as the reference generator does: the
-/// folded vertices are reflected and lifted by the cloth thickness 0.01.
+/// Fold `start` along border parameters (f1, f2) (fractional vertex indices) as the
+/// reference generator does: the vertices strictly inside the anticlockwise arc from f1 to
+/// f2 are reflected, in XY, across the line through the border points at f1 and f2, and
+/// lifted by the cloth thickness 0.01.
 pub fn fold_frame(start: &[[f64; 3]], f1: f64, f2: f64) -> Vec<[f64; 3]> {
-    let n = start.len() as f64;
-    let points: Vec<Point> = start.iter().map(|p| Point::new(p[0], p[1], p[2])).collect();
-    let fold = [2.0 * PI * f1 / n, 2.0 * PI * f2 / n];
-    apply_fold(&points, fold)
+    let n = start.len();
+    let nf = n as f64;
+    let at = |s: f64| {
+        let s = s.rem_euclid(nf);
+        let (k, t) = (s.floor() as usize % n, s - s.floor());
+        let (a, b) = (start[k], start[(k + 1) % n]);
+        [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+    };
+    let (a, b) = (at(f1), at(f2));
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let span = (f2 - f1).rem_euclid(nf);
+    start
         .iter()
-        .zip(&points)
-        .map(|(e, s)| [e.x, e.y, if e == s { e.z } else { e.z + 0.01 }])
+        .enumerate()
+        .map(|(v, p)| {
+            let offset = (v as f64 - f1).rem_euclid(nf);
+            if offset <= 1e-9 || offset >= span - 1e-9 {
+                return *p;
+            }
+            let t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2;
+            let (fx, fy) = (a[0] + t * dx, a[1] + t * dy);
+            [2.0 * fx - p[0], 2.0 * fy - p[1], p[2] + 0.01]
+        })
         .collect()
 }
 
 pub fn angle_diff(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(2.0 * PI);
-    d.min(2.0 * PI - d)
+    let d = (a - b).rem_euclid(TAU);
+    d.min(TAU - d)
+}
+
+/// The larger angular error of a found fold's two points against the truth, in edges of
+/// an `n`-vertex border.
+pub fn error_in_edges(found: [f64; 2], truth: [f64; 2], n: usize) -> f64 {
+    angle_diff(found[0], truth[0]).max(angle_diff(found[1], truth[1])) * n as f64 / TAU
 }

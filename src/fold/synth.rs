@@ -1,0 +1,326 @@
+//! Fold points to a fraction of an edge, by analysis by synthesis on the disks.
+//!
+//! The cut ([`super::cut`]) says which edges were turned over, to half an edge. Where, inside
+//! the crease edges, the cloth really folded, and along which line the flap was turned,
+//! decides where every flap vertex lands, so we measure it the way the paper's
+//! representation sees it (Kamat, Borràs, Torras, "CloSE", Sec. III: the dGLI disk of a
+//! state): for a candidate fold we synthesise the end state from the START border of the
+//! step (the flap turned over the line, i.e. rotated by π about it, and laid
+//! [`LIFT`] above the highest vertex), compute the dGLI of a fixed set of probe pairs on it,
+//! and compare them with the measured END disk. The candidate whose disk matches best wins.
+//! The end border's coordinates are never read, only its disk.
+//!
+//! Probe pairs: every edge near a fold point against a strided sample of all edges, and a
+//! strided sample of flap edges against the rest. Values are compared after
+//! `asinh(v / SCALE)`, so that pairs of stacked layers, whose dGLI grows like 1/height,
+//! do not drown the others while the synthesised height differs from the real one.
+//!
+//! Two parametrisations: normally the line runs through the border points at s1 and s2,
+//! both searched within [`REACH`] edges of the cut. When those two points (nearly) coincide
+//! in the step's start frame (a second fold through two stacked layers), they do not give a
+//! direction, so the line is the midpoint of the two points and a searched direction.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::angle::vertices_in_arc;
+use crate::border::{point_at, Point};
+use crate::disk::Disk;
+use crate::gli::dgli_fast;
+
+/// Height of a synthesised flap above the highest vertex of the start state (normalised
+/// units: the crease of real cloth is a few millimetres thick, ~1–3 % of its size).
+pub const LIFT: f64 = 0.02;
+/// How far, in edges, each fold point is searched from the cut's.
+pub const REACH: f64 = 1.0;
+/// Search step of a fold point, in edges.
+const STEP: f64 = 0.125;
+/// Fold points closer than this many mean edge lengths give no direction.
+pub const COINCIDE_EDGES: f64 = 3.0;
+/// Probe pairs per parallel chunk.
+const CHUNK: usize = 256;
+/// Distinct arcs of the line search refined in full.
+const CANDIDATES: usize = 3;
+/// Scale of the compression of dGLI values before comparing.
+const SCALE: f64 = 1.0;
+/// Edges on each side of a fold point whose rows are probed.
+const NEAR: usize = 3;
+/// Most probe edges sampled along the whole border (the cost per candidate is bounded
+/// whatever N; half as many lose a third of the accuracy on the physics folds).
+const SAMPLES: usize = 48;
+/// Directions per half turn tried when the fold points coincide or the line is searched.
+const DIRECTIONS: usize = 36;
+/// A stacked step whose best line does not bring the mismatch below this share of the
+/// unfolded state's has no fold. (Measured on physics second folds: 0.46–0.64.)
+pub const MAX_MISMATCH_RATIO: f64 = 0.8;
+
+/// A fold line in the XY plane: a point and a unit direction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Line {
+    pub point: [f64; 2],
+    pub direction: [f64; 2],
+}
+
+impl Line {
+    /// The line through the XY projections of `a` and `b`; `None` when they coincide.
+    pub fn through(a: &Point, b: &Point) -> Option<Line> {
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len = dx.hypot(dy);
+        (len > 1e-12 * (1.0 + a.coords.norm() + b.coords.norm()))
+            .then(|| Line { point: [a.x, a.y], direction: [dx / len, dy / len] })
+    }
+
+    /// The line through `point` (XY) at angle `phi` to the x axis.
+    pub fn at_angle(point: [f64; 2], phi: f64) -> Line {
+        Line { point, direction: [phi.cos(), phi.sin()] }
+    }
+
+    /// Reflection of `p` across the line, in XY, z kept.
+    pub fn reflect(&self, p: &Point) -> Point {
+        let [ux, uy] = self.direction;
+        let (px, py) = (p.x - self.point[0], p.y - self.point[1]);
+        let t = px * ux + py * uy;
+        Point::new(self.point[0] + 2.0 * t * ux - px, self.point[1] + 2.0 * t * uy - py, p.z)
+    }
+}
+
+/// The state after turning the arc s1 → s2 (border parameters) of `before` over `line`: a
+/// rotation by π about the horizontal line LIFT/2 above the highest vertex, so the flap's
+/// layers reverse their order and lie above everything else.
+pub fn turn_over(before: &[Point], s: [f64; 2], line: &Line) -> Vec<Point> {
+    let top = before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    let axis = top + LIFT / 2.0;
+    let mut out = before.to_vec();
+    for v in vertices_in_arc(before.len(), s[0], s[1]) {
+        let r = line.reflect(&before[v]);
+        out[v] = Point::new(r.x, r.y, 2.0 * axis - before[v].z);
+    }
+    out
+}
+
+/// The probe pairs and their measured end values.
+struct Probe {
+    pairs: Vec<(usize, usize)>,
+    measured: Vec<f64>,
+}
+
+impl Probe {
+    fn new(end: &Disk, s: [f64; 2]) -> Probe {
+        let n = end.n();
+        let stride = n.div_ceil(SAMPLES).max(1);
+        let sampled: Vec<usize> = (0..n).step_by(stride).collect();
+        let mut near: Vec<usize> = Vec::new();
+        for p in s {
+            let k = p.floor() as isize;
+            for d in -(NEAR as isize)..=(NEAR as isize) {
+                near.push((k + d).rem_euclid(n as isize) as usize);
+            }
+        }
+        near.sort_unstable();
+        near.dedup();
+        let mut pairs: Vec<(usize, usize)> = Vec::new();
+        for &i in &near {
+            pairs.extend(sampled.iter().chain(&near).filter(|&&j| j != i).map(|&j| (i.min(j), i.max(j))));
+        }
+        // Flap against the rest: sampled edges on either side of the cut.
+        let mut turned = vec![false; n];
+        for v in vertices_in_arc(n, s[0], s[1]) {
+            turned[v] = true;
+        }
+        let (inside, outside): (Vec<usize>, Vec<usize>) = sampled.iter().partition(|&&e| turned[e] && turned[(e + 1) % n]);
+        for &i in &inside {
+            pairs.extend(outside.iter().map(|&j| (i.min(j), i.max(j))));
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
+        Probe { pairs, measured }
+    }
+
+    /// Mismatch of the synthesised state `state` with the measured end disk.
+    fn cost(&self, state: &[Point]) -> f64 {
+        let n = state.len();
+        // Fixed chunks summed in order: the same total on every run, whatever the threads.
+        let chunk = |(pairs, measured): (&[(usize, usize)], &[f64])| -> f64 {
+            pairs
+                .iter()
+                .zip(measured)
+                .map(|(&(i, j), m)| (compress(dgli_fast(&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n])) - m).abs())
+                .sum()
+        };
+        let sums: Vec<f64> = self.pairs.par_chunks(CHUNK).zip(self.measured.par_chunks(CHUNK)).map(chunk).collect();
+        sums.iter().sum()
+    }
+}
+
+fn compress(v: f64) -> f64 {
+    (v / SCALE).asinh()
+}
+
+/// A fold found by synthesis: the border parameters of its points and the line used.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Synthesis {
+    /// Border parameters (fractional vertex indices) of the two fold points, in [0, N); the
+    /// folded side runs anticlockwise from the first.
+    pub s: [f64; 2],
+    /// The direction found on the disks when the fold points coincide; `None` when the line
+    /// runs through the two fold points.
+    pub direction: Option<[f64; 2]>,
+    /// Mean probe mismatch of the best candidate.
+    pub mismatch: f64,
+    /// Mean probe mismatch of the start state left as it was (no fold), for comparison.
+    pub unfolded_mismatch: f64,
+}
+
+/// The line of a candidate: through the two fold points, or through their midpoint at `phi`.
+fn line_of(before: &[Point], s: [f64; 2], phi: Option<f64>) -> Option<Line> {
+    let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
+    match phi {
+        None => Line::through(&a, &b),
+        Some(phi) => Some(Line::at_angle([(a.x + b.x) / 2.0, (a.y + b.y) / 2.0], phi)),
+    }
+}
+
+/// Mean XY length of the edges of `points`.
+fn mean_edge(points: &[Point]) -> f64 {
+    let n = points.len();
+    (0..n).map(|k| (points[(k + 1) % n].xy() - points[k].xy()).norm()).sum::<f64>() / n as f64
+}
+
+/// Refine the fold points `s` (border parameters, the folded side anticlockwise from s[0])
+/// on the step's start border `before` (normalised) against the measured `end` disk, by a
+/// pattern search (all eight neighbours in (s1, s2), so a line sliding along both sides
+/// at once is followed; the step halves when none is better). When the two points
+/// coincide the direction is searched too: from `heading` (the direction of a line that
+/// gave `s`, radians) or else the best of [`DIRECTIONS`] per half turn, again over a half
+/// turn from the best start, then with the points.
+pub fn refine(before: &[Point], end: &Disk, s: [f64; 2], heading: Option<f64>) -> Synthesis {
+    let n = before.len();
+    let nf = n as f64;
+    let probe = Probe::new(end, s);
+    let per_pair = 1.0 / probe.pairs.len().max(1) as f64;
+    let cost = |s: [f64; 2], phi: Option<f64>| {
+        line_of(before, s.map(|x| x.rem_euclid(nf)), phi).map_or(f64::INFINITY, |line| probe.cost(&turn_over(before, s.map(|x| x.rem_euclid(nf)), &line)) * per_pair)
+    };
+    let half_turn = |s: [f64; 2]| best_of((0..DIRECTIONS).map(|k| PI * k as f64 / DIRECTIONS as f64), |p| cost(s, Some(p)));
+    let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
+    let coincide = (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before);
+    let phi = if coincide { heading.or_else(|| half_turn(s)) } else { None };
+    // Start from the best of the given points and their snaps to the vertices either side and
+    // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
+    let snaps = |x: f64| [x, x.floor(), x.ceil(), (2.0 * x).round() / 2.0];
+    let start = snaps(s[0])
+        .into_iter()
+        .flat_map(|a| snaps(s[1]).into_iter().map(move |b| [a, b]))
+        .map(|t| (t, cost(t, phi)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(s, |(t, _)| t);
+    let phi = if coincide { half_turn(start) } else { None };
+    let mut best = (start, phi, cost(start, phi));
+    let (mut h, mut h_phi) = (0.5, PI / DIRECTIONS as f64 / 2.0);
+    while h >= STEP {
+        let mut moved = false;
+        let (centre, centre_phi) = (best.0, best.1);
+        let turns: &[f64] = if centre_phi.is_some() { &[-1.0, 0.0, 1.0] } else { &[0.0] };
+        for (d1, d2, dp) in [-1.0, 0.0, 1.0].iter().flat_map(|&d1| [-1.0, 0.0, 1.0].iter().flat_map(move |&d2| turns.iter().map(move |&dp| (d1, d2, dp)))) {
+            let t = [centre[0] + d1 * h, centre[1] + d2 * h];
+            if (d1, d2, dp) == (0.0, 0.0, 0.0) || (t[0] - s[0]).abs() > REACH || (t[1] - s[1]).abs() > REACH {
+                continue;
+            }
+            let p = centre_phi.map(|p| p + dp * h_phi);
+            let c = cost(t, p);
+            if c < best.2 {
+                (best, moved) = ((t, p, c), true);
+            }
+        }
+        if !moved {
+            (h, h_phi) = (h / 2.0, h_phi / 2.0);
+        }
+    }
+    let unfolded_mismatch = probe.cost(before) * per_pair;
+    Synthesis { s: best.0.map(|x| x.rem_euclid(nf)), direction: best.1.map(|p| [p.cos(), p.sin()]), mismatch: best.2, unfolded_mismatch }
+}
+
+/// The argument of least cost among `candidates`.
+fn best_of(candidates: impl Iterator<Item = f64>, cost: impl Fn(f64) -> f64) -> Option<f64> {
+    candidates.map(|x| (x, cost(x))).min_by(|a, b| a.1.total_cmp(&b.1)).map(|(x, _)| x)
+}
+
+/// A fold of a stacked start state, found by turning it over every line in turn.
+///
+/// When an earlier fold has stacked layers, a pair of edges on the same side of the new fold
+/// can change a lot (the layers slide, and the dGLI of stacked edges grows like 1/height),
+/// so the cut ([`super::cut`]) loses its footing. We try lines instead: [`2·DIRECTIONS`]
+/// directions and offsets one mean edge apart across the state; each turns over one arc of
+/// the border that lies to its left (a fold may turn the top layer only). The line whose
+/// synthesised disks match the measured `end` disk best (on a strided sample of all pairs)
+/// give the candidates, best first: [`CANDIDATES`] distinct arcs, each with the points
+/// where the border crosses its line, and the line's direction. None of them when no line
+/// beats leaving the state as it was by [`MAX_MISMATCH_RATIO`]. The exact optimum is
+/// needle sharp on stacked layers, so the caller refines each ([`refine`]).
+pub fn search_line(before: &[Point], end: &Disk) -> Vec<Synthesis> {
+    let n = before.len();
+    let stride = n.div_ceil(SAMPLES).max(1);
+    let sampled: Vec<usize> = (0..n).step_by(stride).collect();
+    let pairs: Vec<(usize, usize)> = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
+    let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
+    let probe = Probe { pairs, measured };
+    let per_pair = 1.0 / probe.pairs.len().max(1) as f64;
+    let unfolded = probe.cost(before) * per_pair;
+    let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
+    let step = mean_edge(before).max(reach / 200.0);
+    let offsets = (2.0 * reach / step).ceil() as usize;
+    let mut found: Vec<([f64; 2], f64, f64, bool)> = (0..2 * DIRECTIONS)
+        .into_par_iter()
+        .flat_map_iter(|k| (0..offsets).map(move |m| (PI * k as f64 / DIRECTIONS as f64, -reach + m as f64 * step)))
+        .flat_map_iter(|(phi, rho)| {
+            let line = Line { point: [-rho * phi.sin(), rho * phi.cos()], direction: [phi.cos(), phi.sin()] };
+            // Each arc on the turned side alone: a fold may turn one layer's flap only.
+            let arcs = arcs_left_of(before, &line);
+            let whole = arcs.len() == 1;
+            arcs.into_iter().map(move |s| (s, phi, line, whole))
+        })
+        .map(|(s, phi, line, whole)| (s, phi, probe.cost(&turn_over(before, s, &line)) * per_pair, whole))
+        .collect();
+    found.sort_by(|a, b| a.2.total_cmp(&b.2));
+    // The best few distinct arcs (by their ends, to the vertex), among lines that turn all
+    // they cross and among those that turn one of several arcs: on exactly stacked layers
+    // the grid misses the needle of the true line, and the partial turns of other lines
+    // would crowd it out.
+    let mut kept: Vec<Synthesis> = Vec::new();
+    for whole in [true, false] {
+        let mut taken = 0;
+        for &(s, phi, mismatch, _) in found.iter().filter(|f| f.3 == whole) {
+            if taken == CANDIDATES || mismatch >= MAX_MISMATCH_RATIO * unfolded {
+                break;
+            }
+            if kept.iter().all(|k| k.s.map(f64::round) != s.map(f64::round)) {
+                kept.push(Synthesis { s, direction: Some([phi.cos(), phi.sin()]), mismatch, unfolded_mismatch: unfolded });
+                taken += 1;
+            }
+        }
+    }
+    kept
+}
+
+/// The arcs of the border left of `line`, each as the border parameters where it enters and
+/// leaves that side (anticlockwise from the first). An arc of fewer than two vertices, or
+/// one that leaves fewer than two behind, is left out.
+fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
+    let n = before.len();
+    let [ux, uy] = line.direction;
+    let d: Vec<f64> = before.iter().map(|p| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0])).collect();
+    let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[(k + 1) % n]);
+    let enters = (0..n).filter(|&k| d[k] <= 0.0 && d[(k + 1) % n] > 0.0);
+    enters
+        .filter_map(|k| {
+            // The arc runs until the first edge that leaves the side.
+            let leave = (k + 1..k + 1 + n).map(|j| j % n).find(|&j| d[j] > 0.0 && d[(j + 1) % n] <= 0.0)?;
+            let s = [crossing(k), crossing(leave)];
+            let turned = vertices_in_arc(n, s[0], s[1]).len();
+            (turned >= 2 && turned + 2 <= n).then_some(s)
+        })
+        .collect()
+}
