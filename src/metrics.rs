@@ -1,6 +1,6 @@
 //! How far a predicted border is from the true one: RMSE and discrete Fréchet distance.
 //!
-//! Both are measured on the XY (zenithal) projection after the SPEC normalisation of the
+//! Both are measured on the XY (zenithal) projection after the normalisation of the
 //! START border (centroid to origin, farthest vertex at distance 1), so they read in
 //! unit-circle units whatever the cloth's size.
 //!

@@ -44,7 +44,8 @@ pub const FLAT_HEIGHT: f64 = 1e-9;
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FoldMethod {
-    /// The cut of least same-side change ([`cut`]), refined on the rim within its edge.
+    /// The cut of least same-side change ([`cut`]), placed within its edges by synthesis
+    /// ([`synth`]); a line search on a stacked start.
     #[default]
     Cut,
     /// The paper's curves alone: the rims of the two lowest-loss curves ([`fit`]).
