@@ -34,7 +34,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::formats::{read_files, Sample, MAX_FILE_BYTES};
-use crate::server::cache::Lru;
+use crate::cache::Lru;
 
 /// Samples kept loaded at once.
 const CACHED_SAMPLES: usize = 64;

@@ -33,6 +33,7 @@ pub mod analysis;
 pub mod catalog;
 pub mod angle;
 pub mod border;
+pub mod cache;
 pub mod budget;
 pub mod close;
 pub mod dataset;

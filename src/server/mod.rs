@@ -24,7 +24,6 @@
 //! ```
 
 mod assets;
-pub mod cache;
 mod datasets;
 mod error;
 mod extract;
@@ -59,7 +58,7 @@ pub use routes::Analyzed;
 
 use crate::budget::{Budget, Deadline};
 use crate::dataset::{Dataset, Entry};
-use cache::Lru;
+use crate::cache::Lru;
 use guard::{Doors, ServedAt, UploadBudget};
 use workers::Workers;
 

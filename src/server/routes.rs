@@ -13,7 +13,7 @@ use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
-use super::cache::content_key;
+use crate::cache::content_key;
 use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
 use crate::analysis::{analyze_with, Analysis, FrameRange, Options};
 use crate::border::{to_xyz, BorderFrames};

@@ -5,7 +5,7 @@
 //! the work cached (an analysis or a PNG).
 //!
 //! ```
-//! use close::server::cache::Lru;
+//! use close::cache::Lru;
 //! let mut c = Lru::new(2, 1000);
 //! c.insert("a".into(), 1, 10);
 //! c.insert("b".into(), 2, 10);
