@@ -1,7 +1,7 @@
 //! Evaluation over many samples, per category and overall (the paper's Table I).
 //!
 //! For each sample: analyse first → last frame, count folds, measure RMSE and Fréchet of
-//! the predicted end (SPEC metrics), and, where `truth` is given, the angular error of f1
+//! the predicted end (the paper's metrics: XY RMSE and discrete Fréchet distance after normalisation), and, where `truth` is given, the angular error of f1
 //! and f2 against the true fold. Samples with several steps (a fold, then a second fold)
 //! are also scored step by step, so first and second folds get rows of their own.
 //! [`evaluate_steps`] scores a sequence fold by fold into rows `<category>/fold<k>` (the

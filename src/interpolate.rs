@@ -1,4 +1,4 @@
-//! Interpolation between two folds: a continuous folding motion (SPEC §1, Interpolation).
+//! Interpolation between two folds: a continuous folding motion (the paper's fold interpolation on the fold circle).
 //!
 //! A fold (f1, f2) folds the border arc walked anticlockwise from f1 to f2; its span is
 //! s = (f2 − f1) mod 2π. Going from (f1, f2) to (g1, g2), endpoint k moves linearly by

@@ -1,4 +1,4 @@
-//! `close`: the command line (SPEC §3).
+//! `close`: the command line: analyze, eval, dataset, plan, record, serve.
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -38,7 +38,7 @@ enum Command {
         /// Last frame (default: the last).
         #[arg(long)]
         end: Option<usize>,
-        /// Print JSON (the only output form; accepted for the SPEC's command line).
+        /// Print JSON (the only output form; accepted so scripts may say so).
         #[arg(long)]
         json: bool,
         /// Add the start and end dGLI disks as condensed pair vectors.
@@ -71,7 +71,7 @@ enum Command {
         #[arg(long)]
         from: Vec<PathBuf>,
     },
-    /// Plan how to reach a goal fold from a sample's end state (SPEC "Planning").
+    /// Plan how to reach a goal fold from a sample's end state (the paper's planning).
     Plan {
         /// One Sample JSON, or one text/CSV file per frame.
         #[arg(required = true)]

@@ -1,5 +1,5 @@
 //! The `close` command line: analyze and eval on real files, and a clear error (never a
-//! panic) for every kind of bad input of SPEC §2.
+//! panic) for every kind of bad input (unparseable, NaN, empty, too large, mismatched frames, degenerate).
 
 mod common;
 

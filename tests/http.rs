@@ -1,5 +1,5 @@
-//! Every route of the HTTP API (SPEC §4), driven in-process with `tower::ServiceExt::oneshot`:
-//! the answers on good input, and a JSON 4xx naming the problem for each bad input of SPEC §2.
+//! Every route of the HTTP API, driven in-process with `tower::ServiceExt::oneshot`:
+//! the answers on good input, and a JSON 4xx naming the problem for each kind of bad input (unparseable, NaN, empty, too large, mismatched frames, degenerate).
 
 use axum::body::{to_bytes, Body, Bytes};
 use axum::http::{header, Method, Request, StatusCode};

@@ -24,7 +24,7 @@ use super::{endpoint_name, fold_colour, label_size, line_width, outward, plot, C
 use crate::analysis::Analysis;
 use crate::error::Result;
 
-/// Corners beyond this count are drawn without numbers (SPEC: the cloth is circular).
+/// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).
 pub const NUMBERED_CORNERS: usize = 20;
 
 /// `points` angles from f1 anticlockwise to f2 (unwrapped: increasing from f1).
