@@ -169,39 +169,63 @@ impl From<Method> for FoldMethod {
 
 const DEFAULT_ADDR: &str = "127.0.0.1:8080";
 
+/// Why a command failed, printed as `error: …`: the library's own error (it names the
+/// problem), a file that could not be read or written, or a command line that does not fit.
+#[derive(Debug, thiserror::Error)]
+enum CliError {
+    #[error(transparent)]
+    Library(#[from] close::Error),
+    #[error("{}: {source}", path.display())]
+    File { path: PathBuf, source: std::io::Error },
+    #[error("writing the output: {0}")]
+    Output(std::io::Error),
+    #[error("could not write JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// A command line that does not fit what the command takes, or a server that could not start.
+    #[error("{0}")]
+    Usage(String),
+}
+
+type CliResult<T = ()> = Result<T, CliError>;
+
+/// The error of an I/O call on `path`.
+fn file_error(path: &Path) -> impl FnOnce(std::io::Error) -> CliError + '_ {
+    move |source| CliError::File { path: path.to_path_buf(), source }
+}
+
 /// Print a result and a newline; a closed pipe (`close … | head`) is not an error.
-fn emit(text: &str) -> Result<(), String> {
+fn emit(text: &str) -> CliResult {
     let mut out = std::io::stdout().lock();
     match writeln!(out, "{text}").and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(format!("writing the output: {e}")),
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::Output(e)),
         _ => Ok(()),
     }
 }
 
-fn read(path: &Path) -> Result<(String, Vec<u8>), String> {
-    std::fs::read(path).map(|b| (path.display().to_string(), b)).map_err(|e| format!("{}: {e}", path.display()))
+fn read(path: &Path) -> CliResult<(String, Vec<u8>)> {
+    std::fs::read(path).map(|b| (path.display().to_string(), b)).map_err(file_error(path))
 }
 
-fn load_sample(paths: &[PathBuf]) -> Result<Sample, String> {
+fn load_sample(paths: &[PathBuf]) -> CliResult<Sample> {
     let files = paths.iter().map(|p| read(p)).collect::<Result<Vec<_>, _>>()?;
-    read_files(&files).map_err(|e| e.to_string())
+    Ok(read_files(&files)?)
 }
 
-fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Options, disks: bool) -> Result<(), String> {
+fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Options, disks: bool) -> CliResult {
     let (sample, mesh_indices, extra) = match video {
         Some(id) => store_fold(files, id, fold)?,
         None if files.len() == 1 && files[0].join(".zgroup").is_file() => {
-            return Err(format!("{} is a Zarr store: choose a video with --video ID (and --fold 1|2)", files[0].display()));
+            return Err(CliError::Usage(format!("{} is a Zarr store: choose a video with --video ID (and --fold 1|2)", files[0].display())));
         }
         None => (load_sample(files)?, None, serde_json::Value::Null),
     };
-    let frames = sample.border_frames().map_err(|e| e.to_string())?;
-    let mut analysis = analyze_with(&frames, options).map_err(|e| e.to_string())?;
+    let frames = sample.border_frames()?;
+    let mut analysis = analyze_with(&frames, options)?;
     if let Some(mesh) = mesh_indices {
         // The border was gathered from the mesh: report mesh vertex ids.
         analysis.border_indices = analysis.border_indices.iter().map(|&k| mesh[k]).collect();
     }
-    let mut out = serde_json::to_value(&analysis).map_err(|e| e.to_string())?;
+    let mut out = serde_json::to_value(&analysis)?;
     if let serde_json::Value::Object(extra) = extra {
         out.as_object_mut().into_iter().for_each(|o| o.extend(extra.clone()));
     }
@@ -218,48 +242,48 @@ fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Opt
 /// Fold `fold` of video `id` of the store at `files[0]`: the border sample, the mesh vertex of
 /// each border vertex, and what to add to the output (video, fold, actions).
 #[cfg(feature = "vrfolding")]
-fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> Result<(Sample, Option<Vec<usize>>, serde_json::Value), String> {
+fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Option<Vec<usize>>, serde_json::Value)> {
     let [path] = files else {
-        return Err("--video takes one VR-Folding store (or category folder)".into());
+        return Err(CliError::Usage("--video takes one VR-Folding store (or category folder)".into()));
     };
-    let store = close::vrfolding::Store::open(path).map_err(|e| e.to_string())?;
-    let videos = store.videos().map_err(|e| e.to_string())?;
+    let store = close::vrfolding::Store::open(path)?;
+    let videos = store.videos()?;
     let video = videos
         .iter()
         .find(|v| v.id == id || format!("{}/{}", v.category, v.id) == id)
-        .ok_or_else(|| format!("no video {id:?} in {} (videos are named by video_id, or Category/video_id)", path.display()))?;
-    let folds = store.folds(video).map_err(|e| e.to_string())?;
+        .ok_or_else(|| CliError::Usage(format!("no video {id:?} in {} (videos are named by video_id, or Category/video_id)", path.display())))?;
+    let folds = store.folds(video)?;
     let sample = folds.sample(video, fold).ok_or_else(|| {
-        if fold <= folds.broken.len() {
+        CliError::Usage(if fold <= folds.broken.len() {
             format!("fold {fold} of video {id} is dropped: a mesh it uses is broken (BiFold's z-score test)")
         } else {
             format!("video {id} has {} fold action(s), not {fold}", folds.actions.len())
-        }
+        })
     })?;
     let extra = serde_json::json!({ "video": video.id, "category": video.category, "fold": fold, "actions": folds.actions });
     Ok((sample, Some(folds.border_indices), extra))
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn store_fold(_: &[PathBuf], _: &str, _: usize) -> Result<(Sample, Option<Vec<usize>>, serde_json::Value), String> {
-    Err(NO_VRFOLDING.into())
+fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec<usize>>, serde_json::Value)> {
+    Err(CliError::Usage(NO_VRFOLDING.into()))
 }
 
 #[cfg(not(feature = "vrfolding"))]
 const NO_VRFOLDING: &str = "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
 
 /// Every `.json` file under the given files and folders, sorted.
-fn sample_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+fn sample_files(paths: &[PathBuf]) -> CliResult<Vec<PathBuf>> {
     let mut out = Vec::new();
     let mut stack: Vec<PathBuf> = paths.to_vec();
     while let Some(p) = stack.pop() {
         if p.is_dir() {
-            let entries = std::fs::read_dir(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+            let entries = std::fs::read_dir(&p).map_err(file_error(&p))?;
             stack.extend(entries.filter_map(|e| e.ok()).map(|e| e.path()));
         } else if p.extension().is_some_and(|e| e == "json") {
             out.push(p);
         } else if paths.contains(&p) {
-            return Err(format!("{}: not a folder or a Sample JSON file", p.display()));
+            return Err(CliError::Usage(format!("{}: not a folder or a Sample JSON file", p.display())));
         }
     }
     out.sort();
@@ -278,10 +302,10 @@ impl Work<'_> {
     fn evaluate(&self, method: FoldMethod) -> Vec<eval::SampleResult> {
         match self {
             Work::File(path) => {
-                let sample = read(path).and_then(|f| close::formats::json::parse_sample(&f.1).map_err(|e| e.to_string()));
+                let sample = read(path).and_then(|f| Ok(close::formats::json::parse_sample(&f.1)?));
                 vec![match sample {
                     Ok(sample) => eval::evaluate_with(&sample, method),
-                    Err(e) => eval::SampleResult::unreadable(&path.display().to_string(), &e),
+                    Err(e) => eval::SampleResult::unreadable(&path.display().to_string(), &e.to_string()),
                 }]
             }
             Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
@@ -293,26 +317,26 @@ impl Work<'_> {
 
 /// The videos of every VR-Folding store among `paths`; the other paths are returned.
 #[cfg(feature = "vrfolding")]
-fn store_work(paths: &[PathBuf]) -> Result<(Vec<Work<'static>>, Vec<PathBuf>), String> {
+fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)> {
     let (stores, rest): (Vec<PathBuf>, Vec<PathBuf>) = paths.iter().cloned().partition(|p| close::vrfolding::is_store(p));
     let mut work = Vec::new();
     for path in stores {
-        let store = std::sync::Arc::new(close::vrfolding::Store::open(&path).map_err(|e| e.to_string())?);
-        let videos = store.videos().map_err(|e| e.to_string())?;
+        let store = std::sync::Arc::new(close::vrfolding::Store::open(&path)?);
+        let videos = store.videos()?;
         work.extend(videos.into_iter().map(|v| Work::Video(store.clone(), v)));
     }
     Ok((work, rest))
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn store_work(paths: &[PathBuf]) -> Result<(Vec<Work<'static>>, Vec<PathBuf>), String> {
+fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)> {
     match paths.iter().find(|p| p.join(".zgroup").is_file()) {
-        Some(p) => Err(format!("{}: {NO_VRFOLDING}", p.display())),
+        Some(p) => Err(CliError::Usage(format!("{}: {NO_VRFOLDING}", p.display()))),
         None => Ok((Vec::new(), paths.to_vec())),
     }
 }
 
-fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> Result<(), String> {
+fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> CliResult {
     let dataset = close::dataset::Dataset::builtin();
     let (mut work, rest) = store_work(paths)?;
     work.extend(sample_files(&rest)?.into_iter().map(Work::File));
@@ -320,7 +344,7 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
         work.extend(dataset.entries().iter().map(Work::Builtin));
     }
     if work.is_empty() {
-        return Err("no Sample JSON file or VR-Folding video found".into());
+        return Err(CliError::Usage("no Sample JSON file or VR-Folding video found".into()));
     }
     let bar = if std::io::stderr().is_terminal() { ProgressBar::new(work.len() as u64) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} samples/videos {elapsed} eta {eta}").expect("valid template"));
@@ -335,7 +359,7 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
     bar.finish_and_clear();
     let report = eval::report(results);
     if json {
-        emit(&serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?)?;
+        emit(&serde_json::to_string_pretty(&report)?)?;
     } else {
         emit(report.table().trim_end())?;
         for r in report.samples.iter().filter(|r| r.error.is_some()) {
@@ -345,11 +369,11 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
     Ok(())
 }
 
-fn run_dataset(out: &Path, from: &[PathBuf]) -> Result<(), String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+fn run_dataset(out: &Path, from: &[PathBuf]) -> CliResult {
+    std::fs::create_dir_all(out).map_err(file_error(out))?;
     let write = |name: &str, sample: &Sample| {
         let path = out.join(format!("{}.json", name.replace(['/', '\\'], "_")));
-        std::fs::write(&path, close::formats::json::to_json(sample)).map_err(|e| format!("{}: {e}", path.display()))
+        std::fs::write(&path, close::formats::json::to_json(sample)).map_err(file_error(&path))
     };
     if !from.is_empty() {
         return export_stores(from, &write);
@@ -365,15 +389,15 @@ fn run_dataset(out: &Path, from: &[PathBuf]) -> Result<(), String> {
 /// Every usable fold of every video of the stores as Sample JSON (`<Category>_<video>_fold<k>`,
 /// category `<Category>/fold<k>`); broken folds and unreadable videos are reported and skipped.
 #[cfg(feature = "vrfolding")]
-fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> Result<(), String> + Sync)) -> Result<(), String> {
+fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> CliResult + Sync)) -> CliResult {
     let (work, rest) = store_work(from)?;
     if let Some(p) = rest.first() {
-        return Err(format!("{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)", p.display()));
+        return Err(CliError::Usage(format!("{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)", p.display())));
     }
     let counts = work
         .par_iter()
         .map(|w| {
-            let Work::Video(store, video) = w else { return Ok::<_, String>([0, 0, 0]) };
+            let Work::Video(store, video) = w else { return Ok::<_, CliError>([0, 0, 0]) };
             match store.folds(video) {
                 Ok(folds) => {
                     for k in 1..=folds.usable() {
@@ -395,22 +419,22 @@ fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> Result<(), 
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn export_stores(_: &[PathBuf], _: &(dyn Fn(&str, &Sample) -> Result<(), String> + Sync)) -> Result<(), String> {
-    Err(NO_VRFOLDING.into())
+fn export_stores(_: &[PathBuf], _: &(dyn Fn(&str, &Sample) -> CliResult + Sync)) -> CliResult {
+    Err(CliError::Usage(NO_VRFOLDING.into()))
 }
 
 /// Analyse the sample, then plan from its start border, corners and folds to `goal`;
 /// vertices are reported as input indices.
-fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
+fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     let &[g1, g2] = goal else {
-        return Err(format!("--goal takes two angles f1,f2 (got {} values)", goal.len()));
+        return Err(CliError::Usage(format!("--goal takes two angles f1,f2 (got {} values)", goal.len())));
     };
     let sample = load_sample(files)?;
-    let frames = sample.border_frames().map_err(|e| e.to_string())?;
-    let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
-    let plan = close::plan::plan_for(&analysis, [g1, g2]).map_err(|e| e.to_string())?;
+    let frames = sample.border_frames()?;
+    let analysis = analyze(&frames, FrameRange::default())?;
+    let plan = close::plan::plan_for(&analysis, [g1, g2])?;
     if json {
-        return emit(&serde_json::to_string(&plan).map_err(|e| e.to_string())?);
+        return emit(&serde_json::to_string(&plan)?);
     }
     let mut text = plan.case.clone();
     for (k, step) in plan.steps.iter().enumerate() {
@@ -424,14 +448,18 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> Result<(), String> {
 }
 
 #[cfg(feature = "rerun")]
-fn run_record(files: &[PathBuf], out: &Path) -> Result<(), String> {
+fn run_record(files: &[PathBuf], out: &Path) -> CliResult {
     let sample = load_sample(files)?;
-    let frames = sample.border_frames().map_err(|e| e.to_string())?;
-    let analysis = analyze(&frames, FrameRange::default()).map_err(|e| e.to_string())?;
-    let rrd = close::record::record(&analysis, &frames).map_err(|e| e.to_string())?;
-    std::fs::write(out, &rrd).map_err(|e| format!("{}: {e}", out.display()))?;
+    let frames = sample.border_frames()?;
+    let analysis = analyze(&frames, FrameRange::default())?;
+    let rrd = close::record::record(&analysis, &frames)?;
+    std::fs::write(out, &rrd).map_err(file_error(out))?;
     eprintln!("wrote {} ({} bytes); open it with `rerun {}`", out.display(), rrd.len(), out.display());
     Ok(())
+}
+
+fn serve(addr: &str, config: close::server::Config) -> CliResult {
+    close::server::run(addr, config).map_err(CliError::Usage)
 }
 
 fn main() -> ExitCode {
@@ -446,8 +474,8 @@ fn main() -> ExitCode {
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out }) => run_record(&files, &out),
-        Some(Command::Serve { addr, datasets, limits }) => close::server::run(&addr, close::server::Config { datasets, ..limits.config() }),
-        None => close::server::run(DEFAULT_ADDR, close::server::Config::default()),
+        Some(Command::Serve { addr, datasets, limits }) => serve(&addr, close::server::Config { datasets, ..limits.config() }),
+        None => serve(DEFAULT_ADDR, close::server::Config::default()),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
