@@ -109,6 +109,17 @@ impl Analysis {
 }
 
 /// Analyse frames `range` of a prepared sample.
+///
+/// ```
+/// use close::dataset::Dataset;
+/// use close::{analyze, FrameRange};
+/// let data = Dataset::builtin();
+/// let entry = data.get("napkin__half_vertical").expect("a built-in sample");
+/// let analysis = analyze(&entry.sample.border_frames()?, FrameRange::default())?;
+/// assert_eq!(analysis.folds.len(), 1);
+/// assert_eq!(analysis.close.corners.len(), 4);
+/// # Ok::<(), close::Error>(())
+/// ```
 pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
     analyze_with(sample, Options { frames: range, ..Options::default() })
 }

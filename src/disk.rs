@@ -20,7 +20,7 @@
 //! assert_eq!((cell.layer, cell.radius, cell.angle), (1, 1.0, 0.0));
 //! ```
 
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 
 use rayon::prelude::*;
 
@@ -187,14 +187,14 @@ pub fn position(n: usize, i: usize, j: usize) -> Position {
     let forward = hi - lo;
     let (from_edge, layer) = if 2 * forward <= n { (lo, forward) } else { (hi, n - forward) };
     let l = n / 2;
-    let angle = (PI * (2 * from_edge + layer + 1) as f64 / n as f64).rem_euclid(2.0 * PI);
+    let angle = (PI * (2 * from_edge + layer + 1) as f64 / n as f64).rem_euclid(TAU);
     Position { layer, radius: (l - layer + 1) as f64 / l as f64, angle, from_edge }
 }
 
 /// Angle of ring `d`'s cell that starts at edge `a`: π(2a + d + 1)/N.
 #[inline]
 pub fn ring_angle(n: usize, d: usize, a: usize) -> f64 {
-    (PI * (2 * a + d + 1) as f64 / n as f64).rem_euclid(2.0 * PI)
+    (PI * (2 * a + d + 1) as f64 / n as f64).rem_euclid(TAU)
 }
 
 #[cfg(test)]
@@ -219,11 +219,11 @@ mod tests {
         // Adjacent edges 2 and 3 meet at vertex 3.
         let p = position(n, 2, 3);
         assert_eq!((p.layer, p.radius), (1, 1.0));
-        assert!((p.angle - 2.0 * PI * 3.0 / 8.0).abs() < 1e-12);
+        assert!((p.angle - TAU * 3.0 / 8.0).abs() < 1e-12);
         // Edges 7 and 1 are two apart through vertex 0: midpoint at vertex 0.5.
         let p = position(n, 1, 7);
         assert_eq!((p.layer, p.from_edge), (2, 7));
-        assert!((p.angle - 2.0 * PI * 0.5 / 8.0).abs() < 1e-12);
+        assert!((p.angle - TAU * 0.5 / 8.0).abs() < 1e-12);
         // Centre ring.
         assert!((position(n, 0, 4).radius - 0.25).abs() < 1e-12);
         // The reference's angle is half an edge earlier.

@@ -14,6 +14,7 @@ use std::f64::consts::PI;
 use serde::Serialize;
 
 use crate::analysis::{analyze_with, Options};
+use crate::angle;
 use crate::fold::FoldMethod;
 use crate::formats::Sample;
 
@@ -131,12 +132,17 @@ pub struct Report {
     pub samples: Vec<SampleResult>,
 }
 
-fn angle_diff(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(2.0 * PI);
-    d.min(2.0 * PI - d)
-}
-
 /// Evaluate one sample with the default fold method.
+///
+/// ```
+/// use close::dataset::Dataset;
+/// use close::eval::{evaluate, report};
+/// let data = Dataset::builtin();
+/// let result = evaluate(&data.get("napkin__half_vertical").expect("a built-in sample").sample);
+/// assert_eq!((result.folds, result.expected_folds), (1, 1));
+/// assert!(result.rmse.expect("an end frame to compare with") < 0.02);
+/// assert_eq!(report(vec![result]).overall.count, 1);
+/// ```
 pub fn evaluate(sample: &Sample) -> SampleResult {
     evaluate_with(sample, FoldMethod::default())
 }
@@ -153,7 +159,7 @@ pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
             result.folds = a.folds.len();
             result.rmse = a.metrics.map(|m| m.rmse);
             result.frechet = a.metrics.map(|m| m.frechet);
-            let error = |found: &[f64; 2], truth: &[f64; 2]| [angle_diff(found[0], truth[0]), angle_diff(found[1], truth[1])];
+            let error = |found: &[f64; 2], truth: &[f64; 2]| [angle::distance(found[0], truth[0]), angle::distance(found[1], truth[1])];
             if let (Some(found), Some(truth)) = (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first())) {
                 result.angle_error = Some(error(found, truth));
             }
@@ -303,4 +309,34 @@ fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 
         mean(f1, degrees),
         mean(f2, degrees),
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scored(name: &str, category: &str, rmse: f64, folds: usize) -> SampleResult {
+        SampleResult { rmse: Some(rmse), frechet: Some(2.0 * rmse), folds, expected_folds: 1, ..SampleResult::empty(name, category) }
+    }
+
+    #[test]
+    fn rows_per_category_with_mean_variance_misses_errors_and_drops() {
+        let results = vec![
+            scored("a1", "a", 0.1, 1),
+            scored("a2", "a", 0.3, 2),
+            scored("b1", "b", 0.5, 1),
+            SampleResult::unreadable("x.json", "could not parse JSON"),
+            SampleResult::dropped("b2", "b", "broken mesh"),
+        ];
+        let r = report(results);
+        let row = |c: &str| r.categories.iter().find(|s| s.category == c).unwrap_or_else(|| panic!("no row {c}"));
+        let a = row("a");
+        assert_eq!((a.count, a.fold_count_misses, a.errors, a.dropped), (2, 1, 0, 0));
+        let rmse = a.rmse.expect("scored samples");
+        assert!((rmse.mean - 0.2).abs() < 1e-12 && (rmse.var - 0.01).abs() < 1e-12, "{rmse:?}");
+        let b = row("b");
+        assert_eq!((b.count, b.dropped), (1, 1));
+        assert_eq!(row("unreadable").errors, 1);
+        assert!(r.table().contains("overall"));
+    }
 }

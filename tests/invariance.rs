@@ -4,7 +4,7 @@
 
 mod common;
 
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 
 use close::{analyze, Analysis, FrameRange, Sample};
 use common::{angle_diff, fold_frame, napkin};
@@ -28,7 +28,7 @@ fn map(frames: &[Vec<[f64; 3]>], f: impl Fn([f64; 3]) -> [f64; 3]) -> Vec<Vec<[f
 
 fn assert_same_close(a: &Analysis, b: &Analysis, shift: f64) {
     assert_eq!(a.corners.len(), b.corners.len());
-    let mut moved: Vec<f64> = a.corners.iter().map(|c| (c + shift).rem_euclid(2.0 * PI)).collect();
+    let mut moved: Vec<f64> = a.corners.iter().map(|c| (c + shift).rem_euclid(TAU)).collect();
     moved.sort_by(f64::total_cmp);
     for (x, y) in moved.iter().zip(&b.corners) {
         assert!(angle_diff(*x, *y) < 1e-9, "corners {:?} vs {:?}", a.corners, b.corners);
@@ -46,7 +46,7 @@ fn a_reflection_fold_is_found_where_it_was_made() {
     let n = a.n as f64;
     assert_eq!(a.corner_vertices, vec![0, 19, 38, 57]);
     assert_eq!(a.folds.len(), 1);
-    let truth = [2.0 * PI * FOLD.0 / n, 2.0 * PI * FOLD.1 / n];
+    let truth = [TAU * FOLD.0 / n, TAU * FOLD.1 / n];
     for k in 0..2 {
         assert!(angle_diff(a.folds[0][k], truth[k]) < 0.5 * 2.0 * PI / n, "{:?} vs {truth:?}", a.folds);
     }
@@ -111,11 +111,8 @@ fn second_fold_is_read_from_its_own_step() {
 #[test]
 fn noise_without_a_fold_is_no_fold() {
     let start = napkin(19);
-    let mut state = 7u64;
-    let mut noise = || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.01
-    };
+    let mut rng = close::rng::SplitMix64::new(7);
+    let mut noise = || (rng.uniform() - 0.5) * 0.01;
     let end: Vec<[f64; 3]> = start.iter().map(|p| [p[0] + noise(), p[1] + noise(), p[2] + noise()]).collect();
     let a = run(vec![start, end]);
     assert!(a.folds.is_empty(), "{:?}", a.steps[0].detection.cut);

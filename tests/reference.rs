@@ -4,7 +4,7 @@
 mod common;
 
 use std::collections::HashMap;
-use std::f64::consts::PI;
+use std::f64::consts::TAU;
 
 use close::eval::{evaluate, report};
 use close::{analyze, FrameRange};
@@ -104,7 +104,7 @@ fn folds_on_the_reference_samples() {
     // Per sample: both fold points within a fraction of an edge of the truth (N = 64 here;
     // measured at most 0.49 edges, on a noisy sample, and 0.13 on every other).
     for r in &folded {
-        let e = r.angle_error.map(|[a, b]| a.max(b) * 64.0 / (2.0 * PI)).unwrap();
+        let e = r.angle_error.map(|[a, b]| a.max(b) * 64.0 / TAU).unwrap();
         assert!(e <= 1.0, "{}: {e:.2} edges off", r.name);
     }
     let mean = |rs: &[&&close::eval::SampleResult]| rs.iter().map(|r| r.rmse.unwrap()).sum::<f64>() / rs.len().max(1) as f64;

@@ -306,7 +306,7 @@ fn draw_marks(canvas: &mut Canvas, layout: &Layout, marks: &Marks, layers: usize
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{decode, folded_square, preview};
+    use super::super::tests::{colours, decode, folded_square, preview};
     use super::super::{disk_png, render_png, Picture};
     use super::*;
     use crate::disk::position;
@@ -422,14 +422,19 @@ mod tests {
     }
 
     #[test]
-    fn diff_pictures_show_the_fold() {
+    fn large_pictures_are_drawn_at_their_size_and_the_diff_differs_from_the_disk() {
         let analysis = folded_square(10, [0.3, 0.3 + std::f64::consts::PI]);
         for picture in Picture::ALL {
             let png = render_png(&analysis, picture, 1200, 900).unwrap();
+            let (w, h, rgb) = decode(&png);
+            assert_eq!((w, h), (1200, 900), "{picture:?}");
+            assert!(colours(&rgb) > 10, "{picture:?} is (nearly) one flat colour");
             preview(&format!("large_{}.png", picture.name()), &png);
         }
         let big = folded_square(25, [1.0, 4.0]);
-        preview("n100_disk_start.png", &render_png(&big, Picture::DiskStart, 480, 480).unwrap());
-        preview("n100_diff.png", &render_png(&big, Picture::Diff, 480, 480).unwrap());
+        let (start, diff) = (render_png(&big, Picture::DiskStart, 480, 480).unwrap(), render_png(&big, Picture::Diff, 480, 480).unwrap());
+        assert_ne!(decode(&start).2, decode(&diff).2, "the diff disk of a fold is not its start disk");
+        preview("n100_disk_start.png", &start);
+        preview("n100_diff.png", &diff);
     }
 }

@@ -372,7 +372,7 @@ pub(crate) mod tests {
     }
 
     /// Number of distinct colours in an RGB buffer.
-    fn colours(rgb: &[u8]) -> usize {
+    pub(crate) fn colours(rgb: &[u8]) -> usize {
         rgb.chunks(3).map(|c| (c[0], c[1], c[2])).collect::<std::collections::HashSet<_>>().len()
     }
 
