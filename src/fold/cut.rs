@@ -11,7 +11,8 @@
 //! (p1, p2) on the half-edge grid — p an integer is a cut through vertex p, p = k + ½ a cut
 //! through edge k, whose pairs are left out — that minimise the same-side mass
 //! `S(p1, p2) = Σ_{i<j both inside} g_ij + Σ_{i<j both outside} g_ij`.
-//! With 2-D prefix sums of g every candidate costs O(1), so all 2N² of them cost O(N²).
+//! With the change of every run of consecutive edges tabulated, every candidate costs O(1),
+//! so all 2N² of them cost O(N²).
 //!
 //! Several neighbouring cuts can tie; each cut point is then the middle of its tie range.
 //! The lifted layer tilts the edge that leaves the fold point, so even a fold through a
@@ -37,64 +38,39 @@ pub struct Cut {
     pub inside_edge: [bool; 2],
 }
 
-/// Prefix sums of the symmetric pair matrix of a disk, for O(1) block sums.
-struct PairSums {
+/// The change within every run of consecutive edges: `runs[len][a]` is Σ g over the
+/// unordered pairs of the `len` edges starting at edge `a` (cyclic). Stored by length, so
+/// the search, which pairs runs of two fixed lengths at every start, reads memory in order.
+struct RunSums {
     n: usize,
-    sums: Vec<f64>,
+    runs: Vec<f64>,
 }
 
-impl PairSums {
-    fn new(g: &Disk) -> PairSums {
+impl RunSums {
+    /// By inclusion–exclusion on runs: run(a, len) = run(a, len − 1) + run(a + 1, len − 1)
+    /// − run(a + 1, len − 2) + g(a, a + len − 1). O(N²).
+    fn new(g: &Disk) -> RunSums {
         let n = g.n();
-        let w = n + 1;
-        let mut sums = vec![0.0; w * w];
-        for i in 0..n {
-            let mut row = 0.0;
-            for j in 0..n {
-                row += if i == j { 0.0 } else { g.get(i, j) };
-                sums[(i + 1) * w + j + 1] = sums[i * w + j + 1] + row;
+        let mut runs = vec![0.0; (n + 1) * n];
+        for len in 2..=n {
+            let (done, row) = runs.split_at_mut(len * n);
+            let (shorter, shortest) = (&done[(len - 1) * n..], &done[(len - 2) * n..(len - 1) * n]);
+            for (a, slot) in row[..n].iter_mut().enumerate() {
+                let next = (a + 1) % n;
+                *slot = shorter[a] + shorter[next] - shortest[next] + g.get(a, (a + len - 1) % n);
             }
         }
-        PairSums { n, sums }
+        RunSums { n, runs }
     }
 
-    /// Σ g over rows r0..r1 and columns c0..c1 (half-open).
-    fn rect(&self, r0: usize, r1: usize, c0: usize, c1: usize) -> f64 {
-        let w = self.n + 1;
-        self.sums[r1 * w + c1] - self.sums[r0 * w + c1] - self.sums[r1 * w + c0] + self.sums[r0 * w + c0]
-    }
-
-    /// Σ g over pairs with one edge in each of two disjoint cyclic runs of edges.
-    fn between(&self, (a, la): (usize, usize), (b, lb): (usize, usize)) -> f64 {
-        let runs = |start: usize, len: usize| {
-            let end = start + len;
-            if end <= self.n {
-                [(start, end), (0, 0)]
-            } else {
-                [(start, self.n), (0, end - self.n)]
-            }
-        };
-        let mut sum = 0.0;
-        for (r0, r1) in runs(a, la) {
-            for (c0, c1) in runs(b, lb) {
-                sum += self.rect(r0, r1, c0, c1);
-            }
-        }
-        sum
+    /// The row of runs of `len` edges, by start edge.
+    fn of_length(&self, len: usize) -> &[f64] {
+        &self.runs[len * self.n..(len + 1) * self.n]
     }
 
     /// Σ g over unordered pairs of the `len` edges starting at edge `a` (cyclic).
-    fn within(&self, a: usize, len: usize) -> f64 {
-        let n = self.n;
-        if len < 2 {
-            return 0.0;
-        }
-        if a + len <= n {
-            self.rect(a, a + len, a, a + len) / 2.0
-        } else {
-            let b = a + len - n;
-            (self.rect(a, n, a, n) + self.rect(0, b, 0, b)) / 2.0 + self.rect(a, n, 0, b)
-        }
+    fn within(&self, (a, len): (usize, usize)) -> f64 {
+        self.of_length(len)[a % self.n]
     }
 }
 
@@ -125,23 +101,33 @@ fn arc_edges(n: usize, h1: usize, h2: usize) -> (usize, usize) {
 /// ```
 pub fn find_cut(g: &Disk) -> Option<Cut> {
     let n = g.n();
-    let sums = PairSums::new(g);
-    let total = sums.within(0, n);
+    let sums = RunSums::new(g);
+    let total = sums.within((0, n));
     if total <= 0.0 {
         return None;
     }
-    let same_side = |h1: usize, h2: usize| {
-        let (a, la) = arc_edges(n, h1, h2);
-        let (b, lb) = arc_edges(n, h2, h1);
-        sums.within(a, la) + sums.within(b, lb)
-    };
+    let same_side = |h1: usize, h2: usize| sums.within(arc_edges(n, h1, h2)) + sums.within(arc_edges(n, h2, h1));
     let grid = 2 * n;
+    // Every cut {h1, h2 = h1 + span}: for one span and one parity of h1 both arcs keep their
+    // lengths and their starts advance by one edge per step, so each reads two rows in order.
+    // Ties go to the least (lower, higher) end, as a scan in that order would find.
     let mut best = (f64::INFINITY, 0, 0);
-    for h1 in 0..grid {
-        for h2 in h1 + 1..grid {
-            let s = same_side(h1, h2);
-            if s < best.0 {
-                best = (s, h1, h2);
+    for span in 1..=n {
+        for parity in 0..2 {
+            let (a0, la) = arc_edges(n, parity, parity + span);
+            let (b0, lb) = arc_edges(n, (parity + span) % grid, parity);
+            let (inside, outside) = (sums.of_length(la), sums.of_length(lb));
+            let rotated = |row: &'_ [f64], start: usize| row[start..].iter().chain(&row[..start]).copied().collect::<Vec<f64>>();
+            let (inside, outside) = (rotated(inside, a0), rotated(outside, b0));
+            for (k, s) in inside.iter().zip(&outside).map(|(i, o)| i + o).enumerate() {
+                if s <= best.0 {
+                    let h1 = 2 * k + parity;
+                    let h2 = (h1 + span) % grid;
+                    let ends = (h1.min(h2), h1.max(h2));
+                    if s < best.0 || ends < (best.1, best.2) {
+                        best = (s, ends.0, ends.1);
+                    }
+                }
             }
         }
     }
@@ -165,7 +151,9 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     let (arc_in, arc_out) = (arc_edges(n, h1, h2), arc_edges(n, h2, h1));
     let pairs = |len: usize| (len * len.saturating_sub(1) / 2) as f64;
     let same_mean = s_min / (pairs(arc_in.1) + pairs(arc_out.1)).max(1.0);
-    let cross_mean = sums.between(arc_in, arc_out) / ((arc_in.1 * arc_out.1) as f64).max(1.0);
+    let edges = |(start, len): (usize, usize)| (start..start + len).map(move |e| e % n);
+    let between: f64 = edges(arc_in).map(|i| edges(arc_out).map(|j| g.get(i, j)).sum::<f64>()).sum();
+    let cross_mean = between / ((arc_in.1 * arc_out.1) as f64).max(1.0);
     let same_to_cross = if cross_mean > 0.0 { same_mean / cross_mean } else { f64::INFINITY };
     Some(Cut { p1, p2, residual: s_min / total, same_to_cross, inside_edge: [inside(p1), inside(p2)] })
 }

@@ -15,6 +15,7 @@ use argmin::core::{CostFunction, Executor, Gradient, State};
 use argmin::solver::brent::BrentOpt;
 use argmin::solver::linesearch::MoreThuenteLineSearch;
 use argmin::solver::quasinewton::LBFGS;
+use rayon::prelude::*;
 
 use super::loss::{exact_loss, ring_cells, Cell, RingTables};
 use crate::angle::{edge, wrap_pi as wrap, wrap_tau, TAU};
@@ -93,6 +94,7 @@ pub fn fit_curves(g: &Disk) -> Vec<Curve> {
     let n = g.n();
     let tables = RingTables::new(g);
     let mut minima: Vec<(f64, f64, f64)> = (0..STARTS)
+        .into_par_iter()
         .filter_map(|m| minimise(&tables, TAU * m as f64 / STARTS as f64))
         .filter(|&(_, a1, loss)| loss < 0.0 && a1.abs() < A1_BOUND * (1.0 - 1e-3))
         .collect();

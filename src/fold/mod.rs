@@ -69,7 +69,7 @@ pub struct FoldDetection {
 }
 
 /// True when every vertex of `points` lies at one height (a cloth flat on the table).
-fn is_flat(points: &[Point]) -> bool {
+pub(crate) fn is_flat(points: &[Point]) -> bool {
     let (lo, hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)));
     hi - lo <= FLAT_HEIGHT
 }
@@ -126,12 +126,12 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
                     let (p, q) = (param_to_angle(c.p1, n), param_to_angle(c.p2, n));
                     let (fold, orientation) = orientation::orient(start, end, p, q);
                     found.orientation = Some(orientation);
-                    synth::refine(before, end, fold.map(|f| angle_to_param(f, n)), None)
+                    synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)
                 })
             } else {
-                synth::search_line(before, end)
+                synth::search_line(before, start, end)
                     .into_iter()
-                    .map(|line| synth::refine(before, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
+                    .map(|line| synth::refine(before, start, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
                     .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
                     .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch))
             };

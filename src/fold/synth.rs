@@ -39,8 +39,6 @@ pub const REACH: f64 = 1.0;
 const STEP: f64 = 0.125;
 /// Fold points closer than this many mean edge lengths give no direction.
 pub const COINCIDE_EDGES: f64 = 3.0;
-/// Probe pairs per parallel chunk.
-const CHUNK: usize = 256;
 /// Distinct arcs of the line search refined in full.
 const CANDIDATES: usize = 3;
 /// Scale of the compression of dGLI values before comparing.
@@ -90,27 +88,53 @@ impl Line {
 /// rotation by π about the horizontal line LIFT/2 above the highest vertex, so the flap's
 /// layers reverse their order and lie above everything else.
 pub fn turn_over(before: &[Point], s: [f64; 2], line: &Line) -> Vec<Point> {
-    let top = before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
-    let axis = top + LIFT / 2.0;
-    let mut out = before.to_vec();
-    for v in vertices_in_arc(before.len(), s[0], s[1]) {
-        let r = line.reflect(&before[v]);
-        out[v] = Point::new(r.x, r.y, 2.0 * axis - before[v].z);
-    }
-    out
+    Turned::new(before, s, line).state
 }
 
-/// The probe pairs and their measured end values.
+/// A synthesised state and which of its vertices the fold moved.
+struct Turned {
+    state: Vec<Point>,
+    moved: Vec<bool>,
+}
+
+impl Turned {
+    fn new(before: &[Point], s: [f64; 2], line: &Line) -> Turned {
+        let top = before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+        let axis = top + LIFT / 2.0;
+        let mut state = before.to_vec();
+        let mut moved = vec![false; before.len()];
+        for v in vertices_in_arc(before.len(), s[0], s[1]) {
+            let r = line.reflect(&before[v]);
+            state[v] = Point::new(r.x, r.y, 2.0 * axis - before[v].z);
+            moved[v] = true;
+        }
+        Turned { state, moved }
+    }
+}
+
+/// The probe pairs, their measured end values and their values in the step's start state.
 struct Probe {
     pairs: Vec<(usize, usize)>,
     measured: Vec<f64>,
+    start: Vec<f64>,
+    /// The start state lies flat: a flap turned over it is its mirror image, and the dGLI
+    /// of a pair on the flap changes sign only (see [`Probe::cost`]).
+    flat: bool,
 }
 
 impl Probe {
-    fn new(end: &Disk, s: [f64; 2]) -> Probe {
+    /// Probe `pairs`, compressed, on the start disk and the measured end disk.
+    fn of(pairs: Vec<(usize, usize)>, start: &Disk, end: &Disk, flat: bool) -> Probe {
+        let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
+        let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j))).collect();
+        Probe { pairs, measured, start, flat }
+    }
+
+    /// Probe pairs around the fold points `s`: every edge near them against a strided
+    /// sample of all edges, and sampled edges of the folded side against the rest.
+    fn around(start: &Disk, end: &Disk, s: [f64; 2], flat: bool) -> Probe {
         let n = end.n();
-        let stride = n.div_ceil(SAMPLES).max(1);
-        let sampled: Vec<usize> = (0..n).step_by(stride).collect();
+        let sampled = sampled_edges(n);
         let mut near: Vec<usize> = Vec::new();
         for p in s {
             let k = p.floor() as isize;
@@ -135,28 +159,54 @@ impl Probe {
         }
         pairs.sort_unstable();
         pairs.dedup();
-        let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
-        Probe { pairs, measured }
+        Probe::of(pairs, start, end, flat)
     }
 
-    /// Mismatch of the synthesised state `state` with the measured end disk.
-    fn cost(&self, state: &[Point]) -> f64 {
+    /// Mean mismatch of the synthesised state `turned` with the measured end disk.
+    ///
+    /// Only pairs with an edge the fold moved and one it did not need a dGLI: a pair of
+    /// unmoved edges keeps its start value, and on a flat start a pair of edges both on the
+    /// flap (turned over rigidly: a rotation by π about a horizontal line, which reverses
+    /// the vertical lift of the dGLI, i.e. the mirror image of a flat state) takes the
+    /// negated start value.
+    fn cost(&self, turned: &Turned) -> f64 {
+        let Turned { state, moved } = turned;
         let n = state.len();
-        // Fixed chunks summed in order: the same total on every run, whatever the threads.
-        let chunk = |(pairs, measured): (&[(usize, usize)], &[f64])| -> f64 {
-            pairs
-                .iter()
-                .zip(measured)
-                .map(|(&(i, j), m)| (compress(dgli_fast(&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n])) - m).abs())
-                .sum()
-        };
-        let sums: Vec<f64> = self.pairs.par_chunks(CHUNK).zip(self.measured.par_chunks(CHUNK)).map(chunk).collect();
-        sums.iter().sum()
+        let edge_moved = |e: usize| (moved[e], moved[(e + 1) % n]);
+        let total: f64 = self
+            .pairs
+            .iter()
+            .zip(&self.measured)
+            .zip(&self.start)
+            .map(|((&(i, j), m), start)| {
+                let value = match (edge_moved(i), edge_moved(j)) {
+                    ((false, false), (false, false)) => *start,
+                    ((true, true), (true, true)) if self.flat => -start,
+                    _ => compress(dgli_fast(&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n])),
+                };
+                (value - m).abs()
+            })
+            .sum();
+        total / self.pairs.len().max(1) as f64
+    }
+
+    /// Mean mismatch of the start state left as it was.
+    fn unfolded(&self) -> f64 {
+        self.start.iter().zip(&self.measured).map(|(s, m)| (s - m).abs()).sum::<f64>() / self.pairs.len().max(1) as f64
     }
 }
 
+/// asinh(v / SCALE), written out: the standard library's careful form (hypot, ln_1p) is a
+/// fifth of the cost of a probe, and the few ulps it saves do not matter to a mismatch.
 fn compress(v: f64) -> f64 {
-    (v / SCALE).asinh()
+    let a = (v / SCALE).abs();
+    let magnitude = if a < 1e150 { (a + (a * a + 1.0).sqrt()).ln() } else { (2.0 * a).ln() };
+    magnitude.copysign(v)
+}
+
+/// A strided sample of at most [`SAMPLES`] edges of `n`.
+fn sampled_edges(n: usize) -> Vec<usize> {
+    (0..n).step_by(n.div_ceil(SAMPLES).max(1)).collect()
 }
 
 /// A fold found by synthesis: the border parameters of its points and the line used.
@@ -196,56 +246,49 @@ fn mean_edge(points: &[Point]) -> f64 {
 /// coincide the direction is searched too: from `heading` (the direction of a line that
 /// gave `s`, radians) or else the best of [`DIRECTIONS`] per half turn, again over a half
 /// turn from the best start, then with the points.
-pub fn refine(before: &[Point], end: &Disk, s: [f64; 2], heading: Option<f64>) -> Synthesis {
+pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: Option<f64>) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
-    let probe = Probe::new(end, s);
-    let per_pair = 1.0 / probe.pairs.len().max(1) as f64;
-    let cost = |s: [f64; 2], phi: Option<f64>| {
-        line_of(before, s.map(|x| x.rem_euclid(nf)), phi).map_or(f64::INFINITY, |line| probe.cost(&turn_over(before, s.map(|x| x.rem_euclid(nf)), &line)) * per_pair)
+    let probe = Probe::around(start, end, s, super::is_flat(before));
+    let cost = |&(s, phi): &([f64; 2], Option<f64>)| {
+        let s = s.map(|x| x.rem_euclid(nf));
+        line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, s, &line)))
     };
-    let half_turn = |s: [f64; 2]| best_of((0..DIRECTIONS).map(|k| PI * k as f64 / DIRECTIONS as f64), |p| cost(s, Some(p)));
+    let half_turn = |s: [f64; 2]| least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect(), cost).and_then(|((_, phi), _)| phi);
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
     let coincide = (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before);
     let phi = if coincide { heading.or_else(|| half_turn(s)) } else { None };
     // Start from the best of the given points and their snaps to the vertices either side and
     // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
     let snaps = |x: f64| [x, x.floor(), x.ceil(), (2.0 * x).round() / 2.0];
-    let start = snaps(s[0])
-        .into_iter()
-        .flat_map(|a| snaps(s[1]).into_iter().map(move |b| [a, b]))
-        .map(|t| (t, cost(t, phi)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map_or(s, |(t, _)| t);
+    let starts = snaps(s[0]).into_iter().flat_map(|a| snaps(s[1]).into_iter().map(move |b| ([a, b], phi))).collect();
+    let start = least(starts, cost).map_or(s, |((t, _), _)| t);
     let phi = if coincide { half_turn(start) } else { None };
-    let mut best = (start, phi, cost(start, phi));
+    let mut best = ((start, phi), cost(&(start, phi)));
     let (mut h, mut h_phi) = (0.5, PI / DIRECTIONS as f64 / 2.0);
     while h >= STEP {
-        let mut moved = false;
-        let (centre, centre_phi) = (best.0, best.1);
+        let (centre, centre_phi) = best.0;
         let turns: &[f64] = if centre_phi.is_some() { &[-1.0, 0.0, 1.0] } else { &[0.0] };
-        for (d1, d2, dp) in [-1.0, 0.0, 1.0].iter().flat_map(|&d1| [-1.0, 0.0, 1.0].iter().flat_map(move |&d2| turns.iter().map(move |&dp| (d1, d2, dp)))) {
-            let t = [centre[0] + d1 * h, centre[1] + d2 * h];
-            if (d1, d2, dp) == (0.0, 0.0, 0.0) || (t[0] - s[0]).abs() > REACH || (t[1] - s[1]).abs() > REACH {
-                continue;
-            }
-            let p = centre_phi.map(|p| p + dp * h_phi);
-            let c = cost(t, p);
-            if c < best.2 {
-                (best, moved) = ((t, p, c), true);
-            }
-        }
-        if !moved {
-            (h, h_phi) = (h / 2.0, h_phi / 2.0);
+        let neighbours = [-1.0, 0.0, 1.0]
+            .iter()
+            .flat_map(|&d1| [-1.0, 0.0, 1.0].iter().flat_map(move |&d2| turns.iter().map(move |&dp| (d1, d2, dp))))
+            .filter(|&step| step != (0.0, 0.0, 0.0))
+            .map(|(d1, d2, dp)| ([centre[0] + d1 * h, centre[1] + d2 * h], centre_phi.map(|p| p + dp * h_phi)))
+            .filter(|(t, _)| (t[0] - s[0]).abs() <= REACH && (t[1] - s[1]).abs() <= REACH)
+            .collect();
+        match least(neighbours, cost) {
+            Some(better) if better.1 < best.1 => best = better,
+            _ => (h, h_phi) = (h / 2.0, h_phi / 2.0),
         }
     }
-    let unfolded_mismatch = probe.cost(before) * per_pair;
-    Synthesis { s: best.0.map(|x| x.rem_euclid(nf)), direction: best.1.map(|p| [p.cos(), p.sin()]), mismatch: best.2, unfolded_mismatch }
+    let ((s, phi), mismatch) = best;
+    Synthesis { s: s.map(|x| x.rem_euclid(nf)), direction: phi.map(|p| [p.cos(), p.sin()]), mismatch, unfolded_mismatch: probe.unfolded() }
 }
 
-/// The argument of least cost among `candidates`.
-fn best_of(candidates: impl Iterator<Item = f64>, cost: impl Fn(f64) -> f64) -> Option<f64> {
-    candidates.map(|x| (x, cost(x))).min_by(|a, b| a.1.total_cmp(&b.1)).map(|(x, _)| x)
+/// The candidate of least cost, the first on a tie; costs are computed in parallel.
+fn least<T: Send + Sync>(candidates: Vec<T>, cost: impl Fn(&T) -> f64 + Sync) -> Option<(T, f64)> {
+    let costs: Vec<f64> = candidates.par_iter().map(&cost).collect();
+    candidates.into_iter().zip(costs).min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// A fold of a stacked start state, found by turning it over every line in turn.
@@ -260,15 +303,12 @@ fn best_of(candidates: impl Iterator<Item = f64>, cost: impl Fn(f64) -> f64) -> 
 /// where the border crosses its line, and the line's direction. None of them when no line
 /// beats leaving the state as it was by [`MAX_MISMATCH_RATIO`]. The exact optimum is
 /// needle sharp on stacked layers, so the caller refines each ([`refine`]).
-pub fn search_line(before: &[Point], end: &Disk) -> Vec<Synthesis> {
+pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis> {
     let n = before.len();
-    let stride = n.div_ceil(SAMPLES).max(1);
-    let sampled: Vec<usize> = (0..n).step_by(stride).collect();
-    let pairs: Vec<(usize, usize)> = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
-    let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
-    let probe = Probe { pairs, measured };
-    let per_pair = 1.0 / probe.pairs.len().max(1) as f64;
-    let unfolded = probe.cost(before) * per_pair;
+    let sampled = sampled_edges(n);
+    let pairs = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
+    let probe = Probe::of(pairs, start, end, false);
+    let unfolded = probe.unfolded();
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
     let step = mean_edge(before).max(reach / 200.0);
     let offsets = (2.0 * reach / step).ceil() as usize;
@@ -282,7 +322,7 @@ pub fn search_line(before: &[Point], end: &Disk) -> Vec<Synthesis> {
             let whole = arcs.len() == 1;
             arcs.into_iter().map(move |s| (s, phi, line, whole))
         })
-        .map(|(s, phi, line, whole)| (s, phi, probe.cost(&turn_over(before, s, &line)) * per_pair, whole))
+        .map(|(s, phi, line, whole)| (s, phi, probe.cost(&Turned::new(before, s, &line)), whole))
         .collect();
     found.sort_by(|a, b| a.2.total_cmp(&b.2));
     // The best few distinct arcs (by their ends, to the vertex), among lines that turn all
