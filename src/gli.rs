@@ -88,11 +88,27 @@ pub fn dgli(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
     }
 }
 
-/// Van Oosterom–Strackee: the solid angle Ω of the spherical triangle (u1, u2, u3) of unit
-/// vectors is 2·arg(X + iY) with Y = u1·(u2×u3), X = 1 + u1·u2 + u2·u3 + u3·u1.
+/// A direction given by an unnormalised vector and its length (1 for the zero vector, whose
+/// direction counts as zero, as a unit vector would).
+struct Ray {
+    v: Vector3<f64>,
+    len: f64,
+}
+
+impl Ray {
+    #[inline(always)]
+    fn new(v: Vector3<f64>) -> Ray {
+        let len = v.norm();
+        Ray { v, len: if len > 0.0 { len } else { 1.0 } }
+    }
+}
+
+/// Van Oosterom–Strackee: the solid angle Ω of the spherical triangle of the directions
+/// (a, b, c) is 2·arg(X + iY) with Y = a·(b×c), X = |a||b||c| + (a·b)|c| + (b·c)|a| + (c·a)|b|
+/// (the unit-vector form scaled by |a||b||c| > 0, which leaves the argument: no division).
 #[inline(always)]
-fn triangle(u1: &Vector3<f64>, u2: &Vector3<f64>, u3: &Vector3<f64>) -> (f64, f64) {
-    (1.0 + u1.dot(u2) + u2.dot(u3) + u3.dot(u1), u1.dot(&u2.cross(u3)))
+fn triangle(a: &Ray, b: &Ray, c: &Ray) -> (f64, f64) {
+    (a.len * b.len * c.len + a.v.dot(&b.v) * c.len + b.v.dot(&c.v) * a.len + c.v.dot(&a.v) * b.len, a.v.dot(&b.v.cross(&c.v)))
 }
 
 /// Complex product: arguments add.
@@ -104,8 +120,24 @@ fn mul((a, b): (f64, f64), (c, d): (f64, f64)) -> (f64, f64) {
 /// The spherical quadrilateral (u1, u2, u3, u4) as two triangles, as a complex number whose
 /// argument is half its signed solid angle.
 #[inline(always)]
-fn quadrilateral(u1: &Vector3<f64>, u2: &Vector3<f64>, u3: &Vector3<f64>, u4: &Vector3<f64>) -> (f64, f64) {
+fn quadrilateral(u1: &Ray, u2: &Ray, u3: &Ray, u4: &Ray) -> (f64, f64) {
     mul(triangle(u1, u2, u3), triangle(u1, u3, u4))
+}
+
+/// atan2(y, x), by its Taylor series where the angle is small (|y| ≤ x/8, where the series
+/// to t¹⁵ leaves out less than 1e-15 relative), which is nearly every cell of a disk: the lift ε
+/// changes the solid angle little. libm's atan2 was a third of the cost of a disk.
+#[inline(always)]
+fn atan2_small(y: f64, x: f64) -> f64 {
+    if x > 0.0 && y.abs() <= 0.125 * x {
+        let t = y / x;
+        let t2 = t * t;
+        // atan t = t·Σ (−t²)^k / (2k + 1), Horner from k = 7.
+        const C: [f64; 8] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0, -1.0 / 15.0];
+        t * C.iter().rev().fold(0.0, |acc, c| acc * t2 + c)
+    } else {
+        y.atan2(x)
+    }
 }
 
 /// [`dgli`] computed the fast way, as used for whole disks.
@@ -122,13 +154,13 @@ pub fn dgli_fast(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
     let lift = Vector3::new(0.0, 0.0, EPSILON);
     let (b1, d1) = (b + lift, d + lift);
     let (b2, d2) = (b1 + lift, d1 + lift);
-    let ca = unit(c - a);
-    let db = unit(d - b);
-    let q1 = quadrilateral(&ca, &unit(d1 - a), &db, &unit(c - b1));
-    let q2 = quadrilateral(&ca, &unit(d2 - a), &db, &unit(c - b2));
+    let ca = Ray::new(c - a);
+    let db = Ray::new(d - b);
+    let q1 = quadrilateral(&ca, &Ray::new(d1 - a), &db, &Ray::new(c - b1));
+    let q2 = quadrilateral(&ca, &Ray::new(d2 - a), &db, &Ray::new(c - b2));
     // arg(q2 · conj(q1)) = (G(2ε) − G(ε)) / 2, with Levitt's sign opposite to the triangles'.
     let (re, im) = mul(q2, (q1.0, -q1.1));
-    let value = -2.0 * im.atan2(re) / EPSILON;
+    let value = -2.0 * atan2_small(im, re) / EPSILON;
     if value.is_finite() {
         value
     } else {
@@ -161,6 +193,18 @@ mod tests {
             worst = worst.max((slow - fast).abs() / (1.0 + slow.abs()));
         }
         assert!(worst < 1e-6, "worst relative difference {worst}");
+    }
+
+    #[test]
+    fn the_small_angle_series_is_atan2() {
+        for k in -1000..=1000 {
+            let y = k as f64 * 1.3e-4;
+            for x in [1e-9, 0.5, 1.0, 7.0] {
+                let (fast, exact) = (atan2_small(y * x, x), (y * x).atan2(x));
+                assert!((fast - exact).abs() <= 1e-15 * exact.abs().max(1e-300), "{y} {x}: {fast} vs {exact}");
+            }
+        }
+        assert_eq!(atan2_small(1.0, -1.0), 1.0f64.atan2(-1.0));
     }
 
     #[test]
