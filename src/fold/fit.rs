@@ -9,6 +9,7 @@
 //!    d ≤ [`RIM_RINGS`] near f, a1 = 0) with Brent's method, since the straight line
 //!    extrapolated to the rim is biased.
 
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 use argmin::core::{CostFunction, Executor, Gradient, State};
@@ -45,13 +46,34 @@ pub struct Curve {
     pub rim: f64,
 }
 
-struct Problem<'a>(&'a RingTables);
+/// The loss in the solver's parameters (a0, u) with a1 = π·sin u, and its gradient.
+struct Problem<'a> {
+    tables: &'a RingTables,
+    /// The last point evaluated: the line search asks for the cost and then the gradient of
+    /// the same point, and one table pass gives both.
+    last: RefCell<Option<([f64; 2], f64, [f64; 2])>>,
+}
+
+impl Problem<'_> {
+    fn at(&self, x: &[f64]) -> (f64, [f64; 2]) {
+        let key = [x[0], x[1]];
+        if let Some((at, loss, gradient)) = *self.last.borrow() {
+            if at == key {
+                return (loss, gradient);
+            }
+        }
+        let (loss, g) = self.tables.loss_and_gradient(x[0], A1_BOUND * x[1].sin());
+        let gradient = [g[0], g[1] * A1_BOUND * x[1].cos()];
+        *self.last.borrow_mut() = Some((key, loss, gradient));
+        (loss, gradient)
+    }
+}
 
 impl CostFunction for Problem<'_> {
     type Param = Vec<f64>;
     type Output = f64;
     fn cost(&self, x: &Vec<f64>) -> Result<f64, argmin::core::Error> {
-        Ok(self.0.loss_and_gradient(x[0], A1_BOUND * x[1].sin()).0)
+        Ok(self.at(x).0)
     }
 }
 
@@ -59,15 +81,14 @@ impl Gradient for Problem<'_> {
     type Param = Vec<f64>;
     type Gradient = Vec<f64>;
     fn gradient(&self, x: &Vec<f64>) -> Result<Vec<f64>, argmin::core::Error> {
-        let (_, g) = self.0.loss_and_gradient(x[0], A1_BOUND * x[1].sin());
-        Ok(vec![g[0], g[1] * A1_BOUND * x[1].cos()])
+        Ok(self.at(x).1.to_vec())
     }
 }
 
 /// Minimise the tabulated loss from one starting line; `None` when the solver fails.
 fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
     let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7).with_tolerance_grad(1e-9).ok()?.with_tolerance_cost(1e-12).ok()?;
-    let result = Executor::new(Problem(tables), solver)
+    let result = Executor::new(Problem { tables, last: RefCell::new(None) }, solver)
         .configure(|state| state.param(vec![a0, 0.0]).max_iters(200))
         .timer(false)
         .run()
