@@ -7,6 +7,10 @@
 //! θ + π. The sectors are rasterised by inverse mapping — each pixel finds its (ring, sector)
 //! from its polar coordinates — which is exact, leaves no seams between neighbouring
 //! sectors and costs O(pixels) whatever N is; the rim is anti-aliased by pixel coverage.
+//! Which cell each pixel shows depends on the canvas size and N alone, as do the rim
+//! outline, its angle marks and the ring ruler: they are worked out once per (size, N) and
+//! kept (`Template`), so a picture costs a table read per disk pixel, the replayed blends
+//! of those guides, the colour bar, a few labels and the PNG encoding.
 //! Over a diff disk the fitted fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
 //! coordinates, with the fold points marked on the rim: only the curves of the fold the
 //! step reports ([`fold_curves`]), and only on the disk of the two frames they were fitted
@@ -23,14 +27,18 @@
 //! assert_eq!((x.round(), y.round()), (layout.cx.round(), layout.cy.round()));
 //! ```
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
+use std::sync::{Arc, Mutex};
 
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::colour::{Ramp, Scale};
+use super::raster::Recording;
+use super::sector_map::SectorMap;
 use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
 use crate::angle;
-use crate::disk::{condensed_index, Disk};
+use crate::cache::Lru;
+use crate::disk::Disk;
 use crate::fold::{Curve, FoldDetection};
 use crate::error::Result;
 
@@ -126,12 +134,16 @@ pub fn fold_curves(detection: &FoldDetection, n: usize) -> Vec<&Curve> {
 /// curves on top.
 pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, scale: &Scale, marks: Option<&Marks>) -> Result<()> {
     let layout = Layout::of(canvas.width, canvas.height);
-    paint_sectors(canvas, disk, ramp, scale, &layout);
+    // Most rows of a disk repeat the row above: with the Up filter they encode as runs of
+    // zeros, about 30 % faster and 8 % smaller than with Sub (480 px, N = 76).
+    canvas.png_filter = png::FilterType::Up;
+    let template = Template::of(canvas.width, canvas.height, disk.n());
+    let colours: Vec<[u8; 3]> = disk.values().iter().map(|&v| ramp.colour(scale.squash(v))).collect();
+    template.sectors.paint(canvas, &colours);
     let t_range = bar_range(ramp, scale);
     paint_bar(canvas, ramp, t_range, &layout);
     canvas.title(title);
-    draw_frame(canvas, &layout);
-    draw_ring_ruler(canvas, &layout, disk.layers());
+    canvas.replay(&template.guides);
     draw_bar_ticks(canvas, &layout, scale, t_range);
     draw_bar_notes(canvas, &layout, scale, disk.n());
     if let Some(marks) = marks {
@@ -140,29 +152,45 @@ pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, sc
     Ok(())
 }
 
-/// Fill every pixel of the disk with its sector's colour.
-fn paint_sectors(canvas: &mut Canvas, disk: &Disk, ramp: Ramp, scale: &Scale, layout: &Layout) {
-    let n = disk.n();
-    let cell_colours: Vec<[u8; 3]> = disk.values().iter().map(|&v| ramp.colour(scale.squash(v))).collect();
-    let colour_of = |d: usize, a: usize| {
-        let (i, j) = (a, (a + d) % n);
-        cell_colours[condensed_index(n, i.min(j), i.max(j))]
-    };
-    let Layout { cx, cy, radius, .. } = *layout;
-    let y_range = ((cy - radius - 1.0).max(0.0) as u32)..((cy + radius + 2.0).min(canvas.height as f64) as u32);
-    let x_range = ((cx - radius - 1.0).max(0.0) as u32)..((cx + radius + 2.0).min(canvas.width as f64) as u32);
-    for y in y_range {
-        for x in x_range.clone() {
-            let (dx, dy) = (x as f64 + 0.5 - cx, cy - (y as f64 + 0.5));
-            let dist = dx.hypot(dy);
-            // Fraction of the pixel inside the rim, for a smooth edge.
-            let coverage = (radius + 0.5 - dist).clamp(0.0, 1.0);
-            if coverage == 0.0 {
-                continue;
-            }
-            let (d, a) = sector_at(n, (dist / radius).min(1.0), dy.atan2(dx).rem_euclid(TAU));
-            canvas.blend(x as i64, y as i64, colour_of(d, a), coverage);
+/// The parts of a disk picture that depend on the canvas size and N alone, kept for the
+/// next picture of that size and N: an animation or the web app's `/api/disk` draws many.
+#[derive(Debug, PartialEq)]
+struct Template {
+    /// Which cell each disk pixel shows.
+    sectors: SectorMap,
+    /// The rim outline and its angle marks, and the ring ruler.
+    guides: Recording,
+}
+
+/// Most templates kept.
+const KEPT_TEMPLATES: usize = 16;
+/// Most bytes the kept templates weigh in all: a 480 px template weighs about 0.5 MB, a
+/// 2048 px one about 7 MB.
+const KEPT_BYTES: usize = 32 << 20;
+
+impl Template {
+    /// The template of a `width`×`height` canvas for N = `n`, from the kept ones if it is there.
+    fn of(width: u32, height: u32, n: usize) -> Arc<Template> {
+        static KEPT: Mutex<Option<Lru<Arc<Template>>>> = Mutex::new(None);
+        let key = format!("{width}x{height}/{n}");
+        let kept = || KEPT.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(template) = kept().as_mut().and_then(|templates| templates.get(&key)) {
+            return template;
         }
+        // Made outside the lock: two threads may make the same template, neither waits.
+        let template = Arc::new(Template::new(width, height, n));
+        let bytes = template.sectors.bytes() + template.guides.bytes();
+        kept().get_or_insert_with(|| Lru::new(KEPT_TEMPLATES, KEPT_BYTES)).insert(key, template.clone(), bytes);
+        template
+    }
+
+    fn new(width: u32, height: u32, n: usize) -> Template {
+        let layout = Layout::of(width, height);
+        let guides = Canvas::record(width, height, |canvas| {
+            draw_frame(canvas, &layout);
+            draw_ring_ruler(canvas, &layout, n / 2);
+        });
+        Template { sectors: SectorMap::new(width, height, n), guides }
     }
 }
 
@@ -309,7 +337,7 @@ mod tests {
     use super::super::tests::{colours, decode, folded_square, preview};
     use super::super::{disk_png, render_png, Picture};
     use super::*;
-    use crate::disk::position;
+    use crate::disk::{condensed_index, position};
 
     /// The colour of the pixel at polar point (r, θ) of a decoded picture.
     fn sample(rgb: &[u8], width: u32, layout: &Layout, r: f64, theta: f64) -> [u8; 3] {
@@ -350,6 +378,17 @@ mod tests {
         assert_eq!(fold_curves(&detection, n).len(), 1);
         detection.fold = None;
         assert!(fold_curves(&detection, n).is_empty());
+    }
+
+    #[test]
+    fn templates_are_kept_and_shared() {
+        let a = Template::of(77, 66, 10);
+        assert!(Arc::ptr_eq(&a, &Template::of(77, 66, 10)), "the second call finds the first template");
+        assert_eq!(*a, Template::new(77, 66, 10));
+        assert!(!Arc::ptr_eq(&a, &Template::of(77, 66, 12)));
+        // The largest canvas's template fits in the budget, so every template can be kept.
+        let largest = Template::new(super::super::MAX_SIZE, super::super::MAX_SIZE, 4);
+        assert!(largest.sectors.bytes() + largest.guides.bytes() < KEPT_BYTES / 2);
     }
 
     #[test]

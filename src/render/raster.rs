@@ -7,6 +7,10 @@
 //!   the distance from the pixel centre to the polyline; coverage is the maximum over the
 //!   polyline's segments, so joints are not painted twice.
 //! - Text is laid out with the font's advances and kerning and rasterised by `ab_glyph`.
+//! - Parts drawn alike on many pictures (a disk's rim and ruler, for one size and N) can be
+//!   drawn once on a recording canvas (`Canvas::record`) and replayed on each picture
+//!   (`Canvas::replay`): the same blends in the same order give the same pixels, at the
+//!   cost of the blends alone.
 //!
 //! ```
 //! use close::render::raster::text_width;
@@ -49,15 +53,49 @@ fn layout(font: &FontRef<'static>, text: &str, size: f64) -> (Vec<(f32, char)>, 
     (glyphs, caret as f64)
 }
 
+/// The blends strokes and text made on a recording canvas: (x, y, colour, weight in (0, 1]).
+#[derive(Debug, Default, PartialEq)]
+pub(crate) struct Recording(Vec<(u32, u32, [u8; 3], f64)>);
+
+impl Recording {
+    /// Bytes the recording holds.
+    pub(crate) fn bytes(&self) -> usize {
+        size_of_val(self.0.as_slice())
+    }
+}
+
+/// `colour` over `pixel` with weight `alpha` (≤ 1).
+fn mix(pixel: &mut [u8], colour: [u8; 3], alpha: f64) {
+    for (p, c) in pixel.iter_mut().zip(colour) {
+        *p = (*p as f64 * (1.0 - alpha) + c as f64 * alpha).round() as u8;
+    }
+}
+
 impl Canvas {
     /// Blend `colour` into pixel (x, y) with weight `alpha`; pixels off the canvas are skipped.
     pub(crate) fn blend(&mut self, x: i64, y: i64, colour: [u8; 3], alpha: f64) {
         if x < 0 || y < 0 || x >= self.width as i64 || y >= self.height as i64 || alpha <= 0.0 {
             return;
         }
-        let alpha = alpha.min(1.0);
-        for (p, c) in self.pixel_mut(x as u32, y as u32).iter_mut().zip(colour) {
-            *p = (*p as f64 * (1.0 - alpha) + c as f64 * alpha).round() as u8;
+        let (x, y, alpha) = (x as u32, y as u32, alpha.min(1.0));
+        match &mut self.recording {
+            Some(Recording(blends)) => blends.push((x, y, colour, alpha)),
+            None => mix(self.pixel_mut(x, y), colour, alpha),
+        }
+    }
+
+    /// The blends `draw` makes with strokes and text on a `width`×`height` canvas (a
+    /// canvas without pixels: `draw` must not touch them otherwise).
+    pub(crate) fn record(width: u32, height: u32, draw: impl FnOnce(&mut Canvas)) -> Recording {
+        let mut canvas = Canvas { width, height, rgb: Vec::new(), png_filter: png::FilterType::Sub, recording: Some(Recording::default()) };
+        draw(&mut canvas);
+        canvas.recording.unwrap_or_default()
+    }
+
+    /// Make the blends of `recording` (recorded at this canvas's size) again, in order.
+    pub(crate) fn replay(&mut self, recording: &Recording) {
+        for &(x, y, colour, alpha) in &recording.0 {
+            mix(self.pixel_mut(x, y), colour, alpha);
         }
     }
 
@@ -78,6 +116,9 @@ impl Canvas {
         }
         let stride = (bx1 - bx0) as usize;
         let mut coverage = vec![0.0f64; stride * (by1 - by0) as usize];
+        // The pixels some segment reaches, each once: a ring reaches a few thousand of the
+        // hundred thousand in its bounding box, so only these are blended.
+        let mut reached = Vec::new();
         let segments = points.windows(2).map(|w| (w[0], w[1])).chain((points.len() == 1).then_some((first, first)));
         for (a, b) in segments {
             let sx0 = clip(a.0.min(b.0) - reach, self.width).max(bx0);
@@ -87,13 +128,18 @@ impl Canvas {
             for y in sy0..sy1 {
                 for x in sx0..sx1 {
                     let c = (half + 0.5 - distance_to_segment((x as f64 + 0.5, y as f64 + 0.5), a, b)).clamp(0.0, 1.0);
-                    let slot = &mut coverage[(y - by0) as usize * stride + (x - bx0) as usize];
-                    *slot = slot.max(c);
+                    let k = (y - by0) as usize * stride + (x - bx0) as usize;
+                    if c > coverage[k] {
+                        if coverage[k] == 0.0 {
+                            reached.push(k);
+                        }
+                        coverage[k] = c;
+                    }
                 }
             }
         }
-        for (k, &c) in coverage.iter().enumerate() {
-            self.blend(bx0 + (k % stride) as i64, by0 + (k / stride) as i64, colour, c);
+        for k in reached {
+            self.blend(bx0 + (k % stride) as i64, by0 + (k / stride) as i64, colour, coverage[k]);
         }
     }
 
@@ -174,6 +220,30 @@ mod tests {
         canvas.stroke(&[(-50.0, -50.0), (500.0, 20.0)], 3.0, [0, 0, 0]);
         canvas.disc((99.0, 99.0), 10.0, [255, 0, 0]);
         assert_eq!(pixel(&mut canvas, 95, 95), [255, 0, 0]);
+    }
+
+    #[test]
+    fn a_replayed_recording_gives_the_pixels_drawn() {
+        let guides = |canvas: &mut Canvas| {
+            canvas.ring((50.0, 40.0), 30.0, 1.5, [90, 90, 90]);
+            canvas.stroke(&[(0.0, 0.0), (99.0, 79.0), (99.0, 0.0)], 2.0, [200, 0, 0]);
+            canvas.text("π/2", (50.0, 40.0), 14.0, [0, 0, 0], (HPos::Center, VPos::Center));
+        };
+        let under = |canvas: &mut Canvas| {
+            for y in 0..80 {
+                for x in 0..100 {
+                    canvas.pixel_mut(x, y).copy_from_slice(&[(x * 2) as u8, (y * 3) as u8, 128]);
+                }
+            }
+        };
+        let (mut drawn, mut replayed) = (Canvas::new(100, 80).unwrap(), Canvas::new(100, 80).unwrap());
+        under(&mut drawn);
+        guides(&mut drawn);
+        under(&mut replayed);
+        let recording = Canvas::record(100, 80, guides);
+        assert!(recording.bytes() > 0);
+        replayed.replay(&recording);
+        assert!(drawn.rgb == replayed.rgb, "replaying differs from drawing");
     }
 
     #[test]
