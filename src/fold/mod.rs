@@ -106,35 +106,27 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
     if g.values().iter().all(|&v| v <= FLAT_DIFF) {
         return found;
     }
-    found.curves = fit::fit_curves(&g);
     let n = g.n();
-    let flat = is_flat(before);
-    found.cut = cut::find_cut(&g);
-    match method {
-        FoldMethod::Paper => {
+    // The curves are fitted while the cut is searched and refined: both are independent and
+    // neither fills both cores alone.
+    let (curves, (cut, by_cut)) = rayon::join(
+        || fit::fit_curves(&g),
+        || {
+            let cut = cut::find_cut(&g);
+            (cut, (method == FoldMethod::Cut).then(|| fold_by_cut(before, start, end, cut)))
+        },
+    );
+    (found.curves, found.cut) = (curves, cut);
+    match by_cut {
+        None => {
             if let [first, second, ..] = found.curves[..] {
                 let (fold, orientation) = orientation::orient(start, end, first.rim, second.rim);
                 found.fold = Some(fold);
                 found.orientation = Some(orientation);
             }
         }
-        FoldMethod::Cut => {
-            // A flat start: the cut, oriented, refined; a stacked one: the best of the lines
-            // turned over, each refined.
-            let refined = if flat {
-                found.cut.filter(|c| c.same_to_cross <= MAX_SAME_TO_CROSS).map(|c| {
-                    let (p, q) = (param_to_angle(c.p1, n), param_to_angle(c.p2, n));
-                    let (fold, orientation) = orientation::orient(start, end, p, q);
-                    found.orientation = Some(orientation);
-                    synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)
-                })
-            } else {
-                synth::search_line(before, start, end)
-                    .into_iter()
-                    .map(|line| synth::refine(before, start, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
-                    .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
-                    .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch))
-            };
+        Some((refined, orientation)) => {
+            found.orientation = orientation;
             if let Some(refined) = refined {
                 found.fold = Some(refined.s.map(|s| wrap_tau(param_to_angle(s, n))));
                 found.synthesis = Some(refined);
@@ -142,6 +134,27 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
         }
     }
     found
+}
+
+/// [`FoldMethod::Cut`]: on a flat start the cut, oriented, refined; on a stacked one the
+/// best of the lines turned over, each refined. The orientation is `None` on a stacked start.
+fn fold_by_cut(before: &[Point], start: &Disk, end: &Disk, cut: Option<Cut>) -> (Option<Synthesis>, Option<Orientation>) {
+    let n = start.n();
+    if is_flat(before) {
+        let Some(cut) = cut.filter(|c| c.same_to_cross <= MAX_SAME_TO_CROSS) else {
+            return (None, None);
+        };
+        let (p, q) = (param_to_angle(cut.p1, n), param_to_angle(cut.p2, n));
+        let (fold, orientation) = orientation::orient(start, end, p, q);
+        (Some(synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)), Some(orientation))
+    } else {
+        let refined = synth::search_line(before, start, end)
+            .into_iter()
+            .map(|line| synth::refine(before, start, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
+            .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
+            .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch));
+        (refined, None)
+    }
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@
 //! in the step's start frame (a second fold through two stacked layers), they do not give a
 //! direction, so the line is the midpoint of the two points and a searched direction.
 
+use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
@@ -250,21 +251,23 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
     let n = before.len();
     let nf = n as f64;
     let probe = Probe::around(start, end, s, super::is_flat(before));
-    let cost = |&(s, phi): &([f64; 2], Option<f64>)| {
+    let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
         line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, s, &line)))
+    });
+    let half_turn = |search: &mut Search<_>, s: [f64; 2]| {
+        search.least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect()).and_then(|((_, phi), _)| phi)
     };
-    let half_turn = |s: [f64; 2]| least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect(), cost).and_then(|((_, phi), _)| phi);
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
     let coincide = (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before);
-    let phi = if coincide { heading.or_else(|| half_turn(s)) } else { None };
+    let phi = if coincide { heading.or_else(|| half_turn(&mut search, s)) } else { None };
     // Start from the best of the given points and their snaps to the vertices either side and
     // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
     let snaps = |x: f64| [x, x.floor(), x.ceil(), (2.0 * x).round() / 2.0];
     let starts = snaps(s[0]).into_iter().flat_map(|a| snaps(s[1]).into_iter().map(move |b| ([a, b], phi))).collect();
-    let start = least(starts, cost).map_or(s, |((t, _), _)| t);
-    let phi = if coincide { half_turn(start) } else { None };
-    let mut best = ((start, phi), cost(&(start, phi)));
+    let start = search.least(starts).map_or(s, |((t, _), _)| t);
+    let phi = if coincide { half_turn(&mut search, start) } else { None };
+    let mut best = search.least(vec![(start, phi)]).unwrap_or(((start, phi), f64::INFINITY));
     let (mut h, mut h_phi) = (0.5, PI / DIRECTIONS as f64 / 2.0);
     while h >= STEP {
         let (centre, centre_phi) = best.0;
@@ -276,7 +279,7 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
             .map(|(d1, d2, dp)| ([centre[0] + d1 * h, centre[1] + d2 * h], centre_phi.map(|p| p + dp * h_phi)))
             .filter(|(t, _)| (t[0] - s[0]).abs() <= REACH && (t[1] - s[1]).abs() <= REACH)
             .collect();
-        match least(neighbours, cost) {
+        match search.least(neighbours) {
             Some(better) if better.1 < best.1 => best = better,
             _ => (h, h_phi) = (h / 2.0, h_phi / 2.0),
         }
@@ -285,10 +288,34 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
     Synthesis { s: s.map(|x| x.rem_euclid(nf)), direction: phi.map(|p| [p.cos(), p.sin()]), mismatch, unfolded_mismatch: probe.unfolded() }
 }
 
-/// The candidate of least cost, the first on a tie; costs are computed in parallel.
-fn least<T: Send + Sync>(candidates: Vec<T>, cost: impl Fn(&T) -> f64 + Sync) -> Option<(T, f64)> {
-    let costs: Vec<f64> = candidates.par_iter().map(&cost).collect();
-    candidates.into_iter().zip(costs).min_by(|a, b| a.1.total_cmp(&b.1))
+/// Fold points (border parameters) and, when searched, the line's direction.
+type Candidate = ([f64; 2], Option<f64>);
+
+/// The costs of candidates, each computed once (a pattern search revisits its neighbours),
+/// in parallel.
+struct Search<F> {
+    cost: F,
+    known: HashMap<[u64; 3], f64>,
+}
+
+impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
+    fn new(cost: F) -> Self {
+        Search { cost, known: HashMap::new() }
+    }
+
+    fn key(&(s, phi): &Candidate) -> [u64; 3] {
+        [s[0].to_bits(), s[1].to_bits(), phi.map_or(u64::MAX, f64::to_bits)]
+    }
+
+    /// The candidate of least cost, the first on a tie.
+    fn least(&mut self, candidates: Vec<Candidate>) -> Option<(Candidate, f64)> {
+        let mut fresh: Vec<&Candidate> = candidates.iter().filter(|c| !self.known.contains_key(&Self::key(c))).collect();
+        fresh.sort_by_key(|c| Self::key(c));
+        fresh.dedup_by_key(|c| Self::key(c));
+        let costs: Vec<f64> = fresh.par_iter().map(|c| (self.cost)(c)).collect();
+        self.known.extend(fresh.iter().map(|c| Self::key(c)).zip(costs));
+        candidates.into_iter().map(|c| (c, self.known[&Self::key(&c)])).min_by(|a, b| a.1.total_cmp(&b.1))
+    }
 }
 
 /// A fold of a stacked start state, found by turning it over every line in turn.
