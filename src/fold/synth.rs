@@ -49,6 +49,9 @@ const NEAR: usize = 3;
 /// Most probe edges sampled along the whole border (the cost per candidate is bounded
 /// whatever N; half as many lose a third of the accuracy on the physics folds).
 const SAMPLES: usize = 48;
+/// Probe edges of the line search's screen, all pairs of them: a quarter of the pairs of
+/// [`SAMPLES`] ranks lines as well (its candidates are refined with the full probe).
+const SCREEN_SAMPLES: usize = 24;
 /// Directions per half turn tried when the fold points coincide or the line is searched.
 const DIRECTIONS: usize = 36;
 /// A stacked step whose best line does not bring the mismatch below this share of the
@@ -118,24 +121,27 @@ struct Probe {
     pairs: Vec<(usize, usize)>,
     measured: Vec<f64>,
     start: Vec<f64>,
-    /// The start state lies flat: a flap turned over it is its mirror image, and the dGLI
-    /// of a pair on the flap changes sign only (see [`Probe::cost`]).
-    flat: bool,
+    /// A pair of edges both on the flap takes the negated start value instead of a dGLI.
+    /// Turning the flap over is a rotation by π about a horizontal line, which reverses the
+    /// vertical lift of the dGLI: on a flat start the result is the mirror image of the start
+    /// and the negation is exact; on a stacked one it holds to first order in ε, which is
+    /// close enough to screen lines ([`search_line`]) but not to refine them.
+    flap_negates: bool,
 }
 
 impl Probe {
     /// Probe `pairs`, compressed, on the start disk and the measured end disk.
-    fn of(pairs: Vec<(usize, usize)>, start: &Disk, end: &Disk, flat: bool) -> Probe {
+    fn of(pairs: Vec<(usize, usize)>, start: &Disk, end: &Disk, flap_negates: bool) -> Probe {
         let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
         let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j))).collect();
-        Probe { pairs, measured, start, flat }
+        Probe { pairs, measured, start, flap_negates }
     }
 
     /// Probe pairs around the fold points `s`: every edge near them against a strided
     /// sample of all edges, and sampled edges of the folded side against the rest.
-    fn around(start: &Disk, end: &Disk, s: [f64; 2], flat: bool) -> Probe {
+    fn around(start: &Disk, end: &Disk, s: [f64; 2], flap_negates: bool) -> Probe {
         let n = end.n();
-        let sampled = sampled_edges(n);
+        let sampled = sampled_edges(n, SAMPLES);
         let mut near: Vec<usize> = Vec::new();
         for p in s {
             let k = p.floor() as isize;
@@ -160,16 +166,14 @@ impl Probe {
         }
         pairs.sort_unstable();
         pairs.dedup();
-        Probe::of(pairs, start, end, flat)
+        Probe::of(pairs, start, end, flap_negates)
     }
 
     /// Mean mismatch of the synthesised state `turned` with the measured end disk.
     ///
     /// Only pairs with an edge the fold moved and one it did not need a dGLI: a pair of
-    /// unmoved edges keeps its start value, and on a flat start a pair of edges both on the
-    /// flap (turned over rigidly: a rotation by π about a horizontal line, which reverses
-    /// the vertical lift of the dGLI, i.e. the mirror image of a flat state) takes the
-    /// negated start value.
+    /// unmoved edges keeps its start value, and a pair on the flap may take the negated one
+    /// (see [`Probe::flap_negates`]).
     fn cost(&self, turned: &Turned) -> f64 {
         let Turned { state, moved } = turned;
         let n = state.len();
@@ -182,7 +186,7 @@ impl Probe {
             .map(|((&(i, j), m), start)| {
                 let value = match (edge_moved(i), edge_moved(j)) {
                     ((false, false), (false, false)) => *start,
-                    ((true, true), (true, true)) if self.flat => -start,
+                    ((true, true), (true, true)) if self.flap_negates => -start,
                     _ => compress(dgli_fast(&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n])),
                 };
                 (value - m).abs()
@@ -205,9 +209,9 @@ fn compress(v: f64) -> f64 {
     magnitude.copysign(v)
 }
 
-/// A strided sample of at most [`SAMPLES`] edges of `n`.
-fn sampled_edges(n: usize) -> Vec<usize> {
-    (0..n).step_by(n.div_ceil(SAMPLES).max(1)).collect()
+/// A strided sample of at most `samples` edges of `n`.
+fn sampled_edges(n: usize, samples: usize) -> Vec<usize> {
+    (0..n).step_by(n.div_ceil(samples).max(1)).collect()
 }
 
 /// A fold found by synthesis: the border parameters of its points and the line used.
@@ -332,9 +336,9 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 /// needle sharp on stacked layers, so the caller refines each ([`refine`]).
 pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis> {
     let n = before.len();
-    let sampled = sampled_edges(n);
+    let sampled = sampled_edges(n, SCREEN_SAMPLES);
     let pairs = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
-    let probe = Probe::of(pairs, start, end, false);
+    let probe = Probe::of(pairs, start, end, true);
     let unfolded = probe.unfolded();
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
     let step = mean_edge(before).max(reach / 200.0);
