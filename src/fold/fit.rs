@@ -16,6 +16,7 @@ use argmin::core::{CostFunction, Executor, Gradient, State};
 use argmin::solver::brent::BrentOpt;
 use argmin::solver::linesearch::MoreThuenteLineSearch;
 use argmin::solver::quasinewton::LBFGS;
+use nalgebra::Vector2;
 use rayon::prelude::*;
 
 use super::loss::{exact_loss, ring_cells, Cell, RingTables};
@@ -55,7 +56,7 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
-    fn at(&self, x: &[f64]) -> (f64, [f64; 2]) {
+    fn at(&self, x: &Vector2<f64>) -> (f64, [f64; 2]) {
         let key = [x[0], x[1]];
         if let Some((at, loss, gradient)) = *self.last.borrow() {
             if at == key {
@@ -70,18 +71,18 @@ impl Problem<'_> {
 }
 
 impl CostFunction for Problem<'_> {
-    type Param = Vec<f64>;
+    type Param = Vector2<f64>;
     type Output = f64;
-    fn cost(&self, x: &Vec<f64>) -> Result<f64, argmin::core::Error> {
+    fn cost(&self, x: &Vector2<f64>) -> Result<f64, argmin::core::Error> {
         Ok(self.at(x).0)
     }
 }
 
 impl Gradient for Problem<'_> {
-    type Param = Vec<f64>;
-    type Gradient = Vec<f64>;
-    fn gradient(&self, x: &Vec<f64>) -> Result<Vec<f64>, argmin::core::Error> {
-        Ok(self.at(x).1.to_vec())
+    type Param = Vector2<f64>;
+    type Gradient = Vector2<f64>;
+    fn gradient(&self, x: &Vector2<f64>) -> Result<Vector2<f64>, argmin::core::Error> {
+        Ok(self.at(x).1.into())
     }
 }
 
@@ -89,7 +90,7 @@ impl Gradient for Problem<'_> {
 fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
     let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7).with_tolerance_grad(1e-9).ok()?.with_tolerance_cost(1e-12).ok()?;
     let result = Executor::new(Problem { tables, last: RefCell::new(None) }, solver)
-        .configure(|state| state.param(vec![a0, 0.0]).max_iters(200))
+        .configure(|state| state.param(Vector2::new(a0, 0.0)).max_iters(200))
         .timer(false)
         .run()
         .ok()?;
