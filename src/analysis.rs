@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
 use crate::budget::{Budget, Deadline};
-use crate::close::{corners, Close, Corners};
+use crate::close::{corners, Close};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
 use crate::fold::reflect::{apply_fold_line, fold_line};
@@ -144,25 +144,11 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;
-    let mut before_border = norm.apply_all(&frames[0]);
-    let mut before = Disk::of_border_until(&before_border, &options.deadline)?;
-    let found: Corners = corners(&before, &before_border);
-    let mut predicted = frames[0].clone();
-    let mut steps = Vec::with_capacity(frames.len() - 1);
-    for (k, frame) in frames.iter().enumerate().skip(1) {
-        let after_border = norm.apply_all(frame);
-        let after = Disk::of_border_until(&after_border, &options.deadline)?;
-        let detection = detect(&before_border, &before, &after, options.method);
-        options.deadline.check()?;
-        let line = detection.fold.and_then(|fold| {
-            let line = fold_line(&predicted, fold, detection.synthesis.and_then(|s| s.direction))?;
-            predicted = apply_fold_line(&predicted, fold, &line);
-            Some(line)
-        });
-        let metrics = Metrics::measure(&norm, &predicted, frame);
-        steps.push(Step { from_frame: start + k - 1, to_frame: start + k, detection, line, metrics });
-        (before_border, before) = (after_border, after);
-    }
+    let start_border = norm.apply_all(&frames[0]);
+    let start_disk = Disk::of_border_until(&start_border, &options.deadline)?;
+    // The corners need only the start state: found while the steps are analysed.
+    let (found, steps) = rayon::join(|| corners(&start_disk, &start_border), || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options));
+    let (steps, predicted) = steps?;
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
@@ -187,6 +173,30 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
         frames: frames.to_vec(),
         normalisation: norm,
     })
+}
+
+/// The steps between consecutive `frames` (the first is the sample's frame `first`), each
+/// from the state before it, and the start border with the folds found applied.
+fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, start: (&[Point], &Disk), options: &Options) -> Result<(Vec<Step>, Vec<Point>)> {
+    let mut predicted = frames[0].clone();
+    let mut steps = Vec::with_capacity(frames.len() - 1);
+    let mut previous: Option<(Vec<Point>, Disk)> = None;
+    for (k, frame) in frames.iter().enumerate().skip(1) {
+        let after_border = norm.apply_all(frame);
+        let after = Disk::of_border_until(&after_border, &options.deadline)?;
+        let (before_border, before) = previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
+        let detection = detect(before_border, before, &after, options.method);
+        options.deadline.check()?;
+        let line = detection.fold.and_then(|fold| {
+            let line = fold_line(&predicted, fold, detection.synthesis.and_then(|s| s.direction))?;
+            predicted = apply_fold_line(&predicted, fold, &line);
+            Some(line)
+        });
+        let metrics = Metrics::measure(norm, &predicted, frame);
+        steps.push(Step { from_frame: first + k - 1, to_frame: first + k, detection, line, metrics });
+        previous = Some((after_border, after));
+    }
+    Ok((steps, predicted))
 }
 
 #[cfg(test)]
