@@ -13,6 +13,7 @@
 //!   so it covers columns 2a + d and 2a + d + 1 (mod 2N).
 //!
 //! Open the file with `rerun recording.rrd` (the viewer of the same minor version, 0.36).
+//! Tested in `tests/record.rs` (with the feature).
 //!
 //! ```no_run
 //! # fn main() -> close::Result<()> {
@@ -112,66 +113,4 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
     log_disk(&rec, "disk/diff", &start.abs_diff(&end))?;
     log_disk(&rec, "disk/signed_diff", &start.signed_diff(&end))?;
     storage.drain_as_bytes().map_err(failed)
-}
-
-#[cfg(test)]
-mod tests {
-    use std::collections::BTreeSet;
-
-    use rerun::external::re_log_encoding::DecoderApp;
-    use rerun::log::{Chunk, LogMsg};
-
-    use super::*;
-    use crate::analysis::{analyze, FrameRange};
-
-    /// Entity paths and the number of chunks of the recording, decoded back from the bytes.
-    fn entities(rrd: &[u8]) -> BTreeSet<String> {
-        DecoderApp::decode_eager(rrd)
-            .expect("an RRD stream")
-            .filter_map(|msg| match msg.expect("a decodable message") {
-                LogMsg::ArrowMsg(_, arrow) => Some(Chunk::from_arrow_msg(&arrow).expect("a chunk").entity_path().to_string()),
-                _ => None,
-            })
-            .collect()
-    }
-
-    #[test]
-    fn a_recording_reads_back_with_every_entity() {
-        let dataset = crate::dataset::Dataset::builtin();
-        let entry = dataset.get("napkin__half_vertical").expect("a built-in sample");
-        let frames = entry.sample.border_frames().unwrap();
-        let analysis = analyze(&frames, FrameRange::default()).unwrap();
-        assert_eq!(analysis.folds.len(), 1, "the detector finds this fold");
-        let paths = entities(&record(&analysis, &frames).unwrap());
-        for expected in [
-            "/border",
-            "/predicted_end",
-            "/fold/1/points",
-            "/fold/1/line",
-            "/close/f1",
-            "/close/f2",
-            "/close/corners",
-            "/close/label",
-            "/disk/start",
-            "/disk/end",
-            "/disk/diff",
-            "/disk/signed_diff",
-        ] {
-            assert!(paths.contains(expected), "{expected} missing from {paths:?}");
-        }
-    }
-
-    #[test]
-    fn the_polar_image_places_each_cell_by_its_angle() {
-        // 6 edges, 3 rings: pair (i, j) holds 10·i + j so each cell names itself.
-        let n = 6;
-        let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (10 * i + j) as f64)).collect();
-        let disk = Disk::from_values(n, values).unwrap();
-        let (rows, cols, image) = polar_image(&disk);
-        assert_eq!((rows, cols), (3, 12));
-        // Ring 1, edges 0–1: angle π(0 + 1 + 1)/6 = 2 columns of π/6 → columns 1 and 2.
-        assert_eq!(&image[1..3], &[1.0, 1.0]);
-        // Ring 2, edges 5–1 (a = 5): columns 12 and 13 wrap to 0 and 1.
-        assert_eq!((image[12], image[13]), (15.0, 15.0));
-    }
 }
