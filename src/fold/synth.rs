@@ -88,13 +88,6 @@ impl Line {
     }
 }
 
-/// The state after turning the arc s1 → s2 (border parameters) of `before` over `line`: a
-/// rotation by π about the horizontal line LIFT/2 above the highest vertex, so the flap's
-/// layers reverse their order and lie above everything else.
-pub fn turn_over(before: &[Point], s: [f64; 2], line: &Line) -> Vec<Point> {
-    Turned::new(before, s, line).state
-}
-
 /// A synthesised state and which of its vertices the fold moved.
 struct Turned {
     state: Vec<Point>,
@@ -102,9 +95,10 @@ struct Turned {
 }
 
 impl Turned {
-    fn new(before: &[Point], s: [f64; 2], line: &Line) -> Turned {
-        let top = before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
-        let axis = top + LIFT / 2.0;
+    /// The state after turning the arc s1 → s2 (border parameters) of `before` over `line`: a
+    /// rotation by π about the horizontal line at height `axis` ([`flap_axis`]), so the
+    /// flap's layers reverse their order and lie above everything else.
+    fn new(before: &[Point], axis: f64, s: [f64; 2], line: &Line) -> Turned {
         let mut state = before.to_vec();
         let mut moved = vec![false; before.len()];
         for v in vertices_in_arc(before.len(), s[0], s[1]) {
@@ -114,6 +108,11 @@ impl Turned {
         }
         Turned { state, moved }
     }
+}
+
+/// Height of the axis a flap of `before` is turned about: LIFT/2 above its highest vertex.
+fn flap_axis(before: &[Point]) -> f64 {
+    before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max) + LIFT / 2.0
 }
 
 /// The probe pairs, their measured end values and their values in the step's start state.
@@ -255,9 +254,10 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
     let n = before.len();
     let nf = n as f64;
     let probe = Probe::around(start, end, s, super::is_flat(before));
+    let axis = flap_axis(before);
     let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
-        line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, s, &line)))
+        line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, axis, s, &line)))
     });
     let half_turn = |search: &mut Search<_>, s: [f64; 2]| {
         search.least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect()).and_then(|((_, phi), _)| phi)
@@ -340,6 +340,7 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
     let pairs = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
     let probe = Probe::of(pairs, start, end, true);
     let unfolded = probe.unfolded();
+    let axis = flap_axis(before);
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
     let step = mean_edge(before).max(reach / 200.0);
     let offsets = (2.0 * reach / step).ceil() as usize;
@@ -353,7 +354,7 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
             let whole = arcs.len() == 1;
             arcs.into_iter().map(move |s| (s, phi, line, whole))
         })
-        .map(|(s, phi, line, whole)| (s, phi, probe.cost(&Turned::new(before, s, &line)), whole))
+        .map(|(s, phi, line, whole)| (s, phi, probe.cost(&Turned::new(before, axis, s, &line)), whole))
         .collect();
     found.sort_by(|a, b| a.2.total_cmp(&b.2));
     // The best few distinct arcs (by their ends, to the vertex), among lines that turn all
