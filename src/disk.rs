@@ -27,7 +27,7 @@ use rayon::prelude::*;
 use crate::border::{prepare, Normalisation, Point};
 use crate::budget::Deadline;
 use crate::error::{Error, Result};
-use crate::gli::dgli_fast;
+use crate::gli::dgli_each;
 
 /// Index of pair (i, j), i < j, in the condensed vector of an N-edge border.
 #[inline]
@@ -150,9 +150,12 @@ fn pair_values(points: &[Point], deadline: &Deadline) -> Vec<f64> {
             return;
         }
         let (a, b) = (&points[i], &points[(i + 1) % n]);
-        for (slot, j) in row.iter_mut().zip(i + 1..n) {
-            *slot = dgli_fast(a, b, &points[j], &points[(j + 1) % n]);
-        }
+        let mut slots = row.iter_mut();
+        dgli_each((i + 1..n).map(|j| [a, b, &points[j], &points[(j + 1) % n]]), |v| {
+            if let Some(slot) = slots.next() {
+                *slot = v;
+            }
+        });
     });
     values
 }

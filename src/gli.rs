@@ -21,7 +21,10 @@
 //! assert!(dgli(&a, &b, &c, &d).is_finite());
 //! ```
 
+use std::ops::{Add, Div, Mul, Sub};
+
 use nalgebra::Vector3;
+use wide::{f64x4, CmpGt, CmpLe};
 
 use crate::border::Point;
 
@@ -88,18 +91,132 @@ pub fn dgli(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
     }
 }
 
-/// A direction given by an unnormalised vector and its length (1 for the zero vector, whose
-/// direction counts as zero, as a unit vector would).
-struct Ray {
-    v: Vector3<f64>,
-    len: f64,
+/// The arithmetic of [`dgli_fast`], on one pair (`f64`) or on four pairs at once (`f64x4`):
+/// one kernel, so a disk computed four cells at a time equals one computed cell by cell, bit
+/// for bit.
+trait Lane: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> {
+    fn splat(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// `self` where it is positive, else 1 (the length of a zero vector, see [`Ray`]).
+    fn positive_or_one(self) -> Self;
+    /// [`atan2_small`] lane by lane.
+    fn atan2_small(y: Self, x: Self) -> Self;
+    /// `self` where it is finite, else 0.
+    fn finite_or_zero(self) -> Self;
 }
 
-impl Ray {
+impl Lane for f64 {
     #[inline(always)]
-    fn new(v: Vector3<f64>) -> Ray {
-        let len = v.norm();
-        Ray { v, len: if len > 0.0 { len } else { 1.0 } }
+    fn splat(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn positive_or_one(self) -> Self {
+        if self > 0.0 {
+            self
+        } else {
+            1.0
+        }
+    }
+    #[inline(always)]
+    fn atan2_small(y: Self, x: Self) -> Self {
+        atan2_small(y, x)
+    }
+    #[inline(always)]
+    fn finite_or_zero(self) -> Self {
+        if self.is_finite() {
+            self
+        } else {
+            0.0
+        }
+    }
+}
+
+impl Lane for f64x4 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        f64x4::splat(x)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64x4::sqrt(self)
+    }
+    #[inline(always)]
+    fn positive_or_one(self) -> Self {
+        self.cmp_gt(f64x4::ZERO).blend(self, f64x4::ONE)
+    }
+    #[inline(always)]
+    fn atan2_small(y: Self, x: Self) -> Self {
+        let small = x.cmp_gt(f64x4::ZERO) & y.abs().cmp_le(x * 0.125);
+        if small.all() {
+            atan_series(y / x)
+        } else {
+            let (y, x) = (y.to_array(), x.to_array());
+            f64x4::new(std::array::from_fn(|l| atan2_small(y[l], x[l])))
+        }
+    }
+    #[inline(always)]
+    fn finite_or_zero(self) -> Self {
+        self.is_finite().blend(self, f64x4::ZERO)
+    }
+}
+
+/// A 3-vector of lanes.
+#[derive(Clone, Copy)]
+struct V3<L> {
+    x: L,
+    y: L,
+    z: L,
+}
+
+impl<L: Lane> V3<L> {
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        V3 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
+    }
+    #[inline(always)]
+    fn dot(self, o: Self) -> L {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    #[inline(always)]
+    fn cross(self, o: Self) -> Self {
+        V3 { x: self.y * o.z - self.z * o.y, y: self.z * o.x - self.x * o.z, z: self.x * o.y - self.y * o.x }
+    }
+    /// The point lifted by ε.
+    #[inline(always)]
+    fn lifted(self) -> Self {
+        V3 { z: self.z + L::splat(EPSILON), ..self }
+    }
+}
+
+impl From<&Point> for V3<f64> {
+    fn from(p: &Point) -> Self {
+        V3 { x: p.x, y: p.y, z: p.z }
+    }
+}
+
+impl From<[&Point; 4]> for V3<f64x4> {
+    fn from(p: [&Point; 4]) -> Self {
+        V3 { x: f64x4::new(p.map(|p| p.x)), y: f64x4::new(p.map(|p| p.y)), z: f64x4::new(p.map(|p| p.z)) }
+    }
+}
+
+/// A direction given by an unnormalised vector and its length (1 for the zero vector, whose
+/// direction counts as zero, as a unit vector would).
+#[derive(Clone, Copy)]
+struct Ray<L> {
+    v: V3<L>,
+    len: L,
+}
+
+impl<L: Lane> Ray<L> {
+    #[inline(always)]
+    fn new(v: V3<L>) -> Self {
+        Ray { v, len: v.dot(v).sqrt().positive_or_one() }
     }
 }
 
@@ -107,37 +224,56 @@ impl Ray {
 /// (a, b, c) is 2·arg(X + iY) with Y = a·(b×c), X = |a||b||c| + (a·b)|c| + (b·c)|a| + (c·a)|b|
 /// (the unit-vector form scaled by |a||b||c| > 0, which leaves the argument: no division).
 #[inline(always)]
-fn triangle(a: &Ray, b: &Ray, c: &Ray) -> (f64, f64) {
-    (a.len * b.len * c.len + a.v.dot(&b.v) * c.len + b.v.dot(&c.v) * a.len + c.v.dot(&a.v) * b.len, a.v.dot(&b.v.cross(&c.v)))
+fn triangle<L: Lane>(a: &Ray<L>, b: &Ray<L>, c: &Ray<L>) -> (L, L) {
+    (a.len * b.len * c.len + a.v.dot(b.v) * c.len + b.v.dot(c.v) * a.len + c.v.dot(a.v) * b.len, a.v.dot(b.v.cross(c.v)))
 }
 
 /// Complex product: arguments add.
 #[inline(always)]
-fn mul((a, b): (f64, f64), (c, d): (f64, f64)) -> (f64, f64) {
+fn mul<L: Lane>((a, b): (L, L), (c, d): (L, L)) -> (L, L) {
     (a * c - b * d, a * d + b * c)
 }
 
 /// The spherical quadrilateral (u1, u2, u3, u4) as two triangles, as a complex number whose
 /// argument is half its signed solid angle.
 #[inline(always)]
-fn quadrilateral(u1: &Ray, u2: &Ray, u3: &Ray, u4: &Ray) -> (f64, f64) {
+fn quadrilateral<L: Lane>(u1: &Ray<L>, u2: &Ray<L>, u3: &Ray<L>, u4: &Ray<L>) -> (L, L) {
     mul(triangle(u1, u2, u3), triangle(u1, u3, u4))
 }
 
-/// atan2(y, x), by its Taylor series where the angle is small (|y| ≤ x/8, where the series
-/// to t¹⁵ leaves out less than 1e-15 relative), which is nearly every cell of a disk: the lift ε
-/// changes the solid angle little. libm's atan2 was a third of the cost of a disk.
+/// atan t for |t| ≤ 1/8 by its Taylor series to t¹⁵ (it leaves out less than 1e-15 relative).
+#[inline(always)]
+fn atan_series<L: Lane>(t: L) -> L {
+    let t2 = t * t;
+    // atan t = t·Σ (−t²)^k / (2k + 1), Horner from k = 7.
+    const C: [f64; 8] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0, -1.0 / 15.0];
+    t * C.iter().rev().fold(L::splat(0.0), |acc, &c| acc * t2 + L::splat(c))
+}
+
+/// atan2(y, x), by its Taylor series where the angle is small (|y| ≤ x/8), which is nearly
+/// every cell of a disk: the lift ε changes the solid angle little. libm's atan2 was a third
+/// of the cost of a disk.
 #[inline(always)]
 fn atan2_small(y: f64, x: f64) -> f64 {
     if x > 0.0 && y.abs() <= 0.125 * x {
-        let t = y / x;
-        let t2 = t * t;
-        // atan t = t·Σ (−t²)^k / (2k + 1), Horner from k = 7.
-        const C: [f64; 8] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0, -1.0 / 15.0];
-        t * C.iter().rev().fold(0.0, |acc, c| acc * t2 + c)
+        atan_series(y / x)
     } else {
         y.atan2(x)
     }
+}
+
+/// The dGLI of edges AB and CD in any [`Lane`]; see [`dgli_fast`].
+#[inline(always)]
+fn dgli_lanes<L: Lane>(a: V3<L>, b: V3<L>, c: V3<L>, d: V3<L>) -> L {
+    let (b1, d1) = (b.lifted(), d.lifted());
+    let (b2, d2) = (b1.lifted(), d1.lifted());
+    let ca = Ray::new(c.sub(a));
+    let db = Ray::new(d.sub(b));
+    let q1 = quadrilateral(&ca, &Ray::new(d1.sub(a)), &db, &Ray::new(c.sub(b1)));
+    let q2 = quadrilateral(&ca, &Ray::new(d2.sub(a)), &db, &Ray::new(c.sub(b2)));
+    // arg(q2 · conj(q1)) = (G(2ε) − G(ε)) / 2, with Levitt's sign opposite to the triangles'.
+    let (re, im) = mul(q2, (q1.0, L::splat(0.0) - q1.1));
+    (L::splat(-2.0) * L::atan2_small(im, re) / L::splat(EPSILON)).finite_or_zero()
 }
 
 /// [`dgli`] computed the fast way, as used for whole disks.
@@ -151,26 +287,71 @@ fn atan2_small(y: f64, x: f64) -> f64 {
 /// where it is not (nearly collinear edges).
 #[inline]
 pub fn dgli_fast(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
-    let lift = Vector3::new(0.0, 0.0, EPSILON);
-    let (b1, d1) = (b + lift, d + lift);
-    let (b2, d2) = (b1 + lift, d1 + lift);
-    let ca = Ray::new(c - a);
-    let db = Ray::new(d - b);
-    let q1 = quadrilateral(&ca, &Ray::new(d1 - a), &db, &Ray::new(c - b1));
-    let q2 = quadrilateral(&ca, &Ray::new(d2 - a), &db, &Ray::new(c - b2));
-    // arg(q2 · conj(q1)) = (G(2ε) − G(ε)) / 2, with Levitt's sign opposite to the triangles'.
-    let (re, im) = mul(q2, (q1.0, -q1.1));
-    let value = -2.0 * atan2_small(im, re) / EPSILON;
-    if value.is_finite() {
-        value
-    } else {
-        0.0
+    dgli_lanes(V3::from(a), V3::from(b), V3::from(c), V3::from(d))
+}
+
+/// [`dgli_fast`] of four pairs at once, `[a, b, c, d]` each, in SIMD lanes; equal to it
+/// bit for bit.
+///
+/// ```
+/// use close::border::Point;
+/// use close::gli::{dgli_fast, dgli_fast_x4};
+/// let p = |x: f64, y: f64, z: f64| Point::new(x, y, z);
+/// let pairs = [0.0, 0.5, 1.0, 1.5].map(|h| [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.0), p(0.0, 1.0, h), p(1.0, 0.5, h)]);
+/// let four = dgli_fast_x4(pairs.each_ref().map(|[a, b, c, d]| [a, b, c, d]));
+/// for (k, [a, b, c, d]) in pairs.iter().enumerate() {
+///     assert_eq!(four[k].to_bits(), dgli_fast(a, b, c, d).to_bits());
+/// }
+/// ```
+#[inline]
+pub fn dgli_fast_x4(pairs: [[&Point; 4]; 4]) -> [f64; 4] {
+    let corner = |k: usize| V3::from(pairs.map(|p| p[k]));
+    dgli_lanes(corner(0), corner(1), corner(2), corner(3)).to_array()
+}
+
+/// [`dgli_fast`] of every pair `[a, b, c, d]` of `pairs`, in order, four at a time.
+#[inline]
+pub fn dgli_each<'a>(pairs: impl IntoIterator<Item = [&'a Point; 4]>, mut put: impl FnMut(f64)) {
+    let mut pairs = pairs.into_iter();
+    loop {
+        let batch: [Option<[&Point; 4]>; 4] = std::array::from_fn(|_| pairs.next());
+        match batch {
+            [Some(p0), Some(p1), Some(p2), Some(p3)] => dgli_fast_x4([p0, p1, p2, p3]).into_iter().for_each(&mut put),
+            rest => {
+                rest.into_iter().flatten().for_each(|[a, b, c, d]| put(dgli_fast(a, b, c, d)));
+                return;
+            }
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[test]
+    fn four_lanes_equal_one_by_one_bit_for_bit() {
+        // Near and far pairs, so some lanes take the series and some libm's atan2.
+        let mut state = 0x9E3779B97F4A7C15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut fallback = 0;
+        for k in 0..4000 {
+            let spread = [1.0, 1e-3, 1e-5][k % 3];
+            let points: Vec<Point> = (0..16).map(|_| Point::new(spread * next(), spread * next(), 0.5 * spread * next())).collect();
+            let pairs: [[&Point; 4]; 4] = std::array::from_fn(|l| std::array::from_fn(|c| &points[4 * l + c]));
+            let four = dgli_fast_x4(pairs);
+            for (l, [a, b, c, d]) in pairs.iter().enumerate() {
+                assert_eq!(four[l].to_bits(), dgli_fast(a, b, c, d).to_bits(), "pair {k}, lane {l}");
+            }
+            // An angle beyond atan(1/8) is outside the series.
+            fallback += usize::from(four.iter().any(|v| v.abs() * EPSILON / 2.0 > 0.125f64.atan()));
+        }
+        assert!(fallback > 0, "no lane took libm's atan2");
+    }
 
     #[test]
     fn the_fast_form_agrees_with_levitts() {

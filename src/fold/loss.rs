@@ -151,11 +151,21 @@ impl RingTables {
     pub fn loss_and_gradient(&self, a0: f64, a1: f64) -> (f64, [f64; 2]) {
         let mut loss = 0.0;
         let mut grad = [0.0; 2];
+        let grid = self.grid as i64;
         for (radius, weight, table) in &self.rings {
             let x = (a0 + a1 * radius) / self.step;
-            let floor = x.floor();
-            let t = x - floor;
-            let i = (floor as i64).rem_euclid(self.grid as i64) as usize;
+            // floor(x) by truncation, and wrapped onto the grid without a division where it is
+            // at most a turn off: on the x86-64 baseline `f64::floor` is a libm call, and these
+            // two were most of the cost of a ring.
+            let truncated = x as i64;
+            let floor = truncated - i64::from((truncated as f64) > x);
+            let t = x - floor as f64;
+            let i = match floor {
+                k if (0..grid).contains(&k) => k,
+                k if (-grid..0).contains(&k) => k + grid,
+                k if (grid..2 * grid).contains(&k) => k - grid,
+                k => k.rem_euclid(grid),
+            } as usize;
             let [p0, p1, p2, p3] = [table[i], table[i + 1], table[i + 2], table[i + 3]];
             let c1 = -p0 + p2;
             let c2 = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;

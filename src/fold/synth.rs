@@ -29,7 +29,7 @@ use serde::Serialize;
 use crate::angle::vertices_in_arc;
 use crate::border::{point_at, Point};
 use crate::disk::Disk;
-use crate::gli::dgli_fast;
+use crate::gli::dgli_each;
 
 /// Height of a synthesised flap above the highest vertex of the start state (normalised
 /// units: the crease of real cloth is a few millimetres thick, ~1–3 % of its size).
@@ -177,20 +177,30 @@ impl Probe {
         let Turned { state, moved } = turned;
         let n = state.len();
         let edge_moved = |e: usize| (moved[e], moved[(e + 1) % n]);
-        let total: f64 = self
+        let mut values: Vec<Option<f64>> = self
             .pairs
             .iter()
-            .zip(&self.measured)
             .zip(&self.start)
-            .map(|((&(i, j), m), start)| {
-                let value = match (edge_moved(i), edge_moved(j)) {
-                    ((false, false), (false, false)) => *start,
-                    ((true, true), (true, true)) if self.flap_negates => -start,
-                    _ => compress(dgli_fast(&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n])),
-                };
-                (value - m).abs()
+            .map(|(&(i, j), start)| match (edge_moved(i), edge_moved(j)) {
+                ((false, false), (false, false)) => Some(*start),
+                ((true, true), (true, true)) if self.flap_negates => Some(-start),
+                _ => None,
             })
-            .sum();
+            .collect();
+        let across: Vec<usize> = (0..values.len()).filter(|&k| values[k].is_none()).collect();
+        let mut slots = across.iter();
+        dgli_each(
+            across.iter().map(|&k| {
+                let (i, j) = self.pairs[k];
+                [&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n]]
+            }),
+            |v| {
+                if let Some(&k) = slots.next() {
+                    values[k] = Some(compress(v));
+                }
+            },
+        );
+        let total: f64 = values.iter().zip(&self.measured).map(|(value, m)| (value.unwrap_or(0.0) - m).abs()).sum();
         total / self.pairs.len().max(1) as f64
     }
 
