@@ -78,7 +78,7 @@ async fn text(client: &Client, expression: &str) -> String {
 async fn screenshot(client: &Client, dir: &Path, name: &str) {
     const MAX_SHOT: u64 = 6000;
     let (width, height) = client.get_window_size().await.expect("window size");
-    let page = js(client, "return document.documentElement.scrollHeight").await.as_u64().unwrap_or(height);
+    let page = js(client, "window.scrollTo(0, 0); return document.documentElement.scrollHeight").await.as_u64().unwrap_or(height);
     client.set_window_size(width as u32, page.clamp(height, MAX_SHOT) as u32).await.expect("stretch the window");
     tokio::time::sleep(Duration::from_millis(400)).await;
     let png = client.screenshot().await.expect("screenshot");
@@ -505,6 +505,9 @@ async fn the_app_works_in_a_real_browser() {
         assert_no_overflow(&client, name).await;
         if name == "interpolate" {
             disk_picture(&client).await;
+            // The canvas is shrunk to the phone's width: its labels are sized for that.
+            let shown = js(&client, "const c = document.getElementById('interp-canvas'); return parseFloat(c.getContext('2d').font) * c.getBoundingClientRect().width / c.width").await;
+            assert!(shown.as_f64().is_some_and(|px| px >= 11.0), "corner labels {shown} CSS px tall");
         }
         screenshot(&client, &shots, &format!("420-0{}-{name}.png", 2 + ["upload", "interpolate", "plan"].iter().position(|n| *n == name).unwrap_or(0))).await;
         violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("{name} 420: {v}")));

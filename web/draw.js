@@ -13,6 +13,16 @@ export function viewport(canvas, bounds, pad) {
   return { X: (p) => ox + scale * (p[0] - b.x0), Y: (p) => height - (oy + scale * (p[1] - b.y0)) };
 }
 
+/**
+ * A font size, in the canvas's own pixels, that shows as `css` CSS pixels at the width the
+ * canvas is drawn at (a 900 px canvas on a phone is shrunk to a third); width/50 while the
+ * canvas is not laid out.
+ */
+export function textSize(canvas, css = 13) {
+  const shown = canvas.getBoundingClientRect().width;
+  return Math.round(shown > 0 ? (css * canvas.width) / shown : canvas.width / 50);
+}
+
 /** XY bounds of several borders. */
 export function boundsOf(borders) {
   const xs = borders.flatMap((b) => b.map((p) => p[0]));

@@ -7,7 +7,7 @@ import * as store from "./store.js";
 import * as router from "./router.js";
 import { applyFold, foldAt, foldPath, wrap, TAU } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, viewport } from "./draw.js";
+import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, textSize, viewport } from "./draw.js";
 import { fmtFold } from "./format.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -226,7 +226,7 @@ function draw() {
   ctx.stroke();
   ctx.setLineDash([]);
   const folded = drawCloth(ctx, v, view.border, folds);
-  const size = Math.round(canvas.width / 50);
+  const size = textSize(canvas);
   labelCorners(ctx, v, folded, view.corners, size);
   // The line of the fold animated, on the state it folds.
   const last = folds[folds.length - 1];
