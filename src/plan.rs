@@ -41,7 +41,8 @@ use crate::analysis::Analysis;
 use crate::angle::{angle_to_param, distance, edge, param_to_angle, wrap_tau};
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_fold, folded_vertices, reflect_xy};
+use crate::fold::reflect::{apply_fold_line, fold_line, folded_vertices, reflect_xy};
+use crate::fold::Line;
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -152,16 +153,19 @@ fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
 }
 
 /// A step that folds `before` along `fold` (or, `unfold`, takes the folded state back).
-/// `from_state` gives where a grasped vertex is now when the step starts a fold.
-fn step(action: &str, before: &[Point], corners: &[usize], fold: [f64; 2], from_state: &[Point]) -> PlanStep {
+/// `line` is the line the fold is made along (by default through its two fold points of
+/// `before`); `from_state` gives where a grasped vertex is now when the step starts a fold.
+fn step(action: &str, before: &[Point], corners: &[usize], fold: [f64; 2], line: Option<Line>, from_state: &[Point]) -> PlanStep {
     let n = before.len();
     let (p1, p2) = (point_at(before, param(fold[0], n)), point_at(before, param(fold[1], n)));
+    let line = line.or_else(|| fold_line(before, fold, None));
+    let reflect = |p: &Point| line.as_ref().map_or(*p, |l| l.reflect(p));
     let arc = folded_vertices(n, fold);
     let moved = corners_moved(n, corners, fold);
     let picks = grasped(before, &moved, &arc, &p1, &p2)
         .into_iter()
         .map(|v| {
-            let folded = reflect_xy(&before[v], &p1, &p2);
+            let folded = reflect(&before[v]);
             let (from, to) = if action == "unfold" { (folded, before[v]) } else { (from_state[v], folded) };
             Pick { vertex: v, angle: param_to_angle(v as f64, n), from: to_xyz(&from), to: to_xyz(&to) }
         })
@@ -185,8 +189,16 @@ fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
 }
 
 /// Plan from the current state (the flat border, its corner vertices, the folds applied so
-/// far in order) to the goal fold (g1, g2), all folds in angles.
+/// far in order) to the goal fold (g1, g2), all folds in angles. Each current fold is made
+/// along the line through its two fold points of the state before it.
 pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], goal: [f64; 2]) -> Result<Plan> {
+    plan_along(flat, corner_vertices, current_folds, &vec![None; current_folds.len()], goal)
+}
+
+/// [`plan`] with the line each current fold was made along where it is known (`lines[k]`
+/// for fold k): a fold through two stacked layers has its two fold points (nearly) on top of
+/// each other, so the line through them is no guide, and the analysis gives its line.
+fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], lines: &[Option<Line>], goal: [f64; 2]) -> Result<Plan> {
     let n = flat.len();
     if n < crate::border::MIN_VERTICES {
         return Err(Error::TooFewVertices { got: n, min: crate::border::MIN_VERTICES });
@@ -203,12 +215,16 @@ pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]
         check_fold(&format!("current fold {}", k + 1), f, n)?;
     }
     let corners: Vec<usize> = corner_vertices.iter().copied().collect::<BTreeSet<_>>().into_iter().collect();
-    // States[k] is the border after the first k current folds.
-    let states: Vec<Vec<Point>> = current_folds.iter().fold(vec![flat.to_vec()], |mut states, &f| {
-        let next = apply_fold(states.last().expect("the flat state"), f);
+    // The line of each current fold, and states[k], the border after the first k folds.
+    let mut states = vec![flat.to_vec()];
+    let mut made_along = Vec::with_capacity(current_folds.len());
+    for (k, &f) in current_folds.iter().enumerate() {
+        let before = states.last().expect("the flat state");
+        let line = lines.get(k).copied().flatten().or_else(|| fold_line(before, f, None));
+        let next = line.as_ref().map_or_else(|| before.clone(), |l| apply_fold_line(before, f, l));
+        made_along.push(line);
         states.push(next);
-        states
-    });
+    }
     let current = states.last().expect("the flat state");
     if let [only] = current_folds {
         let same = |a: f64, b: f64| distance(a, b) <= SAME_FOLD_EDGES * edge(n);
@@ -217,24 +233,29 @@ pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]
         }
     }
     if current_folds.is_empty() {
-        return Ok(Plan { case: "fold".into(), steps: vec![step("fold", flat, &corners, goal, flat)] });
+        return Ok(Plan { case: "fold".into(), steps: vec![step("fold", flat, &corners, goal, None, flat)] });
     }
     let folded_now: BTreeSet<usize> = current_folds.iter().flat_map(|&f| corners_moved(n, &corners, f)).collect();
     let folded_by_goal: BTreeSet<usize> = corners_moved(n, &corners, goal).into_iter().collect();
     if folded_now == folded_by_goal {
-        return Ok(Plan { case: "direct".into(), steps: vec![step("fold", flat, &corners, goal, current)] });
+        return Ok(Plan { case: "direct".into(), steps: vec![step("fold", flat, &corners, goal, None, current)] });
     }
-    let mut steps: Vec<PlanStep> =
-        current_folds.iter().zip(&states[..current_folds.len()]).rev().map(|(&f, before)| step("unfold", before, &corners, f, before)).collect();
-    steps.push(step("fold", flat, &corners, goal, flat));
+    let mut steps: Vec<PlanStep> = (0..current_folds.len())
+        .rev()
+        .map(|k| step("unfold", &states[k], &corners, current_folds[k], made_along[k], &states[k]))
+        .collect();
+    steps.push(step("fold", flat, &corners, goal, None, flat));
     Ok(Plan { case: "unfold_then_fold".into(), steps })
 }
 
-/// Plan from an analysis to the goal fold: from its start border, corners and folds, with
+/// Plan from an analysis to the goal fold: from its start border, corners and folds (each
+/// along the line the analysis reports for it, so the plan starts from its predicted end), with
 /// every pick's `vertex` given as the index in the analysis's INPUT (through
 /// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
 pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
-    let mut plan = plan(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, goal)?;
+    // Each fold along the line the analysis made it along (its `predicted_end`).
+    let lines: Vec<Option<Line>> = analysis.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect();
+    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &lines, goal)?;
     for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
         pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
             Error::InvalidArgument(format!("border vertex {} has no input index ({} known)", pick.vertex, analysis.border_indices.len()))
@@ -410,6 +431,26 @@ mod tests {
         let [g1, g2] = p.steps[0].fold;
         assert!((0.0..TAU).contains(&g1) && (0.0..TAU).contains(&g2));
         assert!((g1 - (7.0 - TAU)).abs() < 1e-12 && (g2 - 100.0f64.rem_euclid(TAU)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
+        // Folded in half, then in half again: the second fold's two points lie on top of each
+        // other after the first, so the line through them points anywhere; the plan must
+        // grasp the corners where the analysis's prediction has them, along its line.
+        let data = crate::dataset::Dataset::builtin();
+        let entry = data.get("napkin__half_then_half").expect("a built-in sample");
+        let analysis = crate::analyze(&entry.sample.border_frames().unwrap(), Default::default()).unwrap();
+        assert!(analysis.steps[1].detection.synthesis.and_then(|s| s.direction).is_some(), "the second fold's line comes from the disks");
+        let p = plan_for(&analysis, [0.0, PI]).unwrap();
+        assert_eq!(p.case, "unfold_then_fold");
+        let first = &p.steps[0];
+        assert!(first.action == "unfold" && !first.picks.is_empty());
+        for pick in &first.picks {
+            let v = analysis.border_indices.iter().position(|&i| i == pick.vertex).unwrap();
+            let now = analysis.predicted_end[v];
+            assert!((0..3).all(|c| (pick.from[c] - now[c]).abs() < 1e-9), "corner grasped at {:?}, the prediction has it at {now:?}", pick.from);
+        }
     }
 
     #[test]

@@ -73,8 +73,16 @@ async fn text(client: &Client, expression: &str) -> String {
     js(client, &format!("return String({expression})")).await.as_str().unwrap_or_default().to_string()
 }
 
+/// A screenshot of the whole page (the window stretched to the page's height, up to
+/// `MAX_SHOT` px), so a person sees every part of the view, not just its top.
 async fn screenshot(client: &Client, dir: &Path, name: &str) {
+    const MAX_SHOT: u64 = 6000;
+    let (width, height) = client.get_window_size().await.expect("window size");
+    let page = js(client, "window.scrollTo(0, 0); return document.documentElement.scrollHeight").await.as_u64().unwrap_or(height);
+    client.set_window_size(width as u32, page.clamp(height, MAX_SHOT) as u32).await.expect("stretch the window");
+    tokio::time::sleep(Duration::from_millis(400)).await;
     let png = client.screenshot().await.expect("screenshot");
+    client.set_window_size(width as u32, height as u32).await.expect("window size back");
     std::fs::write(dir.join(name), png).expect("write screenshot");
 }
 
@@ -255,6 +263,11 @@ async fn the_app_works_in_a_real_browser() {
     assert_eq!(status, json!(200), "favicon {favicon}");
     // Thumbnails are mini drawings that load.
     images_loaded(&client, "#sample-list .category:first-of-type .sample-card:nth-child(-n+3) img").await;
+    // Names are whole and wrap only after an underscore: no word of a name spans two lines.
+    let split = js(&client, "return [...document.querySelectorAll('.sample-card .card-name')].flatMap(n => [...n.childNodes] \
+                             .filter(t => t.nodeType === 3 && (r => (r.selectNodeContents(t), r.getClientRects().length > 1))(document.createRange())) \
+                             .map(t => n.textContent))").await;
+    assert_eq!(split, json!([]), "names broken mid-word");
 
     // A click on a card: its URL, its title, its pictures.
     let twice = dataset.get("napkin__half_then_half").expect("a second-fold sample");
@@ -432,6 +445,13 @@ async fn the_app_works_in_a_real_browser() {
     assert!(readout.contains("fold 2 of 2"), "{readout}");
     let state = js(&client, "return window.closeApp.interpolate.state().folds.length").await;
     assert_eq!(state, json!(2));
+    // The sequence ends on the analysis's predicted end: the second fold, through two
+    // stacked layers, is made along the line the analysis reports, not through its two
+    // (coinciding) fold points.
+    let drawn: Vec<[f64; 3]> = serde_json::from_value(js(&client, "return window.closeApp.interpolate.state().drawn").await).expect("the drawn border");
+    let predicted = close::analyze(&twice.sample.border_frames().expect("frames"), Default::default()).expect("analysis").predicted_end;
+    let off = drawn.iter().zip(&predicted).map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1])).fold(0.0, f64::max);
+    assert!(drawn.len() == predicted.len() && off < 1e-9, "the sequence ends {off} away from the predicted end");
     disk_picture(&client).await;
     screenshot(&client, &shots, "1400-06-interpolate-sequence.png").await;
     client.find(Locator::Id("check-server")).await.expect("check").click().await.expect("click");
@@ -451,6 +471,13 @@ async fn the_app_works_in_a_real_browser() {
     assert!(text(&client, "document.title").await.contains("half_then_half"));
     screenshot(&client, &shots, "1400-07-plan.png").await;
     violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("plan: {v}")));
+    // The goal the cloth is already in: nothing to do.
+    js(&client, "document.getElementById('plan-sample').value = 'upload:' + window.closeApp.store.get().uploads.find(u => u.name === 'my-napkin.json').key; document.getElementById('plan-sample').dispatchEvent(new Event('change'))").await;
+    until(&client, "the upload's state", "document.getElementById('plan-now').textContent.includes('my-napkin.json')").await;
+    js(&client, "for (const [id, v] of [['goal-1', 45], ['goal-2', 225]]) { const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }").await;
+    client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
+    until(&client, "already there", "document.getElementById('plan-case').textContent.includes('already folded')").await;
+    assert_eq!(js(&client, "return document.querySelectorAll('#plan-list .plan-step').length").await, json!(1), "only the current state is drawn");
     // The upload is listed by its file name.
     let options = text(&client, "[...document.getElementById('plan-sample').options].map(o => o.textContent).join('|')").await;
     assert!(options.contains("upload · my-napkin.json"), "{options}");
@@ -478,6 +505,9 @@ async fn the_app_works_in_a_real_browser() {
         assert_no_overflow(&client, name).await;
         if name == "interpolate" {
             disk_picture(&client).await;
+            // The canvas is shrunk to the phone's width: its labels are sized for that.
+            let shown = js(&client, "const c = document.getElementById('interp-canvas'); return parseFloat(c.getContext('2d').font) * c.getBoundingClientRect().width / c.width").await;
+            assert!(shown.as_f64().is_some_and(|px| px >= 11.0), "corner labels {shown} CSS px tall");
         }
         screenshot(&client, &shots, &format!("420-0{}-{name}.png", 2 + ["upload", "interpolate", "plan"].iter().position(|n| *n == name).unwrap_or(0))).await;
         violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("{name} 420: {v}")));

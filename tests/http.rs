@@ -379,6 +379,15 @@ async fn plans_reach_the_goal_with_input_vertex_indices() {
     let by_key = post_json(&app, "/api/plan", &json!({"sample": uploaded["key"], "goal": goal})).await.json();
     assert_same(&by_key["steps"], &v["steps"], "steps");
 
+    // The goal comes back in [0, 2π), as the steps; the current fold as the goal: nothing to do.
+    let far = post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [7.0, 100.0]})).await.json();
+    let wrapped: Vec<f64> = serde_json::from_value(far["goal"].clone()).expect("the goal");
+    assert!(wrapped.iter().all(|g| (0.0..std::f64::consts::TAU).contains(g)), "{wrapped:?}");
+    assert!((wrapped[0] - (7.0 - std::f64::consts::TAU)).abs() < 1e-12, "{wrapped:?}");
+    let there = post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": v["folds"][0]})).await.json();
+    assert_eq!((there["case"].as_str(), there["steps"].as_array().map(Vec::len)), (Some("already_there"), Some(0)), "{there}");
+    // Each current fold's line, as the analysis made it.
+    assert_eq!(v["lines"].as_array().map(Vec::len), v["folds"].as_array().map(Vec::len));
     assert!(post_json(&app, "/api/plan", &json!({"sample": "nope", "goal": goal})).await.error(StatusCode::NOT_FOUND).contains("nope"));
     assert!(post_json(&app, "/api/plan", &json!({"sample": 7, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("sample"));
     assert!(post_json(&app, "/api/plan", &json!({"sample": {"frames": 3}, "goal": goal})).await.error(StatusCode::BAD_REQUEST).contains("parse"));

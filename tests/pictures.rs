@@ -1,6 +1,7 @@
 //! The picture routes the web app relies on: per-step disk pictures
 //! (`/api/images/{key}/{picture}.png?step=k`) and a disk colour scale kept through an
-//! animation (`POST /api/disk` with `scale`, answered in `x-disk-scale`).
+//! animation (`POST /api/disk` with `scale`, answered in `x-disk-scale`); and the fold
+//! curves drawn on a step's diff end at the fold points the step reports.
 
 use axum::body::{to_bytes, Body};
 use axum::http::{header, Method, Request, StatusCode};
@@ -85,4 +86,30 @@ async fn a_disk_keeps_the_scale_it_is_given() {
     assert_eq!(other_scale, Some(format!("{} {}", 10.0 * parts[0], parts[1])));
     let (status, _, body) = post_disk(&app, &json!({ "border": square, "scale": { "s": 0.0, "max": 1.0 } })).await;
     assert_eq!(status, StatusCode::BAD_REQUEST, "{}", String::from_utf8_lossy(&body));
+}
+
+/// The measurement: in every fold step of the built-in set, each reported fold point
+/// ends one of the curves drawn on that step's diff disk (before, 50 of 173 steps had a fold
+/// point more than 10° from every curve drawn: the curves were the free fits, not the fold's).
+#[test]
+fn every_reported_fold_point_ends_a_drawn_curve() {
+    let data = close::dataset::Dataset::builtin();
+    let (mut steps, mut misses) = (0, Vec::new());
+    for entry in data.entries() {
+        let analysis = close::analyze(&entry.sample.border_frames().expect("a built-in sample"), Default::default()).expect("it analyses");
+        for (k, step) in analysis.steps.iter().enumerate() {
+            let Some(fold) = step.detection.fold else { continue };
+            steps += 1;
+            let g = analysis.disk(k).expect("the step's start").abs_diff(&analysis.disk(k + 1).expect("the step's end"));
+            let curves = close::render::disk::fold_curves(&g, &step.detection);
+            for f in fold {
+                let nearest = curves.iter().map(|c| close::angle::distance(c.a0 + c.a1, f)).fold(f64::INFINITY, f64::min);
+                if nearest > 10f64.to_radians() {
+                    misses.push(format!("{} step {}: fold point {:.1}° is {:.1}° from the nearest curve end", entry.id, k + 1, f.to_degrees(), nearest.to_degrees()));
+                }
+            }
+        }
+    }
+    assert!(steps > 150, "only {steps} fold steps");
+    assert!(misses.is_empty(), "{misses:#?}");
 }

@@ -1,7 +1,7 @@
 // Canvas drawing shared by the Interpolate and Plan views: a viewport from border
 // coordinates to pixels, cloth layers, fold lines, arrows and corner numbers.
 
-import { TAU, applyFold, foldLine, foldedVertices } from "./fold.mjs";
+import { TAU, applyFold, foldLine, foldedVertices, turnAbout } from "./fold.mjs";
 
 /** Maps border points to a canvas, fitted to `bounds` {x0, x1, y0, y1} with `pad` pixels. */
 export function viewport(canvas, bounds, pad) {
@@ -11,6 +11,16 @@ export function viewport(canvas, bounds, pad) {
   const ox = (width - scale * (b.x1 - b.x0)) / 2;
   const oy = (height - scale * (b.y1 - b.y0)) / 2;
   return { X: (p) => ox + scale * (p[0] - b.x0), Y: (p) => height - (oy + scale * (p[1] - b.y0)) };
+}
+
+/**
+ * A font size, in the canvas's own pixels, that shows as `css` CSS pixels at the width the
+ * canvas is drawn at (a 900 px canvas on a phone is shrunk to a third); width/50 while the
+ * canvas is not laid out.
+ */
+export function textSize(canvas, css = 13) {
+  const shown = canvas.getBoundingClientRect().width;
+  return Math.round(shown > 0 ? (css * canvas.width) / shown : canvas.width / 50);
 }
 
 /** XY bounds of several borders. */
@@ -66,28 +76,63 @@ function reflect(p, a, b) {
 }
 
 /**
- * The cloth's layers after `folds` (applied in order to `flat`), bottom first: each
- * {points, flips}. A fold cuts every layer along its line; the parts on the folded side
+ * How a fold is made on `border`. A fold is [f1, f2], made along the line through its two
+ * border points; or {fold, line, turn}, made along `line` (an analysis step's, for a fold
+ * whose two points lie on top of each other) and turned the fraction `turn` of the way.
+ * Gives its angles, two points a, b of its line, and where it takes a point p.
+ */
+export function made(border, f) {
+  if (Array.isArray(f)) {
+    const [a, b] = foldLine(border, f);
+    return { fold: f, a, b, move: (p) => reflect(p, a, b) };
+  }
+  // a and b span the border along the line, so they also draw it across the cloth.
+  const { point, direction } = f.line;
+  const along = border.map((p) => (p[0] - point[0]) * direction[0] + (p[1] - point[1]) * direction[1]);
+  const at = (t) => [point[0] + t * direction[0], point[1] + t * direction[1], 0];
+  const [lo, hi] = [Math.min(...along), Math.max(...along)];
+  return { fold: f.fold, a: at(lo), b: at(hi > lo ? hi : lo + 1), move: (p) => turnAbout(p, f.line, f.turn ?? 1) };
+}
+
+/** Whether fold `f` has begun: a fold along a line turned by nothing leaves the cloth as it lies. */
+const begun = (f) => Array.isArray(f) || (f.turn ?? 1) > 0;
+
+/** The border after fold `f` (see `made`). */
+export function folded(border, f) {
+  if (Array.isArray(f)) return applyFold(border, f);
+  if (!begun(f)) return border.map((p) => p.slice());
+  const { move } = made(border, f);
+  const out = border.map((p) => p.slice());
+  for (const v of foldedVertices(border.length, f.fold)) out[v] = move(border[v]);
+  return out;
+}
+
+/** The border after `folds` (see `made`), in order. */
+export const foldAll = (border, folds) => folds.reduce(folded, border);
+
+/**
+ * The cloth's layers after `folds` (applied in order to `flat`, see `made`), bottom first:
+ * each {points, flips}. A fold cuts every layer along its line; the parts on the folded side
  * turn over onto the top, their stacking order reversed, as a folded stack lands. The
- * outline of the border itself is `applyFold` applied in order; the layers are its fill.
+ * outline of the border itself is `folded` applied in order; the layers are its fill.
  */
 export function layers(flat, folds) {
   let stack = [{ points: flat, flips: 0 }];
   let border = flat;
-  for (const fold of folds) {
+  for (const f of folds.filter(begun)) {
+    const { fold, a, b, move } = made(border, f);
     const moved = foldedVertices(border.length, fold);
-    const [a, b] = foldLine(border, fold);
     if (moved.length && Math.hypot(b[0] - a[0], b[1] - a[1]) > 0) {
       const centre = moved.reduce((s, v) => [s[0] + border[v][0], s[1] + border[v][1], 0], [0, 0, 0]).map((c) => c / moved.length);
       const sign = Math.sign(side(a, b, centre)) || 1;
       const keep = stack.map((l) => ({ ...l, points: clip(l.points, a, b, -sign) })).filter((l) => l.points.length);
       const flipped = stack
-        .map((l) => ({ points: clip(l.points, a, b, sign).map((p) => reflect(p, a, b)), flips: l.flips + 1 }))
+        .map((l) => ({ points: clip(l.points, a, b, sign).map(move), flips: l.flips + 1 }))
         .filter((l) => l.points.length)
         .reverse();
       stack = [...keep, ...flipped];
     }
-    border = applyFold(border, fold);
+    border = folded(border, f);
   }
   return { stack, border };
 }
@@ -169,12 +214,11 @@ export function stacked(flat, folds) {
   const centre = [0, 1].map((c) => flat.reduce((sum, p) => sum + p[c], 0) / n);
   const radius = Math.max(...flat.map((p) => Math.hypot(p[0] - centre[0], p[1] - centre[1])));
   let border = flat.map((p) => p.slice());
-  for (const fold of folds) {
+  for (const f of folds.filter(begun)) {
     const top = Math.max(...border.map((p) => p[2]));
-    const moved = foldedVertices(n, fold);
-    const folded = applyFold(border, fold);
-    for (const v of moved) folded[v][2] = 2 * top + 0.01 * radius - border[v][2];
-    border = folded;
+    const after = folded(border, f);
+    for (const v of foldedVertices(n, made(border, f).fold)) after[v][2] = 2 * top + 0.01 * radius - border[v][2];
+    border = after;
   }
   return border;
 }

@@ -110,3 +110,16 @@ export function foldLine(points, fold) {
   const n = points.length;
   return [pointAt(points, (wrap(fold[0]) * n) / TAU), pointAt(points, (wrap(fold[1]) * n) / TAU)];
 }
+
+/**
+ * p turned about the XY line `line` ({point, direction}: the analysis's `steps[k].line`) by
+ * the fraction `turn` of a half turn, seen from above (z kept): 1 is the reflection across
+ * it, as the analysis folds a step whose two fold points lie on top of each other.
+ */
+export function turnAbout(p, line, turn = 1) {
+  const [ux, uy] = line.direction;
+  const t = (p[0] - line.point[0]) * ux + (p[1] - line.point[1]) * uy;
+  const [fx, fy] = [line.point[0] + t * ux, line.point[1] + t * uy];
+  const c = Math.cos(Math.PI * turn);
+  return [fx + c * (p[0] - fx), fy + c * (p[1] - fy), p[2]];
+}

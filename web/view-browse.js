@@ -26,6 +26,13 @@ function matching(samples) {
   return samples.filter((s) => (!category || s.category === category) && words.every((w) => `${s.name} ${s.category} ${s.id}`.toLowerCase().includes(w)));
 }
 
+/** A sample's name that wraps after its underscores ("napkin__half_" / "then_half"), not mid-word. */
+function cardName(name) {
+  const span = el("span", { className: "card-name" });
+  name.split(/(?<=_)(?=[^_])/).forEach((part, k) => span.append(...(k ? [el("wbr"), part] : [part])));
+  return span;
+}
+
 function card(s) {
   const button = el("button", { type: "button", className: "sample-card", title: `${s.name} · N = ${s.n} · ${s.frames} frames` });
   button.dataset.id = s.id;
@@ -33,7 +40,7 @@ function card(s) {
   button.setAttribute("aria-pressed", String(s.id === openId));
   const img = el("img", { loading: "lazy", src: s.thumbnail, alt: "", width: 160, height: 160 });
   const folds = s.frames > 2 ? ` · ${s.frames - 1} folds` : "";
-  button.append(img, el("span", { className: "card-name", textContent: s.name }), el("span", { className: "card-meta", textContent: `N = ${s.n}${folds}${s.mesh ? " · mesh" : ""}` }));
+  button.append(img, cardName(s.name), el("span", { className: "card-meta", textContent: `N = ${s.n}${folds}${s.mesh ? " · mesh" : ""}` }));
   button.addEventListener("click", () => router.go("samples", s.id));
   return button;
 }

@@ -5,9 +5,9 @@
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
-import { applyFold, foldAt, foldLine, foldPath, wrap, TAU } from "./fold.mjs";
+import { applyFold, foldAt, foldPath, wrap, TAU } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { boundsOf, drawCloth, labelCorners, line, stacked, viewport } from "./draw.js";
+import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, textSize, viewport } from "./draw.js";
 import { fmtFold } from "./format.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -82,22 +82,41 @@ const view = {
   motion: 0,
 };
 
+/** A fold's two angles, whether it is [f1, f2] or made along a line (see draw.js `made`). */
+const anglesOf = (f) => (Array.isArray(f) ? f : f.fold);
+
+/**
+ * Fold k of the analysis as the analysis made it, turned the fraction `turn` of the way:
+ * along the line it reports when the step's two fold points lie on top of each other (a fold
+ * through stacked layers, where the line through them would point anywhere), so the motion
+ * ends on the predicted state; otherwise on the fold circle from (f1, f1) to (f1, f2).
+ */
+function sampleFold(k, turn = 1) {
+  const f = view.result.folds[k];
+  const step = (view.result.steps || []).filter((s) => s.fold)[k];
+  if (step?.synthesis?.direction && step.line) return { fold: f, line: step.line, turn };
+  return turn >= 1 ? f : foldAt([f[0], f[0]], f, turn);
+}
+
+const sameFold = (a, b) => Math.abs(a[0] - wrap(b[0])) < 1e-12 && Math.abs(a[1] - wrap(b[1])) < 1e-12;
+
 /** The folds of the state at the slider: prior folds and the animated one. */
 function foldsNow() {
   if (view.mode === SEQUENCE) {
     const folds = view.result.folds;
     const x = view.tau * folds.length;
     const k = Math.min(Math.floor(x), folds.length - 1);
-    const f = folds[k];
-    return [...folds.slice(0, k), foldAt([f[0], f[0]], f, x - k)];
+    return [...folds.slice(0, k).map((_, i) => sampleFold(i)), sampleFold(k, x - k)];
   }
-  return [...view.prior, foldAt(view.from, view.to, view.tau)];
+  const k = Number(view.mode) - 1;
+  // A step's own fold, its handles untouched, moves as the analysis made it.
+  const own = view.result && Number.isInteger(k) && view.result.folds[k] && view.from[0] === view.from[1] && sameFold(view.to, view.result.folds[k]);
+  return [...view.prior, own ? sampleFold(k, view.tau) : foldAt(view.from, view.to, view.tau)];
 }
 
 /** Every state of the motion, coarsely, for the drawing's bounds. */
 function motionStates() {
-  if (view.mode === SEQUENCE) return Array.from({ length: 41 }, (_, k) => foldsAtTau(k / 40));
-  return foldPath(view.from, view.to, 21).map((f) => [...view.prior, f]);
+  return Array.from({ length: 41 }, (_, k) => foldsAtTau(k / 40));
 }
 
 function foldsAtTau(t) {
@@ -107,8 +126,6 @@ function foldsAtTau(t) {
   view.tau = keep;
   return folds;
 }
-
-const applyAll = (border, folds) => folds.reduce((b, f) => applyFold(b, f), border);
 
 function fillCloths() {
   const select = $("#interp-sample");
@@ -159,7 +176,7 @@ function setMode(mode) {
   const folds = view.result.folds;
   const k = Number(mode);
   if (Number.isInteger(k) && folds[k - 1]) {
-    view.prior = folds.slice(0, k - 1);
+    view.prior = folds.slice(0, k - 1).map((_, i) => sampleFold(i));
     view.to = [wrap(folds[k - 1][0]), wrap(folds[k - 1][1])];
     view.from = [view.to[0], view.to[0]];
   } else if (mode === "free") {
@@ -175,7 +192,7 @@ function setMode(mode) {
 function changed() {
   if (!view.border) return;
   view.motion += 1;
-  view.bounds = boundsOf(motionStates().map((folds) => applyAll(view.border, folds)));
+  view.bounds = boundsOf(motionStates().map((folds) => foldAll(view.border, folds)));
   inputs.write({ "from-1": view.from[0], "from-2": view.from[1], "to-1": view.to[0], "to-2": view.to[1] });
   draw();
 }
@@ -188,7 +205,8 @@ function setTau(tau) {
 
 /** Names the state drawn: the cloth, the motion and the folds. */
 export function diskKey() {
-  return `${view.cloth?.id}|${view.motion}|${foldsNow().map((f) => `${f[0].toFixed(9)},${f[1].toFixed(9)}`).join(";")}`;
+  const name = (f) => `${anglesOf(f).map((a) => a.toFixed(9)).join(",")}${Array.isArray(f) ? "" : `@${f.turn.toFixed(9)}`}`;
+  return `${view.cloth?.id}|${view.motion}|${foldsNow().map(name).join(";")}`;
 }
 
 function draw() {
@@ -208,19 +226,23 @@ function draw() {
   ctx.stroke();
   ctx.setLineDash([]);
   const folded = drawCloth(ctx, v, view.border, folds);
-  const size = Math.round(canvas.width / 50);
+  const size = textSize(canvas);
   labelCorners(ctx, v, folded, view.corners, size);
   // The line of the fold animated, on the state it folds.
-  const fold = folds[folds.length - 1];
-  const [a, c] = foldLine(applyAll(view.border, folds.slice(0, -1)), fold);
+  const last = folds[folds.length - 1];
+  const fold = anglesOf(last);
+  const { a, b: c } = made(foldAll(view.border, folds.slice(0, -1)), last);
   line(ctx, v, a, c, "#d1495b", 3);
-  ctx.font = `${size}px system-ui, sans-serif`;
-  for (const [p, label] of [[a, "f₁"], [c, "f₂"]]) {
-    ctx.beginPath();
-    ctx.arc(v.X(p), v.Y(p), 6, 0, TAU);
-    ctx.fillStyle = "#d1495b";
-    ctx.fill();
-    ctx.fillText(label, v.X(p) + 8, v.Y(p) + 18);
+  // A fold along a reported line has its two fold points on top of each other: no tags.
+  if (Array.isArray(last)) {
+    ctx.font = `${size}px system-ui, sans-serif`;
+    for (const [p, label] of [[a, "f₁"], [c, "f₂"]]) {
+      ctx.beginPath();
+      ctx.arc(v.X(p), v.Y(p), 6, 0, TAU);
+      ctx.fillStyle = "#d1495b";
+      ctx.fill();
+      ctx.fillText(label, v.X(p) + 8, v.Y(p) + 18);
+    }
   }
   drawCircle(fold);
   const which = view.mode === SEQUENCE ? `fold ${folds.length} of ${view.result.folds.length}` : "fold";
@@ -242,7 +264,7 @@ function drawCircle(fold) {
   for (const [which, color, r, word] of [["from", "#2b6cb0", R + 14, "from"], ["to", "#c05621", R + 28, "to"]]) {
     view[which].forEach((angle, k) => handles.push({ id: `${which}:${k}`, angle, color, label: k + 1, r, name: `${word} fold point ${k + 1}` }));
   }
-  const arcs = view.prior.map((f) => ({ fold: f, color: "#9aa4b2" }));
+  const arcs = foldsNow().slice(0, -1).map((f) => ({ fold: anglesOf(f), color: "#9aa4b2" }));
   arcs.push({ fold, color: "#d1495b" });
   drawFoldCircle($("#fold-circle"), view.corners, arcs, view.mode === SEQUENCE ? [] : handles);
 }
@@ -283,7 +305,7 @@ async function checkServer() {
     const f = view.result.folds[folds.length - 1];
     return [[f[0], f[0]], f];
   })() : [view.from, view.to];
-  const base = applyAll(view.border, prior);
+  const base = foldAll(view.border, prior);
   try {
     const res = await api.interpolate({ border: base, reference: view.border, from, to, steps });
     let worst = 0;
@@ -355,5 +377,5 @@ export function shown() {
 }
 
 // For tests and the console.
-export const state = () => ({ ...view, folds: foldsNow() });
+export const state = () => ({ ...view, folds: foldsNow(), drawn: foldAll(view.border, foldsNow()) });
 export { setTau, setMode };

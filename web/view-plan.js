@@ -4,9 +4,9 @@
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
-import { applyFold, foldLine, wrap } from "./fold.mjs";
+import { wrap } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { arrow, boundsOf, cornerVertex, drawCloth, labelCorners, line, polygon, viewport } from "./draw.js";
+import { arrow, boundsOf, cornerVertex, drawCloth, foldAll, labelCorners, line, made, polygon, viewport } from "./draw.js";
 import { el, fmtDeg, fmtPoint } from "./format.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -105,7 +105,9 @@ async function plan() {
  * off, a fold folds the flat cloth ("direct" replaces the current folds by the goal at once).
  */
 function states(res) {
-  let applied = [...res.folds];
+  // The current folds along the lines the analysis made them along (a fold through stacked
+  // layers has no line of its own through its two points).
+  let applied = res.folds.map((fold, k) => (res.lines?.[k] ? { fold, line: res.lines[k] } : fold));
   const out = [{ folds: applied }];
   for (const step of res.steps) {
     const before = applied;
@@ -119,7 +121,7 @@ function states(res) {
 function stepCards(res) {
   const flat = res.start_border;
   const n = flat.length;
-  const at = (folds) => folds.reduce((b, f) => applyFold(b, f), flat);
+  const at = (folds) => foldAll(flat, folds);
   const all = states(res);
   const bounds = boundsOf([flat, ...all.map((s) => at(s.folds)), ...res.steps.flatMap((s) => s.picks.map((p) => [p.from, p.to]))]);
   // Input vertex (what picks name) → 1-based corner number.
@@ -141,7 +143,8 @@ function stepCards(res) {
     if (step) {
       // The line a fold step folds along lies on the border it folds (the flat cloth); an
       // unfold's on the state it goes back to.
-      const [a, b] = foldLine(step.action === "unfold" ? state : flat, step.fold);
+      const undone = before[before.length - 1];
+      const { a, b } = step.action === "unfold" ? made(state, undone) : made(flat, step.fold);
       line(ctx, v, a, b, "#d1495b", 2.5);
       for (const pick of step.picks) arrow(ctx, v, pick.from, pick.to, "#2f855a");
     }

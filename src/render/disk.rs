@@ -11,10 +11,10 @@
 //! outline, its angle marks and the ring ruler: they are worked out once per (size, N) and
 //! kept (`Template`), so a picture costs a table read per disk pixel, the replayed blends
 //! of those guides, the colour bar, a few labels and the PNG encoding.
-//! Over a diff disk the fitted fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
-//! coordinates, with the fold points marked on the rim: only the curves of the fold the
-//! step reports ([`fold_curves`]), and only on the disk of the two frames they were fitted
-//! on. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
+//! Over a diff disk the fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
+//! coordinates, with the fold points marked on the rim: the curves of the fold the step
+//! reports, fitted with the paper's loss through its fold points ([`fold_curves`]), and
+//! only on the disk of the two frames of that step. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
 //! Geometric Shape-Agnostic Cloth State Representation" (the dGLI disk and the fold-curve
 //! fit on the diff disk). A ruler under the disk names the rings by pair distance d; the
 //! colour bar says its transform (tanh, see [`super::colour`]) and its scale.
@@ -36,9 +36,9 @@ use super::colour::{Ramp, Scale};
 use super::raster::Recording;
 use super::sector_map::SectorMap;
 use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
-use crate::angle;
 use crate::cache::Lru;
 use crate::disk::Disk;
+use crate::fold::loss::RingTables;
 use crate::fold::{Curve, FoldDetection};
 use crate::error::Result;
 
@@ -97,37 +97,52 @@ pub fn sector_at(n: usize, r: f64, theta: f64) -> (usize, usize) {
 }
 
 /// What is drawn over a diff disk: fold points on the rim and the fold curves.
-pub(crate) struct Marks<'a> {
+pub(crate) struct Marks {
     /// (fold number, 0-based, in step order; (f1, f2)) of each fold to mark.
     pub folds: Vec<(usize, [f64; 2])>,
     /// How many folds the analysis has (names are numbered when more than one).
     pub total: usize,
     /// The curves to draw: those of the fold reported ([`fold_curves`]).
-    pub curves: Vec<&'a Curve>,
+    pub curves: Vec<Curve>,
     /// A short note shown above the colour bar ("no fold", …).
     pub note: Option<String>,
 }
 
-/// A fitted curve belongs to a fold point when its rim lies within this many edges of it.
-pub const CURVE_MATCH_EDGES: f64 = 2.0;
+/// Slopes a1 tried per fold point before the best is refined: one every half degree of
+/// [−π, π], the bound the paper's fit keeps a1 in.
+const SLOPES: usize = 721;
 
-/// The fitted curves of the fold a step reports: for each fold point, the curve whose rim
-/// lies nearest it, if within [`CURVE_MATCH_EDGES`] edges. The fold points may come from
-/// the cut rather than the curves (the default method), so a curve far from both is
-/// evidence the method set aside, not the fold, and is not drawn.
-pub fn fold_curves(detection: &FoldDetection, n: usize) -> Vec<&Curve> {
+/// The curves of the fold a step reports, over that step's diff disk `g`: for each fold
+/// point f, the paper's curve θ̂ = a0 + a1·r whose rim end is f (a0 = f − a1), the slope
+/// a1 ∈ [−π, π] minimising the paper's loss. The fold points may come from the cut rather
+/// than from the freely fitted curves (the default method), and a free curve may end
+/// several edges away or be missing, so the curves drawn are fitted through the fold
+/// points themselves: each ends where the fold is reported. A fold point whose best curve
+/// has no negative loss (no change along any line through it) gets none; its marker shows it.
+pub fn fold_curves(g: &Disk, detection: &FoldDetection) -> Vec<Curve> {
     let Some(fold) = detection.fold else { return Vec::new() };
-    let tolerance = CURVE_MATCH_EDGES * angle::edge(n);
-    let mut chosen: Vec<&Curve> = Vec::new();
-    for f in fold {
-        let nearest = detection.curves.iter().min_by(|a, b| angle::distance(a.rim, f).total_cmp(&angle::distance(b.rim, f)));
-        if let Some(curve) = nearest.filter(|c| angle::distance(c.rim, f) <= tolerance) {
-            if !chosen.iter().any(|c| std::ptr::eq(*c, curve)) {
-                chosen.push(curve);
+    let tables = RingTables::new(g);
+    let loss = |f: f64, a1: f64| tables.loss_and_gradient(f - a1, a1).0;
+    fold.iter()
+        .filter_map(|&f| {
+            let step = 2.0 * PI / (SLOPES - 1) as f64;
+            let best = (0..SLOPES).map(|k| -PI + k as f64 * step).min_by(|&a, &b| loss(f, a).total_cmp(&loss(f, b)))?;
+            // Golden-section search within a grid step either side of the best slope.
+            let (mut lo, mut hi) = ((best - step).max(-PI), (best + step).min(PI));
+            let ratio = (5f64.sqrt() - 1.0) / 2.0;
+            for _ in 0..40 {
+                let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+                if loss(f, x1) < loss(f, x2) {
+                    hi = x2;
+                } else {
+                    lo = x1;
+                }
             }
-        }
-    }
-    chosen
+            let a1 = (lo + hi) / 2.0;
+            let value = loss(f, a1);
+            (value < 0.0).then_some(Curve { a0: f - a1, a1, loss: value, rim: f })
+        })
+        .collect()
 }
 
 /// Draw `disk` with `ramp` and colour `scale` under `title`; with `marks`, fold points and
@@ -337,6 +352,7 @@ mod tests {
     use super::super::tests::{colours, decode, folded_square, preview};
     use super::super::{disk_png, render_png, Picture};
     use super::*;
+    use crate::angle;
     use crate::disk::{condensed_index, position};
 
     /// The colour of the pixel at polar point (r, θ) of a decoded picture.
@@ -360,24 +376,35 @@ mod tests {
         c.iter().max().unwrap() - c.iter().min().unwrap() > 80
     }
 
+    /// A diff disk with a ridge of change along each curve θ = rim + a1·(r − 1) of `ridges`.
+    fn ridged(n: usize, ridges: &[(f64, f64)]) -> Disk {
+        let values = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let p = position(n, i, j);
+                ridges.iter().map(|&(rim, a1)| (-(angle::wrap_pi(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()).sum()
+            })
+            .collect();
+        Disk::from_values(n, values).unwrap()
+    }
+
     #[test]
-    fn only_the_curves_of_the_reported_fold_are_drawn() {
+    fn the_curves_drawn_end_at_the_reported_fold_points() {
         let n = 40;
-        let edge = angle::edge(n);
-        let curve = |rim: f64| Curve { a0: rim, a1: 0.0, loss: -1.0, rim };
-        let mut detection = FoldDetection { fold: Some([1.0, 4.0]), curves: vec![curve(1.0 + 0.5 * edge), curve(2.5), curve(4.0 - 1.5 * edge)], cut: None, orientation: None, synthesis: None };
-        let rims: Vec<f64> = fold_curves(&detection, n).iter().map(|c| c.rim).collect();
-        assert_eq!(rims, vec![1.0 + 0.5 * edge, 4.0 - 1.5 * edge]);
-        // A fold point with no curve near it gets none (its marker alone shows it).
-        detection.curves = vec![curve(1.0 + 3.0 * edge), curve(4.0)];
-        let rims: Vec<f64> = fold_curves(&detection, n).iter().map(|c| c.rim).collect();
-        assert_eq!(rims, vec![4.0]);
-        // Across angle 0 the distance wraps.
-        detection.fold = Some([0.01, 3.0]);
-        detection.curves = vec![curve(std::f64::consts::TAU - 0.01)];
-        assert_eq!(fold_curves(&detection, n).len(), 1);
+        let g = ridged(n, &[(1.0, 0.0), (4.0, 0.5)]);
+        // The fold points sit a little off the ridges' rim ends, as a cut's may: the curves
+        // still end at the fold points, and follow the ridges' slopes.
+        let mut detection = FoldDetection { fold: Some([1.05, 3.95]), curves: Vec::new(), cut: None, orientation: None, synthesis: None };
+        let curves = fold_curves(&g, &detection);
+        assert_eq!(curves.len(), 2);
+        for (curve, (f, slope)) in curves.iter().zip([(1.05, 0.0), (3.95, 0.5)]) {
+            assert!((curve.a0 + curve.a1 - f).abs() < 1e-12 && curve.rim == f, "{curve:?}");
+            assert!((curve.a1 - slope).abs() < 0.15 && curve.loss < 0.0, "{curve:?}");
+        }
+        // No change at all: no line through a fold point has negative loss, no curve.
+        assert!(fold_curves(&ridged(n, &[]), &detection).is_empty());
         detection.fold = None;
-        assert!(fold_curves(&detection, n).is_empty());
+        assert!(fold_curves(&g, &detection).is_empty());
     }
 
     #[test]

@@ -114,13 +114,15 @@ pub fn render_step_png(analysis: &Analysis, picture: Picture, step: Option<usize
                     disk::draw(&mut canvas, disk, &title, Ramp::Diverging, &shared, None)?
                 }
                 _ => {
+                    // The curves are fitted on |diff|, and drawn over either diff.
+                    let g = start.abs_diff(&end);
+                    let marks = span.marks(analysis, &g);
                     let (diff, ramp, what) = if picture == Picture::Diff {
-                        (start.abs_diff(&end), Ramp::Sequential, "| |end| − |start| |")
+                        (g, Ramp::Sequential, "| |end| − |start| |")
                     } else {
                         (start.signed_diff(&end), Ramp::Diverging, "Δ = end − start")
                     };
                     let title = format!("{what} · frames {}→{}", frame(span.from), frame(span.to));
-                    let marks = span.marks(analysis, diff.n());
                     disk::draw(&mut canvas, &diff, &title, ramp, &Scale::of(diff.values()), Some(&marks))?
                 }
             }
@@ -148,10 +150,10 @@ impl StepSpan {
         }
     }
 
-    /// What to draw over this span's diff: the fold points of the folds it holds, and the
-    /// curves fitted on exactly these two frames (a curve fitted on another pair of frames
-    /// would be drawn on a disk it was not read from).
-    fn marks<'a>(&self, analysis: &'a Analysis, n: usize) -> disk::Marks<'a> {
+    /// What to draw over this span's diff: the fold points of the folds it holds, and, for
+    /// a single step, the curves of its fold fitted on its own |diff| `g` (a curve fitted on
+    /// another pair of frames would be drawn on a disk it was not read from).
+    fn marks(&self, analysis: &Analysis, g: &crate::disk::Disk) -> disk::Marks {
         let total = analysis.folds.len();
         // Fold number of each step's fold: folds are numbered in step order.
         let numbered = analysis.steps.iter().scan(0, |count, s| {
@@ -167,7 +169,7 @@ impl StepSpan {
                 marks.folds.push((fold_number, fold));
             }
             if one_step == Some(k + 1) {
-                marks.curves = disk::fold_curves(&step.detection, n);
+                marks.curves = disk::fold_curves(g, &step.detection);
             }
         }
         if one_step.is_none() {

@@ -533,8 +533,11 @@ pub struct PlanRequest {
 struct PlanResponse<'a> {
     case: &'a str,
     steps: &'a [PlanStep],
+    /// In [0, 2π), as the plan's steps.
     goal: [f64; 2],
     folds: &'a [[f64; 2]],
+    /// The line each current fold was made along (as the analysis's `steps[k].line`).
+    lines: Vec<Option<crate::fold::Line>>,
     corners: &'a [f64],
     start_border: Vec<[f64; 3]>,
     border_indices: &'a [usize],
@@ -569,8 +572,9 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
             to_json(&PlanResponse {
                 case: &plan.case,
                 steps: &plan.steps,
-                goal,
+                goal: goal.map(crate::angle::wrap_tau),
                 folds: &a.folds,
+                lines: a.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect(),
                 corners: &a.corners,
                 start_border: a.start_border().iter().map(to_xyz).collect(),
                 border_indices: &a.border_indices,
