@@ -99,7 +99,8 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
     Some((wrap_tau(x[0]), A1_BOUND * x[1].sin(), state.get_best_cost()))
 }
 
-/// Every distinct local minimum with negative loss, lowest loss first, rim coordinates refined.
+/// Every distinct local minimum with negative loss of the diff disk `g` (tabulated in
+/// `tables`), lowest loss first, rim coordinates refined: the paper's free fit.
 ///
 /// ```
 /// use close::disk::{position, Disk};
@@ -109,15 +110,15 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
 /// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
 ///     .map(|(i, j)| (-(close::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp())
 ///     .collect();
-/// let curves = fit_curves(&Disk::from_values(n, values).unwrap());
+/// let g = Disk::from_values(n, values).unwrap();
+/// let curves = fit_curves(&g, &close::fold::loss::RingTables::new(&g));
 /// assert!(close::angle::distance(curves[0].rim, 1.0) < close::angle::edge(n));
 /// ```
-pub fn fit_curves(g: &Disk) -> Vec<Curve> {
+pub fn fit_curves(g: &Disk, tables: &RingTables) -> Vec<Curve> {
     let n = g.n();
-    let tables = RingTables::new(g);
     let mut minima: Vec<(f64, f64, f64)> = (0..STARTS)
         .into_par_iter()
-        .filter_map(|m| minimise(&tables, TAU * m as f64 / STARTS as f64))
+        .filter_map(|m| minimise(tables, TAU * m as f64 / STARTS as f64))
         .filter(|&(_, a1, loss)| loss < 0.0 && a1.abs() < A1_BOUND * (1.0 - 1e-3))
         .collect();
     minima.sort_by(|a, b| a.2.total_cmp(&b.2));
@@ -139,6 +140,60 @@ pub fn fit_curves(g: &Disk) -> Vec<Curve> {
                 .filter(|r| (wrap(r - rim).abs() - reach).abs() > 1e-3 * reach)
                 .unwrap_or(rim);
             Curve { a0, a1, loss, rim: refined }
+        })
+        .collect()
+}
+
+/// Slopes a1 tried per fold point before the best is refined by golden section: half a
+/// cell apart (π/N), which resolves a cell on the inner rings, and at most one every half
+/// degree of [−π, π], the bound the paper's fit keeps a1 in.
+fn slopes(n: usize) -> usize {
+    (2 * n + 1).min(721)
+}
+
+/// The curves of a fold found some other way (the cut and synthesis), over the step's diff
+/// disk (tabulated in `tables`, N = `n`): for each fold point f, the paper's curve
+/// θ̂ = a0 + a1·r whose rim end is f (a0 = f − a1), the slope a1 ∈ [−π, π] minimising the
+/// paper's loss. A free curve may end several edges from the fold point or be missing, so
+/// the curves of the fold are fitted through its points: each ends where the fold is
+/// reported. A fold point whose best curve has no negative loss (no change along any line
+/// through it) gets none.
+///
+/// ```
+/// use close::disk::{position, Disk};
+/// use close::fold::{fit::curves_through, loss::RingTables};
+/// // A diff disk whose change runs along the radial line at 1 rad.
+/// let n = 40;
+/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+///     .map(|(i, j)| (-(close::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp())
+///     .collect();
+/// let curves = curves_through(&RingTables::new(&Disk::from_values(n, values).unwrap()), n, [1.0, 4.0]);
+/// // Only the fold point on the change gets a curve, radial, ending there.
+/// assert_eq!(curves.len(), 1);
+/// assert!(curves[0].rim == 1.0 && curves[0].a1.abs() < 0.1);
+/// ```
+pub fn curves_through(tables: &RingTables, n: usize, fold: [f64; 2]) -> Vec<Curve> {
+    let loss = |f: f64, a1: f64| tables.loss_and_gradient(f - a1, a1).0;
+    let slopes = slopes(n);
+    let step = 2.0 * A1_BOUND / (slopes - 1) as f64;
+    fold.iter()
+        .filter_map(|&f| {
+            let scan: Vec<(f64, f64)> = (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (f - a1, a1)).collect();
+            let best = scan.iter().zip(tables.losses(&scan)).min_by(|a, b| a.1.total_cmp(&b.1))?.0 .1;
+            // Golden-section search within a grid step either side of the best slope.
+            let (mut lo, mut hi) = ((best - step).max(-A1_BOUND), (best + step).min(A1_BOUND));
+            let ratio = (5f64.sqrt() - 1.0) / 2.0;
+            for _ in 0..40 {
+                let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+                if loss(f, x1) < loss(f, x2) {
+                    hi = x2;
+                } else {
+                    lo = x1;
+                }
+            }
+            let a1 = (lo + hi) / 2.0;
+            let value = loss(f, a1);
+            (value < 0.0).then_some(Curve { a0: f - a1, a1, loss: value, rim: f })
         })
         .collect()
 }
@@ -193,19 +248,42 @@ mod tests {
     use super::*;
     use crate::disk::position;
 
-    /// A diff disk with a ridge of change along each of the radial lines at `angles`.
-    fn ridges(n: usize, angles: &[f64]) -> Disk {
+    /// A diff disk with a ridge of change along each curve θ = rim + a1·(r − 1) of `ridges`.
+    fn ridged(n: usize, ridges: &[(f64, f64)]) -> Disk {
         let values = (0..n)
             .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-            .map(|(i, j)| angles.iter().map(|&a| (-(wrap(position(n, i, j).angle - a) * 8.0).powi(2)).exp()).sum())
+            .map(|(i, j)| {
+                let p = position(n, i, j);
+                ridges.iter().map(|&(rim, a1)| (-(wrap(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()).sum()
+            })
             .collect();
         Disk::from_values(n, values).unwrap()
+    }
+
+    fn fit(g: &Disk) -> Vec<Curve> {
+        fit_curves(g, &RingTables::new(g))
+    }
+
+    #[test]
+    fn the_curves_of_a_fold_end_at_its_points() {
+        let n = 40;
+        let g = ridged(n, &[(1.0, 0.0), (4.0, 0.5)]);
+        // The fold points sit a little off the ridges' rim ends, as a cut's may: the curves
+        // still end at the fold points, and follow the ridges' slopes.
+        let curves = curves_through(&RingTables::new(&g), n, [1.05, 3.95]);
+        assert_eq!(curves.len(), 2);
+        for (curve, (f, slope)) in curves.iter().zip([(1.05, 0.0), (3.95, 0.5)]) {
+            assert!((curve.a0 + curve.a1 - f).abs() < 1e-12 && curve.rim == f, "{curve:?}");
+            assert!((curve.a1 - slope).abs() < 0.15 && curve.loss < 0.0, "{curve:?}");
+        }
+        // No change at all: no line through a fold point has negative loss, no curve.
+        assert!(curves_through(&RingTables::new(&ridged(n, &[])), n, [1.05, 3.95]).is_empty());
     }
 
     #[test]
     fn two_ridges_give_two_curves_at_their_angles() {
         let n = 60;
-        let curves = fit_curves(&ridges(n, &[1.0, 4.0]));
+        let curves = fit(&ridged(n, &[(1.0, 0.0), (4.0, 0.0)]));
         assert!(curves.len() >= 2, "{curves:?}");
         let mut rims = [curves[0].rim, curves[1].rim];
         rims.sort_by(f64::total_cmp);
@@ -216,13 +294,13 @@ mod tests {
     #[test]
     fn minima_closer_than_the_merge_distance_are_one_curve() {
         let n = 60;
-        let curves = fit_curves(&ridges(n, &[2.0]));
+        let curves = fit(&ridged(n, &[(2.0, 0.0)]));
         let near: Vec<_> = curves.iter().filter(|c| wrap(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
         assert_eq!(near.len(), 1, "{curves:?}");
     }
 
     #[test]
     fn no_change_gives_no_curve() {
-        assert!(fit_curves(&Disk::from_values(20, vec![0.0; 190]).unwrap()).is_empty());
+        assert!(fit(&Disk::from_values(20, vec![0.0; 190]).unwrap()).is_empty());
     }
 }

@@ -151,32 +151,76 @@ impl RingTables {
     pub fn loss_and_gradient(&self, a0: f64, a1: f64) -> (f64, [f64; 2]) {
         let mut loss = 0.0;
         let mut grad = [0.0; 2];
-        let grid = self.grid as i64;
         for (radius, weight, table) in &self.rings {
-            let x = (a0 + a1 * radius) / self.step;
-            // floor(x) by truncation, and wrapped onto the grid without a division where it is
-            // at most a turn off: on the x86-64 baseline `f64::floor` is a libm call, and these
-            // two were most of the cost of a ring.
-            let truncated = x as i64;
-            let floor = truncated - i64::from((truncated as f64) > x);
-            let t = x - floor as f64;
-            let i = match floor {
-                k if (0..grid).contains(&k) => k,
-                k if (-grid..0).contains(&k) => k + grid,
-                k if (grid..2 * grid).contains(&k) => k - grid,
-                k => k.rem_euclid(grid),
-            } as usize;
-            let [p0, p1, p2, p3] = [table[i], table[i + 1], table[i + 2], table[i + 3]];
-            let c1 = -p0 + p2;
-            let c2 = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
-            let c3 = -p0 + 3.0 * p1 - 3.0 * p2 + p3;
-            let value = 0.5 * (2.0 * p1 + t * (c1 + t * (c2 + t * c3)));
-            let slope = 0.5 * (c1 + t * (2.0 * c2 + 3.0 * t * c3)) / self.step;
-            loss += weight * value;
+            let (segment, t) = self.segment(table, a0 + a1 * radius);
+            let slope = segment.slope(t) / self.step;
+            loss += weight * segment.value(t);
             grad[0] += weight * slope;
             grad[1] += weight * slope * radius;
         }
         (loss, grad)
+    }
+
+    /// The loss of every curve (a0, a1) of `curves`, equal to [`RingTables::loss_and_gradient`]'s;
+    /// ring by ring, so a scan of many curves reads each ring's table in one sweep instead of
+    /// jumping between tables.
+    pub fn losses(&self, curves: &[(f64, f64)]) -> Vec<f64> {
+        let mut losses = vec![0.0; curves.len()];
+        for (radius, weight, table) in &self.rings {
+            for (loss, &(a0, a1)) in losses.iter_mut().zip(curves) {
+                let (segment, t) = self.segment(table, a0 + a1 * radius);
+                *loss += weight * segment.value(t);
+            }
+        }
+        losses
+    }
+
+    /// The interpolating cubic of `table` around the angle `theta`, and where in it θ falls.
+    #[inline(always)]
+    fn segment(&self, table: &[f64], theta: f64) -> (CatmullRom, f64) {
+        let x = theta / self.step;
+        // floor(x) by truncation, and wrapped onto the grid without a division where it is
+        // at most a turn off: on the x86-64 baseline `f64::floor` is a libm call, and these
+        // two were most of the cost of a ring.
+        let grid = self.grid as i64;
+        let truncated = x as i64;
+        let floor = truncated - i64::from((truncated as f64) > x);
+        let i = match floor {
+            k if (0..grid).contains(&k) => k,
+            k if (-grid..0).contains(&k) => k + grid,
+            k if (grid..2 * grid).contains(&k) => k - grid,
+            k => k.rem_euclid(grid),
+        } as usize;
+        let [p0, p1, p2, p3] = [table[i], table[i + 1], table[i + 2], table[i + 3]];
+        let segment = CatmullRom {
+            p1,
+            c1: -p0 + p2,
+            c2: 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3,
+            c3: -p0 + 3.0 * p1 - 3.0 * p2 + p3,
+        };
+        (segment, x - floor as f64)
+    }
+}
+
+/// A Catmull–Rom segment between grid points p1 and p2 (its coefficients, twice over).
+struct CatmullRom {
+    p1: f64,
+    c1: f64,
+    c2: f64,
+    c3: f64,
+}
+
+impl CatmullRom {
+    /// The value at t ∈ [0, 1).
+    #[inline(always)]
+    fn value(&self, t: f64) -> f64 {
+        0.5 * (2.0 * self.p1 + t * (self.c1 + t * (self.c2 + t * self.c3)))
+    }
+
+    /// The derivative in t.
+    #[inline(always)]
+    fn slope(&self, t: f64) -> f64 {
+        0.5 * (self.c1 + t * (2.0 * self.c2 + 3.0 * t * self.c3))
     }
 }
 
@@ -213,6 +257,15 @@ mod tests {
             let num1 = (tables.loss_and_gradient(a0, a1 + h).0 - tables.loss_and_gradient(a0, a1 - h).0) / (2.0 * h);
             assert!((num0 - grad[0]).abs() < 1e-4 * (1.0 + num0.abs()));
             assert!((num1 - grad[1]).abs() < 1e-4 * (1.0 + num1.abs()));
+        }
+    }
+
+    #[test]
+    fn many_curves_at_once_are_each_the_same() {
+        let tables = RingTables::new(&synthetic_diff(50, 2.5));
+        let curves: Vec<(f64, f64)> = (0..200).map(|k| (-7.0 + 0.07 * k as f64, -3.0 + 0.03 * k as f64)).collect();
+        for (loss, &(a0, a1)) in tables.losses(&curves).iter().zip(&curves) {
+            assert_eq!(loss.to_bits(), tables.loss_and_gradient(a0, a1).0.to_bits(), "{a0} {a1}");
         }
     }
 

@@ -2,7 +2,8 @@
 //!
 //! One step (start state → end state) is read from the abs diff disk
 //! g = | |end| − |start| |. The paper fits fold curves with its loss ([`loss`], [`fit`]);
-//! they are kept for drawing and as [`FoldMethod::Paper`]. By default, on a flat start the
+//! its free fit is kept as [`FoldMethod::Paper`], and the curves of every fold found are
+//! fitted through its points, for drawing. By default, on a flat start the
 //! cut of least same-side change ([`cut`]) says which edges turned over, to half an edge,
 //! the signed diff Δ = end − start orders its points ([`orientation`]), and analysis by
 //! synthesis on the disks ([`synth`]) places each fold point within its edge. On a stacked
@@ -30,6 +31,7 @@ pub use synth::{Line, Synthesis};
 use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
 use crate::border::Point;
 use crate::disk::Disk;
+use loss::RingTables;
 
 /// A diff disk whose largest cell is below this has no fold.
 pub const FLAT_DIFF: f64 = 1e-6;
@@ -57,7 +59,10 @@ pub enum FoldMethod {
 pub struct FoldDetection {
     /// (f1, f2) in [0, 2π), the folded side anticlockwise from f1; `None` without a fold.
     pub fold: Option<[f64; 2]>,
-    /// Every distinct curve the paper's loss found, lowest loss first.
+    /// The fold's curves on the diff disk. With [`FoldMethod::Cut`], the paper's curve through
+    /// each fold point ([`fit::curves_through`]); with [`FoldMethod::Paper`], every distinct
+    /// curve of the free fit, lowest loss first ([`fit::fit_curves`]), the first two giving the
+    /// fold.
     pub curves: Vec<Curve>,
     pub cut: Option<Cut>,
     /// How the side was chosen; `None` when the start was stacked (the line search turns a
@@ -107,18 +112,19 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
         return found;
     }
     let n = g.n();
-    // The curves are fitted while the cut is searched and refined: both are independent and
+    // The loss is tabulated while the cut is searched and refined: both are independent and
     // neither fills both cores alone.
-    let (curves, (cut, by_cut)) = rayon::join(
-        || fit::fit_curves(&g),
+    let (tables, (cut, by_cut)) = rayon::join(
+        || RingTables::new(&g),
         || {
             let cut = cut::find_cut(&g);
             (cut, (method == FoldMethod::Cut).then(|| fold_by_cut(before, start, end, cut)))
         },
     );
-    (found.curves, found.cut) = (curves, cut);
+    found.cut = cut;
     match by_cut {
         None => {
+            found.curves = fit::fit_curves(&g, &tables);
             if let [first, second, ..] = found.curves[..] {
                 let (fold, orientation) = orientation::orient(start, end, first.rim, second.rim);
                 found.fold = Some(fold);
@@ -128,7 +134,9 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
         Some((refined, orientation)) => {
             found.orientation = orientation;
             if let Some(refined) = refined {
-                found.fold = Some(refined.s.map(|s| wrap_tau(param_to_angle(s, n))));
+                let fold = refined.s.map(|s| wrap_tau(param_to_angle(s, n)));
+                found.curves = fit::curves_through(&tables, n, fold);
+                found.fold = Some(fold);
                 found.synthesis = Some(refined);
             }
         }

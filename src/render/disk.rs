@@ -13,7 +13,8 @@
 //! of those guides, the colour bar, a few labels and the PNG encoding.
 //! Over a diff disk the fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
 //! coordinates, with the fold points marked on the rim: the curves of the fold the step
-//! reports, fitted with the paper's loss through its fold points ([`fold_curves`]), and
+//! reports, fitted with the paper's loss through its fold points
+//! ([`crate::fold::fit::curves_through`]), and
 //! only on the disk of the two frames of that step. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
 //! Geometric Shape-Agnostic Cloth State Representation" (the dGLI disk and the fold-curve
 //! fit on the diff disk). A ruler under the disk names the rings by pair distance d; the
@@ -38,8 +39,7 @@ use super::sector_map::SectorMap;
 use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
 use crate::cache::Lru;
 use crate::disk::Disk;
-use crate::fold::loss::RingTables;
-use crate::fold::{Curve, FoldDetection};
+use crate::fold::Curve;
 use crate::error::Result;
 
 /// Height of the ring ruler's band under the disk, in label sizes.
@@ -102,47 +102,10 @@ pub(crate) struct Marks {
     pub folds: Vec<(usize, [f64; 2])>,
     /// How many folds the analysis has (names are numbered when more than one).
     pub total: usize,
-    /// The curves to draw: those of the fold reported ([`fold_curves`]).
+    /// The curves to draw: those of the fold reported.
     pub curves: Vec<Curve>,
     /// A short note shown above the colour bar ("no fold", …).
     pub note: Option<String>,
-}
-
-/// Slopes a1 tried per fold point before the best is refined: one every half degree of
-/// [−π, π], the bound the paper's fit keeps a1 in.
-const SLOPES: usize = 721;
-
-/// The curves of the fold a step reports, over that step's diff disk `g`: for each fold
-/// point f, the paper's curve θ̂ = a0 + a1·r whose rim end is f (a0 = f − a1), the slope
-/// a1 ∈ [−π, π] minimising the paper's loss. The fold points may come from the cut rather
-/// than from the freely fitted curves (the default method), and a free curve may end
-/// several edges away or be missing, so the curves drawn are fitted through the fold
-/// points themselves: each ends where the fold is reported. A fold point whose best curve
-/// has no negative loss (no change along any line through it) gets none; its marker shows it.
-pub fn fold_curves(g: &Disk, detection: &FoldDetection) -> Vec<Curve> {
-    let Some(fold) = detection.fold else { return Vec::new() };
-    let tables = RingTables::new(g);
-    let loss = |f: f64, a1: f64| tables.loss_and_gradient(f - a1, a1).0;
-    fold.iter()
-        .filter_map(|&f| {
-            let step = 2.0 * PI / (SLOPES - 1) as f64;
-            let best = (0..SLOPES).map(|k| -PI + k as f64 * step).min_by(|&a, &b| loss(f, a).total_cmp(&loss(f, b)))?;
-            // Golden-section search within a grid step either side of the best slope.
-            let (mut lo, mut hi) = ((best - step).max(-PI), (best + step).min(PI));
-            let ratio = (5f64.sqrt() - 1.0) / 2.0;
-            for _ in 0..40 {
-                let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-                if loss(f, x1) < loss(f, x2) {
-                    hi = x2;
-                } else {
-                    lo = x1;
-                }
-            }
-            let a1 = (lo + hi) / 2.0;
-            let value = loss(f, a1);
-            (value < 0.0).then_some(Curve { a0: f - a1, a1, loss: value, rim: f })
-        })
-        .collect()
 }
 
 /// Draw `disk` with `ramp` and colour `scale` under `title`; with `marks`, fold points and
@@ -352,7 +315,6 @@ mod tests {
     use super::super::tests::{colours, decode, folded_square, preview};
     use super::super::{disk_png, render_png, Picture};
     use super::*;
-    use crate::angle;
     use crate::disk::{condensed_index, position};
 
     /// The colour of the pixel at polar point (r, θ) of a decoded picture.
@@ -374,37 +336,6 @@ mod tests {
 
     fn is_strong(c: [u8; 3]) -> bool {
         c.iter().max().unwrap() - c.iter().min().unwrap() > 80
-    }
-
-    /// A diff disk with a ridge of change along each curve θ = rim + a1·(r − 1) of `ridges`.
-    fn ridged(n: usize, ridges: &[(f64, f64)]) -> Disk {
-        let values = (0..n)
-            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-            .map(|(i, j)| {
-                let p = position(n, i, j);
-                ridges.iter().map(|&(rim, a1)| (-(angle::wrap_pi(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()).sum()
-            })
-            .collect();
-        Disk::from_values(n, values).unwrap()
-    }
-
-    #[test]
-    fn the_curves_drawn_end_at_the_reported_fold_points() {
-        let n = 40;
-        let g = ridged(n, &[(1.0, 0.0), (4.0, 0.5)]);
-        // The fold points sit a little off the ridges' rim ends, as a cut's may: the curves
-        // still end at the fold points, and follow the ridges' slopes.
-        let mut detection = FoldDetection { fold: Some([1.05, 3.95]), curves: Vec::new(), cut: None, orientation: None, synthesis: None };
-        let curves = fold_curves(&g, &detection);
-        assert_eq!(curves.len(), 2);
-        for (curve, (f, slope)) in curves.iter().zip([(1.05, 0.0), (3.95, 0.5)]) {
-            assert!((curve.a0 + curve.a1 - f).abs() < 1e-12 && curve.rim == f, "{curve:?}");
-            assert!((curve.a1 - slope).abs() < 0.15 && curve.loss < 0.0, "{curve:?}");
-        }
-        // No change at all: no line through a fold point has negative loss, no curve.
-        assert!(fold_curves(&ridged(n, &[]), &detection).is_empty());
-        detection.fold = None;
-        assert!(fold_curves(&g, &detection).is_empty());
     }
 
     #[test]

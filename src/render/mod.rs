@@ -114,11 +114,10 @@ pub fn render_step_png(analysis: &Analysis, picture: Picture, step: Option<usize
                     disk::draw(&mut canvas, disk, &title, Ramp::Diverging, &shared, None)?
                 }
                 _ => {
-                    // The curves are fitted on |diff|, and drawn over either diff.
-                    let g = start.abs_diff(&end);
-                    let marks = span.marks(analysis, &g);
+                    // The curves were fitted on |diff|, and are drawn over either diff.
+                    let marks = span.marks(analysis);
                     let (diff, ramp, what) = if picture == Picture::Diff {
-                        (g, Ramp::Sequential, "| |end| − |start| |")
+                        (start.abs_diff(&end), Ramp::Sequential, "| |end| − |start| |")
                     } else {
                         (start.signed_diff(&end), Ramp::Diverging, "Δ = end − start")
                     };
@@ -151,9 +150,9 @@ impl StepSpan {
     }
 
     /// What to draw over this span's diff: the fold points of the folds it holds, and, for
-    /// a single step, the curves of its fold fitted on its own |diff| `g` (a curve fitted on
-    /// another pair of frames would be drawn on a disk it was not read from).
-    fn marks(&self, analysis: &Analysis, g: &crate::disk::Disk) -> disk::Marks {
+    /// a single step, the curves of its fold, fitted on that step's own |diff| (a curve fitted
+    /// on another pair of frames would be drawn on a disk it was not read from).
+    fn marks(&self, analysis: &Analysis) -> disk::Marks {
         let total = analysis.folds.len();
         // Fold number of each step's fold: folds are numbered in step order.
         let numbered = analysis.steps.iter().scan(0, |count, s| {
@@ -169,7 +168,10 @@ impl StepSpan {
                 marks.folds.push((fold_number, fold));
             }
             if one_step == Some(k + 1) {
-                marks.curves = disk::fold_curves(g, &step.detection);
+                // The curves ending at the reported fold points (all of them with the default
+                // method; the paper's free fit also finds others).
+                let at_fold = |c: &&crate::fold::Curve| step.detection.fold.is_some_and(|f| f.iter().any(|&f| crate::angle::distance(c.rim, f) < 1e-9));
+                marks.curves = step.detection.curves.iter().filter(at_fold).copied().collect();
             }
         }
         if one_step.is_none() {
