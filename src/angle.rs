@@ -68,17 +68,41 @@ pub fn arc_contains(from: f64, to: f64, angle: f64) -> bool {
 /// `s2` (fractional vertex indices) of an `n`-vertex border, in walking order. A vertex
 /// within `1e-9` of an endpoint lies on the fold line and is not inside.
 pub fn vertices_in_arc(n: usize, s1: f64, s2: f64) -> Vec<usize> {
-    let nf = n as f64;
-    let (start, span) = (s1.rem_euclid(nf), (s2 - s1).rem_euclid(nf));
-    let first = (start + 1e-9).floor() as usize + 1;
-    (first..)
-        .take(n)
-        .map(|v| v % n)
-        .take_while(|&v| {
-            let offset = (v as f64 - start).rem_euclid(nf);
-            offset > 1e-9 && offset < span - 1e-9
-        })
-        .collect()
+    let arc = ArcVertices::of(n, s1, s2);
+    (0..arc.len).map(|k| (arc.first + k) % n).collect()
+}
+
+/// The vertices inside an arc ([`vertices_in_arc`]) as a run: `len` vertices from `first`,
+/// cyclically. Asking whether a vertex is inside costs no list.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArcVertices {
+    pub n: usize,
+    pub first: usize,
+    pub len: usize,
+}
+
+impl ArcVertices {
+    /// The arc from border parameter `s1` to `s2`; see [`vertices_in_arc`].
+    pub fn of(n: usize, s1: f64, s2: f64) -> ArcVertices {
+        let nf = n as f64;
+        let (start, span) = (s1.rem_euclid(nf), (s2 - s1).rem_euclid(nf));
+        let first = (start + 1e-9).floor() as usize + 1;
+        let len = (first..)
+            .take(n)
+            .take_while(|&v| {
+                let offset = ((v % n) as f64 - start).rem_euclid(nf);
+                offset > 1e-9 && offset < span - 1e-9
+            })
+            .count();
+        ArcVertices { n, first: first % n.max(1), len }
+    }
+
+    /// True when vertex `v` (< n) is inside the arc.
+    #[inline]
+    pub fn contains(&self, v: usize) -> bool {
+        let offset = if v >= self.first { v - self.first } else { v + self.n - self.first };
+        offset < self.len
+    }
 }
 
 #[cfg(test)]
@@ -93,6 +117,19 @@ mod tests {
         assert_eq!(wrap_tau(TAU), 0.0);
         assert_eq!(wrap_tau(-1e-18), 0.0);
         assert!(wrap_tau(-1e-9) < TAU);
+    }
+
+    #[test]
+    fn an_arc_contains_exactly_its_vertices() {
+        for n in [3, 8, 13] {
+            for k in 0..200 {
+                let (s1, s2) = (k as f64 * 0.37 % n as f64, (k as f64 * 0.91 + 0.5) % n as f64);
+                let listed = vertices_in_arc(n, s1, s2);
+                let arc = ArcVertices::of(n, s1, s2);
+                assert_eq!(arc.len, listed.len());
+                assert!((0..n).all(|v| arc.contains(v) == listed.contains(&v)), "{n} {s1} {s2}");
+            }
+        }
     }
 
     #[test]

@@ -26,7 +26,7 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::angle::vertices_in_arc;
+use crate::angle::ArcVertices;
 use crate::border::{point_at, Point};
 use crate::disk::Disk;
 use crate::gli::dgli_each;
@@ -91,7 +91,7 @@ impl Line {
 /// A synthesised state and which of its vertices the fold moved.
 struct Turned {
     state: Vec<Point>,
-    moved: Vec<bool>,
+    moved: ArcVertices,
 }
 
 impl Turned {
@@ -100,13 +100,20 @@ impl Turned {
     /// flap's layers reverse their order and lie above everything else.
     fn new(before: &[Point], axis: f64, s: [f64; 2], line: &Line) -> Turned {
         let mut state = before.to_vec();
-        let mut moved = vec![false; before.len()];
-        for v in vertices_in_arc(before.len(), s[0], s[1]) {
+        let moved = ArcVertices::of(before.len(), s[0], s[1]);
+        for k in 0..moved.len {
+            let v = (moved.first + k) % before.len();
             let r = line.reflect(&before[v]);
             state[v] = Point::new(r.x, r.y, 2.0 * axis - before[v].z);
-            moved[v] = true;
         }
         Turned { state, moved }
+    }
+
+    /// Whether the fold moved each end of edge `e`.
+    #[inline]
+    fn edge_moved(&self, e: usize) -> (bool, bool) {
+        let next = if e + 1 == self.state.len() { 0 } else { e + 1 };
+        (self.moved.contains(e), self.moved.contains(next))
     }
 }
 
@@ -155,11 +162,8 @@ impl Probe {
             pairs.extend(sampled.iter().chain(&near).filter(|&&j| j != i).map(|&j| (i.min(j), i.max(j))));
         }
         // Flap against the rest: sampled edges on either side of the cut.
-        let mut turned = vec![false; n];
-        for v in vertices_in_arc(n, s[0], s[1]) {
-            turned[v] = true;
-        }
-        let (inside, outside): (Vec<usize>, Vec<usize>) = sampled.iter().partition(|&&e| turned[e] && turned[(e + 1) % n]);
+        let turned = ArcVertices::of(n, s[0], s[1]);
+        let (inside, outside): (Vec<usize>, Vec<usize>) = sampled.iter().partition(|&&e| turned.contains(e) && turned.contains((e + 1) % n));
         for &i in &inside {
             pairs.extend(outside.iter().map(|&j| (i.min(j), i.max(j))));
         }
@@ -174,14 +178,13 @@ impl Probe {
     /// unmoved edges keeps its start value, and a pair on the flap may take the negated one
     /// (see [`Probe::flap_negates`]).
     fn cost(&self, turned: &Turned) -> f64 {
-        let Turned { state, moved } = turned;
+        let state = &turned.state;
         let n = state.len();
-        let edge_moved = |e: usize| (moved[e], moved[(e + 1) % n]);
         let mut values: Vec<Option<f64>> = self
             .pairs
             .iter()
             .zip(&self.start)
-            .map(|(&(i, j), start)| match (edge_moved(i), edge_moved(j)) {
+            .map(|(&(i, j), start)| match (turned.edge_moved(i), turned.edge_moved(j)) {
                 ((false, false), (false, false)) => Some(*start),
                 ((true, true), (true, true)) if self.flap_negates => Some(-start),
                 _ => None,
@@ -401,7 +404,7 @@ fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
             // The arc runs until the first edge that leaves the side.
             let leave = (k + 1..k + 1 + n).map(|j| j % n).find(|&j| d[j] > 0.0 && d[(j + 1) % n] <= 0.0)?;
             let s = [crossing(k), crossing(leave)];
-            let turned = vertices_in_arc(n, s[0], s[1]).len();
+            let turned = ArcVertices::of(n, s[0], s[1]).len;
             (turned >= 2 && turned + 2 <= n).then_some(s)
         })
         .collect()
