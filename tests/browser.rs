@@ -73,17 +73,46 @@ async fn text(client: &Client, expression: &str) -> String {
     js(client, &format!("return String({expression})")).await.as_str().unwrap_or_default().to_string()
 }
 
-/// A screenshot of the whole page (the window stretched to the page's height, up to
-/// `MAX_SHOT` px), so a person sees every part of the view, not just its top.
+/// A Chrome DevTools command, sent through chromedriver.
+#[derive(Debug)]
+struct DevTools(&'static str, Value);
+
+impl fantoccini::wd::WebDriverCompatibleCommand for DevTools {
+    fn endpoint(&self, base: &url::Url, session: Option<&str>) -> Result<url::Url, url::ParseError> {
+        base.join(&format!("session/{}/goog/cdp/execute", session.unwrap_or_default()))
+    }
+
+    fn method_and_body(&self, _: &url::Url) -> (http::Method, Option<String>) {
+        (http::Method::POST, Some(json!({ "cmd": self.0, "params": self.1 }).to_string()))
+    }
+}
+
+/// A screenshot of the whole page, so a person sees every part of the view, not just its
+/// top: captured beyond the window, the page laid out for the window as it is (a stretched
+/// window would stretch the parts sized in `vh` with it, and its height counts the browser's
+/// bars). Fails if the picture is shorter than the page.
 async fn screenshot(client: &Client, dir: &Path, name: &str) {
-    const MAX_SHOT: u64 = 6000;
-    let (width, height) = client.get_window_size().await.expect("window size");
-    let page = js(client, "window.scrollTo(0, 0); return document.documentElement.scrollHeight").await.as_u64().unwrap_or(height);
-    client.set_window_size(width as u32, page.clamp(height, MAX_SHOT) as u32).await.expect("stretch the window");
-    tokio::time::sleep(Duration::from_millis(400)).await;
-    let png = client.screenshot().await.expect("screenshot");
-    client.set_window_size(width as u32, height as u32).await.expect("window size back");
-    std::fs::write(dir.join(name), png).expect("write screenshot");
+    use base64::Engine as _;
+    // Lazy images far below the window would be captured blank.
+    until(client, "every picture loaded", "[...document.images].every(i => (i.loading = 'eager', !i.getAttribute('src') || i.complete))").await;
+    let size = || js(client, "window.scrollTo(0, 0); return [window.innerWidth, document.documentElement.scrollHeight]");
+    let mut page = size().await;
+    // A picture that loads while the page is captured can make it taller: capture again.
+    let mut png = Vec::new();
+    for _ in 0..3 {
+        let clip = json!({ "x": 0, "y": 0, "width": page[0], "height": page[1], "scale": 1 });
+        let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": clip }))).await.expect("screenshot");
+        png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
+        let now = size().await;
+        if now == page {
+            break;
+        }
+        page = now;
+    }
+    std::fs::write(dir.join(name), &png).expect("write screenshot");
+    // The PNG's height, from its header (one device pixel per CSS px).
+    let shot = png.get(20..24).map_or(0, |h| u32::from_be_bytes(h.try_into().unwrap_or_default()));
+    assert!(u64::from(shot) >= page[1].as_u64().unwrap_or(u64::MAX), "{name}: the screenshot is {shot} px tall, the page {} px", page[1]);
 }
 
 /// Every image under `selector` has loaded with a real picture; gives how many.
