@@ -73,17 +73,46 @@ async fn text(client: &Client, expression: &str) -> String {
     js(client, &format!("return String({expression})")).await.as_str().unwrap_or_default().to_string()
 }
 
-/// A screenshot of the whole page (the window stretched to the page's height, up to
-/// `MAX_SHOT` px), so a person sees every part of the view, not just its top.
+/// A Chrome DevTools command, sent through chromedriver.
+#[derive(Debug)]
+struct DevTools(&'static str, Value);
+
+impl fantoccini::wd::WebDriverCompatibleCommand for DevTools {
+    fn endpoint(&self, base: &url::Url, session: Option<&str>) -> Result<url::Url, url::ParseError> {
+        base.join(&format!("session/{}/goog/cdp/execute", session.unwrap_or_default()))
+    }
+
+    fn method_and_body(&self, _: &url::Url) -> (http::Method, Option<String>) {
+        (http::Method::POST, Some(json!({ "cmd": self.0, "params": self.1 }).to_string()))
+    }
+}
+
+/// A screenshot of the whole page, so a person sees every part of the view, not just its
+/// top: captured beyond the window, the page laid out for the window as it is (a stretched
+/// window would stretch the parts sized in `vh` with it, and its height counts the browser's
+/// bars). Fails if the picture is shorter than the page.
 async fn screenshot(client: &Client, dir: &Path, name: &str) {
-    const MAX_SHOT: u64 = 6000;
-    let (width, height) = client.get_window_size().await.expect("window size");
-    let page = js(client, "window.scrollTo(0, 0); return document.documentElement.scrollHeight").await.as_u64().unwrap_or(height);
-    client.set_window_size(width as u32, page.clamp(height, MAX_SHOT) as u32).await.expect("stretch the window");
-    tokio::time::sleep(Duration::from_millis(400)).await;
-    let png = client.screenshot().await.expect("screenshot");
-    client.set_window_size(width as u32, height as u32).await.expect("window size back");
-    std::fs::write(dir.join(name), png).expect("write screenshot");
+    use base64::Engine as _;
+    // Lazy images far below the window would be captured blank.
+    until(client, "every picture loaded", "[...document.images].every(i => (i.loading = 'eager', !i.getAttribute('src') || i.complete))").await;
+    let size = || js(client, "window.scrollTo(0, 0); return [window.innerWidth, document.documentElement.scrollHeight]");
+    let mut page = size().await;
+    // A picture that loads while the page is captured can make it taller: capture again.
+    let mut png = Vec::new();
+    for _ in 0..3 {
+        let clip = json!({ "x": 0, "y": 0, "width": page[0], "height": page[1], "scale": 1 });
+        let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": clip }))).await.expect("screenshot");
+        png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
+        let now = size().await;
+        if now == page {
+            break;
+        }
+        page = now;
+    }
+    std::fs::write(dir.join(name), &png).expect("write screenshot");
+    // The PNG's height, from its header (one device pixel per CSS px).
+    let shot = png.get(20..24).map_or(0, |h| u32::from_be_bytes(h.try_into().unwrap_or_default()));
+    assert!(u64::from(shot) >= page[1].as_u64().unwrap_or(u64::MAX), "{name}: the screenshot is {shot} px tall, the page {} px", page[1]);
 }
 
 /// Every image under `selector` has loaded with a real picture; gives how many.
@@ -155,6 +184,41 @@ async fn assert_no_overflow(client: &Client, view: &str) {
     let widths = js(client, "return [document.documentElement.scrollWidth, window.innerWidth]").await;
     let (scroll, inner) = (widths[0].as_u64().unwrap_or(0), widths[1].as_u64().unwrap_or(0));
     assert!(scroll <= inner, "{view}: the page is {scroll} px wide in a {inner} px window");
+}
+
+/// Press the right arrow on handle `id` ("to:0", "from:1") of the Interpolate circle; gives
+/// the folds `which` ("to", "from") before and after, once it moved.
+async fn arrow_on_handle(client: &Client, id: &str, which: &str) -> (Value, Value) {
+    let before = js(client, &format!("return window.closeApp.interpolate.state().{which}")).await;
+    js(client, &format!("document.querySelector('#fold-circle .handle[data-id=\"{id}\"]').focus()")).await;
+    client.active_element().await.expect("the focused handle").send_keys(ARROW_RIGHT).await.expect("arrow key");
+    let after = until(client, "the handle to move", &format!("(s => JSON.stringify(s.{which}) !== {:?} && s.{which})(window.closeApp.interpolate.state())", before.to_string())).await;
+    (before, after)
+}
+
+/// How far (degrees, anticlockwise) angle `k` turned from `before` to `after`.
+fn turned(before: &Value, after: &Value, k: usize) -> f64 {
+    (after[k].as_f64().unwrap_or(f64::NAN) - before[k].as_f64().unwrap_or(f64::NAN)).rem_euclid(std::f64::consts::TAU).to_degrees()
+}
+
+/// The handles of the fold circle `svg` that another handle covers (the element on top at
+/// the centre of its dot is not its own), after scrolling the circle into view.
+async fn covered_handles(client: &Client, svg: &str) -> Value {
+    js(client, &format!("const svg = document.getElementById({svg:?}); svg.scrollIntoView({{ block: 'center' }}); \
+                         return [...svg.querySelectorAll('.handle')].filter(h => {{ const r = h.querySelector('circle').getBoundingClientRect(); \
+                         return document.elementFromPoint(r.x + r.width / 2, r.y + r.height / 2)?.closest('.handle') !== h; }}).map(h => h.dataset.id)")).await
+}
+
+/// The names of the fold boxes (`.fold-inputs` labels) on screen that wrap onto two lines.
+async fn wrapped_box_names(client: &Client) -> Value {
+    js(client, "return [...document.querySelectorAll('.fold-inputs label')].filter(l => l.checkVisibility()).flatMap(l => [...l.childNodes] \
+                .filter(t => t.nodeType === 3 && t.textContent.trim() && (r => (r.selectNodeContents(t), r.getClientRects().length > 1))(document.createRange())) \
+                .map(t => t.textContent.trim()))").await
+}
+
+/// Plan's step pictures whose corner labels are shown smaller than 11 CSS px.
+async fn small_plan_labels(client: &Client) -> Value {
+    js(client, "return [...document.querySelectorAll('#plan-list canvas')].map(c => parseFloat(c.getContext('2d').font) * c.getBoundingClientRect().width / c.width).filter(px => !(px >= 11))").await
 }
 
 /// Choose `paths` in the upload input.
@@ -415,15 +479,39 @@ async fn the_app_works_in_a_real_browser() {
     assert!(ink > 0.15, "the folded cloth is not filled: {ink:.3} of the canvas inked");
     screenshot(&client, &shots, "1400-05-interpolate.png").await;
     violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate: {v}")));
+    assert_eq!(wrapped_box_names(&client).await, json!([]), "fold box names wrap");
+
+    // The fold starts flat: both "from" handles at one angle, each still in sight and on top
+    // at its own dot (none hidden under the other), and each moved by its own arrow keys.
+    let from = js(&client, "return window.closeApp.interpolate.state().from").await;
+    assert_eq!(from[0], from[1], "the fold does not start flat");
+    assert_eq!(covered_handles(&client, "fold-circle").await, json!([]), "handles hidden under others");
+    let (before, after) = arrow_on_handle(&client, "from:1", "from").await;
+    assert!((turned(&before, &after, 1) - 1.0).abs() < 1e-9 && after[0] == before[0], "the second 'from' handle: {before} → {after}");
+
+    // The disk opens at full resolution in the motion's colour scale: the request for it is
+    // the state shown, with the scale the small pictures use.
+    js(&client, "window.diskAsked = []; window.realFetch = window.fetch; \
+                 window.fetch = (url, o) => (String(url).endsWith('/api/disk') && window.diskAsked.push(JSON.parse(o.body)), window.realFetch(url, o)); \
+                 window.closeApp.interpolate.setTau(0.5)").await;
+    disk_picture(&client).await;
+    js(&client, "document.getElementById('interp-disk-zoom').click()").await;
+    until(&client, "the disk at full resolution", "document.getElementById('lightbox').open && document.querySelector('#lightbox img').naturalWidth >= 1400").await;
+    let asked = js(&client, "window.fetch = window.realFetch; return window.diskAsked.filter(r => r.size >= 480)").await;
+    let (small, large) = (&asked[asked.as_array().map_or(0, |a| a.len().saturating_sub(2))], asked.as_array().and_then(|a| a.last()).unwrap_or(&Value::Null));
+    assert!(large["size"].as_u64() >= Some(1400) && small["size"] == json!(480), "{asked}");
+    assert!(large["scale"].is_object() && large["scale"] == small["scale"] && large["border"] == small["border"], "the enlarged disk is not the state shown in its scale: {small} / {large}");
+    screenshot(&client, &shots, "1400-05b-interpolate-full-resolution.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate lightbox: {v}")));
+    client.active_element().await.expect("focus").send_keys("\u{E00C}").await.expect("Escape");
+    until(&client, "the dialog to close", "!document.getElementById('lightbox').open").await;
+    js(&client, "window.closeApp.interpolate.setTau(1)").await;
 
     // Keyboard: a handle takes focus and moves by a degree per arrow key; the fold boxes
     // keep the other folds exact and report what is not a number.
-    let before = js(&client, "return window.closeApp.interpolate.state().to").await;
-    js(&client, "document.querySelector('#fold-circle .handle[data-id=\"to:0\"]').focus()").await;
-    client.active_element().await.expect("the focused handle").send_keys(ARROW_RIGHT).await.expect("arrow key");
-    let after = until(&client, "the handle to move", &format!("(s => s.to[0] !== {} && s.to)(window.closeApp.interpolate.state())", before[0])).await;
-    let moved = (after[0].as_f64().unwrap_or(0.0) - before[0].as_f64().unwrap_or(0.0)).rem_euclid(std::f64::consts::TAU).to_degrees();
-    assert!((moved - 1.0).abs() < 1e-6, "one arrow key moved the handle {moved}°");
+    let (before, after) = arrow_on_handle(&client, "to:0", "to").await;
+    let moved = turned(&before, &after, 0);
+    assert!((moved - 1.0).abs() < 1e-9, "one arrow key moved the handle {moved}°");
     assert_eq!(after[1], before[1], "the other end moved");
     js(&client, "const i = document.getElementById('to-2'); i.value = 'abc'; i.dispatchEvent(new Event('change'))").await;
     assert_eq!(js(&client, "return document.getElementById('to-2').getAttribute('aria-invalid')").await, json!("true"));
@@ -459,6 +547,10 @@ async fn the_app_works_in_a_real_browser() {
 
     // ---- Plan from the interpolation's goal; each step drawn and said.
     js(&client, "const s = document.getElementById('interp-step'); s.value = '1'; s.dispatchEvent(new Event('change'))").await;
+    // An arrow key steps a degree from the exact angle (49.737…°), not from its rounding.
+    let (before, after) = arrow_on_handle(&client, "to:0", "to").await;
+    let moved = turned(&before, &after, 0);
+    assert!((moved - 1.0).abs() < 1e-9, "one arrow key moved the handle {moved}° from {}", before[0]);
     client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
     until(&client, "the plan view", "location.hash === '#/plan' && !document.getElementById('view-plan').hidden").await;
     js(&client, "for (const [id, v] of [['goal-1', 10], ['goal-2', 150]]) { const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }").await;
@@ -470,6 +562,25 @@ async fn the_app_works_in_a_real_browser() {
     assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
     assert!(text(&client, "document.title").await.contains("half_then_half"));
     screenshot(&client, &shots, "1400-07-plan.png").await;
+    assert_eq!(wrapped_box_names(&client).await, json!([]), "goal box names wrap");
+    assert_eq!(small_plan_labels(&client).await, json!([]), "plan pictures' corner labels below 11 CSS px");
+    // Corner labels keep off one another and off the dots: on a strip narrower than a label,
+    // corners 1 and 2 (and 3 and 4) get their labels on either side.
+    let overlaps = client
+        .execute_async(
+            "const done = arguments[arguments.length - 1]; import('/assets/draw.js').then(d => { \
+             const c = document.createElement('canvas'); c.width = 520; c.height = 420; const size = 25, r = size / 3; \
+             const pts = [[100, 380], [130, 380], [130, 60], [100, 60]]; \
+             const boxes = d.labelCorners(c.getContext('2d'), { X: p => p[0], Y: p => p[1] }, pts, [0, Math.PI / 2, Math.PI, 1.5 * Math.PI], size); \
+             const all = [...boxes, ...pts.map(([x, y]) => ({ x: x - r, y: y - r, w: 2 * r, h: 2 * r }))]; \
+             const hit = (a, b) => a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h; \
+             done(boxes.length === 4 ? boxes.flatMap((b, i) => all.filter((o, j) => j !== i && hit(b, o)).map(o => `label ${i + 1} over ${JSON.stringify(o)}`)) : ['no boxes']); \
+             }).catch(e => done([String(e)]))",
+            vec![],
+        )
+        .await
+        .expect("label corners");
+    assert_eq!(overlaps, json!([]), "corner labels overlap");
     violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("plan: {v}")));
     // The goal the cloth is already in: nothing to do.
     js(&client, "document.getElementById('plan-sample').value = 'upload:' + window.closeApp.store.get().uploads.find(u => u.name === 'my-napkin.json').key; document.getElementById('plan-sample').dispatchEvent(new Event('change'))").await;
@@ -508,6 +619,10 @@ async fn the_app_works_in_a_real_browser() {
             // The canvas is shrunk to the phone's width: its labels are sized for that.
             let shown = js(&client, "const c = document.getElementById('interp-canvas'); return parseFloat(c.getContext('2d').font) * c.getBoundingClientRect().width / c.width").await;
             assert!(shown.as_f64().is_some_and(|px| px >= 11.0), "corner labels {shown} CSS px tall");
+        }
+        assert_eq!(wrapped_box_names(&client).await, json!([]), "{name} 420: fold box names wrap");
+        if name == "plan" {
+            assert_eq!(small_plan_labels(&client).await, json!([]), "plan 420: corner labels below 11 CSS px");
         }
         screenshot(&client, &shots, &format!("420-0{}-{name}.png", 2 + ["upload", "interpolate", "plan"].iter().position(|n| *n == name).unwrap_or(0))).await;
         violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("{name} 420: {v}")));

@@ -28,10 +28,37 @@ function arcPath(a, b, r) {
   return `M ${x1} ${y1} A ${r} ${r} 0 ${span > Math.PI ? 1 : 0} 0 ${x2} ${y2}`;
 }
 
+/** A handle's radius, and the least distance between two handles' centres (SVG units). */
+const HANDLE = 9;
+const APART = 2 * HANDLE + 2;
+
+/**
+ * The angle each handle is drawn at: its own, except that handles on one ring closer than
+ * APART (a fold from flat has both "from" points at one angle) are fanned out around their
+ * middle, in order, so every handle stays visible and can be grabbed.
+ */
+function fanned(handles) {
+  const at = new Map();
+  for (const r of new Set(handles.map((h) => h.r))) {
+    const step = APART / r;
+    // Stable: handles at one angle keep their order (1 before 2, anticlockwise).
+    const ring = handles.filter((h) => h.r === r).sort((a, b) => a.angle - b.angle);
+    let fan = [];
+    ring.forEach((h, k) => {
+      fan.push(h);
+      if (k + 1 < ring.length && ring[k + 1].angle - h.angle < step) return;
+      const mid = (fan[0].angle + h.angle) / 2;
+      fan.forEach((g, i) => at.set(g, fan.length > 1 ? mid + (i - (fan.length - 1) / 2) * step : g.angle));
+      fan = [];
+    });
+  }
+  return at;
+}
+
 /**
  * Draw into the SVG `root`: the circle, the corners (numbered outside it), each of `arcs`
  * ({fold, color}) as its folded arc and chord, and `handles` ({id, angle, color, label, r,
- * name}) as focusable dots outside the circle.
+ * name}) as focusable dots outside the circle, at radius r.
  */
 export function drawFoldCircle(root, corners, arcs, handles) {
   const focused = document.activeElement && root.contains(document.activeElement) ? document.activeElement.dataset.id : null;
@@ -57,12 +84,19 @@ export function drawFoldCircle(root, corners, arcs, handles) {
     const [tx, ty] = onCircle(c, R - 14);
     svg("text", { x: tx, y: ty + 3.5, "font-size": 11, "text-anchor": "middle", fill: "#111827" }, root).textContent = k + 1;
   });
+  const at = fanned(handles);
+  // A handle fanned off its angle points at it; the pointers go under every handle.
+  const pointers = svg("g", {}, root);
   for (const h of handles) {
-    const [x, y] = onCircle(h.angle, h.r);
+    const [x, y] = onCircle(at.get(h), h.r);
+    const [px, py] = onCircle(h.angle);
+    if (at.get(h) !== h.angle) svg("line", { x1: px, y1: py, x2: x, y2: y, stroke: h.color, "stroke-width": 1.5 }, pointers);
     const group = svg("g", { class: "handle", tabindex: 0, role: "slider", "aria-label": h.name, "aria-valuemin": 0, "aria-valuemax": 360,
       "aria-valuenow": ((h.angle * 180) / Math.PI).toFixed(1), "aria-valuetext": `${((h.angle * 180) / Math.PI).toFixed(1)}°` }, root);
     group.dataset.id = h.id;
-    svg("circle", { cx: x, cy: y, r: 9, fill: h.color, stroke: "#fff", "stroke-width": 2 }, group);
+    // Arrow keys step from the exact angle, not from the rounded one said to screen readers.
+    group.dataset.angle = h.angle;
+    svg("circle", { cx: x, cy: y, r: HANDLE, fill: h.color, stroke: "#fff", "stroke-width": 2 }, group);
     svg("text", { x, y: y + 3.5, "font-size": 10, "text-anchor": "middle", fill: "#fff", "pointer-events": "none" }, group).textContent = h.label;
   }
   if (focused) root.querySelector(`.handle[data-id="${CSS.escape(focused)}"]`)?.focus();
@@ -95,8 +129,7 @@ export function dragOnCircle(root, move) {
     const sign = { ArrowUp: 1, ArrowRight: 1, ArrowDown: -1, ArrowLeft: -1 }[e.key];
     if (!sign) return;
     e.preventDefault();
-    const now = (Number(handle.getAttribute("aria-valuenow")) * Math.PI) / 180;
-    move(handle.dataset.id, wrap(now + sign * KEY_STEP * (e.shiftKey ? 10 : 1)));
+    move(handle.dataset.id, wrap(Number(handle.dataset.angle) + sign * KEY_STEP * (e.shiftKey ? 10 : 1)));
   });
 }
 

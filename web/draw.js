@@ -180,28 +180,45 @@ export const cornerVertex = (c, n) => Math.round((c * n) / TAU) % n;
 
 /**
  * Dot and number the corners (angles) at their vertices of `points`; corners that a fold
- * stacked on one another share one label ("1·4") instead of overprinting.
+ * stacked on one another share one label ("1·4") instead of overprinting. A label goes above
+ * right of its dot, or at the first other corner of it that is on the canvas and clear of
+ * every dot and of the labels placed before it. Gives the labels' boxes (canvas px).
  */
 export function labelCorners(ctx, v, points, corners, size) {
   const spots = new Map();
   corners.forEach((c, k) => {
     const p = points[cornerVertex(c, points.length)];
     const key = `${Math.round(v.X(p) / 4)},${Math.round(v.Y(p) / 4)}`;
-    if (!spots.has(key)) spots.set(key, { p, labels: [] });
+    if (!spots.has(key)) spots.set(key, { x: v.X(p), y: v.Y(p), labels: [] });
     spots.get(key).labels.push(k + 1);
   });
+  const dot = size / 3;
+  const taken = [...spots.values()].map(({ x, y }) => ({ x: x - dot, y: y - dot, w: 2 * dot, h: 2 * dot }));
+  const clear = (b) => b.x >= 0 && b.y >= 0 && b.x + b.w <= ctx.canvas.width && b.y + b.h <= ctx.canvas.height
+    && !taken.some((o) => b.x < o.x + o.w && o.x < b.x + b.w && b.y < o.y + o.h && o.y < b.y + b.h);
   ctx.font = `${size}px system-ui, sans-serif`;
-  for (const { p, labels } of spots.values()) {
+  ctx.textBaseline = "top";
+  const boxes = [];
+  for (const { x, y, labels } of spots.values()) {
+    const text = labels.join("·");
+    const [w, h] = [ctx.measureText(text).width, size];
+    const gap = size / 2;
+    const tries = [[x + gap, y - gap - h], [x - gap - w, y - gap - h], [x + gap, y + gap], [x - gap - w, y + gap]].map(([bx, by]) => ({ x: bx, y: by, w, h }));
+    const box = tries.find(clear) || tries[0];
+    taken.push(box);
+    boxes.push(box);
     ctx.fillStyle = "#111827";
     ctx.beginPath();
-    ctx.arc(v.X(p), v.Y(p), size / 3, 0, TAU);
+    ctx.arc(x, y, dot, 0, TAU);
     ctx.fill();
     // A white halo keeps the number readable over the fills.
     ctx.lineWidth = 3;
     ctx.strokeStyle = "#fff";
-    ctx.strokeText(labels.join("·"), v.X(p) + size / 2, v.Y(p) - size / 2);
-    ctx.fillText(labels.join("·"), v.X(p) + size / 2, v.Y(p) - size / 2);
+    ctx.strokeText(text, box.x, box.y);
+    ctx.fillText(text, box.x, box.y);
   }
+  ctx.textBaseline = "alphabetic";
+  return boxes;
 }
 
 /**

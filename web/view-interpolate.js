@@ -9,6 +9,7 @@ import { applyFold, foldAt, foldPath, wrap, TAU } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
 import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, textSize, viewport } from "./draw.js";
 import { fmtFold } from "./format.js";
+import { enlarge } from "./result.js";
 
 const $ = (sel) => document.querySelector(sel);
 const SEQUENCE = "all";
@@ -22,7 +23,25 @@ let showError = () => {};
  */
 class DiskFollower {
   constructor(img, status, size = 480) {
-    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null });
+    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null, job: null, large: null });
+  }
+
+  /** The request for `job`'s disk at `size` px, in the motion's colour scale. */
+  request(job, size) {
+    return { border: job.border, reference: job.reference, size, scale: this.scale || undefined };
+  }
+
+  /** The state shown, at full resolution and in the same colour scale, in the shared dialog. */
+  async enlarge(caption) {
+    if (!this.job) return;
+    try {
+      const { url } = await api.disk(this.request(this.job, 1400), "disk-large");
+      if (this.large) URL.revokeObjectURL(this.large);
+      this.large = url;
+      enlarge(url, caption);
+    } catch (e) {
+      if (!api.isAbort(e)) this.status.textContent = `(not drawn: ${e.message})`;
+    }
   }
 
   /** Show the disk of `border` under `key`; `ends` are the motion's two end states. */
@@ -49,12 +68,13 @@ class DiskFollower {
           this.scale = scales.every(Boolean) ? { s: Math.max(...scales.map((s) => s.s)), max: Math.max(...scales.map((s) => s.max)) } : null;
           this.motion = job.motion;
         }
-        const { url } = await api.disk({ border: job.border, reference: job.reference, size: this.size, scale: this.scale || undefined }, "disk");
+        const { url } = await api.disk(this.request(job, this.size), "disk");
         this.img.src = url;
         await this.img.decode();
         if (this.url) URL.revokeObjectURL(this.url);
         this.url = url;
         this.shown = job.key;
+        this.job = job;
         this.img.dataset.key = job.key;
         this.status.textContent = "";
       } catch (e) {
@@ -236,7 +256,9 @@ function draw() {
   // A fold along a reported line has its two fold points on top of each other: no tags.
   if (Array.isArray(last)) {
     ctx.font = `${size}px system-ui, sans-serif`;
-    for (const [p, label] of [[a, "f₁"], [c, "f₂"]]) {
+    // A fold from flat starts with both points at one place: one tag, not two overprinted.
+    const one = Math.hypot(v.X(a) - v.X(c), v.Y(a) - v.Y(c)) < size;
+    for (const [p, label] of one ? [[a, "f₁·f₂"]] : [[a, "f₁"], [c, "f₂"]]) {
       ctx.beginPath();
       ctx.arc(v.X(p), v.Y(p), 6, 0, TAU);
       ctx.fillStyle = "#d1495b";
@@ -261,7 +283,8 @@ function motionEnds() {
 
 function drawCircle(fold) {
   const handles = [];
-  for (const [which, color, r, word] of [["from", "#2b6cb0", R + 14, "from"], ["to", "#c05621", R + 28, "to"]]) {
+  // Rings 2 handle radii apart: a "from" and a "to" handle at one angle do not overlap.
+  for (const [which, color, r, word] of [["from", "#2b6cb0", R + 12, "from"], ["to", "#c05621", R + 32, "to"]]) {
     view[which].forEach((angle, k) => handles.push({ id: `${which}:${k}`, angle, color, label: k + 1, r, name: `${word} fold point ${k + 1}` }));
   }
   const arcs = foldsNow().slice(0, -1).map((f) => ({ fold: anglesOf(f), color: "#9aa4b2" }));
@@ -354,6 +377,7 @@ export function setup(errors, planGoal) {
     [view.from, view.to] = [view.to, view.from];
     changed();
   });
+  $("#interp-disk-zoom").addEventListener("click", () => disk.enlarge(`dGLI disk of the state drawn (${$("#interp-readout").textContent.replace(/\s+/g, " ").trim()})`));
   $("#check-server").addEventListener("click", checkServer);
   $("#plan-goal").addEventListener("click", () => planGoal(view.cloth, view.to));
   dragOnCircle($("#fold-circle"), (id, angle) => {

@@ -6,7 +6,7 @@ import * as store from "./store.js";
 import * as router from "./router.js";
 import { wrap } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { arrow, boundsOf, cornerVertex, drawCloth, foldAll, labelCorners, line, made, polygon, viewport } from "./draw.js";
+import { arrow, boundsOf, cornerVertex, drawCloth, foldAll, labelCorners, line, made, polygon, textSize, viewport } from "./draw.js";
 import { el, fmtDeg, fmtPoint } from "./format.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -88,7 +88,8 @@ async function plan() {
     drawCircle();
     const count = res.steps.length;
     $("#plan-case").textContent = `${count} step${count === 1 ? "" : "s"} · ${CASES[res.case] || res.case}`;
-    list.replaceChildren(...stepCards(res));
+    list.replaceChildren();
+    stepCards(res, list);
     showError("");
   } catch (e) {
     if (api.isAbort(e)) return;
@@ -118,7 +119,8 @@ function states(res) {
   return out;
 }
 
-function stepCards(res) {
+/** Add a card per state of the plan to `list`, each drawn once on the page: its labels sized for the width it is shown at. */
+function stepCards(res, list) {
   const flat = res.start_border;
   const n = flat.length;
   const at = (folds) => foldAll(flat, folds);
@@ -131,15 +133,23 @@ function stepCards(res) {
     const i = cornerVertices.indexOf(border);
     return i >= 0 ? i + 1 : null;
   };
-  return all.map(({ step, before, folds }, k) => {
+  all.forEach(({ step, before, folds }, k) => {
     const canvas = el("canvas", { width: 520, height: 420 });
     canvas.setAttribute("role", "img");
+    const title = el("h3", { textContent: step ? `Step ${k} · ${ACTIONS[step.action] || step.action}` : "Now" });
+    const words = el("p", { textContent: step ? stepText(step, cornerOf) : res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat." });
+    canvas.setAttribute("aria-label", words.textContent);
+    const li = el("li", { className: "plan-step" }, canvas, el("div", {}, title, words));
+    if (step) li.dataset.picks = step.picks.length;
+    list.append(li);
     const ctx = canvas.getContext("2d");
-    const v = viewport(canvas, bounds, 28);
+    const size = textSize(canvas);
+    // Room round the cloth for the corner labels.
+    const v = viewport(canvas, bounds, 28 + size);
     polygon(ctx, v, flat, { stroke: "#cbd2dc", width: 1.2, dash: [5, 5] });
     if (before) polygon(ctx, v, at(before), { stroke: "#6b7280", width: 1.5, dash: [2, 4] });
     const state = drawCloth(ctx, v, flat, folds);
-    labelCorners(ctx, v, state, res.corners, 15);
+    labelCorners(ctx, v, state, res.corners, size);
     if (step) {
       // The line a fold step folds along lies on the border it folds (the flat cloth); an
       // unfold's on the state it goes back to.
@@ -148,12 +158,6 @@ function stepCards(res) {
       line(ctx, v, a, b, "#d1495b", 2.5);
       for (const pick of step.picks) arrow(ctx, v, pick.from, pick.to, "#2f855a");
     }
-    const title = el("h3", { textContent: step ? `Step ${k} · ${ACTIONS[step.action] || step.action}` : "Now" });
-    const words = el("p", { textContent: step ? stepText(step, cornerOf) : res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat." });
-    canvas.setAttribute("aria-label", words.textContent);
-    const li = el("li", { className: "plan-step" }, canvas, el("div", {}, title, words));
-    if (step) li.dataset.picks = step.picks.length;
-    return li;
   });
 }
 
