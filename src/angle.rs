@@ -90,7 +90,10 @@ impl ArcVertices {
         let len = (first..)
             .take(n)
             .take_while(|&v| {
-                let offset = ((v % n) as f64 - start).rem_euclid(nf);
+                // (v − start) mod n, for v − start in (−n, n): what `rem_euclid` gives, without
+                // its `fmod` call (most of the cost of an arc).
+                let x = (v % n) as f64 - start;
+                let offset = if x < 0.0 { x + nf } else { x };
                 offset > 1e-9 && offset < span - 1e-9
             })
             .count();

@@ -312,16 +312,19 @@ pub fn dgli_fast_x4(pairs: [[&Point; 4]; 4]) -> [f64; 4] {
 /// [`dgli_fast`] of every pair `[a, b, c, d]` of `pairs`, in order, four at a time.
 #[inline]
 pub fn dgli_each<'a>(pairs: impl IntoIterator<Item = [&'a Point; 4]>, mut put: impl FnMut(f64)) {
-    let mut pairs = pairs.into_iter();
-    loop {
-        let batch: [Option<[&Point; 4]>; 4] = std::array::from_fn(|_| pairs.next());
-        match batch {
-            [Some(p0), Some(p1), Some(p2), Some(p3)] => dgli_fast_x4([p0, p1, p2, p3]).into_iter().for_each(&mut put),
-            rest => {
-                rest.into_iter().flatten().for_each(|[a, b, c, d]| put(dgli_fast(a, b, c, d)));
-                return;
-            }
+    let unused = Point::origin();
+    let mut batch = [[&unused; 4]; 4];
+    let mut filled = 0;
+    for pair in pairs {
+        batch[filled] = pair;
+        filled += 1;
+        if filled == 4 {
+            dgli_fast_x4(batch).into_iter().for_each(&mut put);
+            filled = 0;
         }
+    }
+    for [a, b, c, d] in &batch[..filled] {
+        put(dgli_fast(a, b, c, d));
     }
 }
 

@@ -176,7 +176,8 @@ pub fn curves_through(tables: &RingTables, n: usize, fold: [f64; 2]) -> Vec<Curv
     let loss = |f: f64, a1: f64| tables.loss_and_gradient(f - a1, a1).0;
     let slopes = slopes(n);
     let step = 2.0 * A1_BOUND / (slopes - 1) as f64;
-    fold.iter()
+    // The two points in parallel: this runs after the fold is found, with nothing beside it.
+    fold.par_iter()
         .filter_map(|&f| {
             let scan: Vec<(f64, f64)> = (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (f - a1, a1)).collect();
             let best = scan.iter().zip(tables.losses(&scan)).min_by(|a, b| a.1.total_cmp(&b.1))?.0 .1;

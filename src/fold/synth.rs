@@ -88,6 +88,12 @@ impl Line {
     }
 }
 
+thread_local! {
+    /// [`Probe::cost`]'s buffers (each pair's value, the pairs that need a dGLI), kept per
+    /// thread: it runs thousands of times per step, and allocating them was a tenth of it.
+    static COST_BUFFERS: std::cell::RefCell<(Vec<Option<f64>>, Vec<usize>)> = const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
 /// A synthesised state and which of its vertices the fold moved.
 struct Turned {
     state: Vec<Point>,
@@ -179,32 +185,31 @@ impl Probe {
     /// (see [`Probe::flap_negates`]).
     fn cost(&self, turned: &Turned) -> f64 {
         let state = &turned.state;
-        let n = state.len();
-        let mut values: Vec<Option<f64>> = self
-            .pairs
-            .iter()
-            .zip(&self.start)
-            .map(|(&(i, j), start)| match (turned.edge_moved(i), turned.edge_moved(j)) {
+        let next = |e: usize| if e + 1 == state.len() { 0 } else { e + 1 };
+        COST_BUFFERS.with_borrow_mut(|(values, across)| {
+            values.clear();
+            values.extend(self.pairs.iter().zip(&self.start).map(|(&(i, j), start)| match (turned.edge_moved(i), turned.edge_moved(j)) {
                 ((false, false), (false, false)) => Some(*start),
                 ((true, true), (true, true)) if self.flap_negates => Some(-start),
                 _ => None,
-            })
-            .collect();
-        let across: Vec<usize> = (0..values.len()).filter(|&k| values[k].is_none()).collect();
-        let mut slots = across.iter();
-        dgli_each(
-            across.iter().map(|&k| {
-                let (i, j) = self.pairs[k];
-                [&state[i], &state[(i + 1) % n], &state[j], &state[(j + 1) % n]]
-            }),
-            |v| {
-                if let Some(&k) = slots.next() {
-                    values[k] = Some(compress(v));
-                }
-            },
-        );
-        let total: f64 = values.iter().zip(&self.measured).map(|(value, m)| (value.unwrap_or(0.0) - m).abs()).sum();
-        total / self.pairs.len().max(1) as f64
+            }));
+            across.clear();
+            across.extend((0..values.len()).filter(|&k| values[k].is_none()));
+            let mut slots = across.iter();
+            dgli_each(
+                across.iter().map(|&k| {
+                    let (i, j) = self.pairs[k];
+                    [&state[i], &state[next(i)], &state[j], &state[next(j)]]
+                }),
+                |v| {
+                    if let Some(&k) = slots.next() {
+                        values[k] = Some(compress(v));
+                    }
+                },
+            );
+            let total: f64 = values.iter().zip(&self.measured).map(|(value, m)| (value.unwrap_or(0.0) - m).abs()).sum();
+            total / self.pairs.len().max(1) as f64
+        })
     }
 
     /// Mean mismatch of the start state left as it was.
@@ -397,12 +402,14 @@ fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
     let n = before.len();
     let [ux, uy] = line.direction;
     let d: Vec<f64> = before.iter().map(|p| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0])).collect();
-    let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[(k + 1) % n]);
-    let enters = (0..n).filter(|&k| d[k] <= 0.0 && d[(k + 1) % n] > 0.0);
+    // The vertex after k, without a remainder: this runs for every vertex of every line tried.
+    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
+    let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[next(k)]);
+    let enters = (0..n).filter(|&k| d[k] <= 0.0 && d[next(k)] > 0.0);
     enters
         .filter_map(|k| {
             // The arc runs until the first edge that leaves the side.
-            let leave = (k + 1..k + 1 + n).map(|j| j % n).find(|&j| d[j] > 0.0 && d[(j + 1) % n] <= 0.0)?;
+            let leave = (k + 1..n).chain(0..k + 1).find(|&j| d[j] > 0.0 && d[next(j)] <= 0.0)?;
             let s = [crossing(k), crossing(leave)];
             let turned = ArcVertices::of(n, s[0], s[1]).len;
             (turned >= 2 && turned + 2 <= n).then_some(s)
