@@ -162,15 +162,16 @@ fn slopes(n: usize) -> usize {
 /// ```
 /// use close::disk::{position, Disk};
 /// use close::fold::{fit::curves_through, loss::RingTables};
-/// // A diff disk whose change runs along the radial line at 1 rad.
+/// // A diff disk whose change runs along the radial lines at 1 rad and 4 rad.
 /// let n = 40;
-/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-///     .map(|(i, j)| (-(close::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp())
+/// let ridge = |angle: f64, at: f64| (-(close::angle::wrap_pi(angle - at) * 8.0).powi(2)).exp();
+/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| position(n, i, j).angle))
+///     .map(|angle| ridge(angle, 1.0) + ridge(angle, 4.0))
 ///     .collect();
 /// let curves = curves_through(&RingTables::new(&Disk::from_values(n, values).unwrap()), n, [1.0, 4.0]);
-/// // Only the fold point on the change gets a curve, radial, ending there.
-/// assert_eq!(curves.len(), 1);
-/// assert!(curves[0].rim == 1.0 && curves[0].a1.abs() < 0.1);
+/// // Each fold point gets the radial curve ending there.
+/// assert_eq!(curves.iter().map(|c| c.rim).collect::<Vec<_>>(), vec![1.0, 4.0]);
+/// assert!(curves.iter().all(|c| c.a1.abs() < 0.1 && c.loss < 0.0));
 /// ```
 pub fn curves_through(tables: &RingTables, n: usize, fold: [f64; 2]) -> Vec<Curve> {
     let loss = |f: f64, a1: f64| tables.loss_and_gradient(f - a1, a1).0;
