@@ -101,6 +101,12 @@ impl Analysis {
         &self.frames[self.frames.len() - 1]
     }
 
+    /// The line each fold of [`Analysis::folds`] was made along (`steps[k].line` of the
+    /// steps that found a fold), in fold order.
+    pub fn fold_lines(&self) -> Vec<Option<crate::fold::Line>> {
+        self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect()
+    }
+
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
     /// by the start frame's transform, as the analysis computed it; `None` past the end.
     pub fn disk(&self, k: usize) -> Option<Disk> {

@@ -68,8 +68,7 @@ pub fn arc_contains(from: f64, to: f64, angle: f64) -> bool {
 /// `s2` (fractional vertex indices) of an `n`-vertex border, in walking order. A vertex
 /// within `1e-9` of an endpoint lies on the fold line and is not inside.
 pub fn vertices_in_arc(n: usize, s1: f64, s2: f64) -> Vec<usize> {
-    let arc = ArcVertices::of(n, s1, s2);
-    (0..arc.len).map(|k| (arc.first + k) % n).collect()
+    ArcVertices::of(n, s1, s2).vertices().collect()
 }
 
 /// The vertices inside an arc ([`vertices_in_arc`]) as a run: `len` vertices from `first`,
@@ -98,6 +97,11 @@ impl ArcVertices {
             })
             .count();
         ArcVertices { n, first: first % n.max(1), len }
+    }
+
+    /// The vertices, in walking order.
+    pub fn vertices(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.len).map(|k| (self.first + k) % self.n)
     }
 
     /// True when vertex `v` (< n) is inside the arc.

@@ -334,13 +334,8 @@ mod tests {
     #[test]
     fn four_lanes_equal_one_by_one_bit_for_bit() {
         // Near and far pairs, so some lanes take the series and some libm's atan2.
-        let mut state = 0x9E3779B97F4A7C15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::rng::SplitMix64::new(9);
+        let mut next = || rng.range(-1.0, 1.0);
         let mut fallback = 0;
         for k in 0..4000 {
             let spread = [1.0, 1e-3, 1e-5][k % 3];

@@ -254,8 +254,7 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
 /// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
 pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
     // Each fold along the line the analysis made it along (its `predicted_end`).
-    let lines: Vec<Option<Line>> = analysis.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect();
-    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &lines, goal)?;
+    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &analysis.fold_lines(), goal)?;
     for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
         pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
             Error::InvalidArgument(format!("border vertex {} has no input index ({} known)", pick.vertex, analysis.border_indices.len()))

@@ -174,30 +174,46 @@ fn slopes(n: usize) -> usize {
 /// assert!(curves.iter().all(|c| c.a1.abs() < 0.1 && c.loss < 0.0));
 /// ```
 pub fn curves_through(tables: &RingTables, n: usize, fold: [f64; 2]) -> Vec<Curve> {
-    let loss = |f: f64, a1: f64| tables.loss_and_gradient(f - a1, a1).0;
     let slopes = slopes(n);
     let step = 2.0 * A1_BOUND / (slopes - 1) as f64;
     // The two points in parallel: this runs after the fold is found, with nothing beside it.
     fold.par_iter()
-        .filter_map(|&f| {
-            let scan: Vec<(f64, f64)> = (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (f - a1, a1)).collect();
+        .filter_map(|&rim| {
+            let scan: Vec<(f64, f64)> = (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (rim - a1, a1)).collect();
             let best = scan.iter().zip(tables.losses(&scan)).min_by(|a, b| a.1.total_cmp(&b.1))?.0 .1;
-            // Golden-section search within a grid step either side of the best slope.
-            let (mut lo, mut hi) = ((best - step).max(-A1_BOUND), (best + step).min(A1_BOUND));
-            let ratio = (5f64.sqrt() - 1.0) / 2.0;
-            for _ in 0..40 {
-                let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-                if loss(f, x1) < loss(f, x2) {
-                    hi = x2;
-                } else {
-                    lo = x1;
-                }
-            }
-            let a1 = (lo + hi) / 2.0;
-            let value = loss(f, a1);
-            (value < 0.0).then_some(Curve { a0: f - a1, a1, loss: value, rim: f })
+            // Brent's method within a grid step either side of the best slope.
+            let solver = BrentOpt::new((best - step).max(-A1_BOUND), (best + step).min(A1_BOUND));
+            let a1 = Executor::new(SlopeProblem { tables, rim }, solver)
+                .configure(|state| state.max_iters(100))
+                .timer(false)
+                .run()
+                .ok()
+                .and_then(|r| r.state().get_best_param().copied())
+                .unwrap_or(best);
+            let loss = SlopeProblem { tables, rim }.loss(a1);
+            (loss < 0.0).then_some(Curve { a0: rim - a1, a1, loss, rim })
         })
         .collect()
+}
+
+/// The paper's loss of the curve through the rim point `rim` as a function of its slope a1.
+struct SlopeProblem<'a> {
+    tables: &'a RingTables,
+    rim: f64,
+}
+
+impl SlopeProblem<'_> {
+    fn loss(&self, a1: f64) -> f64 {
+        self.tables.loss_and_gradient(self.rim - a1, a1).0
+    }
+}
+
+impl CostFunction for SlopeProblem<'_> {
+    type Param = f64;
+    type Output = f64;
+    fn cost(&self, a1: &f64) -> Result<f64, argmin::core::Error> {
+        Ok(self.loss(*a1))
+    }
 }
 
 struct RimProblem<'a> {

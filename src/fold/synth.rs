@@ -107,19 +107,27 @@ impl Turned {
     fn new(before: &[Point], axis: f64, s: [f64; 2], line: &Line) -> Turned {
         let mut state = before.to_vec();
         let moved = ArcVertices::of(before.len(), s[0], s[1]);
-        for k in 0..moved.len {
-            let v = (moved.first + k) % before.len();
+        for v in moved.vertices() {
             let r = line.reflect(&before[v]);
             state[v] = Point::new(r.x, r.y, 2.0 * axis - before[v].z);
         }
         Turned { state, moved }
     }
 
+    /// The vertex after `e`, without a remainder (this runs for every probe pair).
+    #[inline]
+    fn next(&self, e: usize) -> usize {
+        if e + 1 == self.state.len() {
+            0
+        } else {
+            e + 1
+        }
+    }
+
     /// Whether the fold moved each end of edge `e`.
     #[inline]
     fn edge_moved(&self, e: usize) -> (bool, bool) {
-        let next = if e + 1 == self.state.len() { 0 } else { e + 1 };
-        (self.moved.contains(e), self.moved.contains(next))
+        (self.moved.contains(e), self.moved.contains(self.next(e)))
     }
 }
 
@@ -184,8 +192,7 @@ impl Probe {
     /// unmoved edges keeps its start value, and a pair on the flap may take the negated one
     /// (see [`Probe::flap_negates`]).
     fn cost(&self, turned: &Turned) -> f64 {
-        let state = &turned.state;
-        let next = |e: usize| if e + 1 == state.len() { 0 } else { e + 1 };
+        let (state, next) = (&turned.state, |e: usize| turned.next(e));
         COST_BUFFERS.with_borrow_mut(|(values, across)| {
             values.clear();
             values.extend(self.pairs.iter().zip(&self.start).map(|(&(i, j), start)| match (turned.edge_moved(i), turned.edge_moved(j)) {

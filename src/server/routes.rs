@@ -574,7 +574,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
                 steps: &plan.steps,
                 goal: goal.map(crate::angle::wrap_tau),
                 folds: &a.folds,
-                lines: a.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect(),
+                lines: a.fold_lines(),
                 corners: &a.corners,
                 start_border: a.start_border().iter().map(to_xyz).collect(),
                 border_indices: &a.border_indices,
