@@ -11,15 +11,16 @@
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-use crate::analysis::{analyze_with, Options};
+use crate::analysis::{analyze_with, Analysis, Options};
+use crate::error::Error;
 use crate::angle;
 use crate::fold::FoldMethod;
 use crate::formats::Sample;
 
 /// The outcome for one sample.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SampleResult {
     pub name: String,
     pub category: String,
@@ -39,7 +40,7 @@ pub struct SampleResult {
 }
 
 /// How one step of a sample went.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct StepResult {
     pub fold_found: bool,
     pub rmse: f64,
@@ -76,7 +77,7 @@ impl SampleResult {
 }
 
 /// Mean and population variance.
-#[derive(Debug, Clone, Copy, Default, Serialize)]
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 pub struct Stat {
     pub mean: f64,
     pub var: f64,
@@ -94,7 +95,7 @@ impl Stat {
 }
 
 /// One row of the table.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Summary {
     pub category: String,
     pub count: usize,
@@ -108,12 +109,12 @@ pub struct Summary {
     pub f1_error: Option<Stat>,
     pub f2_error: Option<Stat>,
     /// For categories with multi-step samples: fold 1, fold 2, … scored apart.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub by_fold: Vec<FoldSummary>,
 }
 
 /// The k-th fold of every multi-step sample of a category.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct FoldSummary {
     pub fold: usize,
     pub count: usize,
@@ -125,7 +126,7 @@ pub struct FoldSummary {
 }
 
 /// The whole evaluation.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Report {
     pub categories: Vec<Summary>,
     pub overall: Summary,
@@ -149,12 +150,19 @@ pub fn evaluate(sample: &Sample) -> SampleResult {
 
 /// Evaluate one sample, choosing fold points with `method`.
 pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
+    let analysis = sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() }));
+    score(sample, analysis.as_ref())
+}
+
+/// Score `sample` against its truth, given its analysis or the error that stopped it: what
+/// [`evaluate_with`] does after analysing, for a caller that has the analysis already.
+pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) -> SampleResult {
     let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
     let mut result = SampleResult {
         expected_folds: truth_folds.as_ref().map_or(sample.frames.len().saturating_sub(1), Vec::len),
         ..SampleResult::empty(&sample.name, category_of(sample))
     };
-    match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
+    match analysis {
         Ok(a) => {
             result.folds = a.folds.len();
             result.rmse = a.metrics.map(|m| m.rmse);

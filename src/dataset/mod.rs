@@ -6,7 +6,8 @@
 //! samples for every shape the app shows, each with its truth.
 //! - [`shapes`]: the outlines (napkin, towel, circular towel, T-shirt, top, trousers,
 //!   skirt), anticlockwise and normalised;
-//! - [`spec`]: the folds, as points along the outline's sides;
+//! - [`spec`]: the folds, as points along the outline's sides, made at seeded random
+//!   points a fraction of an edge from them (never on a vertex or half-edge);
 //! - [`synth`]: the exact fold that makes the end frames, independent of [`crate::fold`];
 //! - [`variants`]: noise, rigid motion, start jitter and relabelling of a clean fold;
 //! - [`grid`]: the napkin and towel as grid meshes (category `mesh`);
@@ -42,7 +43,7 @@ use crate::formats::{MeshFrames, Sample, Truth};
 
 use grid::grid_mesh;
 use shapes::{outline, Shape};
-use spec::{second_folds, single_folds};
+use spec::{fold_off_grid, second_folds, single_folds};
 use synth::fold_border;
 use variants::{Variant, Varied};
 
@@ -121,10 +122,13 @@ fn single_fold_samples() -> Result<Vec<Sample>> {
     let mut samples = Vec::new();
     for kind in Shape::ALL {
         let outline = outline(kind);
+        let n = outline.points.len();
         for (k, spec) in single_folds(kind).iter().enumerate() {
-            let [f1, f2] = spec.params(&outline);
+            // The clean fold and its variants share the fold's draw.
+            let fold_name = format!("{}__{}", kind.name(), spec.name);
+            let ([[f1, f2]], _) = fold_off_grid(&fold_name, n, [spec.params(&outline)], |[[f1, f2]]| fold_border(&outline.points, f1, f2, THICKNESS))?;
             for &variant in std::iter::once(&Variant::Clean).chain(Variant::of_fold(k)) {
-                let name = format!("{}__{}{}", kind.name(), spec.name, variant.suffix());
+                let name = format!("{fold_name}{}", variant.suffix());
                 let start = variant.start(&outline.points, &name);
                 let end = fold_border(&start, f1, f2, THICKNESS)?;
                 let folded = moved(&start, &end);
@@ -142,12 +146,15 @@ fn second_fold_samples() -> Result<Vec<Sample>> {
         .iter()
         .map(|spec| {
             let outline = outline(spec.shape);
-            let [f, g] = spec.params(&outline);
-            let start = outline.points;
-            let once = fold_border(&start, f[0], f[1], THICKNESS)?;
-            let twice = fold_border(&once, g[0], g[1], THICKNESS)?;
-            let folded = moved(&start, &twice);
             let name = format!("{}__{}", spec.shape.name(), spec.name);
+            let nominal = spec.params(&outline);
+            let start = outline.points;
+            let ([f, g], (once, twice)) = fold_off_grid(&name, start.len(), nominal, |[f, g]| {
+                let once = fold_border(&start, f[0], f[1], THICKNESS)?;
+                let twice = fold_border(&once, g[0], g[1], THICKNESS)?;
+                Ok((once, twice))
+            })?;
+            let folded = moved(&start, &twice);
             let category = format!("{}_second_fold", spec.shape.name());
             Ok(border_sample(name, &category, Varied { frames: vec![start, once, twice], folds: vec![f, g], folded }))
         })
@@ -161,9 +168,10 @@ fn mesh_samples() -> Result<Vec<Sample>> {
         let Some(grid) = grid_mesh(kind) else { continue };
         let outline = outline(kind);
         for spec in single_folds(kind).iter().filter(|s| s.mesh) {
-            let [f1, f2] = spec.params(&outline);
-            let folded = grid.fold(f1, f2, THICKNESS)?;
             let n = grid.ring().len();
+            // Drawn as its border twin `<shape>__<fold>` is, so both fold at the same points.
+            let twin = format!("{}__{}", kind.name(), spec.name);
+            let ([[f1, f2]], folded) = fold_off_grid(&twin, n, [spec.params(&outline)], |[[f1, f2]]| grid.fold(f1, f2, THICKNESS))?;
             samples.push(Sample {
                 name: format!("{}_mesh__{}", kind.name(), spec.name),
                 category: "mesh".into(),

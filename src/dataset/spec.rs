@@ -7,6 +7,10 @@
 //! Geometric Shape-Agnostic Cloth State Representation". A name ending in `_wrap` has its
 //! folded arc running through border vertex 0.
 //!
+//! These are nominal folds ("half", "diagonal"): the samples fold at them moved a seeded
+//! random part of an edge off the vertex and half-edge grid ([`fold_off_grid`]), so that no
+//! fold point sits where a search may start, and a perfect score has to be earned.
+//!
 //! ```
 //! use close::dataset::shapes::{outline, Shape};
 //! use close::dataset::spec::single_folds;
@@ -16,6 +20,8 @@
 //! ```
 
 use super::shapes::{Outline, Shape};
+use crate::error::Result;
+use crate::rng::SplitMix64;
 
 /// A fold endpoint: (side, fraction along it).
 pub type At = (usize, f64);
@@ -143,6 +149,46 @@ pub fn single_folds(kind: Shape) -> Vec<FoldSpec> {
     }
 }
 
+/// Draws of a sample's fold endpoints tried before its last refusal is the answer.
+const DRAWS: usize = 32;
+
+/// Make the built-in sample `name` (of an `n`-vertex border) folded at its `nominal` folds'
+/// border parameters moved off the grid: each endpoint a seeded random 0.1–0.4 of an edge
+/// either way, so it is neither a vertex nor a half-edge. `fold` makes the sample from the
+/// drawn parameters; a draw it refuses (the arc crosses the line, the chord leaves the
+/// cloth) is drawn again. The seed is the name: a sample's draw depends on nothing else.
+pub fn fold_off_grid<T, const K: usize>(
+    name: &str,
+    n: usize,
+    nominal: [[f64; 2]; K],
+    mut fold: impl FnMut([[f64; 2]; K]) -> Result<T>,
+) -> Result<([[f64; 2]; K], T)> {
+    let mut rng = SplitMix64::from_name(name);
+    let mut attempt = 0;
+    loop {
+        attempt += 1;
+        let drawn = nominal.map(|f| f.map(|s| off_grid(s, n, &mut rng)));
+        match fold(drawn) {
+            Ok(sample) => return Ok((drawn, sample)),
+            Err(e) if attempt >= DRAWS => return Err(e),
+            Err(_) => {}
+        }
+    }
+}
+
+/// `s` moved 0.1–0.4 of an edge either way, to a point at least 0.1 of an edge from every
+/// vertex and half-edge, in [0, n).
+fn off_grid(s: f64, n: usize, rng: &mut SplitMix64) -> f64 {
+    loop {
+        let step = rng.range(0.1, 0.4);
+        let t = (if rng.uniform() < 0.5 { s - step } else { s + step }).rem_euclid(n as f64);
+        let half = t.rem_euclid(0.5);
+        if half.min(0.5 - half) >= 0.1 {
+            return t;
+        }
+    }
+}
+
 /// A fold of the folded cloth: `first` flat, then `second` on the folded border (its
 /// endpoints are points of the original sides, wherever the first fold moved them).
 #[derive(Debug, Clone, PartialEq)]
@@ -234,6 +280,30 @@ mod tests {
             // The second fold moves vertices the first left, or turns folded ones back.
             assert!(twice.iter().zip(&once).any(|(a, b)| a != b), "{}", s.name);
         }
+    }
+
+    #[test]
+    fn drawn_folds_are_off_the_grid_near_the_nominal_and_seeded_by_name() {
+        let nominal = [[9.5, 47.5], [0.0, 38.0]];
+        let draw = |name: &str| fold_off_grid(name, 76, nominal, Ok).unwrap().0;
+        let drawn = draw("napkin__x");
+        assert_eq!(drawn, draw("napkin__x"));
+        assert_ne!(drawn, draw("napkin__y"));
+        for (d, f) in drawn.iter().flatten().zip(nominal.iter().flatten()) {
+            let moved = crate::angle::wrap_pi((d - f) / 76.0 * std::f64::consts::TAU) * 76.0 / std::f64::consts::TAU;
+            assert!((0.1..=0.4).contains(&moved.abs()), "{f} → {d}");
+            let half = d.rem_euclid(0.5);
+            assert!(half.min(0.5 - half) >= 0.1 - 1e-12 && (0.0..76.0).contains(d), "{d}");
+        }
+        // A refused draw is drawn again; one refused every time is the error.
+        let mut calls = 0;
+        let (_, second) = fold_off_grid("napkin__x", 76, nominal, |_| {
+            calls += 1;
+            if calls < 3 { Err(crate::error::Error::Cancelled) } else { Ok(calls) }
+        })
+        .unwrap();
+        assert_eq!(second, 3);
+        assert!(fold_off_grid("napkin__x", 76, nominal, |_| Err::<(), _>(crate::error::Error::Cancelled)).is_err());
     }
 
     #[test]

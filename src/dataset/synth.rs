@@ -4,15 +4,16 @@
 //! This is the fold that Kamat, Borràs, Torras, "CloSE: A Geometric Shape-Agnostic Cloth
 //! State Representation" predict from the fold coordinates (f1, f2): the part of the border
 //! on the anticlockwise arc from f1 to f2 turns over the line through the border points at
-//! f1 and f2. It is written here on its own, not with the predictor's `crate::fold`, so
-//! that a fault in one is not copied into the other and cancelled in the evaluation.
+//! f1 and f2. It is written here on its own, not with the predictor's `crate::fold` nor the
+//! primitives it uses (`border::point_at`, `angle::vertices_in_arc`), so that a fault in
+//! one is not copied into the other and cancelled in the evaluation.
 //!
 //! **Mirror.** With P1, P2 the border points at parameters f1, f2 (fractional vertex
-//! indices, [`point_at`]) and n̂ the unit XY normal left of P1→P2, a point's signed
+//! indices, [`border_point`]) and n̂ the unit XY normal left of P1→P2, a point's signed
 //! distance to the line is s(p) = (p − P1)·n̂, and its mirror image is p − 2 s(p) n̂ in XY,
 //! z kept. It is an involution: s changes sign and the mirror of the mirror is p.
 //!
-//! **Fold.** The vertices strictly inside the arc ([`vertices_in_arc`]) are mirrored. A
+//! **Fold.** The vertices strictly inside the arc ([`arc_vertices`]) are mirrored. A
 //! fold is made only when that arc lies strictly on one side of the line and, on a flat
 //! border, the chord P1P2 lies inside the cloth. The folded stack turns over, so a vertex
 //! at height z lands at 2·top + thickness − z, top being the highest vertex before the
@@ -31,8 +32,7 @@
 
 use nalgebra::Vector2;
 
-use crate::angle::vertices_in_arc;
-use crate::border::{point_at, Point};
+use crate::border::Point;
 use crate::error::{Error, FoldProblem, Result};
 
 /// Relative size under which two fold points are one point, and a vertex is on the line.
@@ -41,6 +41,43 @@ pub(super) const EPS: f64 = 1e-9;
 /// The size that [`EPS`] is relative to: the farthest point from the origin, at least 1.
 pub(super) fn scale_of(points: &[Point]) -> f64 {
     points.iter().map(|p| p.coords.norm()).fold(1.0, f64::max)
+}
+
+/// Border parameters closer than this (in vertex indices) to a fold point are on the fold
+/// line, not inside the arc.
+const ON_LINE: f64 = 1e-9;
+
+/// `x` modulo `m` into [0, m), by a floor rather than `rem_euclid`: the generator's own.
+fn modulo(x: f64, m: f64) -> f64 {
+    let r = x - m * (x / m).floor();
+    if r >= m {
+        0.0
+    } else {
+        r
+    }
+}
+
+/// The point at border parameter `s` (a fractional vertex index, any real, taken modulo
+/// N): the fraction s − ⌊s⌋ of the way along the straight edge from vertex ⌊s⌋ to the next.
+pub fn border_point(points: &[Point], s: f64) -> Point {
+    let n = points.len();
+    let s = modulo(s, n as f64);
+    let k = (s.floor() as usize).min(n - 1);
+    let t = s - k as f64;
+    let (a, b) = (points[k].coords, points[(k + 1) % n].coords);
+    Point::from(a * (1.0 - t) + b * t)
+}
+
+/// The vertices strictly inside the anticlockwise arc from border parameter `s1` to `s2`
+/// of an `n`-vertex border, in walking order: vertex v is inside when its anticlockwise
+/// offset (v − s1) mod n lies in (ε, span − ε), span = (s2 − s1) mod n, ε = [`ON_LINE`].
+pub fn arc_vertices(n: usize, s1: f64, s2: f64) -> Vec<usize> {
+    let nf = n as f64;
+    let span = modulo(s2 - s1, nf);
+    let mut inside: Vec<(f64, usize)> =
+        (0..n).map(|v| (modulo(v as f64 - s1, nf), v)).filter(|&(offset, _)| offset > ON_LINE && offset < span - ON_LINE).collect();
+    inside.sort_by(|a, b| a.0.total_cmp(&b.0));
+    inside.into_iter().map(|(_, v)| v).collect()
 }
 
 /// The XY line through two points, as a point and its unit left normal.
@@ -125,9 +162,9 @@ impl Fold {
         if n < 3 {
             return Err(fail(FoldProblem::TooFewVertices));
         }
-        let (a, b) = (point_at(points, f1), point_at(points, f2));
+        let (a, b) = (border_point(points, f1), border_point(points, f2));
         let mirror = Mirror::through(&a, &b).ok_or(fail(FoldProblem::PointsCoincide))?;
-        let arc = vertices_in_arc(n, f1, f2);
+        let arc = arc_vertices(n, f1, f2);
         let scale = scale_of(points);
         let sides: Vec<f64> = arc.iter().map(|&v| mirror.side(&points[v])).collect();
         let side = match sides.first() {
@@ -243,6 +280,29 @@ mod tests {
         let tshirt = outline(Shape::TShirt);
         let (a, b) = (tshirt.on_side(6, 0.5), tshirt.on_side(7, 0.5));
         assert_eq!(problem(fold_border(&tshirt.points, a, b, THICKNESS)), FoldProblem::LeavesCloth);
+    }
+
+    #[test]
+    fn border_points_and_arcs_of_the_generator() {
+        let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
+        assert_eq!(border_point(&square, 0.25), Point::new(0.25, 0.0, 0.0));
+        assert_eq!(border_point(&square, 3.5), Point::new(0.0, 0.5, 0.0));
+        assert_eq!(border_point(&square, -0.5), Point::new(0.0, 0.5, 0.0));
+        assert_eq!(border_point(&square, 6.0), square[2]);
+        // Open arcs: through vertex 0, and endpoints on vertices left out.
+        assert_eq!(arc_vertices(8, 6.5, 1.5), vec![7, 0, 1]);
+        assert_eq!(arc_vertices(8, 2.0, 5.0), vec![3, 4]);
+        assert_eq!(arc_vertices(8, 2.0, 2.0), Vec::<usize>::new());
+        assert_eq!(arc_vertices(8, 5.0, 2.0 + 1e-12), vec![6, 7, 0, 1]);
+        // The two arcs between two points split the vertices off the line between them.
+        let mut rng = SplitMix64::new(5);
+        for _ in 0..200 {
+            let (s1, s2) = (rng.range(-8.0, 16.0), rng.range(-8.0, 16.0));
+            let (one, other) = (arc_vertices(8, s1, s2), arc_vertices(8, s2, s1));
+            let on_line = (0..8).filter(|&v| [s1, s2].iter().any(|s| modulo(v as f64 - s, 8.0).min(8.0 - modulo(v as f64 - s, 8.0)) <= ON_LINE)).count();
+            assert_eq!(one.len() + other.len() + on_line, 8, "{s1} {s2}");
+            assert!(one.iter().all(|v| !other.contains(v)));
+        }
     }
 
     #[test]

@@ -227,6 +227,11 @@ impl AppState {
         self.0.light.count() + self.0.heavy.count()
     }
 
+    /// CPU jobs that stopped at their deadline (a time-out, a request gone away) so far.
+    pub fn cancelled_jobs(&self) -> usize {
+        self.0.light.cancelled() + self.0.heavy.cancelled()
+    }
+
     /// Run CPU-heavy `work` on a worker of `lane` once one is free. The work gets a deadline
     /// of the request time-out, cancelled as soon as this future is dropped, so a request
     /// that timed out or went away stops its work and frees the worker.

@@ -179,6 +179,8 @@ pub(super) async fn analysis(
     let loaded = state
         .run_cpu(Lane::Light, move |deadline| {
             let loaded = load(key)?;
+            // A request gone while its sample was read hands nothing on to the heavy lane.
+            deadline.check()?;
             match Lane::of(loaded.cells()) {
                 Lane::Light => loaded.analyze(&job, deadline).map(Ok),
                 Lane::Heavy => Ok(Err(loaded)),

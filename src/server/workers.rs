@@ -7,6 +7,7 @@
 //! becomes a 500, never an abort. Its permit and pool are given back when it ends.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use rayon::{ThreadPool, ThreadPoolBuilder};
@@ -24,6 +25,9 @@ pub struct Workers {
     /// The pools of the workers not busy now.
     idle_pools: Pools,
     count: usize,
+    /// Jobs that stopped at a cancelled or expired deadline: what shows, without timing
+    /// anything, that a dropped request's work really stopped.
+    cancelled: Arc<AtomicUsize>,
 }
 
 /// A worker's pool, given back to the idle ones when dropped.
@@ -48,7 +52,7 @@ impl Workers {
                 pool.ok().map(Arc::new)
             })
             .collect();
-        Workers { permits: Arc::new(Semaphore::new(count)), idle_pools: Arc::new(Mutex::new(pools)), count }
+        Workers { permits: Arc::new(Semaphore::new(count)), idle_pools: Arc::new(Mutex::new(pools)), count, cancelled: Arc::default() }
     }
 
     /// Workers not busy now.
@@ -58,6 +62,11 @@ impl Workers {
 
     pub fn count(&self) -> usize {
         self.count
+    }
+
+    /// Jobs stopped by their deadline so far.
+    pub fn cancelled(&self) -> usize {
+        self.cancelled.load(Ordering::Relaxed)
     }
 
     /// Run `work` on a free worker (waiting for one), with `deadline`.
@@ -71,18 +80,23 @@ impl Workers {
         let lease = Lease { pool: lock(&self.idle_pools).pop().flatten(), home: self.idle_pools.clone() };
         let pool = lease.pool.clone();
         let (answer, answered) = tokio::sync::oneshot::channel();
+        let cancelled = self.cancelled.clone();
         let job = move || {
             let result = catch_unwind(AssertUnwindSafe(|| {
                 // Waiting for the worker may have used up the time.
                 deadline.check()?;
                 work(&deadline)
-            }));
+            }))
+            .unwrap_or_else(|_| Err(ApiError::Internal("the job failed unexpectedly".into())));
+            if matches!(result, Err(ApiError::Input(crate::error::Error::Cancelled))) {
+                cancelled.fetch_add(1, Ordering::Relaxed);
+            }
             // The worker is free before its answer is sent (the pool back before the
             // permit), so whoever reads the answer finds the worker idle.
             drop(lease);
             drop(permit);
             // The request may be gone: nobody to answer then.
-            let _ = answer.send(result.unwrap_or_else(|_| Err(ApiError::Internal("the job failed unexpectedly".into()))));
+            let _ = answer.send(result);
         };
         match pool {
             Some(pool) => pool.spawn(job),
@@ -115,5 +129,6 @@ mod tests {
         let stopped = workers.run(expired, |_| -> Result<(), ApiError> { unreachable!("never started") }).await;
         assert!(matches!(stopped, Err(ApiError::Input(crate::error::Error::Cancelled))));
         assert_eq!(workers.idle(), 1, "the worker is free again");
+        assert_eq!(workers.cancelled(), 1);
     }
 }

@@ -1,7 +1,7 @@
 //! Correctness against the authors' reference implementation's outputs
 //! (`tests/fixtures/reference*`, copied from the project's golden data).
 
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::f64::consts::TAU;

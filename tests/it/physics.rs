@@ -3,7 +3,7 @@
 //! commanded line, masked-grid outlines with staircases, and second folds through stacked
 //! layers. The bounds are about twice what the method measures on them.
 
-mod common;
+use crate::common;
 
 use close::{analyze, Analysis, FrameRange, Sample};
 use common::{error_in_edges, samples_in};

@@ -2,7 +2,7 @@
 //! cloth; relabelling the vertices cyclically shifts every angle; a clockwise border gives
 //! the CloSE of its anticlockwise twin. And exact geometry: a reflection fold is found.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::{PI, TAU};
 

@@ -1,7 +1,7 @@
 //! The `close` command line: analyze and eval on real files, and a clear error (never a
 //! panic) for every kind of bad input (unparseable, NaN, empty, too large, mismatched frames, degenerate).
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};

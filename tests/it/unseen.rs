@@ -3,7 +3,7 @@
 //! then rotated, moved and scaled. The representation must find the one fold and predict
 //! the folded border.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::{PI, TAU};
 

@@ -9,7 +9,7 @@
 //! `target/e2e-screenshots/` for a person to look at.
 //!
 //! Needs Debian's `chromium` and `chromium-driver` (or `CLOSE_CHROMIUM` / `CLOSE_CHROMEDRIVER`
-//! pointing at them), so it is ignored by default: `cargo test --test browser -- --ignored`.
+//! pointing at them), so it is ignored by default: `cargo test --test it browser:: -- --ignored`.
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -248,7 +248,7 @@ async fn serve(router: axum::Router) -> String {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-#[ignore = "needs chromium and chromedriver (apt-get install chromium chromium-driver); run with `cargo test --test browser -- --ignored`"]
+#[ignore = "needs chromium and chromedriver (apt-get install chromium chromium-driver); run with `cargo test --test it browser:: -- --ignored`"]
 async fn the_app_works_in_a_real_browser() {
     let dataset = close::dataset::Dataset::builtin();
     let (chromium, chromedriver) = (find_program("CLOSE_CHROMIUM", &["chromium", "chromium-browser"]), find_program("CLOSE_CHROMEDRIVER", &["chromedriver"]));

@@ -5,8 +5,10 @@
 //! and that a normal N = 76 analysis is answered right after.
 //!
 //! Connection-level cases run a real server on 127.0.0.1 (an ephemeral port) with short
-//! timeouts; the others drive the router in-process. Time bounds are generous (a debug
-//! build on a busy 2-core machine); the failures they catch take minutes or forever.
+//! timeouts; the others drive the router in-process. No assertion measures speed: a time-out
+//! is certain to come first (work of seconds against a time-out of milliseconds), an order
+//! of events is checked instead of a duration, or a bound is [`HANG`], which only a hang
+//! reaches. Timers never fire early, so "not before the time-out" is a safe lower bound.
 
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};
@@ -21,6 +23,9 @@ use tower::ServiceExt;
 
 use close::budget::Budget;
 use close::server::{app, serve_with, AppState, Config};
+
+/// Long enough for anything that does not hang, in a debug build on a busy 2-core machine.
+const HANG: Duration = Duration::from_secs(60);
 
 struct Answer {
     status: StatusCode,
@@ -86,18 +91,23 @@ fn circle(n: usize, r: f64) -> Vec<[f64; 3]> {
     (0..n).map(|k| (k as f64 * std::f64::consts::TAU / n as f64).sin_cos()).map(|(s, c)| [r * c, r * s, 0.0]).collect()
 }
 
-/// After an abusive request: every worker is idle within 3 s, and a normal N = 76 analysis
-/// is answered within 1 s (the first one with a new body: no cache).
-async fn assert_recovers(app: &Router, state: &AppState, case: &str) {
+/// Wait until every worker is idle again; a worker still busy after [`HANG`] fails `case`.
+async fn wait_until_idle(state: &AppState, case: &str) {
     let t = Instant::now();
     while state.idle_workers() < state.workers() {
-        assert!(t.elapsed() < Duration::from_secs(3), "{case}: a worker is still busy {:?} after the answer", t.elapsed());
+        assert!(t.elapsed() < HANG, "{case}: a worker is still busy {:?} after the answer", t.elapsed());
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
+}
+
+/// After an abusive request: every worker is idle again, and a normal N = 76 analysis is
+/// answered (the first one with a new body: no cache).
+async fn assert_recovers(app: &Router, state: &AppState, case: &str) {
+    wait_until_idle(state, case).await;
     let body = normal_sample(&format!("after {case}")).to_string();
     let normal = post(app, "/api/analyze", "application/json", body).await;
     assert_eq!(normal.status, StatusCode::OK, "{case}: {}", normal.text());
-    assert!(normal.took < Duration::from_secs(1), "{case}: a normal analysis took {:?} right after", normal.took);
+    assert!(normal.took < HANG, "{case}: a normal analysis took {:?} right after", normal.took);
 }
 
 fn test_state(config: Config) -> (Router, AppState) {
@@ -105,14 +115,14 @@ fn test_state(config: Config) -> (Router, AppState) {
     (app(state.clone()), state)
 }
 
-/// An abusive upload: refused with one of `statuses` within `within`, and the server
-/// recovers.
-async fn assert_refused(config: Config, request: Request<Body>, statuses: &[StatusCode], words: &str, within: Duration, case: &str) {
+/// An abusive upload: refused with one of `statuses` (a bomb that is read, not refused,
+/// takes far longer than [`HANG`]), and the server recovers.
+async fn assert_refused(config: Config, request: Request<Body>, statuses: &[StatusCode], words: &str, case: &str) {
     let (app, state) = test_state(config);
     let answer = send(&app, request).await;
     let error = answer.refusal(statuses);
     assert!(error.to_lowercase().contains(&words.to_lowercase()), "{case}: {error:?} should name {words:?}");
-    assert!(answer.took < within, "{case}: answered in {:?}", answer.took);
+    assert!(answer.took < HANG, "{case}: answered in {:?}", answer.took);
     assert_recovers(&app, &state, case).await;
 }
 
@@ -144,7 +154,7 @@ element junk 4611686018427387904\nelement face 1\nproperty list uchar int vertex
     ply.push(4);
     (0..4i32).for_each(|k| ply.extend(k.to_le_bytes()));
     assert!(ply.len() < 300);
-    assert_refused(short_timeout(), upload(&[("sample", "bomb.ply", &ply)]), &REFUSED, "", Duration::from_secs(5), "PLY bomb").await;
+    assert_refused(short_timeout(), upload(&[("sample", "bomb.ply", &ply)]), &REFUSED, "", "PLY bomb").await;
 }
 
 /// A MATLAB v5 file of one compressed double matrix `name` of `count` elements stored as
@@ -186,7 +196,7 @@ async fn a_mat_file_that_widens_past_the_cap_is_refused_before_allocating() {
     let before = peak_rss_kib();
     // Too large (413), not some later complaint about what the widened data holds.
     let too_large = [StatusCode::PAYLOAD_TOO_LARGE];
-    assert_refused(short_timeout(), upload(&[("sample", "bomb.mat", &mat)]), &too_large, "", Duration::from_secs(10), ".mat bomb").await;
+    assert_refused(short_timeout(), upload(&[("sample", "bomb.mat", &mat)]), &too_large, "", ".mat bomb").await;
     // Tests in this binary run in parallel, so the peak is the process's: a generous bound.
     let grown = peak_rss_kib().saturating_sub(before);
     assert!(grown < 1 << 20, ".mat bomb: peak RSS grew by {} MiB", grown >> 10);
@@ -206,7 +216,7 @@ async fn an_obj_polygon_of_many_vertices_is_answered_quickly() {
     let (app, state) = test_state(short_timeout());
     let answer = send(&app, upload(&[("sample", "huge.obj", obj.as_bytes())])).await;
     assert!(answer.status.is_client_error() && answer.status != StatusCode::REQUEST_TIMEOUT, "{}: {:.300}", answer.status, answer.text());
-    assert!(answer.took < Duration::from_secs(8), "OBJ polygon: answered in {:?}", answer.took);
+    assert!(answer.took < HANG, "OBJ polygon: answered in {:?}", answer.took);
     assert_recovers(&app, &state, "OBJ polygon").await;
 }
 
@@ -228,7 +238,7 @@ async fn json_bombs_are_refused_quickly() {
     ];
     for (body, words) in cases {
         let case = format!("JSON {:.40}", body);
-        assert_refused(Config::default(), json_upload(body), &REFUSED, words, Duration::from_secs(5), &case).await;
+        assert_refused(Config::default(), json_upload(body), &REFUSED, words, &case).await;
     }
 }
 
@@ -237,11 +247,11 @@ async fn analyses_over_the_work_budget_are_413_naming_the_limit() {
     let body = json!({"frames": vec![circle(5000, 1.0); 8]}).to_string();
     assert!(body.len() < 2 << 20);
     let limit = Budget::SERVER.max_cells.to_string();
-    assert_refused(Config::default(), json_upload(body), &[StatusCode::PAYLOAD_TOO_LARGE], &limit, Duration::from_secs(5), "8 × 5000²").await;
+    assert_refused(Config::default(), json_upload(body), &[StatusCode::PAYLOAD_TOO_LARGE], &limit, "8 × 5000²").await;
     // The limit is the configured one.
     let body = json!({"frames": [circle(100, 1.0), circle(100, 1.0)]}).to_string();
     let tight = Config { budget: Budget { max_cells: 15_000, ..Budget::SERVER }, ..Config::default() };
-    assert_refused(tight, json_upload(body), &[StatusCode::PAYLOAD_TOO_LARGE], "15000", Duration::from_secs(5), "tight budget").await;
+    assert_refused(tight, json_upload(body), &[StatusCode::PAYLOAD_TOO_LARGE], "15000", "tight budget").await;
     // So is an interpolation's.
     let (app, _) = test_state(Config::default());
     let body = json!({"border": circle(5000, 1.0), "from": [0, 1], "to": [1, 2], "steps": 1000});
@@ -249,21 +259,23 @@ async fn analyses_over_the_work_budget_are_413_naming_the_limit() {
     assert!(a.refusal(&[StatusCode::PAYLOAD_TOO_LARGE]).contains("2000000"));
 }
 
-// Issue 11 item 4: the client gets 408, and the job stops with it.
+/// A maximal analysis: 4 frames of 5000 vertices, exactly the server's cell budget (10⁸
+/// dGLI cells, seconds of work in any build), the circles shrinking so no frame repeats.
+fn maximal_sample(name: &str, shrink: usize) -> String {
+    let frames: Vec<Vec<[f64; 3]>> = (0..4).map(|f| circle(5000, 1.0 - 0.01 * (f + shrink) as f64)).collect();
+    json!({"name": name, "frames": frames}).to_string()
+}
+
+// Issue 11 item 4: the client gets 408, and the job stops with it. A 100 ms time-out is
+// certain to come before the end of a maximal analysis; the job that was cut shows in the
+// server's count of cancelled jobs (one that ran to its end would not be counted).
 async fn a_timed_out_analysis_stops_and_frees_its_worker() {
-    let config = Config { timeout: Duration::from_secs(1), budget: Budget::default(), ..Config::default() };
+    let config = Config { timeout: Duration::from_millis(100), ..Config::default() };
     let (app, state) = test_state(config);
-    // Two frames of 3000 vertices: seconds of work in any build.
-    let big = json!({"frames": [circle(3000, 1.0), circle(3000, 0.9)]}).to_string();
-    let answer = send(&app, json_upload(big)).await;
+    let answer = send(&app, json_upload(maximal_sample("cut by the time-out", 0))).await;
     answer.refusal(&[StatusCode::REQUEST_TIMEOUT]);
-    assert!(answer.took < Duration::from_secs(3), "408 after {:?}", answer.took);
-    // Within a second of the 408, nothing runs any more.
-    let t = Instant::now();
-    while state.idle_workers() < state.workers() {
-        assert!(t.elapsed() < Duration::from_secs(1), "the timed-out job still holds a worker after {:?}", t.elapsed());
-        tokio::time::sleep(Duration::from_millis(10)).await;
-    }
+    wait_until_idle(&state, "after a 408").await;
+    assert_eq!(state.cancelled_jobs(), 1, "the timed-out job was not stopped by its deadline");
     let config = Config { timeout: Duration::from_secs(30), ..Config::default() };
     let (app, state) = test_state(config);
     assert_recovers(&app, &state, "after a 408").await;
@@ -275,46 +287,44 @@ async fn a_normal_analysis_is_answered_while_two_maximal_ones_run() {
     let (app, state) = test_state(Config::default());
     let heavy: Vec<_> = (0..2)
         .map(|k| {
-            let frames: Vec<Vec<[f64; 3]>> = (0..4).map(|f| circle(5000, 1.0 - 0.01 * (f + k) as f64)).collect();
-            let body = json!({"name": format!("maximal {k}"), "frames": frames}).to_string();
+            let body = maximal_sample(&format!("maximal {k}"), k);
             let app = app.clone();
             tokio::spawn(async move { send(&app, json_upload(body)).await })
         })
         .collect();
     // Let them start: a worker is busy once one is loaded.
     let t = Instant::now();
-    while state.idle_workers() == state.workers() && t.elapsed() < Duration::from_secs(10) {
+    while state.idle_workers() == state.workers() && t.elapsed() < HANG {
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
     tokio::time::sleep(Duration::from_millis(300)).await;
     let normal = post(&app, "/api/analyze", "application/json", normal_sample("beside two maximal").to_string()).await;
     assert_eq!(normal.status, StatusCode::OK, "{}", normal.text());
-    assert!(normal.took < Duration::from_secs(5), "a normal analysis took {:?} beside two maximal ones", normal.took);
-    assert!(heavy.iter().all(|job| !job.is_finished()), "the maximal analyses were over before the check");
-    // Dropping their requests stops them.
+    // The order, not the time: the normal one was answered while both maximal ones still ran.
+    assert!(heavy.iter().all(|job| !job.is_finished()), "a maximal analysis was over before the normal one was answered");
+    // Dropping their requests stops them: the running one at its deadline, the waiting one
+    // before it starts.
     heavy.iter().for_each(|job| job.abort());
-    let t = Instant::now();
-    while state.idle_workers() < state.workers() {
-        assert!(t.elapsed() < Duration::from_secs(3), "aborted analyses still hold workers after {:?}", t.elapsed());
-        tokio::time::sleep(Duration::from_millis(20)).await;
-    }
+    wait_until_idle(&state, "aborted maximal analyses").await;
+    assert!(state.cancelled_jobs() >= 1, "the running maximal analysis was not stopped by its deadline");
 }
 
 // Issue 11 item 7: results of 2M points are serialised on a worker, not the async threads.
 async fn a_huge_interpolation_does_not_stall_the_runtime() {
-    let (app, _) = test_state(Config::default());
+    let (app, state) = test_state(Config::default());
     let body = json!({"border": circle(5000, 1.0), "from": [0.1, 3.0], "to": [1.0, 4.0], "steps": 400}).to_string();
     let big = {
         let app = app.clone();
         tokio::spawn(async move { post(&app, "/api/interpolate", "application/json", body).await })
     };
-    tokio::time::sleep(Duration::from_millis(50)).await;
-    for _ in 0..5 {
-        let health = send(&app, Request::get("/healthz").body(Body::empty()).unwrap()).await;
-        assert_eq!(health.status, StatusCode::OK);
-        assert!(health.took < Duration::from_millis(500), "/healthz took {:?} beside a huge interpolation", health.took);
-        tokio::time::sleep(Duration::from_millis(50)).await;
+    let t = Instant::now();
+    while state.idle_workers() == state.workers() && t.elapsed() < HANG {
+        tokio::time::sleep(Duration::from_millis(5)).await;
     }
+    // The order, not the time: /healthz is answered while the interpolation still runs.
+    let health = send(&app, Request::get("/healthz").body(Body::empty()).unwrap()).await;
+    assert_eq!(health.status, StatusCode::OK);
+    assert!(!big.is_finished(), "/healthz waited for the whole interpolation ({:?})", health.took);
     let big = big.await.expect("the interpolation task");
     assert_eq!(big.status, StatusCode::OK);
     assert!(big.body.len() > 20 << 20, "{} bytes", big.body.len());
@@ -329,7 +339,6 @@ async fn concurrent_maximal_uploads_share_the_byte_budget() {
     let frames = (2 << 20) / (frame.len() + 1) - 1;
     let body = format!("{{\"frames\": [{}]}}", vec![frame; frames].join(","));
     assert!(body.len() < 2 << 20);
-    let t = Instant::now();
     let uploads: Vec<_> = (0..20)
         .map(|k| {
             let (app, body) = (app.clone(), body.replacen('{', &format!("{{\"name\": \"upload {k}\", "), 1));
@@ -341,7 +350,6 @@ async fn concurrent_maximal_uploads_share_the_byte_budget() {
         // Each is over the cell budget (frames × 5000²).
         assert!(a.refusal(&[StatusCode::PAYLOAD_TOO_LARGE]).contains("cells"));
     }
-    assert!(t.elapsed() < Duration::from_secs(30), "20 uploads took {:?}", t.elapsed());
     assert_recovers(&app, &state, "20 concurrent uploads").await;
 }
 
@@ -373,7 +381,7 @@ async fn duplicated_form_parts_are_400() {
         ("end", vec![("start", "a.txt", &square[..]), ("end", "b.txt", &square[..]), ("end", "c.txt", &square[..])]),
     ] {
         let case = format!("two {field} parts");
-        assert_refused(Config::default(), upload(&parts), &[StatusCode::BAD_REQUEST], field, Duration::from_secs(5), &case).await;
+        assert_refused(Config::default(), upload(&parts), &[StatusCode::BAD_REQUEST], field, &case).await;
     }
 }
 
@@ -397,7 +405,7 @@ async fn degenerate_end_frames_are_422_naming_the_frame() {
     let huge: Vec<[f64; 3]> = start.iter().map(|p| [p[0] * 1e300, p[1] * 1e300, 0.0]).collect();
     for (end, case) in [(collapsed, "collapsed end frame"), (huge, "end frame scaled by 1e300")] {
         let body = json!({"frames": [start, end]}).to_string();
-        assert_refused(Config::default(), json_upload(body), &[StatusCode::UNPROCESSABLE_ENTITY], "frame 1", Duration::from_secs(5), case).await;
+        assert_refused(Config::default(), json_upload(body), &[StatusCode::UNPROCESSABLE_ENTITY], "frame 1", case).await;
     }
 }
 
@@ -516,7 +524,7 @@ async fn closed_after(mut stream: TcpStream, trickle: &[u8], every: Duration, li
 // (here within a 1 s header time-out; 10 s by default, and the target is 30 s).
 async fn slow_and_silent_connections_are_closed() {
     let server = Server::start(Config { header_timeout: Duration::from_secs(1), ..Config::default() }).await;
-    let limit = Duration::from_secs(8);
+    let limit = HANG;
     let silent = TcpStream::connect(server.addr).await.unwrap();
     let took = closed_after(silent, b"", Duration::from_millis(100), limit).await.expect("a silent connection stays open");
     assert!(took >= Duration::from_millis(900), "closed after {took:?}: before the time-out");
@@ -543,7 +551,7 @@ async fn a_trickling_body_is_answered_408_at_the_time_out() {
     let mut answer = Vec::new();
     let mut buf = [0u8; 4096];
     // One byte every 100 ms: 100 000 bytes would take hours.
-    while t.elapsed() < Duration::from_secs(8) {
+    while t.elapsed() < HANG {
         match tokio::time::timeout(Duration::from_millis(100), stream.read(&mut buf)).await {
             Ok(Ok(0)) | Ok(Err(_)) => break,
             Ok(Ok(k)) => answer.extend_from_slice(&buf[..k]),
@@ -556,7 +564,7 @@ async fn a_trickling_body_is_answered_408_at_the_time_out() {
     }
     let text = String::from_utf8_lossy(&answer);
     assert!(text.starts_with("HTTP/1.1 408"), "after {:?}: {text:.200}", t.elapsed());
-    assert!(t.elapsed() < Duration::from_secs(5), "answered after {:?}", t.elapsed());
+    assert!(t.elapsed() >= Duration::from_secs(2), "answered after {:?}: before the time-out", t.elapsed());
     assert_eq!(server.healthz().await, 200, "served right after");
 }
 
@@ -571,7 +579,7 @@ async fn connections_are_capped_and_freed() {
     assert_eq!(server.healthz().await, 200);
     let waited = t.elapsed();
     assert!(waited >= Duration::from_millis(1000), "a fifth connection was served at once ({waited:?}): no cap");
-    assert!(waited < Duration::from_secs(8), "the capped server answered after {waited:?}");
+    assert!(waited < HANG, "the capped server answered after {waited:?}");
     drop(silent);
 }
 

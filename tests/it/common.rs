@@ -2,12 +2,37 @@
 //!
 //! The folds here are written independently of `close::fold`, so that a fault shared by
 //! the generator and the predictor cannot cancel out.
-#![allow(dead_code)] // each test binary uses its own subset
-
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
+use rayon::prelude::*;
+
+use close::dataset::Dataset;
+use close::eval::{report, score, Report};
 use close::formats::{json::parse_sample, Sample};
+use close::{analyze, Analysis, Error, FrameRange};
+
+/// The built-in dataset with every sample's analysis and the evaluation they make (what
+/// `close eval --builtin` prints), computed once for every test of the binary.
+pub struct Builtin {
+    pub data: Dataset,
+    /// One per entry, in the dataset's order.
+    pub analyses: Vec<Result<Analysis, Error>>,
+    pub report: Report,
+}
+
+pub fn builtin() -> &'static Builtin {
+    static BUILTIN: OnceLock<Builtin> = OnceLock::new();
+    BUILTIN.get_or_init(|| {
+        let data = Dataset::builtin();
+        let analyses: Vec<Result<Analysis, Error>> =
+            data.entries().par_iter().map(|e| e.sample.border_frames().and_then(|b| analyze(&b, FrameRange::default()))).collect();
+        let results = data.entries().iter().zip(&analyses).map(|(e, a)| score(&e.sample, a.as_ref())).collect();
+        let report = report(results);
+        Builtin { data, analyses, report }
+    })
+}
 
 pub fn fixture(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(path)

@@ -1,0 +1,26 @@
+//! The integration tests, one binary (as ripgrep does): one link instead of one per file,
+//! and one shared evaluation of the built-in set ([`common::builtin`]) for every test that
+//! reads it. Each module is one area; `cargo test --test it MODULE::` runs one of them.
+//!
+//! `browser` and `interpolate_parity` need Chromium and node, so their tests are ignored by
+//! default: `cargo test -- --ignored` runs them (`.ci/run` does).
+
+mod common;
+
+mod abuse;
+mod browser;
+mod cli;
+mod cli_plan;
+mod dataset;
+mod formats;
+mod http;
+mod interpolate_parity;
+mod invariance;
+mod modules;
+mod physics;
+mod pictures;
+mod record;
+mod reference;
+mod readme;
+mod unseen;
+mod vrfolding;

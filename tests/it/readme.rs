@@ -1,0 +1,242 @@
+//! The README's result tables cannot drift from the code. Each is rendered from a checked-in
+//! `close eval --json` snapshot (`tests/snapshots/`), each snapshot must equal what the
+//! binary prints now, and every table in the README must be one of these renderings.
+//!
+//! A change that moves the results on purpose regenerates both, for review in its diff:
+//! `UPDATE_SNAPSHOTS=1 cargo test --test it readme::` writes the snapshots from the binary
+//! and the README's generated regions from the snapshots.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use close::eval::{Report, SampleResult, Stat};
+use serde_json::Value;
+
+use crate::common::builtin;
+
+/// A snapshot: its file name under `tests/snapshots/` and the `close eval --json` arguments
+/// that make it (paths relative to the repository).
+const SNAPSHOTS: &[(&str, &[&str])] = &[
+    ("builtin", &["--builtin"]),
+    ("reference", &["tests/fixtures/reference"]),
+    ("reference_paper", &["tests/fixtures/reference", "--method", "paper"]),
+    ("physics", &["assets/physics"]),
+    ("vrfolding", &["tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr"]),
+];
+
+const BEGIN: &str = "<!-- generated: ";
+const END: &str = "<!-- end generated -->";
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn snapshot_path(name: &str) -> PathBuf {
+    root().join("tests/snapshots").join(format!("{name}.json"))
+}
+
+fn updating() -> bool {
+    std::env::var_os("UPDATE_SNAPSHOTS").is_some_and(|v| !v.is_empty() && v != "0")
+}
+
+/// What `close eval --json ARGS` prints now.
+fn binary_eval(args: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_close")).current_dir(root()).args(["eval", "--json"]).args(args).output().expect("run close");
+    assert!(out.status.success(), "close eval {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("close eval --json prints JSON")
+}
+
+fn read_snapshot(name: &str) -> Value {
+    let path = snapshot_path(name);
+    let text = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e} (UPDATE_SNAPSHOTS=1 writes it)", path.display()));
+    serde_json::from_slice(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Where two JSON values differ: numbers to 1e-9 relative (the same code on the same data;
+/// the margin only absorbs the last digit of a printed float), everything else exactly.
+fn differences(path: &str, a: &Value, b: &Value, out: &mut Vec<String>) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
+            if (x - y).abs() > 1e-9 * x.abs().max(y.abs()).max(1e-300) {
+                out.push(format!("{path}: {x} now, {y} in the snapshot"));
+            }
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            x.iter().zip(y).enumerate().for_each(|(k, (x, y))| differences(&format!("{path}[{k}]"), x, y, out));
+        }
+        (Value::Object(x), Value::Object(y)) if x.keys().eq(y.keys()) => {
+            x.iter().for_each(|(k, v)| differences(&format!("{path}.{k}"), v, &y[k], out));
+        }
+        _ if a == b => {}
+        _ => out.push(format!("{path}: {a:.200} now, {b:.200} in the snapshot")),
+    }
+}
+
+/// The snapshots this build can make (the store needs the `vrfolding` feature).
+fn snapshots() -> impl Iterator<Item = &'static (&'static str, &'static [&'static str])> {
+    SNAPSHOTS.iter().filter(|(name, _)| cfg!(feature = "vrfolding") || *name != "vrfolding")
+}
+
+/// With `UPDATE_SNAPSHOTS`, write every snapshot from the binary, once for both tests (the
+/// README is rendered from them, so they are written first).
+fn update_snapshots() {
+    static UPDATED: std::sync::Once = std::sync::Once::new();
+    if updating() {
+        UPDATED.call_once(|| {
+            for (name, args) in snapshots() {
+                let text = serde_json::to_string_pretty(&binary_eval(args)).expect("JSON") + "\n";
+                std::fs::write(snapshot_path(name), text).expect("write the snapshot");
+            }
+        });
+    }
+}
+
+#[test]
+fn snapshots_are_what_the_binary_prints() {
+    update_snapshots();
+    let mut drift = Vec::new();
+    for (name, args) in snapshots() {
+        let now = binary_eval(args);
+        let mut found = Vec::new();
+        differences(name, &now, &read_snapshot(name), &mut found);
+        drift.extend(found.into_iter().take(20));
+    }
+    assert!(drift.is_empty(), "the results moved (UPDATE_SNAPSHOTS=1 if on purpose):\n{}", drift.join("\n"));
+}
+
+/// The shared in-process evaluation of the built-in set (which the other tests read) is the
+/// binary's: the same JSON as its snapshot.
+#[test]
+fn the_shared_builtin_evaluation_is_the_snapshot() {
+    let mut found = Vec::new();
+    let shared = serde_json::to_value(&builtin().report).expect("JSON");
+    differences("builtin", &shared, &read_snapshot("builtin"), &mut found);
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+fn report(name: &str) -> Report {
+    serde_json::from_value(read_snapshot(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn mean(stat: Option<Stat>) -> String {
+    stat.map_or("–".into(), |s| format!("{:.4}", s.mean))
+}
+
+fn median(mut values: Vec<f64>) -> Option<f64> {
+    values.sort_by(f64::total_cmp);
+    let k = values.len();
+    (k > 0).then(|| if k % 2 == 1 { values[k / 2] } else { (values[k / 2 - 1] + values[k / 2]) / 2.0 })
+}
+
+fn stat_of(results: &[&SampleResult], value: impl Fn(&SampleResult) -> Option<f64>) -> Option<Stat> {
+    let values: Vec<f64> = results.iter().filter_map(|r| value(r)).collect();
+    (!values.is_empty()).then(|| {
+        let m = values.iter().sum::<f64>() / values.len() as f64;
+        Stat { mean: m, var: values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / values.len() as f64 }
+    })
+}
+
+/// `close eval`'s text table of a snapshot.
+fn table(name: &str) -> String {
+    format!("```\n{}```", report(name).table())
+}
+
+/// The fold methods side by side on a snapshot pair (default, paper) of the same samples.
+fn methods(names: &[&str]) -> String {
+    let mut out = String::from("| method | folded samples with one fold | mean RMSE | median RMSE | mean Fréchet |\n|---|---|---|---|---|\n");
+    for name in names {
+        let r = report(name);
+        let folded: Vec<&SampleResult> = r.samples.iter().filter(|s| s.expected_folds == 1).collect();
+        let right = folded.iter().filter(|s| s.folds == 1).count();
+        let rmse = median(folded.iter().filter_map(|s| s.rmse).collect()).map_or("–".into(), |m| format!("{m:.4}"));
+        let label = if name.ends_with("_paper") { "`close --method paper` (the paper's fitted curves alone)" } else { "`close` (cut + analysis by synthesis)" };
+        out += &format!(
+            "| {label} | {right} of {} | {} | {rmse} | {} |\n",
+            folded.len(),
+            mean(stat_of(&folded, |s| s.rmse)),
+            mean(stat_of(&folded, |s| s.frechet))
+        );
+    }
+    out.trim_end().to_string()
+}
+
+/// First folds (one-step samples) and second folds (step 2 of two-step samples) of a
+/// snapshot.
+fn folds(name: &str) -> String {
+    let r = report(name);
+    let first: Vec<&SampleResult> = r.samples.iter().filter(|s| s.steps.len() == 1).collect();
+    let second: Vec<&SampleResult> = r.samples.iter().filter(|s| s.steps.len() == 2).collect();
+    let right = |rs: &[&SampleResult]| rs.iter().filter(|s| s.error.is_none() && s.folds == s.expected_folds).count();
+    let step2 = |s: &SampleResult| s.steps.get(1).map(|t| (t.rmse, t.frechet));
+    let mut out = String::from("| | count | right fold count | RMSE | Fréchet |\n|---|---|---|---|---|\n");
+    out += &format!(
+        "| first folds | {} | {} | {} | {} |\n",
+        first.len(),
+        right(&first),
+        mean(stat_of(&first, |s| s.rmse)),
+        mean(stat_of(&first, |s| s.frechet))
+    );
+    out += &format!(
+        "| second folds (scored on step 2) | {} | {} | {} | {} |",
+        second.len(),
+        right(&second),
+        mean(stat_of(&second, |s| step2(s).map(|t| t.0))),
+        mean(stat_of(&second, |s| step2(s).map(|t| t.1)))
+    );
+    out
+}
+
+/// The rendering a region's header names: `table NAME`, `methods NAME NAME`, `folds NAME`.
+fn render(header: &str) -> String {
+    let words: Vec<&str> = header.split_whitespace().collect();
+    match words.as_slice() {
+        ["table", name] => table(name),
+        ["methods", names @ ..] => methods(names),
+        ["folds", name] => folds(name),
+        _ => panic!("README: unknown generated region {header:?}"),
+    }
+}
+
+/// The README with every generated region rendered anew, and the regions' line ranges.
+fn regenerate(readme: &str) -> (String, Vec<std::ops::Range<usize>>) {
+    let (mut out, mut regions, mut lines) = (String::new(), Vec::new(), readme.lines().enumerate());
+    while let Some((k, line)) = lines.next() {
+        out += line;
+        out.push('\n');
+        let Some(header) = line.strip_prefix(BEGIN).and_then(|h| h.strip_suffix(" -->")) else { continue };
+        let end = lines.by_ref().find(|(_, l)| *l == END).unwrap_or_else(|| panic!("README line {}: {header:?} has no {END}", k + 1)).0;
+        out += &render(header);
+        out += "\n";
+        out += END;
+        out.push('\n');
+        regions.push(k..end);
+    }
+    (out, regions)
+}
+
+#[test]
+fn readme_tables_are_rendered_from_the_snapshots() {
+    update_snapshots();
+    let path = root().join("README.md");
+    let mut readme = std::fs::read_to_string(&path).expect("README.md");
+    let (fresh, regions) = regenerate(&readme);
+    if updating() {
+        std::fs::write(&path, &fresh).expect("write README.md");
+        readme.clone_from(&fresh);
+    }
+    assert!(regions.len() >= 5, "only {} generated regions", regions.len());
+    let stale: Vec<String> =
+        readme.lines().zip(fresh.lines()).enumerate().filter(|(_, (a, b))| a != b).map(|(k, (a, b))| format!("line {}: {a:?} should be {b:?}", k + 1)).take(10).collect();
+    assert!(stale.is_empty() && readme == fresh, "README tables differ from the snapshots (UPDATE_SNAPSHOTS=1):\n{}", stale.join("\n"));
+    // Every table is generated: markdown tables and `close eval`'s text tables alike.
+    let inside = |k: usize| regions.iter().any(|r| r.contains(&k));
+    let loose: BTreeMap<usize, &str> = readme
+        .lines()
+        .enumerate()
+        .filter(|(k, l)| (l.starts_with('|') || l.starts_with("category ")) && !inside(*k))
+        .map(|(k, l)| (k + 1, l))
+        .collect();
+    assert!(loose.is_empty(), "README tables written by hand: {loose:#?}");
+}
