@@ -19,6 +19,7 @@ mod invariance;
 mod modules;
 mod physics;
 mod pictures;
+mod plan;
 mod record;
 mod reference;
 mod readme;

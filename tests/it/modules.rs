@@ -1,6 +1,8 @@
-//! The crate's layering, checked like `cargo modules dependencies --acyclic` would: the
-//! top-level modules under `src/` (module = first segment of a `crate::` path) must import
-//! each other one way only, and no library module may import `server`.
+//! The library's layering, checked like `cargo modules dependencies --acyclic` would. The
+//! crates (`crates/core` → `io` → `render` → `server`, each re-exporting the ones below) are
+//! kept one-way by Cargo itself; inside and across them, the top-level modules (module =
+//! first segment of a `crate::` path) must import each other one way only, and no library
+//! module may import `server`.
 //!
 //! The graph is read from the sources: every `crate::…` path (grouped imports
 //! `crate::{a, b::c}` included) and every `super::…` path that climbs to the crate root,
@@ -12,7 +14,15 @@ use std::path::{Path, PathBuf};
 
 type Graph = BTreeMap<String, BTreeSet<String>>;
 
-const SRC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/src");
+/// The source folders of the library's crates, lowest first.
+const ROOTS: [&str; 4] = [
+    concat!(env!("CARGO_MANIFEST_DIR"), "/crates/core/src"),
+    concat!(env!("CARGO_MANIFEST_DIR"), "/crates/io/src"),
+    concat!(env!("CARGO_MANIFEST_DIR"), "/crates/render/src"),
+    concat!(env!("CARGO_MANIFEST_DIR"), "/crates/server/src"),
+];
+const CORE: &str = ROOTS[0];
+const IO: &str = ROOTS[1];
 
 /// The source without `//` comments (doc comments hold intra-doc links, not imports) and
 /// without `/* … */` blocks.
@@ -80,7 +90,7 @@ fn heads_after(code: &str, prefix: &str) -> Vec<String> {
 /// Top-level module paths of one file: `src/a.rs` and `src/a/mod.rs` → [a], `src/a/b.rs`
 /// → [a, b].
 fn module_path(file: &Path) -> Vec<String> {
-    let relative = file.strip_prefix(SRC).unwrap_or(file).with_extension("");
+    let relative = ROOTS.iter().find_map(|root| file.strip_prefix(root).ok()).unwrap_or(file).with_extension("");
     let mut parts: Vec<String> = relative.iter().map(|p| p.to_string_lossy().into_owned()).collect();
     if parts.last().is_some_and(|p| p == "mod") {
         parts.pop();
@@ -125,17 +135,19 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The module graph of `src/` (the binary `main.rs` and the root `lib.rs` are not modules).
+/// The module graph of the crates' sources (their `lib.rs` files are not modules).
 fn crate_graph() -> Graph {
-    let lib = std::fs::read_to_string(format!("{SRC}/lib.rs")).unwrap();
-    let modules: BTreeSet<String> = lib
-        .lines()
+    let libs: Vec<String> = ROOTS.iter().map(|root| std::fs::read_to_string(format!("{root}/lib.rs")).unwrap()).collect();
+    let modules: BTreeSet<String> = libs
+        .iter()
+        .flat_map(|lib| lib.lines())
         .filter_map(|l| l.trim().strip_prefix("pub mod ").or_else(|| l.trim().strip_prefix("mod ")))
         .map(|m| m.trim_end_matches(';').to_string())
         .collect();
-    let reexports = root_reexports(&lib);
+    let reexports: BTreeMap<String, String> = libs.iter().flat_map(|lib| root_reexports(lib)).collect();
     let mut files = Vec::new();
-    rust_files(Path::new(SRC), &mut files);
+    ROOTS.iter().for_each(|root| rust_files(Path::new(root), &mut files));
+    let files: Vec<PathBuf> = files.into_iter().filter(|f| f.file_name().is_none_or(|n| n != "lib.rs")).collect();
     let mut graph: Graph = modules.iter().map(|m| (m.clone(), BTreeSet::new())).collect();
     for file in files {
         let path = module_path(&file);
@@ -218,12 +230,12 @@ fn the_parser_reads_grouped_imports_super_and_reexports() {
     let code = strip_comments(
         "use crate::{border::{Point, to_xyz}, error::Error};\n// crate::server is a comment\nuse super::super::mesh::X;\nlet a = crate::Error::Empty; /* crate::fold */\nlet b = notcrate::formats;",
     );
-    let heads = imports(Path::new(&format!("{SRC}/formats/obj.rs")), &code);
+    let heads = imports(Path::new(&format!("{IO}/formats/obj.rs")), &code);
     assert_eq!(heads, vec!["border", "error", "Error", "mesh"]);
     // In a top-level file one `super::` reaches the root.
-    assert_eq!(imports(Path::new(&format!("{SRC}/disk.rs")), "use super::gli::f;"), vec!["gli"]);
+    assert_eq!(imports(Path::new(&format!("{CORE}/disk.rs")), "use super::gli::f;"), vec!["gli"]);
     // Two levels down, one `super::` stays inside the module.
-    assert!(imports(Path::new(&format!("{SRC}/formats/obj.rs")), "use super::MeshFrame;").is_empty());
+    assert!(imports(Path::new(&format!("{IO}/formats/obj.rs")), "use super::MeshFrame;").is_empty());
     let names = root_reexports("pub use error::{Error, Result};\npub use formats::Sample;");
     assert_eq!(names.get("Error").map(String::as_str), Some("error"));
     assert_eq!(names.get("Sample").map(String::as_str), Some("formats"));

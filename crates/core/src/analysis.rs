@@ -1,0 +1,245 @@
+//! The whole pipeline of `close analyze`: frames in, CloSE, label, prediction and metrics out.
+//!
+//! Frames K_start … K_end of a prepared sample are each turned into a dGLI disk, on
+//! borders normalised by the START frame's transform (dGLI scales with 1/size). Step k
+//! (frame k−1 → k) gives at most one fold. The predicted end applies the folds in order to
+//! the start border, in the input's coordinates.
+
+use serde::Serialize;
+
+use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
+use crate::budget::{Budget, Deadline};
+use crate::close::{corners, Close};
+use crate::disk::Disk;
+use crate::error::{Error, Result};
+use crate::fold::reflect::{apply_fold_line, fold_line};
+use crate::fold::{detect, FoldDetection, FoldMethod, Line};
+use crate::label::{label, Label};
+use crate::metrics::Metrics;
+
+/// Which frames to analyse (defaults: first and last).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FrameRange {
+    pub start: Option<usize>,
+    pub end: Option<usize>,
+}
+
+/// How to analyse: which frames, how fold points are chosen, and what it may cost.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    pub frames: FrameRange,
+    pub method: FoldMethod,
+    /// Checked while the disks are computed and between steps: once expired, the analysis
+    /// stops with [`Error::Cancelled`]. The default never expires.
+    pub deadline: Deadline,
+    /// Refuses, before any disk is computed, more analysed frames × N² than it allows. The
+    /// default is unlimited.
+    pub budget: Budget,
+}
+
+/// One step between consecutive frames.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Step {
+    pub from_frame: usize,
+    pub to_frame: usize,
+    #[serde(flatten)]
+    pub detection: FoldDetection,
+    /// The line this step's fold was applied along in `predicted_end` (input coordinates,
+    /// XY: a point and a unit direction): through the border points at f1 and f2 of the
+    /// predicted state, or, when those coincide, through their midpoint in the direction the
+    /// disks gave. `None` without a fold.
+    pub line: Option<Line>,
+    /// The start border with the folds found up to this step applied, against this
+    /// step's true end frame.
+    pub metrics: Metrics,
+}
+
+/// Everything `close analyze` reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Analysis {
+    /// Border vertex count.
+    pub n: usize,
+    /// Corner angles (radians, increasing).
+    pub corners: Vec<f64>,
+    pub corner_vertices: Vec<usize>,
+    pub corner_threshold: f64,
+    /// One [f1, f2] per detected fold, in order.
+    pub folds: Vec<[f64; 2]>,
+    /// The CloSE value of the end state: the corners and the folds that led to it.
+    pub close: Close,
+    pub label: Label,
+    pub border_indices: Vec<usize>,
+    /// Where the border came from ("border", "mesh boundary loop", "mesh silhouette", …).
+    pub border_source: String,
+    /// True when the input was clockwise and was walked the other way.
+    pub reversed: bool,
+    pub warnings: Vec<String>,
+    pub start_frame: usize,
+    pub end_frame: usize,
+    pub steps: Vec<Step>,
+    /// The start border with the folds applied, input coordinates, border order.
+    pub predicted_end: Vec<[f64; 3]>,
+    pub metrics: Option<Metrics>,
+    /// The analysed frames `start_frame ..= end_frame` (input coordinates, border order),
+    /// for drawing: their disks are recomputed on demand ([`Analysis::disk`]) rather than
+    /// kept, so an analysis holds O(frames·N) memory, not O(frames·N²).
+    #[serde(skip)]
+    pub frames: Vec<Vec<Point>>,
+    /// The start frame's normalisation, which every disk of this analysis uses.
+    #[serde(skip)]
+    pub normalisation: Normalisation,
+}
+
+impl Analysis {
+    /// The start border (input coordinates, border order).
+    pub fn start_border(&self) -> &[Point] {
+        &self.frames[0]
+    }
+
+    /// The end border (input coordinates, border order).
+    pub fn end_border(&self) -> &[Point] {
+        &self.frames[self.frames.len() - 1]
+    }
+
+    /// The line each fold of [`Analysis::folds`] was made along (`steps[k].line` of the
+    /// steps that found a fold), in fold order.
+    pub fn fold_lines(&self) -> Vec<Option<crate::fold::Line>> {
+        self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect()
+    }
+
+    /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
+    /// by the start frame's transform, as the analysis computed it; `None` past the end.
+    pub fn disk(&self, k: usize) -> Option<Disk> {
+        self.frames.get(k).map(|frame| Disk::of_border(&self.normalisation.apply_all(frame)))
+    }
+}
+
+/// Analyse frames `range` of a prepared sample.
+///
+/// ```
+/// use close_core::{analyze, border, FrameRange};
+/// // A square of 40 vertices, its right half folded over onto the left along x = 0.5.
+/// let square: Vec<[f64; 3]> = (0..40)
+///     .map(|k| {
+///         let t = (k % 10) as f64 / 10.0;
+///         [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10]
+///     })
+///     .map(|[x, y]| [x, y, 0.0])
+///     .collect();
+/// let folded = square.iter().map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] }).collect();
+/// let analysis = analyze(&border::prepare(vec![square, folded])?, FrameRange::default())?;
+/// assert_eq!(analysis.folds.len(), 1);
+/// assert_eq!(analysis.close.corners.len(), 4);
+/// # Ok::<(), close_core::Error>(())
+/// ```
+pub fn analyze(sample: &BorderFrames, range: FrameRange) -> Result<Analysis> {
+    analyze_with(sample, Options { frames: range, ..Options::default() })
+}
+
+/// Analyse with explicit [`Options`].
+///
+/// The disks are computed as a stream, one step at a time: at most two are alive at once,
+/// whatever the number of frames.
+pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis> {
+    let range = options.frames;
+    let Some(last) = sample.frames.len().checked_sub(1) else {
+        return Err(Error::Empty { what: "the sample has no frame" });
+    };
+    let start = range.start.unwrap_or(0);
+    let end = range.end.unwrap_or(last);
+    if start > last || end > last {
+        return Err(Error::InvalidArgument(format!("frame {} does not exist (the sample has frames 0…{last})", start.max(end))));
+    }
+    if end < start {
+        return Err(Error::InvalidArgument(format!("end frame {end} comes before start frame {start}")));
+    }
+    let frames = &sample.frames[start..=end];
+    options.budget.analysis(frames.len(), sample.len())?;
+    let norm = Normalisation::of(&frames[0])?;
+    let start_border = norm.apply_all(&frames[0]);
+    let start_disk = Disk::of_border_until(&start_border, &options.deadline)?;
+    // The corners need only the start state: found while the steps are analysed.
+    let (found, steps) = rayon::join(|| corners(&start_disk, &start_border), || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options));
+    let (steps, predicted) = steps?;
+    let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
+    let metrics = steps.last().map(|s| s.metrics);
+    let n = sample.len();
+    let label = label(n, &found.vertices, &folds);
+    Ok(Analysis {
+        n,
+        close: Close { corners: found.angles.clone(), folds: folds.clone() },
+        corners: found.angles,
+        corner_vertices: found.vertices,
+        corner_threshold: found.threshold,
+        folds,
+        label,
+        border_indices: sample.border_indices.clone(),
+        border_source: sample.source.clone(),
+        reversed: sample.reversed,
+        warnings: sample.warnings.clone(),
+        start_frame: start,
+        end_frame: end,
+        steps,
+        predicted_end: predicted.iter().map(to_xyz).collect(),
+        metrics,
+        frames: frames.to_vec(),
+        normalisation: norm,
+    })
+}
+
+/// The steps between consecutive `frames` (the first is the sample's frame `first`), each
+/// from the state before it, and the start border with the folds found applied.
+fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, start: (&[Point], &Disk), options: &Options) -> Result<(Vec<Step>, Vec<Point>)> {
+    let mut predicted = frames[0].clone();
+    let mut steps = Vec::with_capacity(frames.len() - 1);
+    let mut previous: Option<(Vec<Point>, Disk)> = None;
+    for (k, frame) in frames.iter().enumerate().skip(1) {
+        let after_border = norm.apply_all(frame);
+        let after = Disk::of_border_until(&after_border, &options.deadline)?;
+        let (before_border, before) = previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
+        let detection = detect(before_border, before, &after, options.method);
+        options.deadline.check()?;
+        let line = detection.fold.and_then(|fold| {
+            let line = fold_line(&predicted, fold, detection.synthesis.and_then(|s| s.direction))?;
+            predicted = apply_fold_line(&predicted, fold, &line);
+            Some(line)
+        });
+        let metrics = Metrics::measure(norm, &predicted, frame);
+        steps.push(Step { from_frame: first + k - 1, to_frame: first + k, detection, line, metrics });
+        previous = Some((after_border, after));
+    }
+    Ok((steps, predicted))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sample_without_frames_is_an_error_not_a_panic() {
+        let empty = BorderFrames { frames: Vec::new(), border_indices: Vec::new(), source: "border".into(), reversed: false, warnings: Vec::new() };
+        assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty { .. })));
+    }
+
+    fn square_frames(frames: usize) -> BorderFrames {
+        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
+        BorderFrames { frames: vec![square; frames], border_indices: (0..4).collect(), source: "border".into(), reversed: false, warnings: Vec::new() }
+    }
+
+    #[test]
+    fn the_budget_is_checked_before_any_disk() {
+        let budget = Budget { max_cells: 2 * 16, ..Budget::default() };
+        let over = analyze_with(&square_frames(3), Options { budget, ..Options::default() });
+        assert!(matches!(over, Err(Error::OverBudget { got: 48, limit: 32, .. })));
+        // Only the analysed frames count.
+        let range = FrameRange { start: Some(1), end: Some(2) };
+        assert!(analyze_with(&square_frames(3), Options { budget, frames: range, ..Options::default() }).is_ok());
+    }
+
+    #[test]
+    fn an_expired_deadline_stops_the_analysis() {
+        let deadline = Deadline::default();
+        deadline.cancel();
+        assert_eq!(analyze_with(&square_frames(2), Options { deadline, ..Options::default() }), Err(Error::Cancelled));
+    }
+}

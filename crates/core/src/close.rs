@@ -1,0 +1,158 @@
+//! The CloSE representation: corners from the start disk's rim, and fold coordinates
+//! (Kamat, Borràs, Torras, "CloSE", Sec. III-B, corners; Sec. III-C, fold coordinates).
+//!
+//! **Corners** θ_1 < … < θ_n. The paper takes the layer-1 cells (edges i, i+1 meet at vertex
+//! i+1) of the START disk whose |value| exceeds a threshold: the population standard
+//! deviation of the disk values after dropping those with a z-score of 7 or more. On a mesh
+//! outline every staircase step passes that test, and on a fine polygonal curve every vertex
+//! does, so the threshold stays as one input and two more decide at the scale of the cloth:
+//! - the border must turn by at least [`MIN_TURN`] between the chords that reach
+//!   [`WINDOW`] of the perimeter back and forward from the vertex (a staircase along a
+//!   straight or slanted side turns by nothing at that scale, a circle by 2π·2·WINDOW);
+//! - of the rim cells that pass both tests within one window, only the largest |value| is a
+//!   corner (one corner per bend, not one per staircase step);
+//! - a polygon's own vertex is a corner too when it turns by at least [`MIN_VERTEX_TURN`]
+//!   between straight neighbours (the two vertices either side turn by less than
+//!   [`STRAIGHT_SHARE`] of it): a neckline of a few gentle polygon corners keeps them, a
+//!   curve (every vertex turns alike) or a staircase (every step turns back) does not.
+//!
+//! Each corner is reported as the angle of its vertex, 2πv/N.
+//!
+//! **CloSE** = ((θ_1 … θ_n), (f1, f2) per fold), all angles in [0, 2π).
+//!
+//! ```
+//! use close_core::close::corners;
+//! use close_core::disk::Disk;
+//! use close_core::border::Point;
+//! let square: Vec<Point> = (0..16)
+//!     .map(|k| {
+//!         let (side, t) = (k / 4, (k % 4) as f64 / 4.0);
+//!         let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][side];
+//!         Point::new(x, y, 0.0)
+//!     })
+//!     .collect();
+//! let found = corners(&Disk::of_border(&square), &square);
+//! assert_eq!(found.vertices, vec![0, 4, 8, 12]);
+//! // A circle of 64 vertices turns at every vertex, and has no corner.
+//! let circle: Vec<Point> = (0..64).map(|k| {
+//!     let t = close_core::angle::param_to_angle(k as f64, 64);
+//!     Point::new(t.cos(), t.sin(), 0.0)
+//! }).collect();
+//! assert!(corners(&Disk::of_border(&circle), &circle).vertices.is_empty());
+//! ```
+
+use serde::Serialize;
+
+use crate::angle::{param_to_angle, wrap_pi};
+use crate::border::Point;
+
+use crate::disk::Disk;
+
+/// z-scores at or beyond this are outliers for the corner threshold.
+pub const OUTLIER_Z: f64 = 7.0;
+/// Least turn of the border, at the scale of [`WINDOW`], at a corner (45°).
+pub const MIN_TURN: f64 = std::f64::consts::FRAC_PI_4;
+/// Share of the perimeter each chord of the turn test spans, on either side of a vertex.
+pub const WINDOW: f64 = 0.025;
+/// Least turn of an isolated polygon vertex, between straight neighbours, at a corner (20°).
+pub const MIN_VERTEX_TURN: f64 = std::f64::consts::PI / 9.0;
+/// The neighbours of an isolated polygon vertex turn, together, by less than this share of it.
+pub const STRAIGHT_SHARE: f64 = 0.25;
+
+/// Corners found on a disk's rim.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Corners {
+    /// Corner vertices, increasing.
+    pub vertices: Vec<usize>,
+    /// Their angles 2πv/N, increasing, in [0, 2π).
+    pub angles: Vec<f64>,
+    /// The |value| a rim cell had to exceed.
+    pub threshold: f64,
+}
+
+fn mean_std(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
+    let (count, sum) = values.clone().fold((0usize, 0.0), |(c, s), v| (c + 1, s + v));
+    if count == 0 {
+        return (0.0, 0.0);
+    }
+    let mean = sum / count as f64;
+    let var = values.map(|v| (v - mean).powi(2)).sum::<f64>() / count as f64;
+    (mean, var.sqrt())
+}
+
+/// The corner threshold of a disk: std of its values without the |z| ≥ 7 outliers.
+pub fn corner_threshold(disk: &Disk) -> f64 {
+    let values = disk.values();
+    let (mean, std) = mean_std(values.iter().copied());
+    if std == 0.0 {
+        return 0.0;
+    }
+    mean_std(values.iter().copied().filter(|v| ((v - mean) / std).abs() < OUTLIER_Z)).1
+}
+
+/// The corners of a start state: its disk and its border (the same, normalised, state).
+pub fn corners(disk: &Disk, border: &[Point]) -> Corners {
+    let n = disk.n();
+    let threshold = corner_threshold(disk);
+    let rim = |v: usize| disk.get((v + n - 1) % n, v).abs();
+    let reach = window_reach(border);
+    let passes = |v: usize| threshold > 0.0 && rim(v) > threshold;
+    let candidate: Vec<bool> = (0..n).map(|v| passes(v) && turn(border, v, &reach).abs() >= MIN_TURN).collect();
+    let single: Vec<(usize, usize)> = vec![(1, 1); n];
+    let vertex_turn: Vec<f64> = (0..n).map(|v| turn(border, v, &single).abs()).collect();
+    let isolated = |v: usize| {
+        let around: f64 = [n - 2, n - 1, 1, 2].iter().map(|&k| vertex_turn[(v + k) % n]).sum();
+        vertex_turn[v] >= MIN_VERTEX_TURN && around < STRAIGHT_SHARE * vertex_turn[v]
+    };
+    // One corner per bend: the largest rim cell among the candidates within its window
+    // (the earlier one on a tie).
+    let vertices: Vec<usize> = (0..n)
+        .filter(|&v| {
+            let (back, forward) = reach[v];
+            let largest = (1..=back).map(|k| (v + n - k % n) % n).all(|u| !candidate[u] || rim(u) < rim(v))
+                && (1..=forward).map(|k| (v + k) % n).all(|u| !candidate[u] || rim(u) <= rim(v));
+            (candidate[v] && largest) || (passes(v) && isolated(v))
+        })
+        .collect();
+    let angles = vertices.iter().map(|&v| param_to_angle(v as f64, n)).collect();
+    Corners { vertices, angles, threshold }
+}
+
+/// For each vertex, how many edges back and forward one [`WINDOW`] of the perimeter reaches
+/// (at least one, less than half the border).
+fn window_reach(border: &[Point]) -> Vec<(usize, usize)> {
+    let n = border.len();
+    let length = |k: usize| (border[(k + 1) % n].xy() - border[k % n].xy()).norm();
+    let perimeter: f64 = (0..n).map(length).sum();
+    let span = WINDOW * perimeter;
+    let most = (n / 2).saturating_sub(1).max(1);
+    let walk = |edges: &mut dyn Iterator<Item = usize>| {
+        let mut run = 0.0;
+        let mut count = 0;
+        for e in edges {
+            run += length(e);
+            count += 1;
+            if run >= span || count >= most {
+                break;
+            }
+        }
+        count.max(1)
+    };
+    (0..n).map(|v| (walk(&mut (1..=n).map(|k| (v + n - k) % n)), walk(&mut (v..v + n).map(|k| k % n)))).collect()
+}
+
+/// The turn of the border at `v` between the chords from `reach[v]` edges back and forward.
+fn turn(border: &[Point], v: usize, reach: &[(usize, usize)]) -> f64 {
+    let n = border.len();
+    let (back, forward) = reach[v];
+    let (a, b, c) = (border[(v + n - back % n) % n].xy(), border[v].xy(), border[(v + forward) % n].xy());
+    let (u, w) = (b - a, c - b);
+    wrap_pi(w.y.atan2(w.x) - u.y.atan2(u.x))
+}
+
+/// The CloSE of one state: corners and the folds that led to it, in order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Close {
+    pub corners: Vec<f64>,
+    pub folds: Vec<[f64; 2]>,
+}

@@ -1,0 +1,235 @@
+//! Fold points as the cut of the border that leaves no change within either side.
+//!
+//! (Kamat, Borràs, Torras, "CloSE", Sec. III-C reads fold coordinates from the diff disk;
+//! this reads them from the same disk by its structure rather than by fitting curves.)
+//!
+//! A fold reflects the folded arc A in a vertical plane and lifts it. For a pair of edges
+//! that both lie on A, the dGLI only changes sign (reflection reverses linking, and a
+//! vertical lift commutes with it); for a pair that both lie off A it does not change at
+//! all. So the abs diff disk g = | |end| − |start| | is zero on every "same side" pair and
+//! the change lives on the pairs that straddle the fold. We look for the two cut points
+//! (p1, p2) on the half-edge grid — p an integer is a cut through vertex p, p = k + ½ a cut
+//! through edge k, whose pairs are left out — that minimise the same-side mass
+//! `S(p1, p2) = Σ_{i<j both inside} g_ij + Σ_{i<j both outside} g_ij`.
+//! With the change of every run of consecutive edges tabulated, every candidate costs O(1),
+//! so all 2N² of them cost O(N²).
+//!
+//! Several neighbouring cuts can tie; each cut point is then the middle of its tie range.
+//! The lifted layer tilts the edge that leaves the fold point, so even a fold through a
+//! vertex shows as a cut through an edge: the cut locates each fold point within half an
+//! edge, and [`super::detect`] refines it inside that edge.
+
+use crate::disk::{condensed_index, Disk};
+
+/// Relative tolerance of a tie in S.
+const TIE: f64 = 1e-7;
+
+/// The best cut found: positions in vertex units on the half-edge grid, both in [0, N).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Cut {
+    pub p1: f64,
+    pub p2: f64,
+    /// Same-side mass of the cut as a share of all the change (0 for an exact fold).
+    pub residual: f64,
+    /// Mean change per same-side pair over mean change per straddling pair: 0 for an exact
+    /// fold, near 1 when the change is noise with no side to it.
+    pub same_to_cross: f64,
+    /// True when the cut point lies strictly inside an edge (it is refinable within it).
+    pub inside_edge: [bool; 2],
+}
+
+/// The change within every run of consecutive edges: `runs[len][a]` is Σ g over the
+/// unordered pairs of the `len` edges starting at edge `a` (cyclic). Stored by length, so
+/// the search, which pairs runs of two fixed lengths at every start, reads memory in order.
+struct RunSums {
+    n: usize,
+    runs: Vec<f64>,
+}
+
+impl RunSums {
+    /// By inclusion–exclusion on runs: run(a, len) = run(a, len − 1) + run(a + 1, len − 1)
+    /// − run(a + 1, len − 2) + g(a, a + len − 1). O(N²).
+    fn new(g: &Disk) -> RunSums {
+        let n = g.n();
+        let mut runs = vec![0.0; (n + 1) * n];
+        // First each pair's value where its run's recurrence adds it, for both of its orders:
+        // g(i, j) at [j − i + 1][i] and at [n − (j − i) + 1][j]. Read in storage order, a block
+        // of rows at a time, so that the scattered writes stay in cache (reading the disk
+        // ring by ring instead misses the cache on every cell).
+        const BLOCK: usize = 64;
+        for first in (0..n).step_by(BLOCK) {
+            // The last edge has no pair of its own in storage order.
+            for i in first..(first + BLOCK).min(n - 1) {
+                let row = &g.values()[condensed_index(n, i, i + 1)..][..n - i - 1];
+                for (d, &value) in (1..).zip(row) {
+                    runs[(d + 1) * n + i] = value;
+                    runs[(n - d + 1) * n + i + d] = value;
+                }
+            }
+        }
+        for len in 2..=n {
+            let (done, row) = runs.split_at_mut(len * n);
+            let (shorter, shortest) = (&done[(len - 1) * n..], &done[(len - 2) * n..(len - 1) * n]);
+            for (a, slot) in row[..n].iter_mut().enumerate() {
+                let next = (a + 1) % n;
+                *slot += shorter[a] + shorter[next] - shortest[next];
+            }
+        }
+        RunSums { n, runs }
+    }
+
+    /// The row of runs of `len` edges, by start edge.
+    fn of_length(&self, len: usize) -> &[f64] {
+        &self.runs[len * self.n..(len + 1) * self.n]
+    }
+
+    /// Σ g over unordered pairs of the `len` edges starting at edge `a` (cyclic).
+    fn within(&self, (a, len): (usize, usize)) -> f64 {
+        self.of_length(len)[a % self.n]
+    }
+}
+
+/// The entries of `row` from `start` on, cyclically.
+fn cyclic_from(row: &[f64], start: usize) -> impl Iterator<Item = &f64> {
+    row[start..].iter().chain(&row[..start])
+}
+
+/// Edges lying wholly on the arc from half-grid position h1 to h2 (anticlockwise):
+/// (first edge, count).
+fn arc_edges(n: usize, h1: usize, h2: usize) -> (usize, usize) {
+    let span = (h2 + 2 * n - h1) % (2 * n);
+    let first = h1.div_ceil(2);
+    let end = (h1 + span) / 2;
+    (first % n, end.saturating_sub(first))
+}
+
+/// The cut of least same-side mass of the diff disk `g`; `None` when g holds no change.
+///
+/// ```
+/// use close_core::disk::Disk;
+/// use close_core::fold::cut::find_cut;
+/// // Six edges; only the pairs across a cut between edges {0, 1, 2} and {3, 4, 5} changed.
+/// let n = 6;
+/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+///     .map(|(i, j)| if (i < 3) != (j < 3) { 1.0 } else { 0.0 })
+///     .collect();
+/// let cut = find_cut(&Disk::from_values(n, values).unwrap()).unwrap();
+/// assert_eq!(cut.residual, 0.0);
+/// let mut points = [cut.p1, cut.p2];
+/// points.sort_by(f64::total_cmp);
+/// assert_eq!(points, [0.0, 3.0]);
+/// ```
+pub fn find_cut(g: &Disk) -> Option<Cut> {
+    let n = g.n();
+    let sums = RunSums::new(g);
+    let total = sums.within((0, n));
+    if total <= 0.0 {
+        return None;
+    }
+    let same_side = |h1: usize, h2: usize| sums.within(arc_edges(n, h1, h2)) + sums.within(arc_edges(n, h2, h1));
+    let grid = 2 * n;
+    // Every cut {h1, h2 = h1 + span}: for one span and one parity of h1 both arcs keep their
+    // lengths and their starts advance by one edge per step, so each reads two rows in order.
+    // Ties go to the least (lower, higher) end, as a scan in that order would find.
+    let mut best = (f64::INFINITY, 0, 0);
+    for span in 1..=n {
+        for parity in 0..2 {
+            let (a0, la) = arc_edges(n, parity, parity + span);
+            let (b0, lb) = arc_edges(n, (parity + span) % grid, parity);
+            let (inside, outside) = (sums.of_length(la), sums.of_length(lb));
+            for (k, s) in cyclic_from(inside, a0).zip(cyclic_from(outside, b0)).map(|(i, o)| i + o).enumerate() {
+                if s <= best.0 {
+                    let h1 = 2 * k + parity;
+                    let h2 = (h1 + span) % grid;
+                    let ends = (h1.min(h2), h1.max(h2));
+                    if s < best.0 || ends < (best.1, best.2) {
+                        best = (s, ends.0, ends.1);
+                    }
+                }
+            }
+        }
+    }
+    let (s_min, h1, h2) = best;
+    let tie = s_min + TIE * total;
+    // Middle of the run of tying positions around `h`, moving one end with the other fixed.
+    let middle = |h: usize, other: usize, first: bool| -> f64 {
+        let score = |x: usize| if first { same_side(x % grid, other) } else { same_side(other, x % grid) };
+        let ok = |x: usize| x % grid != other && score(x) <= tie;
+        let (mut lo, mut hi) = (0, 0);
+        while lo < grid && ok(h + grid - lo - 1) {
+            lo += 1;
+        }
+        while hi < grid && ok(h + hi + 1) {
+            hi += 1;
+        }
+        ((h + grid) as f64 + (hi as f64 - lo as f64) / 2.0) / 2.0 % n as f64
+    };
+    let (p1, p2) = (middle(h1, h2, true), middle(h2, h1, false));
+    let inside = |p: f64| (p - p.round()).abs() > 0.25;
+    let (arc_in, arc_out) = (arc_edges(n, h1, h2), arc_edges(n, h2, h1));
+    let pairs = |len: usize| (len * len.saturating_sub(1) / 2) as f64;
+    let same_mean = s_min / (pairs(arc_in.1) + pairs(arc_out.1)).max(1.0);
+    let edges = |(start, len): (usize, usize)| (start..start + len).map(move |e| e % n);
+    let between: f64 = edges(arc_in).map(|i| edges(arc_out).map(|j| g.get(i, j)).sum::<f64>()).sum();
+    let cross_mean = between / ((arc_in.1 * arc_out.1) as f64).max(1.0);
+    let same_to_cross = if cross_mean > 0.0 { same_mean / cross_mean } else { f64::INFINITY };
+    Some(Cut { p1, p2, residual: s_min / total, same_to_cross, inside_edge: [inside(p1), inside(p2)] })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::border::Point;
+    use crate::fold::reflect::apply_fold;
+    use crate::angle::param_to_angle;
+
+    fn square(per_side: usize) -> Vec<Point> {
+        let s = per_side as f64;
+        (0..4 * per_side)
+            .map(|k| {
+                let t = (k % per_side) as f64 / s;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
+                Point::new(x - 0.5 + 1e-6 * (k as f64).sin(), y - 0.5 + 1e-6 * (k as f64).cos(), 0.0)
+            })
+            .collect()
+    }
+
+    fn cut_of(points: &[Point], f: [f64; 2]) -> Cut {
+        let mut end = apply_fold(points, [param_to_angle(f[0], points.len()), param_to_angle(f[1], points.len())]);
+        for (e, s) in end.iter_mut().zip(points) {
+            if e != s {
+                e.z = 0.01;
+            }
+        }
+        let g = Disk::of_border(points).abs_diff(&Disk::of_border(&end));
+        find_cut(&g).unwrap()
+    }
+
+    fn assert_within_half_an_edge(c: &Cut, truth: [f64; 2]) {
+        let mut got = [c.p1, c.p2];
+        got.sort_by(f64::total_cmp);
+        for (g, t) in got.iter().zip(truth) {
+            assert!((g - t).abs() <= 0.5, "{got:?} vs {truth:?}");
+        }
+        assert!(c.residual < 1e-6);
+    }
+
+    #[test]
+    fn a_fold_through_vertices_is_found_within_half_an_edge() {
+        // The lifted layer tilts the edge leaving the on-line vertex, so it counts as cut.
+        assert_within_half_an_edge(&cut_of(&square(8), [4.0, 20.0]), [4.0, 20.0]);
+    }
+
+    #[test]
+    fn a_fold_through_edges_is_found_within_half_an_edge() {
+        let c = cut_of(&square(8), [29.3, 5.6]);
+        assert_within_half_an_edge(&c, [5.6, 29.3]);
+        assert_eq!(c.inside_edge, [true, true]);
+    }
+
+    #[test]
+    fn no_change_has_no_cut() {
+        let g = Disk::from_values(6, vec![0.0; 15]).unwrap();
+        assert!(find_cut(&g).is_none());
+    }
+}

@@ -1,0 +1,232 @@
+//! Fold coordinates from the dGLI disks (Kamat, Borràs, Torras, "CloSE", Sec. III-C).
+//!
+//! One step (start state → end state) is read from the abs diff disk
+//! g = | |end| − |start| |. The paper fits fold curves with its loss ([`loss`], [`fit`]);
+//! its free fit is kept as [`FoldMethod::Paper`], and the curves of every fold found are
+//! fitted through its points, for drawing. By default, on a flat start the
+//! cut of least same-side change ([`cut`]) says which edges turned over, to half an edge,
+//! the signed diff Δ = end − start orders its points ([`orientation`]), and analysis by
+//! synthesis on the disks ([`synth`]) places each fold point within its edge. On a stacked
+//! start (an earlier fold) the cut loses its footing and [`synth::search_line`] tries lines
+//! instead. A step whose diff disk is flat, whose change has no side to it, or that no
+//! candidate fold explains, has no fold.
+//!
+//! Honesty rule: the fold is read from the disks only. The step's start border is used to
+//! synthesise the disks of candidate folds; the end border's coordinates are never read.
+
+pub mod cut;
+pub mod fit;
+pub mod loss;
+pub mod orientation;
+pub mod reflect;
+pub mod synth;
+
+use serde::Serialize;
+
+pub use cut::Cut;
+pub use fit::Curve;
+pub use orientation::Orientation;
+pub use synth::{Line, Synthesis};
+
+use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
+use crate::border::Point;
+use crate::disk::Disk;
+use loss::RingTables;
+
+/// A diff disk whose largest cell is below this has no fold.
+pub const FLAT_DIFF: f64 = 1e-6;
+/// A cut whose same-side pairs change this many times as much, on average, as the pairs
+/// across it has no side to it: noise, not a fold. (Measured: folds with noise up to 1.5;
+/// noise alone 3.6 and more.)
+pub const MAX_SAME_TO_CROSS: f64 = 2.5;
+/// A start state whose heights span no more than this (normalised units) is flat.
+pub const FLAT_HEIGHT: f64 = 1e-9;
+
+/// How the two fold points are chosen.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FoldMethod {
+    /// The cut of least same-side change ([`cut`]), placed within its edges by synthesis
+    /// ([`synth`]); a line search on a stacked start.
+    #[default]
+    Cut,
+    /// The paper's curves alone: the rims of the two lowest-loss curves ([`fit`]).
+    Paper,
+}
+
+/// What one step's fold detection found, with the evidence for drawing and debugging.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FoldDetection {
+    /// (f1, f2) in [0, 2π), the folded side anticlockwise from f1; `None` without a fold.
+    pub fold: Option<[f64; 2]>,
+    /// The fold's curves on the diff disk. With [`FoldMethod::Cut`], the paper's curve through
+    /// each fold point ([`fit::curves_through`]); with [`FoldMethod::Paper`], every distinct
+    /// curve of the free fit, lowest loss first ([`fit::fit_curves`]), the first two giving the
+    /// fold.
+    pub curves: Vec<Curve>,
+    pub cut: Option<Cut>,
+    /// How the side was chosen; `None` when the start was stacked (the line search turns a
+    /// known side over, [`synth::search_line`]) or there is no fold.
+    pub orientation: Option<Orientation>,
+    /// The refinement by synthesis ([`synth`]); its `direction` is set when the fold points
+    /// coincide in the step's start frame and the line's direction came from the disks.
+    pub synthesis: Option<Synthesis>,
+}
+
+/// True when every vertex of `points` lies at one height (a cloth flat on the table).
+pub(crate) fn is_flat(points: &[Point]) -> bool {
+    let (lo, hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)));
+    hi - lo <= FLAT_HEIGHT
+}
+
+/// Detect the fold of one step.
+///
+/// `before` is the step's start border, normalised as the disks were (`start` is its disk);
+/// `end` is the disk of the step's end state. Only disks are compared: `before` is the state
+/// that candidate folds are applied to ([`synth`]), the end border is never seen.
+///
+/// ```
+/// use close_core::border::Point;
+/// use close_core::disk::Disk;
+/// use close_core::fold::{detect, FoldMethod};
+/// // A square of 32 vertices; its left half (vertices 9…23) turned over the line x = 0.
+/// let square: Vec<Point> = (0..32)
+///     .map(|k| {
+///         let t = (k % 8) as f64 / 8.0;
+///         let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / 8];
+///         Point::new(x - 0.5, y - 0.5, 0.0)
+///     })
+///     .collect();
+/// let end: Vec<Point> =
+///     square.iter().map(|p| if p.x < -1e-9 { Point::new(-p.x, p.y, 0.02) } else { *p }).collect();
+/// let found = detect(&square, &Disk::of_border(&square), &Disk::of_border(&end), FoldMethod::Cut);
+/// let [f1, f2] = found.fold.unwrap();
+/// // Vertex 4 (the middle of the bottom side) sits at angle 2π·4/32 and vertex 20 at 2π·20/32.
+/// let edge = close_core::angle::edge(32);
+/// assert!((f1 - 20.0 * edge).abs() < 0.3 * edge && (f2 - 4.0 * edge).abs() < 0.3 * edge);
+/// ```
+pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) -> FoldDetection {
+    let g = start.abs_diff(end);
+    let mut found = FoldDetection { fold: None, curves: Vec::new(), cut: None, orientation: None, synthesis: None };
+    if g.values().iter().all(|&v| v <= FLAT_DIFF) {
+        return found;
+    }
+    let n = g.n();
+    // The loss is tabulated while the cut is searched and refined: both are independent and
+    // neither fills both cores alone.
+    let (tables, (cut, by_cut)) = rayon::join(
+        || RingTables::new(&g),
+        || {
+            let cut = cut::find_cut(&g);
+            (cut, (method == FoldMethod::Cut).then(|| fold_by_cut(before, start, end, cut)))
+        },
+    );
+    found.cut = cut;
+    match by_cut {
+        None => {
+            found.curves = fit::fit_curves(&g, &tables);
+            if let [first, second, ..] = found.curves[..] {
+                let (fold, orientation) = orientation::orient(start, end, first.rim, second.rim);
+                found.fold = Some(fold);
+                found.orientation = Some(orientation);
+            }
+        }
+        Some((refined, orientation)) => {
+            found.orientation = orientation;
+            if let Some(refined) = refined {
+                let fold = refined.s.map(|s| wrap_tau(param_to_angle(s, n)));
+                found.curves = fit::curves_through(&tables, n, fold);
+                found.fold = Some(fold);
+                found.synthesis = Some(refined);
+            }
+        }
+    }
+    found
+}
+
+/// [`FoldMethod::Cut`]: on a flat start the cut, oriented, refined; on a stacked one the
+/// best of the lines turned over, each refined. The orientation is `None` on a stacked start.
+fn fold_by_cut(before: &[Point], start: &Disk, end: &Disk, cut: Option<Cut>) -> (Option<Synthesis>, Option<Orientation>) {
+    let n = start.n();
+    if is_flat(before) {
+        let Some(cut) = cut.filter(|c| c.same_to_cross <= MAX_SAME_TO_CROSS) else {
+            return (None, None);
+        };
+        let (p, q) = (param_to_angle(cut.p1, n), param_to_angle(cut.p2, n));
+        let (fold, orientation) = orientation::orient(start, end, p, q);
+        (Some(synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)), Some(orientation))
+    } else {
+        let refined = synth::search_line(before, start, end)
+            .into_iter()
+            .map(|line| synth::refine(before, start, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
+            .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
+            .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch));
+        (refined, None)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::angle::edge;
+
+    /// A square of `4·per_side` vertices, slightly jittered.
+    fn square(per_side: usize) -> Vec<Point> {
+        (0..4 * per_side)
+            .map(|k| {
+                let t = (k % per_side) as f64 / per_side as f64;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
+                Point::new(x - 0.5 + 1e-6 * (k as f64).sin(), y - 0.5, 0.0)
+            })
+            .collect()
+    }
+
+    /// The square with the vertices x > c turned over the line x = c, a layer above.
+    fn folded(points: &[Point], c: f64) -> Vec<Point> {
+        points.iter().map(|p| if p.x > c + 1e-9 { Point::new(2.0 * c - p.x, p.y, p.z + 0.02) } else { *p }).collect()
+    }
+
+    fn run(before: &[Point], after: &[Point]) -> FoldDetection {
+        detect(before, &Disk::of_border(before), &Disk::of_border(after), FoldMethod::Cut)
+    }
+
+    #[test]
+    fn nothing_changed_is_no_fold() {
+        let s = square(6);
+        let found = run(&s, &s);
+        assert_eq!(found.fold, None);
+        assert!(found.cut.is_none() && found.curves.is_empty());
+    }
+
+    #[test]
+    fn a_fold_inside_edges_is_placed_within_the_edge() {
+        // x = 0.1 cuts the bottom side at vertex 3.6 and the top side at 14.4 (per side 6).
+        let s = square(6);
+        let found = run(&s, &folded(&s, 0.1));
+        let [f1, f2] = found.fold.unwrap();
+        let n = s.len();
+        let e = edge(n);
+        assert!(crate::angle::distance(f1, param_to_angle(3.6, n)) < 0.2 * e, "{}", f1 / e);
+        assert!(crate::angle::distance(f2, param_to_angle(14.4, n)) < 0.2 * e, "{}", f2 / e);
+        assert!(found.orientation.is_some() && found.synthesis.is_some());
+    }
+
+    #[test]
+    fn a_stacked_second_fold_is_found_by_its_line() {
+        // Right half over the left (x = 0), then the stack's top half down (y = 0).
+        let s = square(6);
+        let half = folded(&s, 0.0);
+        let top = half.iter().map(|p| if p.y > 1e-9 { Point::new(p.x, -p.y, 0.1 - p.z) } else { *p }).collect::<Vec<_>>();
+        let found = run(&half, &top);
+        let [f1, f2] = found.fold.unwrap();
+        let n = s.len();
+        // The folded arc runs from the right side's middle (vertex 9) to the left side's (21),
+        // both on the line, where they lie on top of each other: within an edge of them.
+        assert!(crate::angle::distance(f1, param_to_angle(9.0, n)) <= edge(n) + 1e-9, "{}", f1 / edge(n));
+        assert!(crate::angle::distance(f2, param_to_angle(21.0, n)) <= edge(n) + 1e-9, "{}", f2 / edge(n));
+        // The line came from the disks: horizontal.
+        let direction = found.synthesis.and_then(|s| s.direction).expect("the fold points coincide");
+        assert!(direction[1].abs() < 0.1, "{direction:?}");
+        assert!(found.orientation.is_none(), "a stacked start is not oriented by flips");
+    }
+}

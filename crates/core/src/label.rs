@@ -1,0 +1,330 @@
+//! The semantic label: CloSE in plain words, with no learning.
+//!
+//! From the corners θ_1 < … < θ_n and a fold (f1, f2): the number of corners ("circular"
+//! when more than [`CIRCULAR_CORNERS`]); the corners (1-based, in border order) strictly
+//! inside the folded arc; for each folded corner the share of each adjacent side that is
+//! folded; and a class. A corner within half an edge of a fold point lies on the fold line:
+//! it is reported as such and never counted as folded, so a fold that ends exactly on a
+//! corner gets one answer, not a coin flip. A cloth with no corner (or a circular one) has
+//! its folds told by their share of the border and the border points they run between
+//! ("the border from 90° to 270° is folded over"), as angles 2πs/N of the border.
+//!
+//! The classes are those of Kamat, Borràs, Torras, "CloSE", Sec. IV (semantic labelling).
+//!
+//! ```
+//! use close_core::label::{label, FoldClass};
+//! use std::f64::consts::PI;
+//! // A square of 8 vertices with corners at 0, 2, 4, 6, folded along the diagonal 0–4.
+//! let l = label(8, &[0, 2, 4, 6], &[[0.0, PI]]);
+//! assert_eq!(l.folds[0].class, FoldClass::DiagonallyFoldedInHalf);
+//! assert_eq!(l.folds[0].folded_corners, vec![2]);
+//! ```
+
+use serde::Serialize;
+
+use crate::angle::{angle_to_param, wrap_tau};
+
+/// More corners than this and the cloth is called circular.
+pub const CIRCULAR_CORNERS: usize = 20;
+/// A corner closer than this many edges to a fold point lies on the fold line.
+const ON_LINE_EDGES: f64 = 0.5;
+/// Percentages this close count as equal (askew otherwise).
+const EVEN_PERCENT: f64 = 10.0;
+/// A fold whose folded share is this close to 50% is "in half".
+const HALF_PERCENT: f64 = 12.0;
+
+/// The kind of fold, as a person would say it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FoldClass {
+    FoldedInHalf,
+    DiagonallyFoldedInHalf,
+    OneSideFolded,
+    FoldedInHalfAskew,
+    OneSideAskew,
+    CornerFolded,
+    /// A round cloth (or one with no corner) folded by the given share.
+    Folded,
+}
+
+impl FoldClass {
+    pub fn phrase(self) -> &'static str {
+        match self {
+            FoldClass::FoldedInHalf => "folded in half",
+            FoldClass::DiagonallyFoldedInHalf => "diagonally folded in half",
+            FoldClass::OneSideFolded => "one side folded",
+            FoldClass::FoldedInHalfAskew => "folded in half askew",
+            FoldClass::OneSideAskew => "one side folded askew",
+            FoldClass::CornerFolded => "corner folded",
+            FoldClass::Folded => "folded",
+        }
+    }
+}
+
+/// The share of one side (corner to next corner) that lies on the folded arc.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SideFold {
+    /// 1-based corner numbers at the side's ends.
+    pub from_corner: usize,
+    pub to_corner: usize,
+    pub folded_percent: f64,
+}
+
+/// One folded corner and the folded share of its two sides.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FoldedCorner {
+    pub corner: usize,
+    pub vertex: usize,
+    pub before: SideFold,
+    pub after: SideFold,
+}
+
+/// The label of one fold.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FoldLabel {
+    pub class: FoldClass,
+    /// 1-based numbers of the corners strictly inside the folded arc.
+    pub folded_corners: Vec<usize>,
+    /// 1-based numbers of corners lying on the fold line.
+    pub corners_on_fold_line: Vec<usize>,
+    pub corner_sides: Vec<FoldedCorner>,
+    /// Sides cut by the fold line (where the fold points lie), with their folded share.
+    pub cut_sides: Vec<SideFold>,
+    /// Share of the border (by vertex parameter) on the folded arc.
+    pub folded_percent: f64,
+    /// The folded arc's ends on the border, in degrees [0, 360): from f1 anticlockwise to f2.
+    pub border_degrees: [f64; 2],
+    pub text: String,
+}
+
+/// The label of a whole CloSE state.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Label {
+    pub text: String,
+    pub corners: usize,
+    pub circular: bool,
+    pub folds: Vec<FoldLabel>,
+}
+
+/// Length of the overlap of two cyclic intervals [a, a+la] and [b, b+lb] on a circle of length n.
+fn overlap(n: f64, a: f64, la: f64, b: f64, lb: f64) -> f64 {
+    [-n, 0.0, n]
+        .iter()
+        .map(|shift| {
+            let lo = a.max(b + shift);
+            let hi = (a + la).min(b + shift + lb);
+            (hi - lo).max(0.0)
+        })
+        .sum()
+}
+
+/// Label a border of `n` vertices with corners at `corner_vertices` (sorted) and `folds`.
+pub fn label(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]]) -> Label {
+    let circular = corner_vertices.len() > CIRCULAR_CORNERS || corner_vertices.is_empty();
+    let fold_labels: Vec<FoldLabel> = folds.iter().map(|&f| label_fold(n, corner_vertices, f, circular)).collect();
+    let mut text = if corner_vertices.len() > CIRCULAR_CORNERS {
+        format!("Cloth is circular ({} corners).", corner_vertices.len())
+    } else if corner_vertices.is_empty() {
+        "Cloth has no corners.".to_string()
+    } else {
+        format!("Cloth has {} corners.", corner_vertices.len())
+    };
+    if fold_labels.is_empty() {
+        text.push_str(" It is not folded.");
+    }
+    for (k, f) in fold_labels.iter().enumerate() {
+        if fold_labels.len() > 1 {
+            text.push_str(&format!(" Fold {}:", k + 1));
+        }
+        text.push(' ');
+        text.push_str(&f.text);
+    }
+    Label { text, corners: corner_vertices.len(), circular, folds: fold_labels }
+}
+
+fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> FoldLabel {
+    let nf = n as f64;
+    let s1 = angle_to_param(fold[0], n);
+    let span = angle_to_param(fold[1] - fold[0], n);
+    let folded_percent = 100.0 * span / nf;
+    let offset = |v: f64| (v - s1).rem_euclid(nf);
+    let near = |v: f64, s: f64| {
+        let d = (v - s).rem_euclid(nf);
+        d.min(nf - d) < ON_LINE_EDGES
+    };
+    let s2 = s1 + span;
+    let mut folded_corners = Vec::new();
+    let mut on_line = Vec::new();
+    for (k, &v) in corners.iter().enumerate() {
+        let v = v as f64;
+        if near(v, s1) || near(v, s2) {
+            on_line.push(k + 1);
+        } else if offset(v) < span {
+            folded_corners.push(k + 1);
+        }
+    }
+    let nc = corners.len();
+    let side = |k: usize| {
+        // Side from corner k (0-based) to the next one.
+        let (a, b) = (corners[k] as f64, corners[(k + 1) % nc] as f64);
+        let len = (b - a).rem_euclid(nf);
+        let len = if len == 0.0 { nf } else { len };
+        SideFold {
+            from_corner: k + 1,
+            to_corner: (k + 1) % nc + 1,
+            folded_percent: 100.0 * overlap(nf, a, len, s1, span) / len,
+        }
+    };
+    // The side a fold point lies on: the last corner at or before it (wrapping).
+    let side_of = |s: f64| corners.iter().rposition(|&c| c as f64 <= s).unwrap_or(nc - 1);
+    let corner_sides: Vec<FoldedCorner> = if circular {
+        Vec::new()
+    } else {
+        folded_corners
+            .iter()
+            .map(|&c| FoldedCorner { corner: c, vertex: corners[c - 1], before: side((c + nc - 2) % nc), after: side(c - 1) })
+            .collect()
+    };
+    let cut_sides: Vec<SideFold> = if circular { Vec::new() } else { vec![side(side_of(s1)), side(side_of(s2.rem_euclid(nf)))] };
+    let even = |a: f64, b: f64| (a - b).abs() <= EVEN_PERCENT;
+    let half = (folded_percent - 50.0).abs() <= HALF_PERCENT;
+    let class = if circular {
+        if half {
+            FoldClass::FoldedInHalf
+        } else {
+            FoldClass::Folded
+        }
+    } else if on_line.len() >= 2 && half {
+        FoldClass::DiagonallyFoldedInHalf
+    } else {
+        match folded_corners.len() {
+            0 => FoldClass::OneSideFolded,
+            1 => FoldClass::CornerFolded,
+            _ => {
+                let askew = !even(cut_sides[0].folded_percent, cut_sides[1].folded_percent);
+                match (half, askew) {
+                    (true, false) => FoldClass::FoldedInHalf,
+                    (true, true) => FoldClass::FoldedInHalfAskew,
+                    (false, false) => FoldClass::OneSideFolded,
+                    (false, true) => FoldClass::OneSideAskew,
+                }
+            }
+        }
+    };
+    let border_degrees = fold.map(|f| wrap_tau(f).to_degrees());
+    let mut text = fold_text(class, folded_percent, &folded_corners, &on_line, &corner_sides, &cut_sides);
+    if circular {
+        text.push_str(&format!(" The border from {:.0}° to {:.0}° is folded over.", border_degrees[0], border_degrees[1]));
+    }
+    FoldLabel { class, folded_corners, corners_on_fold_line: on_line, corner_sides, cut_sides, folded_percent, border_degrees, text }
+}
+
+fn list(items: &[usize]) -> String {
+    items.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ")
+}
+
+fn fold_text(
+    class: FoldClass,
+    percent: f64,
+    folded: &[usize],
+    on_line: &[usize],
+    corner_sides: &[FoldedCorner],
+    cut_sides: &[SideFold],
+) -> String {
+    let mut out = format!("{}{} ({percent:.0}% of the border folded over).", &class.phrase()[..1].to_uppercase(), &class.phrase()[1..]);
+    match folded.len() {
+        0 => {}
+        1 => out.push_str(&format!(" Corner {} is folded", folded[0])),
+        _ => out.push_str(&format!(" Corners {} are folded", list(folded))),
+    }
+    if let [only] = corner_sides {
+        out.push_str(&format!(
+            " ({:.0}% of side {}–{} and {:.0}% of side {}–{})",
+            only.before.folded_percent,
+            only.before.from_corner,
+            only.before.to_corner,
+            only.after.folded_percent,
+            only.after.from_corner,
+            only.after.to_corner
+        ));
+    }
+    if !folded.is_empty() {
+        out.push('.');
+    }
+    if !on_line.is_empty() {
+        out.push_str(&format!(" The fold line runs through corner{} {}.", if on_line.len() > 1 { "s" } else { "" }, list(on_line)));
+    }
+    if corner_sides.len() != 1 && !cut_sides.is_empty() && on_line.len() < 2 {
+        let sides: Vec<String> =
+            cut_sides.iter().map(|s| format!("side {}–{} is {:.0}% folded", s.from_corner, s.to_corner, s.folded_percent)).collect();
+        out.push_str(&format!(" The fold line cuts {}; {}.", if cut_sides.len() > 1 { "two sides" } else { "one side" }, sides.join(", ")));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::angle::param_to_angle;
+    use std::f64::consts::PI;
+
+    const SQUARE: [usize; 4] = [0, 19, 38, 57];
+    fn angle(s: f64) -> f64 {
+        param_to_angle(s, 76)
+    }
+
+    #[test]
+    fn classes_of_the_napkin_folds() {
+        let class = |a: f64, b: f64| label(76, &SQUARE, &[[angle(a), angle(b)]]).folds[0].class;
+        assert_eq!(class(9.5, 47.5), FoldClass::FoldedInHalf);
+        assert_eq!(class(0.0, 38.0), FoldClass::DiagonallyFoldedInHalf);
+        assert_eq!(class(57.0, 19.0), FoldClass::DiagonallyFoldedInHalf);
+        assert_eq!(class(12.0, 26.0), FoldClass::CornerFolded);
+        assert_eq!(class(5.32, 44.84), FoldClass::FoldedInHalfAskew);
+        assert_eq!(class(52.25, 4.75), FoldClass::OneSideFolded);
+        assert_eq!(class(55.0, 7.0), FoldClass::OneSideAskew);
+    }
+
+    #[test]
+    fn corner_fold_reports_its_sides() {
+        let l = label(76, &SQUARE, &[[angle(12.0), angle(26.0)]]);
+        let c = &l.folds[0].corner_sides[0];
+        assert_eq!((c.corner, c.vertex), (2, 19));
+        assert!((c.before.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
+        assert!((c.after.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
+        assert!(l.text.contains("Corner 2 is folded"), "{}", l.text);
+    }
+
+    #[test]
+    fn fold_on_a_corner_is_not_a_coin_flip() {
+        // A hair either side of the corner gives the same answer.
+        for eps in [-1e-9, 0.0, 1e-9] {
+            let l = label(76, &SQUARE, &[[angle(eps), angle(38.0 - eps)]]);
+            assert_eq!(l.folds[0].folded_corners, vec![2]);
+            assert_eq!(l.folds[0].corners_on_fold_line, vec![1, 3]);
+        }
+    }
+
+    #[test]
+    fn round_cloth() {
+        let corners: Vec<usize> = (0..64).collect();
+        let l = label(64, &corners, &[[0.0, PI]]);
+        assert!(l.circular);
+        assert_eq!(l.folds[0].class, FoldClass::FoldedInHalf);
+        assert!(l.text.starts_with("Cloth is circular"));
+        let unfolded = label(64, &corners, &[]);
+        assert!(unfolded.text.contains("not folded"));
+    }
+
+    #[test]
+    fn a_cloth_without_corners_is_told_by_its_border() {
+        let l = label(160, &[], &[[PI / 2.0, 3.0 * PI / 2.0]]);
+        assert_eq!(l.corners, 0);
+        assert!(l.text.starts_with("Cloth has no corners."), "{}", l.text);
+        let fold = &l.folds[0];
+        assert_eq!(fold.class, FoldClass::FoldedInHalf);
+        assert!(fold.folded_corners.is_empty() && fold.corner_sides.is_empty() && fold.cut_sides.is_empty());
+        assert!((fold.border_degrees[0] - 90.0).abs() < 1e-9 && (fold.border_degrees[1] - 270.0).abs() < 1e-9);
+        assert!(fold.text.contains("The border from 90° to 270° is folded over."), "{}", fold.text);
+    }
+}

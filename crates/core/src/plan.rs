@@ -1,0 +1,445 @@
+//! Planning a fold (Kamat, Borràs, Torras, "CloSE", Sec. V, manipulation planning with the
+//! representation): which corners to grasp and where to put them.
+//!
+//! **High level.** The corners a fold moves are the corners strictly inside its folded arc
+//! (anticlockwise from f1 to f2), more than half an edge from its ends. If the goal fold (g1, g2) moves the same corners as the
+//! current folds together, one step moves them straight to the goal (`"direct"`);
+//! otherwise the current folds are undone, last first, and the goal is folded from the
+//! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`. When the
+//! cloth already is in the goal state (one current fold, within [`SAME_FOLD_EDGES`] of the
+//! goal at both ends) the plan is `"already_there"`, with no step. Goal angles are taken
+//! into [0, 2π) before anything else, and come back that way.
+//!
+//! **Low level.** A step grasps at most two of the corners it moves: of more, the pair
+//! whose quadrilateral with the fold-line end points (P1, c_a, c_b, P2, ordered so that it
+//! is simple) has the largest XY area. A folded corner goes to its reflection across the
+//! fold line (in XY, z kept); an unfolded one back to where it was. A folded side with no
+//! corner (a round cloth, a flap) is grasped at its vertex farthest from the fold line:
+//! such a pick names no corner, only the border point (its `angle`, 2πv/N).
+//!
+//! All positions are in the flat border's frame: a fold line runs through the border
+//! points at its parameters (angle f ↦ parameter fN/2π) of the border it is applied to.
+//!
+//! ```
+//! use close_core::border::Point;
+//! use close_core::plan::plan;
+//! use std::f64::consts::PI;
+//! let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
+//! // Diagonal fold from corner 1 (vertex 0) to corner 3 (vertex 2): corner 2 goes onto corner 4.
+//! let p = plan(&square, &[0, 1, 2, 3], &[], [0.0, PI]).unwrap();
+//! assert_eq!(p.case, "fold");
+//! assert_eq!(p.steps[0].corners, vec![2]);
+//! let to = p.steps[0].picks[0].to;
+//! assert!(to[0].abs() < 1e-12 && (to[1] - 1.0).abs() < 1e-12 && to[2] == 0.0);
+//! ```
+
+use std::collections::BTreeSet;
+
+use serde::Serialize;
+
+use crate::analysis::Analysis;
+use crate::angle::{angle_to_param, distance, edge, param_to_angle, wrap_tau};
+use crate::border::{point_at, to_xyz, Point};
+use crate::error::{Error, Result};
+use crate::fold::reflect::{apply_fold_line, fold_line, folded_vertices, reflect_xy};
+use crate::fold::Line;
+
+/// One grasp: take border vertex `vertex` at `from` and place it at `to`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Pick {
+    /// Border vertex index ([`plan_for`] maps it to the input's index through
+    /// `border_indices`).
+    pub vertex: usize,
+    /// Where the grasped point sits on the border, as an angle (2πv/N, border order).
+    pub angle: f64,
+    pub from: [f64; 3],
+    pub to: [f64; 3],
+}
+
+/// One manipulation: fold along `fold`, or undo it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlanStep {
+    /// `"fold"` or `"unfold"`.
+    pub action: String,
+    /// The fold (f1, f2) in angles.
+    pub fold: [f64; 2],
+    /// 1-based numbers of every corner the step moves.
+    pub corners: Vec<usize>,
+    /// At most two grasps.
+    pub picks: Vec<Pick>,
+}
+
+/// The plan from the current state to the goal fold.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Plan {
+    /// `"fold"` (from flat), `"direct"`, `"unfold_then_fold"`, or `"already_there"` (no step).
+    pub case: String,
+    pub steps: Vec<PlanStep>,
+}
+
+/// A current fold within this many edges of the goal at both ends is the goal.
+pub const SAME_FOLD_EDGES: f64 = 0.5;
+
+/// Border parameter of angle `f` on a border of `n` vertices.
+fn param(f: f64, n: usize) -> f64 {
+    angle_to_param(f, n)
+}
+
+/// Twice the signed XY area of a polygon (shoelace).
+fn twice_area(polygon: &[Point]) -> f64 {
+    let n = polygon.len();
+    (0..n).map(|k| polygon[k].x * polygon[(k + 1) % n].y - polygon[(k + 1) % n].x * polygon[k].y).sum()
+}
+
+/// Whether XY segments ab and cd cross at a point inside both.
+fn segments_cross(a: &Point, b: &Point, c: &Point, d: &Point) -> bool {
+    let side = |p: &Point, q: &Point, r: &Point| (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+    side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0
+}
+
+/// XY area of the simple quadrilateral through P1, the two corners and P2.
+fn trapezoid_area(p1: &Point, a: &Point, b: &Point, p2: &Point) -> f64 {
+    // P1→a→b→P2 is a bow tie when P1a crosses bP2 (or ab crosses P2P1): swap the corners.
+    let bow_tie = segments_cross(p1, a, b, p2) || segments_cross(a, b, p2, p1);
+    let quad = if bow_tie { [*p1, *b, *a, *p2] } else { [*p1, *a, *b, *p2] };
+    twice_area(&quad).abs() / 2.0
+}
+
+/// The vertices a step grasps among `moved` (the corners it moves, or the whole folded arc
+/// when that holds no corner), folding `border` along the line through `p1`, `p2`.
+fn grasped(border: &[Point], moved: &[usize], arc: &[usize], p1: &Point, p2: &Point) -> Vec<usize> {
+    match moved {
+        [] => {
+            // No corner: the farthest vertex from the line (ties go to the earlier vertex).
+            let distance = |v: usize| (reflect_xy(&border[v], p1, p2) - border[v]).norm();
+            let far = arc.iter().copied().fold(None, |best: Option<usize>, v| match best {
+                Some(b) if distance(b) >= distance(v) => Some(b),
+                _ => Some(v),
+            });
+            far.into_iter().collect()
+        }
+        [_] | [_, _] => moved.to_vec(),
+        _ => {
+            let mut best = (f64::NEG_INFINITY, 0, 0);
+            for (i, &a) in moved.iter().enumerate() {
+                for &b in &moved[i + 1..] {
+                    let area = trapezoid_area(p1, &border[a], &border[b], p2);
+                    if area > best.0 {
+                        best = (area, a, b);
+                    }
+                }
+            }
+            vec![best.1, best.2]
+        }
+    }
+}
+
+/// A corner closer than this many edges to a fold point lies on the fold line (as in
+/// [`crate::label`]): a detected fold ending a hair past a corner does not fold it.
+const ON_LINE_EDGES: f64 = 0.5;
+
+/// Corners strictly inside the folded arc of `fold`, off its ends, as vertex indices.
+fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
+    let (s1, s2) = (param(fold[0], n), param(fold[1], n));
+    let span = (s2 - s1).rem_euclid(n as f64);
+    corners
+        .iter()
+        .copied()
+        .filter(|&c| {
+            let offset = (c as f64 - s1).rem_euclid(n as f64);
+            offset > ON_LINE_EDGES && offset < span - ON_LINE_EDGES
+        })
+        .collect()
+}
+
+/// A step that folds `before` along `fold` (or, `unfold`, takes the folded state back).
+/// `line` is the line the fold is made along (by default through its two fold points of
+/// `before`); `from_state` gives where a grasped vertex is now when the step starts a fold.
+fn step(action: &str, before: &[Point], corners: &[usize], fold: [f64; 2], line: Option<Line>, from_state: &[Point]) -> PlanStep {
+    let n = before.len();
+    let (p1, p2) = (point_at(before, param(fold[0], n)), point_at(before, param(fold[1], n)));
+    let line = line.or_else(|| fold_line(before, fold, None));
+    let reflect = |p: &Point| line.as_ref().map_or(*p, |l| l.reflect(p));
+    let arc = folded_vertices(n, fold);
+    let moved = corners_moved(n, corners, fold);
+    let picks = grasped(before, &moved, &arc, &p1, &p2)
+        .into_iter()
+        .map(|v| {
+            let folded = reflect(&before[v]);
+            let (from, to) = if action == "unfold" { (folded, before[v]) } else { (from_state[v], folded) };
+            Pick { vertex: v, angle: param_to_angle(v as f64, n), from: to_xyz(&from), to: to_xyz(&to) }
+        })
+        .collect();
+    let number = |c: usize| corners.iter().position(|&k| k == c).map_or(0, |i| i + 1);
+    PlanStep { action: action.to_string(), fold, corners: moved.iter().map(|&c| number(c)).collect(), picks }
+}
+
+fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
+    if !(fold[0].is_finite() && fold[1].is_finite()) {
+        return Err(Error::InvalidArgument(format!("{name} ({}, {}) is not finite", fold[0], fold[1])));
+    }
+    let edge = edge(n);
+    if distance(fold[0], fold[1]) <= edge {
+        return Err(Error::InvalidArgument(format!(
+            "{name} ({:.4}, {:.4}): its two angles must be more than one edge ({edge:.4} rad) apart",
+            fold[0], fold[1]
+        )));
+    }
+    Ok(())
+}
+
+/// Plan from the current state (the flat border, its corner vertices, the folds applied so
+/// far in order) to the goal fold (g1, g2), all folds in angles. Each current fold is made
+/// along the line through its two fold points of the state before it.
+pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], goal: [f64; 2]) -> Result<Plan> {
+    plan_along(flat, corner_vertices, current_folds, &vec![None; current_folds.len()], goal)
+}
+
+/// [`plan`] with the line each current fold was made along where it is known (`lines[k]`
+/// for fold k): a fold through two stacked layers has its two fold points (nearly) on top of
+/// each other, so the line through them is no guide, and the analysis gives its line.
+fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], lines: &[Option<Line>], goal: [f64; 2]) -> Result<Plan> {
+    let n = flat.len();
+    if n < crate::border::MIN_VERTICES {
+        return Err(Error::TooFewVertices { got: n, min: crate::border::MIN_VERTICES });
+    }
+    if let Some(v) = flat.iter().position(|p| !p.coords.iter().all(|c| c.is_finite())) {
+        return Err(Error::NonFinite { frame: 0, vertex: v });
+    }
+    if let Some(&c) = corner_vertices.iter().find(|&&c| c >= n) {
+        return Err(Error::InvalidArgument(format!("corner vertex {c} does not exist (the border has {n} vertices)")));
+    }
+    check_fold("the goal fold", goal, n)?;
+    let goal = goal.map(wrap_tau);
+    for (k, &f) in current_folds.iter().enumerate() {
+        check_fold(&format!("current fold {}", k + 1), f, n)?;
+    }
+    let corners: Vec<usize> = corner_vertices.iter().copied().collect::<BTreeSet<_>>().into_iter().collect();
+    // The line of each current fold, and states[k], the border after the first k folds.
+    let mut states = vec![flat.to_vec()];
+    let mut made_along = Vec::with_capacity(current_folds.len());
+    for (k, &f) in current_folds.iter().enumerate() {
+        let before = states.last().expect("the flat state");
+        let line = lines.get(k).copied().flatten().or_else(|| fold_line(before, f, None));
+        let next = line.as_ref().map_or_else(|| before.clone(), |l| apply_fold_line(before, f, l));
+        made_along.push(line);
+        states.push(next);
+    }
+    let current = states.last().expect("the flat state");
+    if let [only] = current_folds {
+        let same = |a: f64, b: f64| distance(a, b) <= SAME_FOLD_EDGES * edge(n);
+        if same(only[0], goal[0]) && same(only[1], goal[1]) {
+            return Ok(Plan { case: "already_there".into(), steps: Vec::new() });
+        }
+    }
+    if current_folds.is_empty() {
+        return Ok(Plan { case: "fold".into(), steps: vec![step("fold", flat, &corners, goal, None, flat)] });
+    }
+    let folded_now: BTreeSet<usize> = current_folds.iter().flat_map(|&f| corners_moved(n, &corners, f)).collect();
+    let folded_by_goal: BTreeSet<usize> = corners_moved(n, &corners, goal).into_iter().collect();
+    if folded_now == folded_by_goal {
+        return Ok(Plan { case: "direct".into(), steps: vec![step("fold", flat, &corners, goal, None, current)] });
+    }
+    let mut steps: Vec<PlanStep> = (0..current_folds.len())
+        .rev()
+        .map(|k| step("unfold", &states[k], &corners, current_folds[k], made_along[k], &states[k]))
+        .collect();
+    steps.push(step("fold", flat, &corners, goal, None, flat));
+    Ok(Plan { case: "unfold_then_fold".into(), steps })
+}
+
+/// Plan from an analysis to the goal fold: from its start border, corners and folds (each
+/// along the line the analysis reports for it, so the plan starts from its predicted end), with
+/// every pick's `vertex` given as the index in the analysis's INPUT (through
+/// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
+pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
+    // Each fold along the line the analysis made it along (its `predicted_end`).
+    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &analysis.fold_lines(), goal)?;
+    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
+        pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
+            Error::InvalidArgument(format!("border vertex {} has no input index ({} known)", pick.vertex, analysis.border_indices.len()))
+        })?;
+    }
+    Ok(plan)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{PI, TAU};
+
+    /// A closed polygon with `per_side` segments on every side.
+    fn polygon(corners: &[[f64; 2]], per_side: usize) -> (Vec<Point>, Vec<usize>) {
+        let m = corners.len();
+        let points = (0..m * per_side)
+            .map(|k| {
+                let (a, b, t) = (corners[k / per_side], corners[(k / per_side + 1) % m], (k % per_side) as f64 / per_side as f64);
+                Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
+            })
+            .collect();
+        (points, (0..m).map(|c| c * per_side).collect())
+    }
+
+    fn angle(s: f64, n: usize) -> f64 {
+        param_to_angle(s, n)
+    }
+
+    /// Angles are fractions of 2π, so positions come back to within rounding.
+    fn assert_pick(pick: &Pick, vertex: usize, from: [f64; 2], to: [f64; 2]) {
+        let near = |a: [f64; 3], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12 && a[2] == 0.0;
+        assert!(pick.vertex == vertex && near(pick.from, from) && near(pick.to, to), "{pick:?}: expected vertex {vertex} {from:?} → {to:?}");
+    }
+
+    fn square() -> (Vec<Point>, Vec<usize>) {
+        polygon(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], 4)
+    }
+
+    #[test]
+    fn diagonal_goal_puts_the_one_corner_on_the_opposite_corner() {
+        let (sq, corners) = square();
+        let p = plan(&sq, &corners, &[], [angle(0.0, 16), angle(8.0, 16)]).unwrap();
+        assert_eq!(p.case, "fold");
+        assert_eq!(p.steps.len(), 1);
+        let s = &p.steps[0];
+        assert_eq!((s.action.as_str(), s.corners.clone()), ("fold", vec![2]));
+        assert_eq!(s.picks.len(), 1);
+        assert_pick(&s.picks[0], 4, [1.0, 0.0], [0.0, 1.0]);
+    }
+
+    #[test]
+    fn half_fold_picks_both_corners() {
+        let (sq, corners) = square();
+        // Line x = 0.5 from the bottom middle (2) to the top middle (10): right half folded.
+        let p = plan(&sq, &corners, &[], [angle(2.0, 16), angle(10.0, 16)]).unwrap();
+        let s = &p.steps[0];
+        assert_eq!(s.corners, vec![2, 3]);
+        assert_eq!(s.picks.len(), 2);
+        assert_pick(&s.picks[0], 4, [1.0, 0.0], [0.0, 0.0]);
+        assert_pick(&s.picks[1], 8, [1.0, 1.0], [0.0, 1.0]);
+    }
+
+    #[test]
+    fn same_corners_go_direct_from_where_they_are() {
+        let (sq, corners) = square();
+        let current = [angle(2.0, 16), angle(10.0, 16)];
+        // A slightly askew fold of the same right side moves corners 2 and 3 again.
+        let p = plan(&sq, &corners, &[current], [angle(3.0, 16), angle(9.0, 16)]).unwrap();
+        assert_eq!(p.case, "direct");
+        assert_eq!(p.steps.len(), 1);
+        let s = &p.steps[0];
+        assert_eq!(s.corners, vec![2, 3]);
+        // Grasped where the current fold put them (on the left side), placed by the new line x = 0.75.
+        assert_pick(&s.picks[0], 4, [0.0, 0.0], [0.5, 0.0]);
+        assert_pick(&s.picks[1], 8, [0.0, 1.0], [0.5, 1.0]);
+    }
+
+    #[test]
+    fn other_corners_unfold_first() {
+        let (sq, corners) = square();
+        let current = [angle(2.0, 16), angle(10.0, 16)];
+        // Top half instead: corners 3 and 4.
+        let p = plan(&sq, &corners, &[current], [angle(6.0, 16), angle(14.0, 16)]).unwrap();
+        assert_eq!(p.case, "unfold_then_fold");
+        let actions: Vec<&str> = p.steps.iter().map(|s| s.action.as_str()).collect();
+        assert_eq!(actions, ["unfold", "fold"]);
+        let (unfold, fold) = (&p.steps[0], &p.steps[1]);
+        assert_eq!((unfold.fold, unfold.corners.clone()), (current, vec![2, 3]));
+        assert_pick(&unfold.picks[0], 4, [0.0, 0.0], [1.0, 0.0]);
+        assert_pick(&unfold.picks[1], 8, [0.0, 1.0], [1.0, 1.0]);
+        assert_eq!(fold.corners, vec![3, 4]);
+        assert_pick(&fold.picks[0], 8, [1.0, 1.0], [1.0, 0.0]);
+        assert_pick(&fold.picks[1], 12, [0.0, 1.0], [0.0, 0.0]);
+    }
+
+    #[test]
+    fn a_fold_ending_a_hair_past_a_corner_does_not_fold_it() {
+        let (sq, corners) = square();
+        // A detected diagonal fold just short of 2π and just past π: still corner 2 alone.
+        let detected = [TAU - 1e-9, PI + 1e-9];
+        let p = plan(&sq, &corners, &[detected], [angle(1.0, 16), angle(7.0, 16)]).unwrap();
+        assert_eq!(p.case, "direct");
+        assert_eq!(p.steps[0].corners, vec![2]);
+        let pick = &p.steps[0].picks[0];
+        assert_eq!(pick.vertex, 4);
+        // Grasped where the detected fold put it (a nanometre off the opposite corner).
+        assert!((pick.from[0] - 0.0).abs() < 1e-8 && (pick.from[1] - 1.0).abs() < 1e-8, "{pick:?}");
+    }
+
+    #[test]
+    fn two_folds_unfold_last_first() {
+        let (sq, corners) = square();
+        // Right quarter over (x = 0.75), then the stack's bottom half up (y = 0.5).
+        let current = [[angle(3.0, 16), angle(9.0, 16)], [angle(14.0, 16), angle(6.0, 16)]];
+        let p = plan(&sq, &corners, &current, [angle(0.0, 16), angle(8.0, 16)]).unwrap();
+        assert_eq!(p.case, "unfold_then_fold");
+        let summary: Vec<(&str, [f64; 2], Vec<usize>)> = p.steps.iter().map(|s| (s.action.as_str(), s.fold, s.corners.clone())).collect();
+        assert_eq!(summary, vec![("unfold", current[1], vec![1, 2]), ("unfold", current[0], vec![2, 3]), ("fold", [0.0, PI], vec![2])]);
+        assert_pick(&p.steps[0].picks[0], 0, [0.0, 1.0], [0.0, 0.0]);
+        assert_pick(&p.steps[0].picks[1], 4, [0.5, 1.0], [0.5, 0.0]);
+        assert_pick(&p.steps[1].picks[0], 4, [0.5, 0.0], [1.0, 0.0]);
+        assert_pick(&p.steps[2].picks[0], 4, [1.0, 0.0], [0.0, 1.0]);
+    }
+
+    #[test]
+    fn of_three_corners_the_largest_trapezoid_wins() {
+        // A house, folded along y = 1: corners (4,2), (3,3), (0,2) are on the folded side.
+        // Areas with P1 = (4,1), P2 = (0,1): {(4,2),(3,3)} 4.5, {(4,2),(0,2)} 4, {(3,3),(0,2)} 5.5.
+        let (house, corners) = polygon(&[[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [3.0, 3.0], [0.0, 2.0]], 4);
+        let n = house.len();
+        let p = plan(&house, &corners, &[], [angle(6.0, n), angle(18.0, n)]).unwrap();
+        let s = &p.steps[0];
+        assert_eq!(s.corners, vec![3, 4, 5]);
+        assert_eq!(s.picks.len(), 2);
+        assert_pick(&s.picks[0], 12, [3.0, 3.0], [3.0, -1.0]);
+        assert_pick(&s.picks[1], 16, [0.0, 2.0], [0.0, 0.0]);
+        let q = |a: [f64; 2], b: [f64; 2]| {
+            let pt = |c: [f64; 2]| Point::new(c[0], c[1], 0.0);
+            trapezoid_area(&pt([4.0, 1.0]), &pt(a), &pt(b), &pt([0.0, 1.0]))
+        };
+        assert_eq!(q([4.0, 2.0], [3.0, 3.0]), 4.5);
+        // Given in the order that makes a bow tie, the quadrilateral is reordered.
+        assert_eq!(q([0.0, 2.0], [4.0, 2.0]), 4.0);
+    }
+
+    #[test]
+    fn a_flap_without_corners_is_grasped_at_its_farthest_vertex() {
+        // A circle of 16 vertices folded from vertex 2 to vertex 6: the arc's middle, 4, is farthest.
+        let circle: Vec<Point> = (0..16).map(|k| Point::new(angle(k as f64, 16).cos(), angle(k as f64, 16).sin(), 0.0)).collect();
+        let p = plan(&circle, &[], &[], [angle(2.0, 16), angle(6.0, 16)]).unwrap();
+        assert!(p.steps[0].corners.is_empty());
+        assert_eq!(p.steps[0].picks.iter().map(|k| k.vertex).collect::<Vec<_>>(), vec![4]);
+    }
+
+    #[test]
+    fn the_goal_already_reached_needs_no_step() {
+        let (sq, corners) = square();
+        let current = [angle(2.0, 16), angle(10.0, 16)];
+        // The same fold, given one turn further round: already there, no motion.
+        let p = plan(&sq, &corners, &[current], [current[0] + TAU, current[1] - TAU]).unwrap();
+        assert_eq!(p.case, "already_there");
+        assert!(p.steps.is_empty());
+        // A quarter of an edge off is the same fold; a whole edge is not.
+        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]]).unwrap().case, "already_there");
+        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]]).unwrap().case, "direct");
+    }
+
+    #[test]
+    fn goal_angles_come_back_wrapped() {
+        let (sq, corners) = square();
+        let p = plan(&sq, &corners, &[], [7.0, 100.0]).unwrap();
+        let [g1, g2] = p.steps[0].fold;
+        assert!((0.0..TAU).contains(&g1) && (0.0..TAU).contains(&g2));
+        assert!((g1 - (7.0 - TAU)).abs() < 1e-12 && (g2 - 100.0f64.rem_euclid(TAU)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_goals_are_named() {
+        let (sq, corners) = square();
+        let message = |r: Result<Plan>| r.unwrap_err().to_string();
+        assert!(message(plan(&sq, &corners, &[], [f64::NAN, 1.0])).contains("not finite"));
+        assert!(message(plan(&sq, &corners, &[], [1.0, 1.0 + angle(1.0, 16)])).contains("more than one edge"));
+        assert!(message(plan(&sq, &corners, &[], [0.1, 0.1 + TAU])).contains("more than one edge"));
+        assert!(message(plan(&sq, &[3, 99], &[], [0.0, PI])).contains("corner vertex 99"));
+        assert!(message(plan(&sq[..3], &[], &[], [0.0, PI])).contains("too few vertices"));
+    }
+}

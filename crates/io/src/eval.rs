@@ -1,0 +1,350 @@
+//! Evaluation over many samples, per category and overall (the paper's Table I).
+//!
+//! For each sample: analyse first → last frame, count folds, measure RMSE and Fréchet of
+//! the predicted end (the paper's metrics: XY RMSE and discrete Fréchet distance after normalisation), and, where `truth` is given, the angular error of f1
+//! and f2 against the true fold. Samples with several steps (a fold, then a second fold)
+//! are also scored step by step, so first and second folds get rows of their own.
+//! [`evaluate_steps`] scores a sequence fold by fold into rows `<category>/fold<k>` (the
+//! VR-Folding rows of Table I), and a fold that could not be scored (a broken mesh) is
+//! counted as dropped ([`SampleResult::dropped`]), apart from the errors.
+
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+
+use serde::{Deserialize, Serialize};
+
+use crate::analysis::{analyze_with, Analysis, Options};
+use crate::error::Error;
+use crate::angle;
+use crate::fold::FoldMethod;
+use crate::formats::Sample;
+
+/// The outcome for one sample.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct SampleResult {
+    pub name: String,
+    pub category: String,
+    pub folds: usize,
+    /// Folds the sample should have (truth, else one per step).
+    pub expected_folds: usize,
+    pub rmse: Option<f64>,
+    pub frechet: Option<f64>,
+    /// Angular error of f1 and f2 against the true first fold, radians.
+    pub angle_error: Option<[f64; 2]>,
+    pub error: Option<String>,
+    /// Why the sample was left out of the scores (e.g. a broken mesh), when it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dropped: Option<String>,
+    /// Step k (frame k → k+1): the prediction with the folds found so far.
+    pub steps: Vec<StepResult>,
+}
+
+/// How one step of a sample went.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct StepResult {
+    pub fold_found: bool,
+    pub rmse: f64,
+    pub frechet: f64,
+    /// Against the step's true fold, when known.
+    pub angle_error: Option<[f64; 2]>,
+}
+
+impl SampleResult {
+    /// The result of a sample that could not be read.
+    pub fn unreadable(name: &str, error: &str) -> SampleResult {
+        SampleResult { error: Some(error.to_string()), ..SampleResult::empty(name, "unreadable") }
+    }
+
+    /// A sample left out of the scores on purpose (`reason`), counted as dropped in its row.
+    pub fn dropped(name: &str, category: &str, reason: &str) -> SampleResult {
+        SampleResult { dropped: Some(reason.to_string()), ..SampleResult::empty(name, category) }
+    }
+
+    fn empty(name: &str, category: &str) -> SampleResult {
+        SampleResult {
+            name: name.to_string(),
+            category: category.to_string(),
+            folds: 0,
+            expected_folds: 0,
+            rmse: None,
+            frechet: None,
+            angle_error: None,
+            error: None,
+            dropped: None,
+            steps: Vec::new(),
+        }
+    }
+}
+
+/// Mean and population variance.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+pub struct Stat {
+    pub mean: f64,
+    pub var: f64,
+}
+
+impl Stat {
+    fn of(values: &[f64]) -> Option<Stat> {
+        if values.is_empty() {
+            return None;
+        }
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / values.len() as f64;
+        Some(Stat { mean, var })
+    }
+}
+
+/// One row of the table.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Summary {
+    pub category: String,
+    pub count: usize,
+    pub rmse: Option<Stat>,
+    pub frechet: Option<Stat>,
+    /// Samples whose fold count differs from what they should have.
+    pub fold_count_misses: usize,
+    pub errors: usize,
+    /// Samples left out of the scores (not in `count`), e.g. folds with a broken mesh.
+    pub dropped: usize,
+    pub f1_error: Option<Stat>,
+    pub f2_error: Option<Stat>,
+    /// For categories with multi-step samples: fold 1, fold 2, … scored apart.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub by_fold: Vec<FoldSummary>,
+}
+
+/// The k-th fold of every multi-step sample of a category.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct FoldSummary {
+    pub fold: usize,
+    pub count: usize,
+    pub found: usize,
+    pub rmse: Option<Stat>,
+    pub frechet: Option<Stat>,
+    pub f1_error: Option<Stat>,
+    pub f2_error: Option<Stat>,
+}
+
+/// The whole evaluation.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Report {
+    pub categories: Vec<Summary>,
+    pub overall: Summary,
+    pub samples: Vec<SampleResult>,
+}
+
+/// Evaluate one sample with the default fold method.
+///
+/// ```
+/// use close_io::dataset::Dataset;
+/// use close_io::eval::{evaluate, report};
+/// let data = Dataset::builtin();
+/// let result = evaluate(&data.get("napkin__half_vertical").expect("a built-in sample").sample);
+/// assert_eq!((result.folds, result.expected_folds), (1, 1));
+/// assert!(result.rmse.expect("an end frame to compare with") < 0.02);
+/// assert_eq!(report(vec![result]).overall.count, 1);
+/// ```
+pub fn evaluate(sample: &Sample) -> SampleResult {
+    evaluate_with(sample, FoldMethod::default())
+}
+
+/// Evaluate one sample, choosing fold points with `method`.
+pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
+    let analysis = sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() }));
+    score(sample, analysis.as_ref())
+}
+
+/// Score `sample` against its truth, given its analysis or the error that stopped it: what
+/// [`evaluate_with`] does after analysing, for a caller that has the analysis already.
+pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) -> SampleResult {
+    let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
+    let mut result = SampleResult {
+        expected_folds: truth_folds.as_ref().map_or(sample.frames.len().saturating_sub(1), Vec::len),
+        ..SampleResult::empty(&sample.name, category_of(sample))
+    };
+    match analysis {
+        Ok(a) => {
+            result.folds = a.folds.len();
+            result.rmse = a.metrics.map(|m| m.rmse);
+            result.frechet = a.metrics.map(|m| m.frechet);
+            let error = |found: &[f64; 2], truth: &[f64; 2]| [angle::distance(found[0], truth[0]), angle::distance(found[1], truth[1])];
+            if let (Some(found), Some(truth)) = (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first())) {
+                result.angle_error = Some(error(found, truth));
+            }
+            result.steps = a
+                .steps
+                .iter()
+                .enumerate()
+                .map(|(k, step)| StepResult {
+                    fold_found: step.detection.fold.is_some(),
+                    rmse: step.metrics.rmse,
+                    frechet: step.metrics.frechet,
+                    angle_error: step.detection.fold.zip(truth_folds.as_ref().and_then(|t| t.get(k))).map(|(f, t)| error(&f, t)),
+                })
+                .collect();
+        }
+        Err(e) => result.error = Some(e.to_string()),
+    }
+    result
+}
+
+fn category_of(sample: &Sample) -> &str {
+    if sample.category.is_empty() {
+        "uncategorised"
+    } else {
+        &sample.category
+    }
+}
+
+/// Score a sequence fold by fold: one analysis of all its frames, and for each step k one
+/// result named `<name>/fold<k>` in category `<category>/fold<k>`, scored on that step alone
+/// (the folds found before it applied, as the analysis does): one fold expected per step.
+pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> {
+    let rows = sample.frames.len().saturating_sub(1);
+    let row = |k: usize| SampleResult {
+        expected_folds: 1,
+        ..SampleResult::empty(&format!("{}/fold{k}", sample.name), &format!("{}/fold{k}", category_of(sample)))
+    };
+    match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
+        Ok(a) => a
+            .steps
+            .iter()
+            .enumerate()
+            .map(|(k, step)| {
+                let found = step.detection.fold.is_some();
+                SampleResult {
+                    folds: usize::from(found),
+                    rmse: Some(step.metrics.rmse),
+                    frechet: Some(step.metrics.frechet),
+                    steps: vec![StepResult { fold_found: found, rmse: step.metrics.rmse, frechet: step.metrics.frechet, angle_error: None }],
+                    ..row(k + 1)
+                }
+            })
+            .collect(),
+        Err(e) => (1..=rows.max(1)).map(|k| SampleResult { error: Some(e.to_string()), ..row(k) }).collect(),
+    }
+}
+
+fn stat_of<T>(items: &[T], f: impl Fn(&T) -> Option<f64>) -> Option<Stat> {
+    Stat::of(&items.iter().filter_map(f).collect::<Vec<_>>())
+}
+
+fn by_fold(results: &[&SampleResult]) -> Vec<FoldSummary> {
+    let multi: Vec<&SampleResult> = results.iter().copied().filter(|r| r.steps.len() > 1).collect();
+    let most = multi.iter().map(|r| r.steps.len()).max().unwrap_or(0);
+    (0..most)
+        .map(|k| {
+            let steps: Vec<&StepResult> = multi.iter().filter_map(|r| r.steps.get(k)).collect();
+            FoldSummary {
+                fold: k + 1,
+                count: steps.len(),
+                found: steps.iter().filter(|s| s.fold_found).count(),
+                rmse: stat_of(&steps, |s| Some(s.rmse)),
+                frechet: stat_of(&steps, |s| Some(s.frechet)),
+                f1_error: stat_of(&steps, |s| s.angle_error.map(|a| a[0])),
+                f2_error: stat_of(&steps, |s| s.angle_error.map(|a| a[1])),
+            }
+        })
+        .collect()
+}
+
+fn summarise(category: &str, all: &[&SampleResult]) -> Summary {
+    let results: Vec<&SampleResult> = all.iter().copied().filter(|r| r.dropped.is_none()).collect();
+    let results = results.as_slice();
+    let pick = |f: &dyn Fn(&SampleResult) -> Option<f64>| stat_of(results, |r| f(r));
+    Summary {
+        category: category.to_string(),
+        count: results.len(),
+        rmse: pick(&|r| r.rmse),
+        frechet: pick(&|r| r.frechet),
+        fold_count_misses: results.iter().filter(|r| r.error.is_none() && r.folds != r.expected_folds).count(),
+        errors: results.iter().filter(|r| r.error.is_some()).count(),
+        dropped: all.len() - results.len(),
+        f1_error: pick(&|r| r.angle_error.map(|a| a[0])),
+        f2_error: pick(&|r| r.angle_error.map(|a| a[1])),
+        by_fold: by_fold(results),
+    }
+}
+
+/// Build the report from per-sample results.
+pub fn report(samples: Vec<SampleResult>) -> Report {
+    let mut by_category: BTreeMap<&str, Vec<&SampleResult>> = BTreeMap::new();
+    for r in &samples {
+        by_category.entry(r.category.as_str()).or_default().push(r);
+    }
+    let categories = by_category.iter().map(|(c, rs)| summarise(c, rs)).collect();
+    let overall = summarise("overall", &samples.iter().collect::<Vec<_>>());
+    Report { categories, overall, samples }
+}
+
+impl Report {
+    /// The table as aligned text.
+    pub fn table(&self) -> String {
+        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "dropped", "f1 err°", "f2 err°"].map(String::from));
+        for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
+            let counts = [s.errors, s.dropped].map(|c| c.to_string());
+            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.f1_error, s.f2_error], s.fold_count_misses, counts));
+            for f in &s.by_fold {
+                let label = format!("  fold {}", f.fold);
+                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.f1_error, f.f2_error], f.count - f.found, [String::new(), String::new()]));
+            }
+        }
+        out
+    }
+}
+
+/// One aligned line of the table.
+fn row(cells: [String; 11]) -> String {
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10] = cells;
+    format!("{c0:<20} {c1:>5} {c2:>9} {c3:>9} {c4:>9} {c5:>9} {c6:>7} {c7:>6} {c8:>7} {c9:>9} {c10:>9}\n")
+}
+
+/// A row from statistics: RMSE and Fréchet with their variances, angle errors in degrees.
+fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 4], misses: usize, [errors, dropped]: [String; 2]) -> String {
+    let mean = |s: Option<Stat>, scale: f64| s.map_or("-".to_string(), |s| format!("{:.4}", s.mean * scale));
+    let var = |s: Option<Stat>| s.map_or("-".to_string(), |s| format!("{:.5}", s.var));
+    let degrees = 180.0 / PI;
+    row([
+        label.to_string(),
+        count.to_string(),
+        mean(rmse, 1.0),
+        var(rmse),
+        mean(frechet, 1.0),
+        var(frechet),
+        misses.to_string(),
+        errors,
+        dropped,
+        mean(f1, degrees),
+        mean(f2, degrees),
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scored(name: &str, category: &str, rmse: f64, folds: usize) -> SampleResult {
+        SampleResult { rmse: Some(rmse), frechet: Some(2.0 * rmse), folds, expected_folds: 1, ..SampleResult::empty(name, category) }
+    }
+
+    #[test]
+    fn rows_per_category_with_mean_variance_misses_errors_and_drops() {
+        let results = vec![
+            scored("a1", "a", 0.1, 1),
+            scored("a2", "a", 0.3, 2),
+            scored("b1", "b", 0.5, 1),
+            SampleResult::unreadable("x.json", "could not parse JSON"),
+            SampleResult::dropped("b2", "b", "broken mesh"),
+        ];
+        let r = report(results);
+        let row = |c: &str| r.categories.iter().find(|s| s.category == c).unwrap_or_else(|| panic!("no row {c}"));
+        let a = row("a");
+        assert_eq!((a.count, a.fold_count_misses, a.errors, a.dropped), (2, 1, 0, 0));
+        let rmse = a.rmse.expect("scored samples");
+        assert!((rmse.mean - 0.2).abs() < 1e-12 && (rmse.var - 0.01).abs() < 1e-12, "{rmse:?}");
+        let b = row("b");
+        assert_eq!((b.count, b.dropped), (1, 1));
+        assert_eq!(row("unreadable").errors, 1);
+        assert!(r.table().contains("overall"));
+    }
+}

@@ -1,0 +1,405 @@
+//! VR-Folding (Xue et al., GarmentTracking, CVPR 2023), the dataset of the first and second
+//! fold rows of Table I of Kamat, Borràs, Torras ("CloSE"), read from its Zarr v2 store.
+//!
+//! The store, as the dataset's own loaders read it: `<store>/<Category>/samples/<frame>/`,
+//! one group per frame, whose attributes hold `video_id` (else `instance_id`),
+//! `garment_name`, `sample_id` and `scale`, with the arrays `mesh/cloth_verts` (float [V, 3],
+//! world positions), `mesh/cloth_faces_tri` (int [F, 3], the same in every frame of a
+//! video), `mesh/cloth_nocs_verts` (float [V, 3], canonical positions) and
+//! `grip_vertex_id/{left,right}_grip_vertex_id` (int [k], `[-1]` while a hand holds nothing).
+//! Chunks are Blosc-compressed; `zarrs` reads them.
+//!
+//! A video's frames (sorted by `sample_id`) are cut into fold actions by BiFold's rule
+//! ([`cut`]); an action whose start or end mesh fails BiFold's broken-mesh test
+//! ([`broken`]) is dropped. The border is the paper's silhouette border (zenithal depth mask,
+//! ε-cover with ε = [`crate::mesh::silhouette::EPSILON`]) of the video's first frame,
+//! followed through the frames by mesh vertex. Fold 1 compares the start of action 1 with
+//! its end; fold 2 is the sequence (start of action 1, end of action 1, end of action 2)
+//! scored on its second step ([`VideoFolds::sample`]). `scale` is not needed: every
+//! measure is taken on borders normalised by the start frame.
+//!
+//! A video is read as a stream: each frame's grips, then only the frames the folds use, each
+//! chunk once; a whole mesh is alive only while its frame is tested.
+//!
+//! ```no_run
+//! use close_io::vrfolding::Store;
+//! let store = Store::open("vr_simulation_folding2_dataset.zarr".as_ref()).unwrap();
+//! for video in store.videos().unwrap() {
+//!     let folds = store.folds(&video).unwrap();
+//!     println!("{} {}: {} actions", video.category, video.id, folds.actions.len());
+//! }
+//! ```
+
+pub mod broken;
+pub mod cut;
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use serde_json::Value;
+use zarrs::array::Array;
+use zarrs::config::MetadataRetrieveVersion;
+use zarrs::filesystem::FilesystemStore;
+use zarrs::group::Group;
+use zarrs::plugin::{ExtensionName, ZarrVersion};
+use zarrs::storage::{ListableStorageTraits, StorePrefix};
+
+use crate::error::{Error, Result};
+use crate::formats::Sample;
+use crate::mesh::silhouette::{Silhouette, EPSILON};
+use cut::Action;
+
+/// Folds scored per video: the paper's Table I has first and second folds.
+pub const FOLDS: usize = 2;
+
+/// An open VR-Folding store (or one category folder of it).
+pub struct Store {
+    path: PathBuf,
+    fs: Arc<FilesystemStore>,
+    /// Category name → node path of its `samples` group.
+    categories: Vec<(String, String)>,
+}
+
+/// One recording: its frames' group paths in `sample_id` order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Video {
+    pub category: String,
+    pub id: String,
+    pub garment: String,
+    /// Node paths of the frame groups, in `sample_id` order.
+    pub frames: Vec<String>,
+}
+
+/// A video cut into actions, with the border frames its folds need.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VideoFolds {
+    pub actions: Vec<Action>,
+    /// A hand still gripped in the last frame: that action never ended and is not counted.
+    pub unfinished: bool,
+    /// For each of the first [`FOLDS`] actions: whether its start or end mesh is broken.
+    pub broken: Vec<bool>,
+    /// Mesh vertex count.
+    pub vertices: usize,
+    /// The silhouette border of the video's first frame, as mesh vertex ids.
+    pub border_indices: Vec<usize>,
+    /// Border positions at the start of action 1 and the ends of the usable actions.
+    pub frames: Vec<Vec<[f64; 3]>>,
+}
+
+impl VideoFolds {
+    /// Folds that can be scored: actions 1…k all present and none broken.
+    pub fn usable(&self) -> usize {
+        self.broken.iter().take_while(|b| !**b).count()
+    }
+
+    /// Folds that exist but cannot be scored because a mesh they use is broken.
+    pub fn dropped(&self) -> usize {
+        self.broken.len() - self.usable()
+    }
+
+    /// Fold `k` (1-based) as a border sample: frames (start of action 1, end of action 1, …,
+    /// end of action k), so fold k is its k-th step; `None` when fold k is absent or dropped.
+    pub fn sample(&self, video: &Video, k: usize) -> Option<Sample> {
+        (k >= 1 && k <= self.usable()).then(|| {
+            Sample::from_frames(format!("{}/fold{k}", video.id), format!("{}/fold{k}", video.category), self.frames[..=k].to_vec())
+        })
+    }
+}
+
+/// Whether `path` looks like a Zarr v2 group (a store or a category of one).
+pub fn is_store(path: &Path) -> bool {
+    path.join(".zgroup").is_file()
+}
+
+/// A JSON attribute as text (`video_id` may be stored as a string or a number).
+fn attr_text(attrs: &serde_json::Map<String, Value>, key: &str) -> Option<String> {
+    match attrs.get(key)? {
+        Value::String(s) => Some(s.clone()),
+        Value::Number(n) => Some(n.to_string()),
+        _ => None,
+    }
+}
+
+impl Store {
+    /// Open a store, or one category folder of it (a group holding `samples/`).
+    pub fn open(path: &Path) -> Result<Store> {
+        let problem = |p: &str, m: String| Error::Store { store: path.display().to_string(), path: p.into(), problem: m };
+        if !path.is_dir() {
+            return Err(problem("/", "not a folder".into()));
+        }
+        if !is_store(path) {
+            return Err(problem("/", "not a Zarr v2 group (no .zgroup): expected a VR-Folding store or one of its category folders".into()));
+        }
+        let fs = Arc::new(FilesystemStore::new(path).map_err(|e| problem("/", e.to_string()))?);
+        let mut store = Store { path: path.to_path_buf(), fs, categories: Vec::new() };
+        if store.group("/samples").is_ok() {
+            let name = path.file_name().map_or("store".into(), |n| n.to_string_lossy().trim_end_matches('/').to_string());
+            store.categories.push((name, "/samples".into()));
+        } else {
+            for child in store.children("/")? {
+                let samples = format!("/{child}/samples");
+                if store.group(&samples).is_ok() {
+                    store.categories.push((child, samples));
+                }
+            }
+        }
+        if store.categories.is_empty() {
+            return Err(problem("/", "no category group with a samples/ group (e.g. Tshirt/samples)".into()));
+        }
+        Ok(store)
+    }
+
+    /// The store's folder.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Category names, sorted.
+    pub fn categories(&self) -> Vec<&str> {
+        self.categories.iter().map(|(c, _)| c.as_str()).collect()
+    }
+
+    fn error(&self, path: &str, problem: impl ToString) -> Error {
+        Error::Store { store: self.path.display().to_string(), path: path.into(), problem: problem.to_string() }
+    }
+
+    fn group(&self, path: &str) -> Result<Group<FilesystemStore>> {
+        Group::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2).map_err(|e| self.error(path, format!("missing or unreadable group: {e}")))
+    }
+
+    /// Names of the child groups/arrays of `path`, sorted.
+    fn children(&self, path: &str) -> Result<Vec<String>> {
+        let prefix = if path == "/" { StorePrefix::root() } else { StorePrefix::new(format!("{}/", path.trim_matches('/'))).map_err(|e| self.error(path, e))? };
+        let listed = self.fs.list_dir(&prefix).map_err(|e| self.error(path, e))?;
+        let mut names: Vec<String> = listed
+            .prefixes()
+            .iter()
+            .filter_map(|p| p.as_str().trim_end_matches('/').rsplit('/').next().map(str::to_string))
+            .filter(|n| !n.starts_with('.'))
+            .collect();
+        names.sort();
+        Ok(names)
+    }
+
+    /// Every video of every category: frames grouped by `video_id` (else `instance_id`) and
+    /// sorted by `sample_id`. Reads each frame's attributes once.
+    pub fn videos(&self) -> Result<Vec<Video>> {
+        use rayon::prelude::*;
+        let mut out = Vec::new();
+        for (category, samples) in &self.categories {
+            // Opening a group is a few small file reads: the frames are read in parallel.
+            let frames = self
+                .children(samples)?
+                .into_par_iter()
+                .map(|frame| {
+                    let path = format!("{samples}/{frame}");
+                    let group = self.group(&path)?;
+                    let attrs = group.attributes();
+                    let video = attr_text(attrs, "video_id")
+                        .or_else(|| attr_text(attrs, "instance_id"))
+                        .ok_or_else(|| self.error(&path, "the frame's attributes have no video_id or instance_id"))?;
+                    let sample_id = attrs
+                        .get("sample_id")
+                        .and_then(Value::as_i64)
+                        .ok_or_else(|| self.error(&path, "the frame's attributes have no integer sample_id"))?;
+                    let garment = attr_text(attrs, "garment_name").unwrap_or_else(|| category.clone());
+                    Ok((video, sample_id, path, garment))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            let mut videos: BTreeMap<String, Vec<(i64, String, String)>> = BTreeMap::new();
+            for (video, sample_id, path, garment) in frames {
+                videos.entry(video).or_default().push((sample_id, path, garment));
+            }
+            for (id, mut frames) in videos {
+                frames.sort();
+                let garment = frames[0].2.clone();
+                out.push(Video { category: category.clone(), id, garment, frames: frames.into_iter().map(|f| f.1).collect() });
+            }
+        }
+        Ok(out)
+    }
+
+    /// Open array `path` and check its shape: 1-D (`width` None) or [rows, width]. Returns
+    /// the array, its row count and its data type's name ("float32", "int64", …).
+    fn open_array(&self, path: &str, width: Option<u64>) -> Result<(Array<FilesystemStore>, usize, String)> {
+        let array = Array::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
+            .map_err(|e| self.error(path, format!("missing or unreadable array: {e}")))?;
+        let rows = match (array.shape(), width) {
+            (&[rows], None) => rows,
+            (&[rows, w], Some(width)) if w == width => rows,
+            (shape, _) => {
+                let expected = width.map_or("[k]".to_string(), |w| format!("[rows, {w}]"));
+                return Err(self.error(path, format!("shape {shape:?}, expected {expected}")));
+            }
+        };
+        let rows = usize::try_from(rows).map_err(|_| self.error(path, "too many rows"))?;
+        let kind = array.data_type().name(ZarrVersion::V3).map_or_else(|| array.data_type().to_string(), |n| n.to_string());
+        Ok((array, rows, kind))
+    }
+
+    fn retrieve<T: zarrs::array::ElementOwned>(&self, array: &Array<FilesystemStore>, path: &str) -> Result<Vec<T>> {
+        array.retrieve_array_subset(&array.subset_all()).map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
+    }
+
+    /// A float [V, 3] array (float32 or float64) as points.
+    fn points(&self, path: &str) -> Result<Vec<[f64; 3]>> {
+        fn widen<T: Into<f64>>(v: Vec<T>) -> Vec<f64> {
+            v.into_iter().map(Into::into).collect()
+        }
+        let (array, _, kind) = self.open_array(path, Some(3))?;
+        let values = match kind.as_str() {
+            "float32" => widen(self.retrieve::<f32>(&array, path)?),
+            "float64" => self.retrieve::<f64>(&array, path)?,
+            other => return Err(self.error(path, format!("data type {other}, expected float32 or float64"))),
+        };
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(self.error(path, format!("non-finite coordinate at vertex {}", k / 3)));
+        }
+        Ok(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+    }
+
+    /// An integer array (any width, signed or not) as i64, with its row count.
+    fn ints(&self, path: &str, width: Option<u64>) -> Result<(usize, Vec<i64>)> {
+        let (array, rows, kind) = self.open_array(path, width)?;
+        let values = match kind.as_str() {
+            "int8" => self.widen::<i8>(&array, path)?,
+            "int16" => self.widen::<i16>(&array, path)?,
+            "int32" => self.widen::<i32>(&array, path)?,
+            "int64" => self.retrieve::<i64>(&array, path)?,
+            "uint8" => self.widen::<u8>(&array, path)?,
+            "uint16" => self.widen::<u16>(&array, path)?,
+            "uint32" => self.widen::<u32>(&array, path)?,
+            "uint64" => self.retrieve::<u64>(&array, path)?.into_iter().map(|v| i64::try_from(v).unwrap_or(i64::MAX)).collect(),
+            other => return Err(self.error(path, format!("data type {other}, expected integers"))),
+        };
+        Ok((rows, values))
+    }
+
+    fn widen<T: zarrs::array::ElementOwned + Into<i64>>(&self, array: &Array<FilesystemStore>, path: &str) -> Result<Vec<i64>> {
+        Ok(self.retrieve::<T>(array, path)?.into_iter().map(Into::into).collect())
+    }
+
+    /// Whether one hand grips in one frame; its vertex ids are checked against the mesh's
+    /// `vertices`.
+    fn grip(&self, frame: &str, hand: &str, vertices: usize) -> Result<bool> {
+        let path = format!("{frame}/grip_vertex_id/{hand}_grip_vertex_id");
+        let (_, ids) = self.ints(&path, None)?;
+        if let Some(&bad) = ids.iter().find(|&&v| v < -1 || v >= vertices as i64) {
+            return Err(self.error(&path, format!("gripped vertex {bad} is out of range: the mesh has {vertices} vertices (ids 0…{}, or -1 for none)", vertices - 1)));
+        }
+        Ok(cut::holds(&ids))
+    }
+
+    /// Cut `video` into fold actions from its grips alone (no mesh is read); a video with
+    /// no finished action is an error.
+    pub fn cut(&self, video: &Video) -> Result<cut::Actions> {
+        let Some(first) = video.frames.first() else {
+            return Err(self.error(&video.id, "the video has no frame"));
+        };
+        let (_, vertices, _) = self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3))?;
+        let grips = video
+            .frames
+            .iter()
+            .map(|f| Ok(self.grip(f, "left", vertices)? | self.grip(f, "right", vertices)?))
+            .collect::<Result<Vec<bool>>>()?;
+        let cut = cut::actions(&grips);
+        if cut.actions.is_empty() {
+            let why = if cut.unfinished { "a hand grips until the last frame and never lets go" } else { "no hand grips in any frame" };
+            return Err(self.error(&format!("video {}", video.id), format!("no fold action in its {} frames: {why}", video.frames.len())));
+        }
+        Ok(cut)
+    }
+
+    /// Cut `video` into actions and read the border frames of its first [`FOLDS`] folds.
+    pub fn folds(&self, video: &Video) -> Result<VideoFolds> {
+        let cut = self.cut(video)?;
+        let first = &video.frames[0];
+        let verts0 = self.points(&format!("{first}/mesh/cloth_verts"))?;
+        let vertices = verts0.len();
+        if vertices < crate::border::MIN_VERTICES {
+            return Err(self.error(&format!("{first}/mesh/cloth_verts"), format!("{vertices} vertices: too few for a cloth")));
+        }
+        let faces = self.faces(&format!("{first}/mesh/cloth_faces_tri"), vertices)?;
+        let nocs = self.points(&format!("{first}/mesh/cloth_nocs_verts"))?;
+        if nocs.len() != vertices {
+            return Err(self.error(&format!("{first}/mesh/cloth_nocs_verts"), format!("{} vertices, but cloth_verts has {vertices}", nocs.len())));
+        }
+        let canonical = broken::max_edge_zscore(&nocs, &faces);
+        drop(nocs);
+        let faces_poly: Vec<Vec<usize>> = faces.iter().map(|f| f.to_vec()).collect();
+        let border_indices = Silhouette::render(&verts0, &faces_poly)?.border(&verts0, EPSILON)?;
+        if border_indices.len() < crate::border::MIN_VERTICES {
+            return Err(self.error(first, format!("the silhouette from +z gives only {} border vertices", border_indices.len())));
+        }
+        // Each needed frame is read once: its border positions and its broken-mesh verdict.
+        let mut seen: HashMap<usize, (Vec<[f64; 3]>, bool)> = HashMap::new();
+        let mut frame = |k: usize| -> Result<(Vec<[f64; 3]>, bool)> {
+            if let Some(hit) = seen.get(&k) {
+                return Ok(hit.clone());
+            }
+            let path = format!("{}/mesh/cloth_verts", video.frames[k]);
+            let read;
+            let verts = if k == 0 {
+                &verts0
+            } else {
+                read = self.points(&path)?;
+                &read
+            };
+            if verts.len() != vertices {
+                return Err(self.error(&path, format!("{} vertices, but the video's first frame has {vertices}", verts.len())));
+            }
+            let bad = broken::is_broken(broken::max_edge_zscore(verts, &faces), canonical);
+            let found = (border_indices.iter().map(|&i| verts[i]).collect(), bad);
+            seen.insert(k, found.clone());
+            Ok(found)
+        };
+        let mut frames = Vec::new();
+        let mut broken = Vec::new();
+        for (a, action) in cut.actions.iter().take(FOLDS).enumerate() {
+            let (start, start_bad) = frame(action.start)?;
+            let (end, end_bad) = frame(action.end)?;
+            if a == 0 {
+                frames.push(start);
+            }
+            frames.push(end);
+            broken.push(start_bad || end_bad);
+        }
+        let usable = broken.iter().take_while(|b| !**b).count();
+        frames.truncate(usable + 1);
+        Ok(VideoFolds { actions: cut.actions, unfinished: cut.unfinished, broken, vertices, border_indices, frames })
+    }
+
+    /// The triangles of `path`, every id checked against the mesh's `vertices`.
+    fn faces(&self, path: &str, vertices: usize) -> Result<Vec<[usize; 3]>> {
+        let (_, ids) = self.ints(path, Some(3))?;
+        if let Some(&bad) = ids.iter().find(|&&v| v < 0 || v >= vertices as i64) {
+            return Err(self.error(path, format!("face uses vertex {bad}, but the mesh has {vertices} vertices")));
+        }
+        Ok(ids.chunks_exact(3).map(|c| [c[0] as usize, c[1] as usize, c[2] as usize]).collect())
+    }
+}
+
+/// Table I rows of one video: `<Category>/fold1`, `<Category>/fold2` from one analysis of
+/// (start, end of action 1, end of action 2); a fold with a broken mesh is dropped; a video
+/// that cannot be read is one error in its category's fold-1 row.
+pub fn evaluate(store: &Store, video: &Video, method: crate::FoldMethod) -> Vec<crate::eval::SampleResult> {
+    use crate::eval::{evaluate_steps, SampleResult};
+    let name = |k: usize| format!("{}/fold{k}", video.id);
+    let category = |k: usize| format!("{}/fold{k}", video.category);
+    let folds = match store.folds(video) {
+        Ok(folds) => folds,
+        Err(e) => return vec![SampleResult { category: category(1), ..SampleResult::unreadable(&name(1), &e.to_string()) }],
+    };
+    let usable = folds.usable();
+    let mut rows = if usable == 0 {
+        Vec::new()
+    } else {
+        evaluate_steps(&Sample::from_frames(video.id.clone(), video.category.clone(), folds.frames.clone()), method)
+    };
+    for k in usable + 1..=folds.broken.len() {
+        let culprit = folds.broken.iter().position(|&b| b).map_or(k, |a| a + 1);
+        rows.push(SampleResult::dropped(&name(k), &category(k), &format!("broken mesh at the start or end of action {culprit}")));
+    }
+    rows
+}

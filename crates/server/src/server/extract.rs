@@ -1,0 +1,54 @@
+//! Extractors that reject with [`ApiError`], as in axum's error-handling example: handlers
+//! take `AppJson<T>`, `AppPath<T>`, `AppQuery<T>` and never see a rejection.
+//!
+//! ```
+//! use close_server::server::AppJson;
+//! use serde::Deserialize;
+//! #[derive(Deserialize)]
+//! struct Goal { goal: [f64; 2] }
+//! // A handler: `async fn plan(AppJson(req): AppJson<Goal>) -> …`; a body that is not a
+//! // `Goal` is answered with `{"error": "..."}` and axum's status (400, 415 or 422).
+//! let _ = |AppJson(req): AppJson<Goal>| async move { req.goal[0] };
+//! ```
+
+use axum::extract::{FromRequest, FromRequestParts, Path, Query, Request};
+use axum::http::request::Parts;
+use axum::Json;
+use serde::de::DeserializeOwned;
+
+use super::ApiError;
+
+/// A JSON body of type `T`.
+pub struct AppJson<T>(pub T);
+
+impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for AppJson<T> {
+    type Rejection = ApiError;
+
+    async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
+        let Json(value) = Json::<T>::from_request(request, state).await?;
+        Ok(AppJson(value))
+    }
+}
+
+/// Path parameters of type `T`.
+pub struct AppPath<T>(pub T);
+
+/// Query parameters of type `T`.
+pub struct AppQuery<T>(pub T);
+
+/// The two request-parts extractors differ only in the axum extractor they wrap.
+macro_rules! from_parts {
+    ($ours:ident, $axum:ident) => {
+        impl<S: Send + Sync, T: DeserializeOwned + Send> FromRequestParts<S> for $ours<T> {
+            type Rejection = ApiError;
+
+            async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
+                let $axum(value) = $axum::<T>::from_request_parts(parts, state).await?;
+                Ok($ours(value))
+            }
+        }
+    };
+}
+
+from_parts!(AppPath, Path);
+from_parts!(AppQuery, Query);

@@ -1,0 +1,230 @@
+//! Closed doors and a memory budget, as middleware in front of every route.
+//!
+//! - **Host** (DNS rebinding): a browser always names the site it thinks it talks to in
+//!   `Host`. A page on `evil.example` whose name was re-pointed to 127.0.0.1 sends
+//!   `Host: evil.example`, so only loopback names, the address the connection was accepted
+//!   on and the names given with `--allow-host` are served (403 otherwise). A request
+//!   without `Host` (HTTP/1.0, in-process tests) comes from no browser and passes.
+//! - **Origin** (cross-site requests): a multipart POST is a "simple" CORS request that a
+//!   browser sends from any page without asking. A state-changing request (any method but
+//!   GET, HEAD, OPTIONS) whose `Origin` is neither this server's own (same scheme-less
+//!   authority as `Host`) nor one given with `--cors` is refused with 403; so is one that
+//!   carries no `Origin` but a `Sec-Fetch-Site` saying it comes from another site.
+//! - **Upload budget**: every request with a body holds, while it is served, permits for
+//!   its announced length (or the body limit when it announces none) from one semaphore of
+//!   [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead of
+//!   multiplying the memory they take; after a large one, freed memory goes back to the OS.
+//!
+//! ```
+//! use close_server::server::guard::host_name;
+//! assert_eq!(host_name("LocalHost:8080"), "localhost");
+//! assert_eq!(host_name("[::1]:80"), "::1");
+//! ```
+
+use std::net::{IpAddr, SocketAddr};
+use std::sync::Arc;
+
+use axum::extract::{Request, State};
+use axum::http::{header, HeaderMap, Method, StatusCode};
+use axum::middleware::Next;
+use axum::response::{IntoResponse, Response};
+use tokio::sync::Semaphore;
+
+use super::ApiError;
+
+/// The local address a connection was accepted on, put on each request by the accept loop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ServedAt(pub SocketAddr);
+
+/// Who may reach the server: extra host names and cross-origin callers.
+#[derive(Debug, Clone, Default)]
+pub struct Doors {
+    /// Host names served besides loopback and the accepting address (lower case).
+    pub hosts: Vec<String>,
+    /// Origins allowed to make state-changing requests (`--cors`).
+    pub origins: Vec<String>,
+}
+
+/// The host part of a `Host` value or authority, lower case, without port, brackets or a
+/// trailing dot.
+pub fn host_name(authority: &str) -> String {
+    let authority = authority.trim();
+    let host = match authority.strip_prefix('[') {
+        Some(v6) => v6.split(']').next().unwrap_or(v6),
+        None => authority.rsplit_once(':').map_or(authority, |(h, _)| h),
+    };
+    host.trim_end_matches('.').to_ascii_lowercase()
+}
+
+/// `authority` with the default port of plain HTTP made explicit, for comparing.
+fn with_port(authority: &str) -> String {
+    let authority = authority.trim().to_ascii_lowercase();
+    let has_port = authority.rsplit_once(':').is_some_and(|(h, p)| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()) && (!h.starts_with('[') || h.ends_with(']')));
+    if has_port {
+        authority
+    } else {
+        format!("{authority}:80")
+    }
+}
+
+impl Doors {
+    fn host_allowed(&self, host: &str, served_at: Option<ServedAt>) -> bool {
+        let name = host_name(host);
+        let ip = name.parse::<IpAddr>().ok();
+        name == "localhost"
+            || name.ends_with(".localhost")
+            || ip.is_some_and(|ip| ip.is_loopback())
+            || served_at.is_some_and(|ServedAt(at)| !at.ip().is_unspecified() && ip == Some(at.ip()))
+            || self.hosts.iter().any(|h| host_name(h) == name)
+    }
+
+    /// Same origin: `http://` plus exactly the authority the request was sent to.
+    fn origin_allowed(&self, origin: &str, host: Option<&str>) -> bool {
+        if self.origins.iter().any(|o| o.trim_end_matches('/').eq_ignore_ascii_case(origin)) {
+            return true;
+        }
+        match (origin.strip_prefix("http://"), host) {
+            (Some(authority), Some(host)) => with_port(authority) == with_port(host),
+            _ => false,
+        }
+    }
+
+    /// Why `request` may not pass, if it may not.
+    fn refuse(&self, method: &Method, headers: &HeaderMap, served_at: Option<ServedAt>) -> Option<String> {
+        let host = headers.get(header::HOST).map(|h| h.to_str().unwrap_or("(not text)"));
+        if let Some(host) = host.filter(|h| !self.host_allowed(h, served_at)) {
+            return Some(format!(
+                "this server does not answer to the host name {host:?}: start it with --allow-host {} to allow it",
+                host_name(host)
+            ));
+        }
+        if matches!(*method, Method::GET | Method::HEAD | Method::OPTIONS) {
+            return None;
+        }
+        match headers.get(header::ORIGIN).map(|o| o.to_str().unwrap_or("(not text)")) {
+            Some(origin) if !self.origin_allowed(origin, host) => Some(format!(
+                "a {method} from the page at {origin:?} is refused: only this server's own pages may send it (or start the server with --cors {origin})"
+            )),
+            Some(_) => None,
+            None => headers
+                .get("sec-fetch-site")
+                .filter(|site| matches!(site.as_bytes(), b"cross-site" | b"same-site"))
+                .map(|_| format!("a {method} from another site is refused")),
+        }
+    }
+}
+
+/// Middleware: 403 for a foreign `Host` or a cross-origin state-changing request.
+pub async fn doors(State(doors): State<Arc<Doors>>, request: Request, next: Next) -> Response {
+    let served_at = request.extensions().get::<ServedAt>().copied();
+    match doors.refuse(request.method(), request.headers(), served_at) {
+        Some(why) => ApiError::Rejected(StatusCode::FORBIDDEN, why).into_response(),
+        None => next.run(request).await,
+    }
+}
+
+/// Bytes of request bodies that may be held at once, counted in KiB permits.
+#[derive(Debug)]
+pub struct UploadBudget {
+    permits: Arc<Semaphore>,
+    /// All permits: no single request asks for more.
+    total_kib: u32,
+    /// What a body without `Content-Length` may grow to.
+    body_limit: usize,
+}
+
+impl UploadBudget {
+    pub fn new(bytes: usize, body_limit: usize) -> Self {
+        let total_kib = u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, Semaphore::MAX_PERMITS as u32);
+        UploadBudget { permits: Arc::new(Semaphore::new(total_kib as usize)), total_kib, body_limit }
+    }
+
+    /// Bytes of the budget not held by a request now.
+    pub fn available(&self) -> usize {
+        self.permits.available_permits() * 1024
+    }
+}
+
+/// Middleware: hold the request's share of the upload budget until its answer is ready.
+pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Request, next: Next) -> Response {
+    if matches!(*request.method(), Method::GET | Method::HEAD | Method::OPTIONS) {
+        return next.run(request).await;
+    }
+    let announced = request.headers().get(header::CONTENT_LENGTH).and_then(|l| l.to_str().ok()?.parse::<usize>().ok());
+    if announced.is_some_and(|bytes| bytes > budget.body_limit) {
+        // Refused by the body limit unread: nothing to hold.
+        return next.run(request).await;
+    }
+    let kib = u32::try_from(announced.unwrap_or(budget.body_limit).div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, budget.total_kib);
+    let Ok(held) = budget.permits.clone().acquire_many_owned(kib).await else {
+        return ApiError::Internal("the upload budget is closed".into()).into_response();
+    };
+    let response = next.run(request).await;
+    drop(held);
+    if kib >= RELEASE_AFTER_KIB {
+        release_memory();
+    }
+    response
+}
+
+/// Requests holding this much of the budget give their freed memory back when answered.
+const RELEASE_AFTER_KIB: u32 = 16 * 1024;
+
+/// Hand the heap pages freed by a large request back to the OS. glibc keeps them in its
+/// arenas otherwise: a burst of large uploads would stay resident as hundreds of MB.
+fn release_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    tokio::task::spawn_blocking(|| {
+        // SAFETY: malloc_trim takes no pointer; it walks glibc's own arenas under their locks.
+        unsafe { libc::malloc_trim(0) };
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn headers(pairs: &[(&'static str, &'static str)]) -> HeaderMap {
+        pairs.iter().map(|(k, v)| (header::HeaderName::from_static(k), header::HeaderValue::from_static(v))).collect()
+    }
+
+    #[test]
+    fn hosts_are_loopback_the_served_address_or_allowed() {
+        let doors = Doors { hosts: vec!["Cloth.Lan".into()], origins: vec![] };
+        let at = Some(ServedAt("192.168.1.5:8080".parse().unwrap()));
+        for ok in ["localhost:8080", "127.0.0.1", "127.3.4.5:1", "[::1]:8080", "app.localhost", "cloth.lan:80", "192.168.1.5:8080"] {
+            assert!(doors.refuse(&Method::GET, &headers(&[("host", ok)]), at).is_none(), "{ok}");
+        }
+        for bad in ["evil.example", "evil.example:8080", "localhost.evil.example", "10.0.0.1", "192.168.1.5"] {
+            let why = doors.refuse(&Method::GET, &headers(&[("host", bad)]), None).expect(bad);
+            assert!(why.contains("--allow-host"), "{why}");
+        }
+        // A server on every interface does not answer to every address by itself.
+        let any = Some(ServedAt("0.0.0.0:8080".parse().unwrap()));
+        assert!(doors.refuse(&Method::GET, &headers(&[("host", "0.0.0.0:8080")]), any).is_some());
+    }
+
+    #[test]
+    fn state_changing_requests_need_our_origin() {
+        let doors = Doors { hosts: vec![], origins: vec!["https://tool.example".into()] };
+        let post = |h: &[(&'static str, &'static str)]| doors.refuse(&Method::POST, &headers(h), None);
+        assert!(post(&[("host", "localhost:8080"), ("origin", "http://localhost:8080")]).is_none());
+        assert!(post(&[("host", "localhost"), ("origin", "http://localhost:80")]).is_none());
+        assert!(post(&[("host", "localhost:8080")]).is_none(), "no Origin: not a browser's cross-site request");
+        assert!(post(&[("host", "localhost:8080"), ("origin", "https://tool.example")]).is_none(), "--cors");
+        for evil in ["https://evil.example", "http://localhost:9999", "null", "https://localhost:8080"] {
+            let mut h = headers(&[("host", "localhost:8080")]);
+            h.insert(header::ORIGIN, evil.parse().unwrap());
+            assert!(doors.refuse(&Method::POST, &h, None).is_some_and(|w| w.contains(evil)), "{evil}");
+        }
+        assert!(post(&[("host", "localhost:8080"), ("sec-fetch-site", "cross-site")]).is_some());
+        // Reading is not refused for the origin (CORS decides whether the page may see it).
+        assert!(doors.refuse(&Method::GET, &headers(&[("host", "localhost"), ("origin", "https://evil.example")]), None).is_none());
+    }
+
+    #[test]
+    fn the_upload_budget_counts_kib() {
+        let b = UploadBudget::new(10 * 1024, 64 * 1024);
+        assert_eq!((b.total_kib, b.available()), (10, 10 * 1024));
+    }
+}
