@@ -2,7 +2,8 @@
 //! representation): which corners to grasp and where to put them.
 //!
 //! **High level.** The corners a fold moves are the corners strictly inside its folded arc
-//! (anticlockwise from f1 to f2), more than half an edge from its ends. If the goal fold (g1, g2) moves the same corners as the
+//! (anticlockwise from f1 to f2), more than half an edge from its ends
+//! ([`crate::angle::folds_vertex`]). If the goal fold (g1, g2) moves the same corners as the
 //! current folds together, one step moves them straight to the goal (`"direct"`);
 //! otherwise the current folds are undone, last first, and the goal is folded from the
 //! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`. When the
@@ -38,7 +39,7 @@ use std::collections::BTreeSet;
 use serde::Serialize;
 
 use crate::analysis::Analysis;
-use crate::angle::{angle_to_param, distance, edge, param_to_angle, wrap_tau};
+use crate::angle::{angle_to_param, distance, edge, folds_vertex, param_to_angle, wrap_tau, ON_LINE_EDGES};
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
 use crate::fold::reflect::{apply_fold_line, fold_line, folded_vertices, reflect_xy};
@@ -134,22 +135,10 @@ fn grasped(border: &[Point], moved: &[usize], arc: &[usize], p1: &Point, p2: &Po
     }
 }
 
-/// A corner closer than this many edges to a fold point lies on the fold line (as in
-/// [`crate::label`]): a detected fold ending a hair past a corner does not fold it.
-const ON_LINE_EDGES: f64 = 0.5;
-
-/// Corners strictly inside the folded arc of `fold`, off its ends, as vertex indices.
+/// Corners strictly inside the folded arc of `fold`, off the line ([`folds_vertex`], as in
+/// [`crate::label`]), as vertex indices.
 fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
-    let (s1, s2) = (param(fold[0], n), param(fold[1], n));
-    let span = (s2 - s1).rem_euclid(n as f64);
-    corners
-        .iter()
-        .copied()
-        .filter(|&c| {
-            let offset = (c as f64 - s1).rem_euclid(n as f64);
-            offset > ON_LINE_EDGES && offset < span - ON_LINE_EDGES
-        })
-        .collect()
+    corners.iter().copied().filter(|&c| folds_vertex(n, fold, c, ON_LINE_EDGES)).collect()
 }
 
 /// A step that folds `before` along `fold` (or, `unfold`, takes the folded state back).
