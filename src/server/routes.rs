@@ -531,7 +531,7 @@ pub struct PlanRequest {
 /// `POST /api/plan`'s answer: the plan, and the state it starts from.
 #[derive(Serialize)]
 struct PlanResponse<'a> {
-    case: &'a str,
+    case: crate::plan::Case,
     steps: &'a [PlanStep],
     /// In [0, 2π), as the plan's steps.
     goal: [f64; 2],
@@ -570,7 +570,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
             let a = &analyzed.analysis;
             let plan = crate::plan::plan_for(a, goal)?;
             to_json(&PlanResponse {
-                case: &plan.case,
+                case: plan.case,
                 steps: &plan.steps,
                 goal: goal.map(crate::angle::wrap_tau),
                 folds: &a.folds,
