@@ -181,9 +181,23 @@ enum CliError {
     Output(std::io::Error),
     #[error("could not write JSON: {0}")]
     Json(#[from] serde_json::Error),
-    /// A command line that does not fit what the command takes, or a server that could not start.
+    /// A command line that does not fit what the command takes.
     #[error("{0}")]
     Usage(String),
+    /// The server could not start (its address taken, say) or stopped serving.
+    #[error(transparent)]
+    Serve(close::server::ServeError),
+}
+
+impl CliError {
+    /// 2 for a command line that does not fit (as clap's own errors), 1 for every other
+    /// failure: a server that cannot start is not the caller's typing.
+    fn exit_code(&self) -> ExitCode {
+        match self {
+            CliError::Usage(_) => ExitCode::from(2),
+            _ => ExitCode::FAILURE,
+        }
+    }
 }
 
 type CliResult<T = ()> = Result<T, CliError>;
@@ -459,7 +473,10 @@ fn run_record(files: &[PathBuf], out: &Path) -> CliResult {
 }
 
 fn serve(addr: &str, config: close::server::Config) -> CliResult {
-    close::server::run(addr, config).map_err(CliError::Usage)
+    close::server::run(addr, config).map_err(|e| match e {
+        close::server::ServeError::Address { .. } => CliError::Usage(e.to_string()),
+        e => CliError::Serve(e),
+    })
 }
 
 fn main() -> ExitCode {
@@ -479,9 +496,9 @@ fn main() -> ExitCode {
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("error: {message}");
-            ExitCode::FAILURE
+        Err(error) => {
+            eprintln!("error: {error}");
+            error.exit_code()
         }
     }
 }
