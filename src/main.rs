@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
+use serde::Serialize;
 
 use close::formats::{read_files, Sample};
 use close::{analyze, analyze_with, eval, FoldMethod, FrameRange, Options};
@@ -226,12 +227,12 @@ fn load_sample(paths: &[PathBuf]) -> CliResult<Sample> {
 }
 
 fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Options, disks: bool) -> CliResult {
-    let (sample, mesh_indices, extra) = match video {
+    let (sample, mesh_indices, video) = match video {
         Some(id) => store_fold(files, id, fold)?,
         None if files.len() == 1 && files[0].join(".zgroup").is_file() => {
             return Err(CliError::Usage(format!("{} is a Zarr store: choose a video with --video ID (and --fold 1|2)", files[0].display())));
         }
-        None => (load_sample(files)?, None, serde_json::Value::Null),
+        None => (load_sample(files)?, None, None),
     };
     let frames = sample.border_frames()?;
     let mut analysis = analyze_with(&frames, options)?;
@@ -239,24 +240,41 @@ fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Opt
         // The border was gathered from the mesh: report mesh vertex ids.
         analysis.border_indices = analysis.border_indices.iter().map(|&k| mesh[k]).collect();
     }
-    let mut out = serde_json::to_value(&analysis)?;
-    if let serde_json::Value::Object(extra) = extra {
-        out.as_object_mut().into_iter().for_each(|o| o.extend(extra.clone()));
-    }
-    if disks {
-        let last = analysis.frames.len() - 1;
-        for (key, k) in [("disk_start", 0), ("disk_end", last)] {
-            out[key] = analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default().into();
-        }
-    }
-    emit(&out.to_string())?;
+    let disk = |k: usize| disks.then(|| analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default());
+    let out = AnalyzeOutput { analysis: &analysis, video, disk_start: disk(0), disk_end: disk(analysis.frames.len().saturating_sub(1)) };
+    emit(&serde_json::to_string(&out)?)?;
     Ok(())
+}
+
+/// `close analyze`'s JSON: the analysis, with the keys of the video fold it is (`--video`)
+/// and, with `--disks`, the values of its first and last disks beside its own.
+#[derive(Serialize)]
+struct AnalyzeOutput<'a> {
+    #[serde(flatten)]
+    analysis: &'a close::Analysis,
+    #[serde(flatten)]
+    video: Option<VideoFold>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disk_start: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disk_end: Option<Vec<f64>>,
+}
+
+/// Which fold of which VR-Folding video an analysis is, and the video's fold actions.
+#[derive(Serialize)]
+#[cfg_attr(not(feature = "vrfolding"), allow(dead_code))]
+struct VideoFold {
+    video: String,
+    category: String,
+    fold: usize,
+    #[cfg(feature = "vrfolding")]
+    actions: Vec<close::vrfolding::cut::Action>,
 }
 
 /// Fold `fold` of video `id` of the store at `files[0]`: the border sample, the mesh vertex of
 /// each border vertex, and what to add to the output (video, fold, actions).
 #[cfg(feature = "vrfolding")]
-fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Option<Vec<usize>>, serde_json::Value)> {
+fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
     let [path] = files else {
         return Err(CliError::Usage("--video takes one VR-Folding store (or category folder)".into()));
     };
@@ -274,12 +292,12 @@ fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Op
             format!("video {id} has {} fold action(s), not {fold}", folds.actions.len())
         })
     })?;
-    let extra = serde_json::json!({ "video": video.id, "category": video.category, "fold": fold, "actions": folds.actions });
-    Ok((sample, Some(folds.border_indices), extra))
+    let extra = VideoFold { video: video.id.clone(), category: video.category.clone(), fold, actions: folds.actions };
+    Ok((sample, Some(folds.border_indices), Some(extra)))
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec<usize>>, serde_json::Value)> {
+fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
     Err(CliError::Usage(NO_VRFOLDING.into()))
 }
 
