@@ -342,7 +342,7 @@ impl Work<'_> {
             }
             Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
             #[cfg(feature = "vrfolding")]
-            Work::Video(store, video) => close::vrfolding::evaluate(store, video, method),
+            Work::Video(store, video) => eval::evaluate_video(store, video, method),
         }
     }
 }
