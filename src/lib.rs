@@ -10,11 +10,13 @@
 //! one pair of fold coordinates (f1, f2) per fold, all angles on the border circle (vertex k
 //! of N at 2πk/N).
 //!
-//! The data flows one way, and the modules follow it:
-//! [`formats`] (files) → [`mesh`] (a mesh's border) → [`border`] (validation,
-//! normalisation) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates) →
-//! [`close`] (corners, the CloSE value) → [`label`] / [`plan`] / [`interpolate`] →
-//! [`analysis`] (the whole pipeline) → [`metrics`] / [`eval`] → [`render`] → [`server`].
+//! The modules import one way (`tests/modules.rs` checks it); each uses only those to its
+//! left: [`border`] (validation, normalisation) → [`mesh`] (a mesh's border) → [`formats`]
+//! (files) → [`vrfolding`] (VR-Folding stores); [`border`] → [`gli`] → [`disk`] (the dGLI
+//! disk) → [`fold`] (fold coordinates, a fold applied) → [`close`] (corners, the CloSE
+//! value) / [`label`] / [`metrics`] / [`interpolate`] / [`dataset`] (the built-in samples)
+//! → [`analysis`] (the whole pipeline) → [`plan`] / [`eval`] → [`catalog`] → [`render`] →
+//! [`server`]. Below them all: [`angle`], [`error`], [`budget`], [`cache`], [`rng`].
 //!
 //! ```
 //! use close::{analyze, FrameRange, Sample};
