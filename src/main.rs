@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
+use serde::Serialize;
 
 use close::formats::{read_files, Sample};
 use close::{analyze, analyze_with, eval, FoldMethod, FrameRange, Options};
@@ -181,9 +182,23 @@ enum CliError {
     Output(std::io::Error),
     #[error("could not write JSON: {0}")]
     Json(#[from] serde_json::Error),
-    /// A command line that does not fit what the command takes, or a server that could not start.
+    /// A command line that does not fit what the command takes.
     #[error("{0}")]
     Usage(String),
+    /// The server could not start (its address taken, say) or stopped serving.
+    #[error(transparent)]
+    Serve(close::server::ServeError),
+}
+
+impl CliError {
+    /// 2 for a command line that does not fit (as clap's own errors), 1 for every other
+    /// failure: a server that cannot start is not the caller's typing.
+    fn exit_code(&self) -> ExitCode {
+        match self {
+            CliError::Usage(_) => ExitCode::from(2),
+            _ => ExitCode::FAILURE,
+        }
+    }
 }
 
 type CliResult<T = ()> = Result<T, CliError>;
@@ -212,12 +227,12 @@ fn load_sample(paths: &[PathBuf]) -> CliResult<Sample> {
 }
 
 fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Options, disks: bool) -> CliResult {
-    let (sample, mesh_indices, extra) = match video {
+    let (sample, mesh_indices, video) = match video {
         Some(id) => store_fold(files, id, fold)?,
         None if files.len() == 1 && files[0].join(".zgroup").is_file() => {
             return Err(CliError::Usage(format!("{} is a Zarr store: choose a video with --video ID (and --fold 1|2)", files[0].display())));
         }
-        None => (load_sample(files)?, None, serde_json::Value::Null),
+        None => (load_sample(files)?, None, None),
     };
     let frames = sample.border_frames()?;
     let mut analysis = analyze_with(&frames, options)?;
@@ -225,24 +240,41 @@ fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Opt
         // The border was gathered from the mesh: report mesh vertex ids.
         analysis.border_indices = analysis.border_indices.iter().map(|&k| mesh[k]).collect();
     }
-    let mut out = serde_json::to_value(&analysis)?;
-    if let serde_json::Value::Object(extra) = extra {
-        out.as_object_mut().into_iter().for_each(|o| o.extend(extra.clone()));
-    }
-    if disks {
-        let last = analysis.frames.len() - 1;
-        for (key, k) in [("disk_start", 0), ("disk_end", last)] {
-            out[key] = analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default().into();
-        }
-    }
-    emit(&out.to_string())?;
+    let disk = |k: usize| disks.then(|| analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default());
+    let out = AnalyzeOutput { analysis: &analysis, video, disk_start: disk(0), disk_end: disk(analysis.frames.len().saturating_sub(1)) };
+    emit(&serde_json::to_string(&out)?)?;
     Ok(())
+}
+
+/// `close analyze`'s JSON: the analysis, with the keys of the video fold it is (`--video`)
+/// and, with `--disks`, the values of its first and last disks beside its own.
+#[derive(Serialize)]
+struct AnalyzeOutput<'a> {
+    #[serde(flatten)]
+    analysis: &'a close::Analysis,
+    #[serde(flatten)]
+    video: Option<VideoFold>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disk_start: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disk_end: Option<Vec<f64>>,
+}
+
+/// Which fold of which VR-Folding video an analysis is, and the video's fold actions.
+#[derive(Serialize)]
+#[cfg_attr(not(feature = "vrfolding"), allow(dead_code))]
+struct VideoFold {
+    video: String,
+    category: String,
+    fold: usize,
+    #[cfg(feature = "vrfolding")]
+    actions: Vec<close::vrfolding::cut::Action>,
 }
 
 /// Fold `fold` of video `id` of the store at `files[0]`: the border sample, the mesh vertex of
 /// each border vertex, and what to add to the output (video, fold, actions).
 #[cfg(feature = "vrfolding")]
-fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Option<Vec<usize>>, serde_json::Value)> {
+fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
     let [path] = files else {
         return Err(CliError::Usage("--video takes one VR-Folding store (or category folder)".into()));
     };
@@ -260,12 +292,12 @@ fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Op
             format!("video {id} has {} fold action(s), not {fold}", folds.actions.len())
         })
     })?;
-    let extra = serde_json::json!({ "video": video.id, "category": video.category, "fold": fold, "actions": folds.actions });
-    Ok((sample, Some(folds.border_indices), extra))
+    let extra = VideoFold { video: video.id.clone(), category: video.category.clone(), fold, actions: folds.actions };
+    Ok((sample, Some(folds.border_indices), Some(extra)))
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec<usize>>, serde_json::Value)> {
+fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
     Err(CliError::Usage(NO_VRFOLDING.into()))
 }
 
@@ -310,7 +342,7 @@ impl Work<'_> {
             }
             Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
             #[cfg(feature = "vrfolding")]
-            Work::Video(store, video) => close::vrfolding::evaluate(store, video, method),
+            Work::Video(store, video) => eval::evaluate_video(store, video, method),
         }
     }
 }
@@ -436,9 +468,9 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }
-    let mut text = plan.case.clone();
+    let mut text = plan.case.as_str().to_string();
     for (k, step) in plan.steps.iter().enumerate() {
-        text += &format!("\n{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action, step.fold[0], step.fold[1], step.corners);
+        text += &format!("\n{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action.as_str(), step.fold[0], step.fold[1], step.corners);
         for p in &step.picks {
             let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
             text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
@@ -459,7 +491,10 @@ fn run_record(files: &[PathBuf], out: &Path) -> CliResult {
 }
 
 fn serve(addr: &str, config: close::server::Config) -> CliResult {
-    close::server::run(addr, config).map_err(CliError::Usage)
+    close::server::run(addr, config).map_err(|e| match e {
+        close::server::ServeError::Address { .. } => CliError::Usage(e.to_string()),
+        e => CliError::Serve(e),
+    })
 }
 
 fn main() -> ExitCode {
@@ -479,9 +514,9 @@ fn main() -> ExitCode {
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("error: {message}");
-            ExitCode::FAILURE
+        Err(error) => {
+            eprintln!("error: {error}");
+            error.exit_code()
         }
     }
 }

@@ -181,3 +181,19 @@ fn the_builtin_dataset_exports_and_evaluates() {
     let categories: Vec<&str> = v["categories"].as_array().unwrap().iter().filter_map(|c| c["category"].as_str()).collect();
     assert_eq!(categories, ["napkin", "physics"]);
 }
+
+/// A server whose address is taken fails at once, saying so, with the status of a failure
+/// (1), not of a command line that does not fit (2, as an address that does not parse).
+#[test]
+fn a_taken_address_is_a_failure_to_serve_not_a_usage_error() {
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = taken.local_addr().unwrap().to_string();
+    let out = close(&["serve", "--addr", &addr]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("cannot serve on {addr}")), "{stderr}");
+    let out = close(&["serve", "--addr", "not-an-address"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--addr not-an-address"), "{stderr}");
+}

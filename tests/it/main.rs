@@ -20,6 +20,7 @@ mod modules;
 mod physics;
 mod pictures;
 mod plan;
+mod properties;
 mod record;
 mod reference;
 mod readme;

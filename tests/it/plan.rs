@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use close::plan::plan_for;
+use close::plan::{plan_for, Action, Case};
 
 #[test]
 fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
@@ -15,9 +15,9 @@ fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
     let analysis = close::analyze(&entry.sample.border_frames().unwrap(), Default::default()).unwrap();
     assert!(analysis.steps[1].detection.synthesis.and_then(|s| s.direction).is_some(), "the second fold's line comes from the disks");
     let p = plan_for(&analysis, [0.0, PI]).unwrap();
-    assert_eq!(p.case, "unfold_then_fold");
+    assert_eq!(p.case, Case::UnfoldThenFold);
     let first = &p.steps[0];
-    assert!(first.action == "unfold" && !first.picks.is_empty());
+    assert!(first.action == Action::Unfold && !first.picks.is_empty());
     for pick in &first.picks {
         let v = analysis.border_indices.iter().position(|&i| i == pick.vertex).unwrap();
         let now = analysis.predicted_end[v];

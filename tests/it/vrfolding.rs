@@ -5,7 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
-use close::vrfolding::{evaluate, is_store, Store};
+use close::eval::evaluate_video;
+use close::vrfolding::{is_store, Store};
 use close::{eval, Error, FoldMethod};
 
 fn fixture() -> PathBuf {
@@ -36,7 +37,7 @@ fn the_fixture_is_cut_into_two_folds_per_video() {
 #[test]
 fn eval_gives_table_rows_per_category_and_fold() {
     let store = Store::open(&fixture()).unwrap();
-    let results = store.videos().unwrap().iter().flat_map(|v| evaluate(&store, v, FoldMethod::default())).collect();
+    let results = store.videos().unwrap().iter().flat_map(|v| evaluate_video(&store, v, FoldMethod::default())).collect();
     let report = eval::report(results);
     let names: Vec<&str> = report.categories.iter().map(|s| s.category.as_str()).collect();
     assert_eq!(names, ["Skirt/fold1", "Skirt/fold2", "Top/fold1", "Top/fold2", "Trousers/fold1", "Trousers/fold2", "Tshirt/fold1", "Tshirt/fold2"]);
@@ -154,7 +155,7 @@ fn grip_ids_out_of_range_and_videos_without_action_are_errors() {
         let e = store.folds(&video).unwrap_err().to_string();
         assert!(e.contains(expected), "{e}");
         // In an evaluation the video is one error in its row, not a panic.
-        let rows = evaluate(&store, &video, FoldMethod::default());
+        let rows = evaluate_video(&store, &video, FoldMethod::default());
         assert_eq!((rows.len(), rows[0].category.as_str(), rows[0].error.is_some()), (1, "Skirt/fold1", true));
     }
 }

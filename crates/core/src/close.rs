@@ -156,3 +156,98 @@ pub struct Close {
     pub corners: Vec<f64>,
     pub folds: Vec<[f64; 2]>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The polyline through `corners`, each side cut into edges of about `step`, without its
+    /// last point (so that pieces chain, and a piece that ends at its first point closes).
+    fn path(corners: &[[f64; 2]], step: f64) -> Vec<Point> {
+        corners
+            .windows(2)
+            .flat_map(|side| {
+                let (a, b) = (side[0], side[1]);
+                let edges = ((b[0] - a[0]).hypot(b[1] - a[1]) / step).round().max(1.0) as usize;
+                (0..edges).map(move |k| {
+                    let t = k as f64 / edges as f64;
+                    Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
+                })
+            })
+            .collect()
+    }
+
+    fn found(border: &[Point]) -> Vec<[f64; 2]> {
+        corners(&Disk::of_border(border), border).vertices.iter().map(|&v| [border[v].x, border[v].y]).collect()
+    }
+
+    fn near(a: [f64; 2], b: [f64; 2], tolerance: f64) -> bool {
+        (a[0] - b[0]).hypot(a[1] - b[1]) <= tolerance
+    }
+
+    #[test]
+    fn a_staircase_side_has_no_corners() {
+        // A right triangle whose hypotenuse is a mesh outline's staircase of 20 steps: its
+        // three corners, and none of the 39 turns of the stairs.
+        let h = 0.1;
+        let mut border = path(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]], h);
+        for k in 0..20 {
+            let (x, y) = (2.0 - k as f64 * h, 2.0 - k as f64 * h);
+            border.push(Point::new(x, y, 0.0));
+            border.push(Point::new(x - h, y, 0.0));
+        }
+        let corners = found(&border);
+        let truth = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]];
+        assert_eq!(corners.len(), 3, "{corners:?}");
+        assert!(truth.iter().all(|&t| corners.iter().any(|&c| near(c, t, 1.5 * h))), "{corners:?}");
+    }
+
+    #[test]
+    fn a_circle_has_no_corners() {
+        for (n, stretch) in [(24, 1.0), (64, 1.0), (300, 1.0), (120, 1.6)] {
+            let circle: Vec<Point> = (0..n)
+                .map(|k| {
+                    let t = param_to_angle(k as f64, n);
+                    Point::new(stretch * t.cos(), t.sin(), 0.0)
+                })
+                .collect();
+            assert!(found(&circle).is_empty(), "N = {n}, stretch {stretch}: {:?}", found(&circle));
+        }
+    }
+
+    /// A T-shirt outline (body 2 wide, sleeves, shoulders) with a round neckline of radius
+    /// `neck` dipping between the neck points (±neck, 1), edges of about `step`; and its
+    /// ten corners.
+    fn tshirt(neck: f64, step: f64) -> (Vec<Point>, Vec<[f64; 2]>) {
+        let neck_edges = (std::f64::consts::PI * neck / step).round() as usize;
+        let neckline = (0..neck_edges).map(|k| {
+            let t = -std::f64::consts::PI * k as f64 / neck_edges as f64;
+            Point::new(neck * t.cos(), 1.0 + neck * t.sin(), 0.0)
+        });
+        let border = path(&[[-1.0, -1.5], [1.0, -1.5], [1.0, 0.3], [2.0, 0.3], [2.0, 1.0], [neck, 1.0]], step)
+            .into_iter()
+            .chain(neckline)
+            .chain(path(&[[-neck, 1.0], [-2.0, 1.0], [-2.0, 0.3], [-1.0, 0.3], [-1.0, -1.5]], step))
+            .collect();
+        let truth = vec![[-1.0, -1.5], [1.0, -1.5], [1.0, 0.3], [2.0, 0.3], [2.0, 1.0], [neck, 1.0], [-neck, 1.0], [-2.0, 1.0], [-2.0, 0.3], [-1.0, 0.3]];
+        (border, truth)
+    }
+
+    /// The corners found on a T-shirt, and those of them that are not its own.
+    fn shirt_corners(neck: f64) -> (Vec<[f64; 2]>, Vec<[f64; 2]>, Vec<[f64; 2]>) {
+        let step = 0.05;
+        let (border, truth) = tshirt(neck, step);
+        let corners = found(&border);
+        let spurious = corners.iter().copied().filter(|&c| !truth.iter().any(|&t| near(c, t, 1.5 * step))).collect();
+        (corners, truth, spurious)
+    }
+
+    #[test]
+    fn a_curved_neckline_has_no_corners_but_the_shirt_has_all_its_own() {
+        // A scoop neckline (radius 0.6, 30 % of the body's width): at the scale of the turn
+        // test (WINDOW of the perimeter, about 0.34 here) it turns by ~33°, under MIN_TURN.
+        let (corners, truth, spurious) = shirt_corners(0.6);
+        assert!(truth.iter().all(|&t| corners.iter().any(|&c| near(c, t, 0.075))), "{corners:?}");
+        assert!(spurious.is_empty(), "corners in the neckline or along a side: {spurious:?}");
+    }
+}

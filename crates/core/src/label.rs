@@ -22,12 +22,10 @@
 
 use serde::Serialize;
 
-use crate::angle::{angle_to_param, wrap_tau};
+use crate::angle::{angle_to_param, folds_vertex, wrap_tau, ON_LINE_EDGES};
 
 /// More corners than this and the cloth is called circular.
 pub const CIRCULAR_CORNERS: usize = 20;
-/// A corner closer than this many edges to a fold point lies on the fold line.
-const ON_LINE_EDGES: f64 = 0.5;
 /// Percentages this close count as equal (askew otherwise).
 const EVEN_PERCENT: f64 = 10.0;
 /// A fold whose folded share is this close to 50% is "in half".
@@ -147,7 +145,6 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
     let s1 = angle_to_param(fold[0], n);
     let span = angle_to_param(fold[1] - fold[0], n);
     let folded_percent = 100.0 * span / nf;
-    let offset = |v: f64| (v - s1).rem_euclid(nf);
     let near = |v: f64, s: f64| {
         let d = (v - s).rem_euclid(nf);
         d.min(nf - d) < ON_LINE_EDGES
@@ -155,11 +152,10 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
     let s2 = s1 + span;
     let mut folded_corners = Vec::new();
     let mut on_line = Vec::new();
-    for (k, &v) in corners.iter().enumerate() {
-        let v = v as f64;
-        if near(v, s1) || near(v, s2) {
+    for (k, &c) in corners.iter().enumerate() {
+        if near(c as f64, s1) || near(c as f64, s2) {
             on_line.push(k + 1);
-        } else if offset(v) < span {
+        } else if folds_vertex(n, fold, c, ON_LINE_EDGES) {
             folded_corners.push(k + 1);
         }
     }

@@ -14,10 +14,11 @@
 //! (`close-io`), the pictures (`close-render`), the web app (`close-server`) and the `close`
 //! binary are crates of their own above it.
 //!
-//! The data flows one way, and the modules follow it: [`angle`] and [`rng`] (no imports) →
-//! [`error`] → [`budget`] → [`border`] (validation, normalisation) → [`gli`] → [`disk`] (the
-//! dGLI disk) → [`metrics`] → [`fold`] (fold coordinates) → [`close`] (corners, the CloSE
-//! value) → [`label`] → [`analysis`] (the whole pipeline) → [`plan`] / [`interpolate`].
+//! The modules import one way; each uses only those to its left: [`border`] (validation,
+//! normalisation) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates, a fold
+//! applied) → [`close`] (corners, the CloSE value) / [`label`] / [`metrics`] /
+//! [`interpolate`] → [`analysis`] (the whole pipeline) → [`plan`]. Below them all: [`angle`],
+//! [`error`], [`budget`], [`rng`].
 //! `tests/it/modules.rs` keeps the imports inside this crate one-way.
 //!
 //! ```

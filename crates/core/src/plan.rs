@@ -2,7 +2,8 @@
 //! representation): which corners to grasp and where to put them.
 //!
 //! **High level.** The corners a fold moves are the corners strictly inside its folded arc
-//! (anticlockwise from f1 to f2), more than half an edge from its ends. If the goal fold (g1, g2) moves the same corners as the
+//! (anticlockwise from f1 to f2), more than half an edge from its ends
+//! ([`crate::angle::folds_vertex`]). If the goal fold (g1, g2) moves the same corners as the
 //! current folds together, one step moves them straight to the goal (`"direct"`);
 //! otherwise the current folds are undone, last first, and the goal is folded from the
 //! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`. When the
@@ -27,7 +28,7 @@
 //! let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
 //! // Diagonal fold from corner 1 (vertex 0) to corner 3 (vertex 2): corner 2 goes onto corner 4.
 //! let p = plan(&square, &[0, 1, 2, 3], &[], [0.0, PI]).unwrap();
-//! assert_eq!(p.case, "fold");
+//! assert_eq!(p.case, close_core::plan::Case::Fold);
 //! assert_eq!(p.steps[0].corners, vec![2]);
 //! let to = p.steps[0].picks[0].to;
 //! assert!(to[0].abs() < 1e-12 && (to[1] - 1.0).abs() < 1e-12 && to[2] == 0.0);
@@ -38,7 +39,7 @@ use std::collections::BTreeSet;
 use serde::Serialize;
 
 use crate::analysis::Analysis;
-use crate::angle::{angle_to_param, distance, edge, param_to_angle, wrap_tau};
+use crate::angle::{angle_to_param, distance, edge, folds_vertex, param_to_angle, wrap_tau, ON_LINE_EDGES};
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
 use crate::fold::reflect::{apply_fold_line, fold_line, folded_vertices, reflect_xy};
@@ -56,11 +57,56 @@ pub struct Pick {
     pub to: [f64; 3],
 }
 
+/// What a step does with its fold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Action {
+    /// `"fold"`: fold along it.
+    Fold,
+    /// `"unfold"`: take it back.
+    Unfold,
+}
+
+/// How the plan reaches the goal (see the module's doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Case {
+    /// `"fold"`: one fold of the flat cloth.
+    Fold,
+    /// `"direct"`: the goal moves the corners the current folds moved; one step.
+    Direct,
+    /// `"unfold_then_fold"`: the current folds undone, last first, then the goal folded.
+    UnfoldThenFold,
+    /// `"already_there"`: the cloth is in the goal state; no step.
+    AlreadyThere,
+}
+
+impl Action {
+    /// The name it is serialised as.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Action::Fold => "fold",
+            Action::Unfold => "unfold",
+        }
+    }
+}
+
+impl Case {
+    /// The name it is serialised as.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Case::Fold => "fold",
+            Case::Direct => "direct",
+            Case::UnfoldThenFold => "unfold_then_fold",
+            Case::AlreadyThere => "already_there",
+        }
+    }
+}
+
 /// One manipulation: fold along `fold`, or undo it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PlanStep {
-    /// `"fold"` or `"unfold"`.
-    pub action: String,
+    pub action: Action,
     /// The fold (f1, f2) in angles.
     pub fold: [f64; 2],
     /// 1-based numbers of every corner the step moves.
@@ -72,8 +118,7 @@ pub struct PlanStep {
 /// The plan from the current state to the goal fold.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Plan {
-    /// `"fold"` (from flat), `"direct"`, `"unfold_then_fold"`, or `"already_there"` (no step).
-    pub case: String,
+    pub case: Case,
     pub steps: Vec<PlanStep>,
 }
 
@@ -134,28 +179,16 @@ fn grasped(border: &[Point], moved: &[usize], arc: &[usize], p1: &Point, p2: &Po
     }
 }
 
-/// A corner closer than this many edges to a fold point lies on the fold line (as in
-/// [`crate::label`]): a detected fold ending a hair past a corner does not fold it.
-const ON_LINE_EDGES: f64 = 0.5;
-
-/// Corners strictly inside the folded arc of `fold`, off its ends, as vertex indices.
+/// Corners strictly inside the folded arc of `fold`, off the line ([`folds_vertex`], as in
+/// [`crate::label`]), as vertex indices.
 fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
-    let (s1, s2) = (param(fold[0], n), param(fold[1], n));
-    let span = (s2 - s1).rem_euclid(n as f64);
-    corners
-        .iter()
-        .copied()
-        .filter(|&c| {
-            let offset = (c as f64 - s1).rem_euclid(n as f64);
-            offset > ON_LINE_EDGES && offset < span - ON_LINE_EDGES
-        })
-        .collect()
+    corners.iter().copied().filter(|&c| folds_vertex(n, fold, c, ON_LINE_EDGES)).collect()
 }
 
 /// A step that folds `before` along `fold` (or, `unfold`, takes the folded state back).
 /// `line` is the line the fold is made along (by default through its two fold points of
 /// `before`); `from_state` gives where a grasped vertex is now when the step starts a fold.
-fn step(action: &str, before: &[Point], corners: &[usize], fold: [f64; 2], line: Option<Line>, from_state: &[Point]) -> PlanStep {
+fn step(action: Action, before: &[Point], corners: &[usize], fold: [f64; 2], line: Option<Line>, from_state: &[Point]) -> PlanStep {
     let n = before.len();
     let (p1, p2) = (point_at(before, param(fold[0], n)), point_at(before, param(fold[1], n)));
     let line = line.or_else(|| fold_line(before, fold, None));
@@ -166,12 +199,12 @@ fn step(action: &str, before: &[Point], corners: &[usize], fold: [f64; 2], line:
         .into_iter()
         .map(|v| {
             let folded = reflect(&before[v]);
-            let (from, to) = if action == "unfold" { (folded, before[v]) } else { (from_state[v], folded) };
+            let (from, to) = if action == Action::Unfold { (folded, before[v]) } else { (from_state[v], folded) };
             Pick { vertex: v, angle: param_to_angle(v as f64, n), from: to_xyz(&from), to: to_xyz(&to) }
         })
         .collect();
     let number = |c: usize| corners.iter().position(|&k| k == c).map_or(0, |i| i + 1);
-    PlanStep { action: action.to_string(), fold, corners: moved.iter().map(|&c| number(c)).collect(), picks }
+    PlanStep { action, fold, corners: moved.iter().map(|&c| number(c)).collect(), picks }
 }
 
 fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
@@ -229,23 +262,23 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
     if let [only] = current_folds {
         let same = |a: f64, b: f64| distance(a, b) <= SAME_FOLD_EDGES * edge(n);
         if same(only[0], goal[0]) && same(only[1], goal[1]) {
-            return Ok(Plan { case: "already_there".into(), steps: Vec::new() });
+            return Ok(Plan { case: Case::AlreadyThere, steps: Vec::new() });
         }
     }
     if current_folds.is_empty() {
-        return Ok(Plan { case: "fold".into(), steps: vec![step("fold", flat, &corners, goal, None, flat)] });
+        return Ok(Plan { case: Case::Fold, steps: vec![step(Action::Fold, flat, &corners, goal, None, flat)] });
     }
     let folded_now: BTreeSet<usize> = current_folds.iter().flat_map(|&f| corners_moved(n, &corners, f)).collect();
     let folded_by_goal: BTreeSet<usize> = corners_moved(n, &corners, goal).into_iter().collect();
     if folded_now == folded_by_goal {
-        return Ok(Plan { case: "direct".into(), steps: vec![step("fold", flat, &corners, goal, None, current)] });
+        return Ok(Plan { case: Case::Direct, steps: vec![step(Action::Fold, flat, &corners, goal, None, current)] });
     }
     let mut steps: Vec<PlanStep> = (0..current_folds.len())
         .rev()
-        .map(|k| step("unfold", &states[k], &corners, current_folds[k], made_along[k], &states[k]))
+        .map(|k| step(Action::Unfold, &states[k], &corners, current_folds[k], made_along[k], &states[k]))
         .collect();
-    steps.push(step("fold", flat, &corners, goal, None, flat));
-    Ok(Plan { case: "unfold_then_fold".into(), steps })
+    steps.push(step(Action::Fold, flat, &corners, goal, None, flat));
+    Ok(Plan { case: Case::UnfoldThenFold, steps })
 }
 
 /// Plan from an analysis to the goal fold: from its start border, corners and folds (each
@@ -298,10 +331,10 @@ mod tests {
     fn diagonal_goal_puts_the_one_corner_on_the_opposite_corner() {
         let (sq, corners) = square();
         let p = plan(&sq, &corners, &[], [angle(0.0, 16), angle(8.0, 16)]).unwrap();
-        assert_eq!(p.case, "fold");
+        assert_eq!(p.case, Case::Fold);
         assert_eq!(p.steps.len(), 1);
         let s = &p.steps[0];
-        assert_eq!((s.action.as_str(), s.corners.clone()), ("fold", vec![2]));
+        assert_eq!((s.action, s.corners.clone()), (Action::Fold, vec![2]));
         assert_eq!(s.picks.len(), 1);
         assert_pick(&s.picks[0], 4, [1.0, 0.0], [0.0, 1.0]);
     }
@@ -324,7 +357,7 @@ mod tests {
         let current = [angle(2.0, 16), angle(10.0, 16)];
         // A slightly askew fold of the same right side moves corners 2 and 3 again.
         let p = plan(&sq, &corners, &[current], [angle(3.0, 16), angle(9.0, 16)]).unwrap();
-        assert_eq!(p.case, "direct");
+        assert_eq!(p.case, Case::Direct);
         assert_eq!(p.steps.len(), 1);
         let s = &p.steps[0];
         assert_eq!(s.corners, vec![2, 3]);
@@ -339,9 +372,9 @@ mod tests {
         let current = [angle(2.0, 16), angle(10.0, 16)];
         // Top half instead: corners 3 and 4.
         let p = plan(&sq, &corners, &[current], [angle(6.0, 16), angle(14.0, 16)]).unwrap();
-        assert_eq!(p.case, "unfold_then_fold");
-        let actions: Vec<&str> = p.steps.iter().map(|s| s.action.as_str()).collect();
-        assert_eq!(actions, ["unfold", "fold"]);
+        assert_eq!(p.case, Case::UnfoldThenFold);
+        let actions: Vec<Action> = p.steps.iter().map(|s| s.action).collect();
+        assert_eq!(actions, [Action::Unfold, Action::Fold]);
         let (unfold, fold) = (&p.steps[0], &p.steps[1]);
         assert_eq!((unfold.fold, unfold.corners.clone()), (current, vec![2, 3]));
         assert_pick(&unfold.picks[0], 4, [0.0, 0.0], [1.0, 0.0]);
@@ -357,7 +390,7 @@ mod tests {
         // A detected diagonal fold just short of 2π and just past π: still corner 2 alone.
         let detected = [TAU - 1e-9, PI + 1e-9];
         let p = plan(&sq, &corners, &[detected], [angle(1.0, 16), angle(7.0, 16)]).unwrap();
-        assert_eq!(p.case, "direct");
+        assert_eq!(p.case, Case::Direct);
         assert_eq!(p.steps[0].corners, vec![2]);
         let pick = &p.steps[0].picks[0];
         assert_eq!(pick.vertex, 4);
@@ -371,9 +404,9 @@ mod tests {
         // Right quarter over (x = 0.75), then the stack's bottom half up (y = 0.5).
         let current = [[angle(3.0, 16), angle(9.0, 16)], [angle(14.0, 16), angle(6.0, 16)]];
         let p = plan(&sq, &corners, &current, [angle(0.0, 16), angle(8.0, 16)]).unwrap();
-        assert_eq!(p.case, "unfold_then_fold");
-        let summary: Vec<(&str, [f64; 2], Vec<usize>)> = p.steps.iter().map(|s| (s.action.as_str(), s.fold, s.corners.clone())).collect();
-        assert_eq!(summary, vec![("unfold", current[1], vec![1, 2]), ("unfold", current[0], vec![2, 3]), ("fold", [0.0, PI], vec![2])]);
+        assert_eq!(p.case, Case::UnfoldThenFold);
+        let summary: Vec<(Action, [f64; 2], Vec<usize>)> = p.steps.iter().map(|s| (s.action, s.fold, s.corners.clone())).collect();
+        assert_eq!(summary, vec![(Action::Unfold, current[1], vec![1, 2]), (Action::Unfold, current[0], vec![2, 3]), (Action::Fold, [0.0, PI], vec![2])]);
         assert_pick(&p.steps[0].picks[0], 0, [0.0, 1.0], [0.0, 0.0]);
         assert_pick(&p.steps[0].picks[1], 4, [0.5, 1.0], [0.5, 0.0]);
         assert_pick(&p.steps[1].picks[0], 4, [0.5, 0.0], [1.0, 0.0]);
@@ -416,11 +449,11 @@ mod tests {
         let current = [angle(2.0, 16), angle(10.0, 16)];
         // The same fold, given one turn further round: already there, no motion.
         let p = plan(&sq, &corners, &[current], [current[0] + TAU, current[1] - TAU]).unwrap();
-        assert_eq!(p.case, "already_there");
+        assert_eq!(p.case, Case::AlreadyThere);
         assert!(p.steps.is_empty());
         // A quarter of an edge off is the same fold; a whole edge is not.
-        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]]).unwrap().case, "already_there");
-        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]]).unwrap().case, "direct");
+        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]]).unwrap().case, Case::AlreadyThere);
+        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]]).unwrap().case, Case::Direct);
     }
 
     #[test]
@@ -430,6 +463,16 @@ mod tests {
         let [g1, g2] = p.steps[0].fold;
         assert!((0.0..TAU).contains(&g1) && (0.0..TAU).contains(&g2));
         assert!((g1 - (7.0 - TAU)).abs() < 1e-12 && (g2 - 100.0f64.rem_euclid(TAU)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn cases_and_actions_are_serialised_by_their_names() {
+        for case in [Case::Fold, Case::Direct, Case::UnfoldThenFold, Case::AlreadyThere] {
+            assert_eq!(serde_json::to_value(case).unwrap(), case.as_str());
+        }
+        for action in [Action::Fold, Action::Unfold] {
+            assert_eq!(serde_json::to_value(action).unwrap(), action.as_str());
+        }
     }
 
     #[test]

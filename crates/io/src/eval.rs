@@ -6,7 +6,8 @@
 //! are also scored step by step, so first and second folds get rows of their own.
 //! [`evaluate_steps`] scores a sequence fold by fold into rows `<category>/fold<k>` (the
 //! VR-Folding rows of Table I), and a fold that could not be scored (a broken mesh) is
-//! counted as dropped ([`SampleResult::dropped`]), apart from the errors.
+//! counted as dropped ([`SampleResult::dropped`]), apart from the errors; [`evaluate_video`]
+//! gives those rows for a video of a VR-Folding store.
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -18,6 +19,8 @@ use crate::error::Error;
 use crate::angle;
 use crate::fold::FoldMethod;
 use crate::formats::Sample;
+#[cfg(feature = "vrfolding")]
+use crate::vrfolding::{Store, Video};
 
 /// The outcome for one sample.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -223,6 +226,30 @@ pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> 
             .collect(),
         Err(e) => (1..=rows.max(1)).map(|k| SampleResult { error: Some(e.to_string()), ..row(k) }).collect(),
     }
+}
+
+/// The Table I rows of one VR-Folding video: `<Category>/fold1`, `<Category>/fold2` from one analysis of
+/// (start, end of action 1, end of action 2); a fold with a broken mesh is dropped; a video
+/// that cannot be read is one error in its category's fold-1 row.
+#[cfg(feature = "vrfolding")]
+pub fn evaluate_video(store: &Store, video: &Video, method: FoldMethod) -> Vec<SampleResult> {
+    let name = |k: usize| format!("{}/fold{k}", video.id);
+    let category = |k: usize| format!("{}/fold{k}", video.category);
+    let folds = match store.folds(video) {
+        Ok(folds) => folds,
+        Err(e) => return vec![SampleResult { category: category(1), ..SampleResult::unreadable(&name(1), &e.to_string()) }],
+    };
+    let usable = folds.usable();
+    let mut rows = if usable == 0 {
+        Vec::new()
+    } else {
+        evaluate_steps(&Sample::from_frames(video.id.clone(), video.category.clone(), folds.frames.clone()), method)
+    };
+    for k in usable + 1..=folds.broken.len() {
+        let culprit = folds.broken.iter().position(|&b| b).map_or(k, |a| a + 1);
+        rows.push(SampleResult::dropped(&name(k), &category(k), &format!("broken mesh at the start or end of action {culprit}")));
+    }
+    rows
 }
 
 fn stat_of<T>(items: &[T], f: impl Fn(&T) -> Option<f64>) -> Option<Stat> {

@@ -29,6 +29,7 @@ use rerun::datatypes::{TensorBuffer, TensorData};
 use rerun::{LineStrips3D, Points3D, RecordingStream, RecordingStreamBuilder, Scalars, Tensor, TextDocument};
 
 use crate::analysis::Analysis;
+use crate::angle::angle_to_param;
 use crate::border::{point_at, BorderFrames, Point};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
@@ -93,8 +94,7 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
     let steps = analysis.steps.iter().filter_map(|s| s.detection.fold.map(|f| (s.to_frame, f)));
     for (k, (frame, fold)) in steps.enumerate() {
         rec.set_time_sequence(TIMELINE, frame as i64);
-        let to_param = |f: f64| f.rem_euclid(std::f64::consts::TAU) * n as f64 / std::f64::consts::TAU;
-        let ends = [xyz(&point_at(&folded, to_param(fold[0]))), xyz(&point_at(&folded, to_param(fold[1])))];
+        let ends = fold.map(|f| xyz(&point_at(&folded, angle_to_param(f, n))));
         let base = format!("fold/{}", k + 1);
         rec.log(format!("{base}/points"), &Points3D::new(ends).with_labels(["f1", "f2"])).map_err(failed)?;
         rec.log(format!("{base}/line"), &LineStrips3D::new([ends])).map_err(failed)?;

@@ -20,7 +20,7 @@ use nalgebra::Vector2;
 use rayon::prelude::*;
 
 use super::loss::{exact_loss, ring_cells, Cell, RingTables};
-use crate::angle::{edge, wrap_pi as wrap, wrap_tau, TAU};
+use crate::angle::{edge, wrap_pi, wrap_tau, TAU};
 use crate::disk::Disk;
 
 /// Starting curves a0 = 2πm/STARTS, a1 = 0.
@@ -126,7 +126,7 @@ pub fn fit_curves(g: &Disk, tables: &RingTables) -> Vec<Curve> {
     let mut kept: Vec<(f64, f64, f64)> = Vec::new();
     for m in minima {
         let rim = m.0 + m.1;
-        if kept.iter().all(|k| wrap(k.0 + k.1 - rim).abs() > merge) {
+        if kept.iter().all(|k| wrap_pi(k.0 + k.1 - rim).abs() > merge) {
             kept.push(m);
         }
     }
@@ -137,7 +137,7 @@ pub fn fit_curves(g: &Disk, tables: &RingTables) -> Vec<Curve> {
             let rim = wrap_tau(a0 + a1);
             // A refinement that runs to the edge of its range found no minimum near the line.
             let refined = refine_rim(&rim_cells, n, rim, rim - reach, rim + reach)
-                .filter(|r| (wrap(r - rim).abs() - reach).abs() > 1e-3 * reach)
+                .filter(|r| (wrap_pi(r - rim).abs() - reach).abs() > 1e-3 * reach)
                 .unwrap_or(rim);
             Curve { a0, a1, loss, rim: refined }
         })
@@ -239,10 +239,10 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> O
     let edge = edge(n);
     let near: Vec<Cell> = rim_cells
         .iter()
-        .filter(|c| wrap(c.angle - rim).abs() <= RIM_WINDOW_EDGES * edge)
-        .map(|c| Cell { angle: rim + wrap(c.angle - rim), ..*c })
+        .filter(|c| wrap_pi(c.angle - rim).abs() <= RIM_WINDOW_EDGES * edge)
+        .map(|c| Cell { angle: rim + wrap_pi(c.angle - rim), ..*c })
         .collect();
-    let (lo, hi) = (rim + wrap(lo - rim), rim + wrap(hi - rim));
+    let (lo, hi) = (rim + wrap_pi(lo - rim), rim + wrap_pi(hi - rim));
     // Only a changed rim cell (a vertex) within the searched angles says where the fold is;
     // change elsewhere (pairs reaching a nearby corner) would pull the minimum to a bound.
     let tiny = 1e-9 * edge;
@@ -272,7 +272,7 @@ mod tests {
             .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
             .map(|(i, j)| {
                 let p = position(n, i, j);
-                ridges.iter().map(|&(rim, a1)| (-(wrap(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()).sum()
+                ridges.iter().map(|&(rim, a1)| (-(wrap_pi(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()).sum()
             })
             .collect();
         Disk::from_values(n, values).unwrap()
@@ -313,7 +313,7 @@ mod tests {
     fn minima_closer_than_the_merge_distance_are_one_curve() {
         let n = 60;
         let curves = fit(&ridged(n, &[(2.0, 0.0)]));
-        let near: Vec<_> = curves.iter().filter(|c| wrap(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
+        let near: Vec<_> = curves.iter().filter(|c| wrap_pi(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
         assert_eq!(near.len(), 1, "{curves:?}");
     }
 

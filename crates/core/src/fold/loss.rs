@@ -27,12 +27,14 @@ use crate::disk::{ring_angle, Disk};
 pub const K1: f64 = 0.1;
 pub const K2: f64 = 0.05;
 pub const K3: f64 = 0.1;
-pub const TAU: f64 = PI / 4.0;
+/// The paper's τ: the width (standard deviation, radians) of p1's Gaussian, past which a
+/// cell's angular offset from the curve stops being penalised. Not [`crate::angle::TAU`].
+pub const GAUSSIAN_WIDTH: f64 = PI / 4.0;
 
-/// Kernel of the √g term: k1·δ²·exp(−δ²/2τ²).
+/// Kernel of the √g term: k1·δ²·exp(−δ²/2τ²), τ = [`GAUSSIAN_WIDTH`].
 #[inline]
 pub fn kernel_sqrt_g(delta: f64) -> f64 {
-    K1 * delta * delta * (-delta * delta / (2.0 * TAU * TAU)).exp()
+    K1 * delta * delta * (-delta * delta / (2.0 * GAUSSIAN_WIDTH * GAUSSIAN_WIDTH)).exp()
 }
 
 /// Kernel of the g term (with its minus sign taken out): k2/(k3 + δ²).

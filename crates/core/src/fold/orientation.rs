@@ -14,7 +14,7 @@
 //! arc with fewer vertices is the folded one (a cloth is folded smaller part over larger),
 //! and for equal arcs the one that starts at the smaller angle.
 
-use crate::angle::{arc_contains, param_to_angle, wrap_tau};
+use crate::angle::{folds_vertex, wrap_tau};
 use crate::disk::Disk;
 
 /// Flip scores closer than this are a tie.
@@ -35,7 +35,7 @@ pub struct Orientation {
 
 /// Edges lying wholly inside the anticlockwise arc from angle `from` to angle `to`.
 fn edges_inside(n: usize, from: f64, to: f64) -> Vec<usize> {
-    let inside = |v: usize| arc_contains(from, to, param_to_angle(v as f64, n));
+    let inside = |v: usize| folds_vertex(n, [from, to], v, 0.0);
     (0..n).filter(|&e| inside(e) && inside((e + 1) % n)).collect()
 }
 
@@ -98,6 +98,7 @@ pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> ([f64; 2], Orientatio
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::angle::param_to_angle;
     use crate::border::Point;
 
     fn square() -> Vec<Point> {

@@ -423,3 +423,136 @@ fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    use crate::rng::SplitMix64;
+
+    /// A square of side 2·`half` centred on the origin, `per_side` edges a side, anticlockwise
+    /// from (−half, −half), at height `z(k)` for vertex k.
+    fn square(per_side: usize, half: f64, z: impl Fn(usize) -> f64) -> Vec<Point> {
+        (0..4 * per_side)
+            .map(|k| {
+                let t = -half + 2.0 * half * (k % per_side) as f64 / per_side as f64;
+                let (x, y) = [(t, -half), (half, t), (-t, half), (-half, -t)][k / per_side];
+                Point::new(x, y, z(k))
+            })
+            .collect()
+    }
+
+    /// The border point at parameter `s`, by the test's own interpolation.
+    fn at(points: &[Point], s: f64) -> Point {
+        let n = points.len();
+        let (k, t) = (s.floor() as usize % n, s - s.floor());
+        Point::from(points[k].coords * (1.0 - t) + points[(k + 1) % n].coords * t)
+    }
+
+    /// `before` folded by hand: every vertex v with 0 < (v − s1) mod n < (s2 − s1) mod n
+    /// reflected across the XY line through the border points at s1 and s2, and turned over
+    /// at height `axis` (z ↦ 2·axis − z).
+    fn fold_by_hand(before: &[Point], s: [f64; 2], axis: f64) -> Vec<Point> {
+        let nf = before.len() as f64;
+        let (a, b) = (at(before, s[0]), at(before, s[1]));
+        let (ux, uy) = ((b.x - a.x) / (b - a).xy().norm(), (b.y - a.y) / (b - a).xy().norm());
+        let span = (s[1] - s[0]).rem_euclid(nf);
+        before
+            .iter()
+            .enumerate()
+            .map(|(v, p)| {
+                let offset = (v as f64 - s[0]).rem_euclid(nf);
+                if offset <= 0.0 || offset >= span {
+                    return *p;
+                }
+                let t = (p.x - a.x) * ux + (p.y - a.y) * uy;
+                let (fx, fy) = (a.x + t * ux, a.y + t * uy);
+                Point::new(2.0 * fx - p.x, 2.0 * fy - p.y, 2.0 * axis - p.z)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_cost_shortcuts_equal_a_full_dgli_of_the_folded_border() {
+        // A flat start (flap pairs negated) and a wavy one (every moved pair computed).
+        let flat = square(10, 0.7, |_| 0.0);
+        let wavy = square(10, 0.7, |k| 0.03 * (k as f64 * 0.7).sin());
+        for (before, flap_negates) in [(flat, true), (wavy, false)] {
+            let s = [3.4, 17.7];
+            let axis = flap_axis(&before);
+            let folded = fold_by_hand(&before, s, axis);
+            let (start, end) = (Disk::of_border(&before), Disk::of_border(&folded));
+            let probe = Probe::around(&start, &end, s, flap_negates);
+            let line = line_of(&before, s, None).expect("two distinct fold points");
+            let turned = Turned::new(&before, axis, s, &line);
+            // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
+            let (flap, unmoved) = (|e: usize| turned.edge_moved(e) == (true, true), |e: usize| turned.edge_moved(e) == (false, false));
+            let has = |kind: &dyn Fn(usize, usize) -> bool| probe.pairs.iter().any(|&(i, j)| kind(i, j));
+            assert!(has(&|i, j| unmoved(i) && unmoved(j)) && has(&|i, j| flap(i) && flap(j)) && has(&|i, j| flap(i) != flap(j)));
+            let cost = probe.cost(&turned);
+            assert!(cost < 1e-9, "flap negated: {flap_negates}: the synthesised disk differs from the folded border's by {cost}");
+            // The same probe tells another fold apart.
+            let other = [5.0, 15.0];
+            let wrong = Turned::new(&before, axis, other, &line_of(&before, other, None).unwrap());
+            assert!(probe.cost(&wrong) > 1e-2, "{}", probe.cost(&wrong));
+        }
+    }
+
+    #[test]
+    fn arcs_left_of_a_line_are_where_the_border_crosses_it() {
+        // y = 0.6 rightwards across a unit square of 16 vertices: its left is above; the border
+        // crosses on edge 6 (y 0.5 → 0.75) and edge 13 (0.75 → 0.5).
+        let unit = square(4, 0.5, |_| 0.0).iter().map(|p| Point::new(p.x + 0.5, p.y + 0.5, 0.0)).collect::<Vec<_>>();
+        let across = Line { point: [0.0, 0.6], direction: [1.0, 0.0] };
+        let arcs = arcs_left_of(&unit, &across);
+        assert_eq!(arcs.len(), 1);
+        assert!((arcs[0][0] - 6.4).abs() < 1e-12 && (arcs[0][1] - 13.6).abs() < 1e-12, "{arcs:?}");
+        // Turned round, the line's left is below: the arc from 13.6 round to 6.4.
+        let below = arcs_left_of(&unit, &Line { point: [0.0, 0.6], direction: [-1.0, 0.0] });
+        assert!(below.len() == 1 && (below[0][0] - 13.6).abs() < 1e-12 && (below[0][1] - 6.4).abs() < 1e-12, "{below:?}");
+        // A line that misses the border, or cuts off a single vertex, gives no arc.
+        assert!(arcs_left_of(&unit, &Line { point: [0.0, 2.0], direction: [-1.0, 0.0] }).is_empty());
+        let h = 0.5f64.sqrt();
+        assert!(arcs_left_of(&unit, &Line { point: [0.05, 0.05], direction: [-h, h] }).is_empty());
+
+        // A U (open upwards) crossed by y = 1.5: both prongs, each its own arc.
+        let corners = [[0.0, 0.0], [3.0, 0.0], [3.0, 2.0], [2.0, 2.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]];
+        let u: Vec<Point> = (0..corners.len() * 4)
+            .map(|k| {
+                let (a, b, t) = (corners[k / 4], corners[(k / 4 + 1) % corners.len()], (k % 4) as f64 / 4.0);
+                Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
+            })
+            .collect();
+        let line = Line { point: [0.0, 1.5], direction: [1.0, 0.0] };
+        let arcs = arcs_left_of(&u, &line);
+        assert_eq!(arcs.len(), 2, "{arcs:?}");
+        for s in &arcs {
+            // Each end lies on the line, and the arc's vertices above it, the rest below.
+            assert!(s.iter().all(|&e| (at(&u, e).y - 1.5).abs() < 1e-12), "{s:?}");
+            let inside = ArcVertices::of(u.len(), s[0], s[1]);
+            assert!(inside.vertices().all(|v| u[v].y > 1.5));
+            assert!(inside.len >= 2);
+        }
+        let above: usize = arcs.iter().map(|s| ArcVertices::of(u.len(), s[0], s[1]).len).sum();
+        assert_eq!(above, u.iter().filter(|p| p.y > 1.5).count());
+    }
+
+    #[test]
+    fn refine_finds_an_off_grid_fold() {
+        // Folds through seeded random points along two edges, not at vertices or half edges;
+        // refine starts from the nearest half edges, as the cut gives them.
+        let before = square(10, 0.7, |_| 0.0);
+        let start = Disk::of_border(&before);
+        let mut rng = SplitMix64::new(16);
+        for _ in 0..4 {
+            let truth = [rng.below(6) as f64 + 2.0 + rng.range(0.1, 0.9), rng.below(6) as f64 + 21.0 + rng.range(0.1, 0.9)];
+            // Laid at a height of its own, not the synthesis's LIFT.
+            let end = Disk::of_border(&fold_by_hand(&before, truth, 0.006));
+            let guess = truth.map(|s| (2.0 * s).round() / 2.0);
+            let found = refine(&before, &start, &end, guess, None);
+            let error = [0, 1].map(|k| (found.s[k] - truth[k]).abs());
+            assert!(error.iter().all(|&e| e <= 0.1), "truth {truth:?}, found {:?}: {error:?} edges off", found.s);
+            assert!(found.mismatch < 0.2 * found.unfolded_mismatch, "{found:?}");
+        }
+    }
+}

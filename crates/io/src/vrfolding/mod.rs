@@ -379,27 +379,3 @@ impl Store {
         Ok(ids.chunks_exact(3).map(|c| [c[0] as usize, c[1] as usize, c[2] as usize]).collect())
     }
 }
-
-/// Table I rows of one video: `<Category>/fold1`, `<Category>/fold2` from one analysis of
-/// (start, end of action 1, end of action 2); a fold with a broken mesh is dropped; a video
-/// that cannot be read is one error in its category's fold-1 row.
-pub fn evaluate(store: &Store, video: &Video, method: crate::FoldMethod) -> Vec<crate::eval::SampleResult> {
-    use crate::eval::{evaluate_steps, SampleResult};
-    let name = |k: usize| format!("{}/fold{k}", video.id);
-    let category = |k: usize| format!("{}/fold{k}", video.category);
-    let folds = match store.folds(video) {
-        Ok(folds) => folds,
-        Err(e) => return vec![SampleResult { category: category(1), ..SampleResult::unreadable(&name(1), &e.to_string()) }],
-    };
-    let usable = folds.usable();
-    let mut rows = if usable == 0 {
-        Vec::new()
-    } else {
-        evaluate_steps(&Sample::from_frames(video.id.clone(), video.category.clone(), folds.frames.clone()), method)
-    };
-    for k in usable + 1..=folds.broken.len() {
-        let culprit = folds.broken.iter().position(|&b| b).map_or(k, |a| a + 1);
-        rows.push(SampleResult::dropped(&name(k), &category(k), &format!("broken mesh at the start or end of action {culprit}")));
-    }
-    rows
-}

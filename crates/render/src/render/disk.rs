@@ -35,6 +35,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::colour::{Ramp, Scale};
 use super::raster::Recording;
+pub use super::sector_map::sector_at;
 use super::sector_map::SectorMap;
 use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
 use crate::cache::Lru;
@@ -84,16 +85,6 @@ impl Layout {
         (self.cx + self.radius * r * theta.cos(), self.cy - self.radius * r * theta.sin())
     }
 
-}
-
-/// The (ring d, first edge a) of the sector holding polar point (r ≤ 1, θ) on an N-edge disk.
-pub fn sector_at(n: usize, r: f64, theta: f64) -> (usize, usize) {
-    let l = n / 2;
-    // Ring d spans ((L − d)/L, (L − d + 1)/L]; the centre belongs to the innermost ring.
-    let d = (l + 1).saturating_sub((r * l as f64).ceil() as usize).clamp(1, l);
-    // θ = π(2a + d + 1)/N, sectors one edge wide around it.
-    let a = ((theta * n as f64 / PI - d as f64 - 1.0) / 2.0).round();
-    (d, a.rem_euclid(n as f64) as usize % n)
 }
 
 /// What is drawn over a diff disk: fold points on the rim and the fold curves.
@@ -168,7 +159,7 @@ impl Template {
             draw_frame(canvas, &layout);
             draw_ring_ruler(canvas, &layout, n / 2);
         });
-        Template { sectors: SectorMap::new(width, height, n), guides }
+        Template { sectors: SectorMap::new(width, height, (layout.cx, layout.cy), layout.radius, n), guides }
     }
 }
 

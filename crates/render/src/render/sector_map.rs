@@ -8,14 +8,24 @@
 //! them once (the disk pictures keep it per size and N), so painting is one table read and
 //! one copy per pixel. A 480 px map weighs about 0.35 MB, a 2048 px one about 6.5 MB.
 
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
-use super::disk::{sector_at, Layout};
 use super::Canvas;
 use crate::disk::condensed_index;
 
-/// The cell of every disk pixel of a `width`×`height` canvas (as [`Layout::of`] places the
-/// disk) for N edges.
+/// The (ring d, first edge a) of the sector holding polar point (r ≤ 1, θ) on an N-edge disk.
+pub fn sector_at(n: usize, r: f64, theta: f64) -> (usize, usize) {
+    let l = n / 2;
+    // Ring d spans ((L − d)/L, (L − d + 1)/L]; the centre belongs to the innermost ring.
+    let d = (l + 1).saturating_sub((r * l as f64).ceil() as usize).clamp(1, l);
+    // θ = π(2a + d + 1)/N, sectors one edge wide around it.
+    let a = ((theta * n as f64 / PI - d as f64 - 1.0) / 2.0).round();
+    (d, a.rem_euclid(n as f64) as usize % n)
+}
+
+/// The cell of every disk pixel of a `width`×`height` canvas, the disk centred at pixel
+/// point (cx, cy) with rim radius `radius` (as [`super::disk::Layout`] places it), for N
+/// edges.
 #[derive(Debug, PartialEq)]
 pub(crate) struct SectorMap {
     /// Runs of consecutive pixels wholly inside the rim: (index of the first pixel, row-major,
@@ -40,8 +50,7 @@ struct RimPixel {
 impl SectorMap {
     /// Classify every pixel of the disk's bounding box by [`sector_at`]; the rim covers a
     /// pixel by clamp(radius + 1/2 − distance of its centre, 0, 1), a smooth edge.
-    pub(crate) fn new(width: u32, height: u32, n: usize) -> SectorMap {
-        let Layout { cx, cy, radius, .. } = Layout::of(width, height);
+    pub(crate) fn new(width: u32, height: u32, (cx, cy): (f64, f64), radius: f64, n: usize) -> SectorMap {
         let mut map = SectorMap { runs: Vec::new(), cells: Vec::new(), rim: Vec::new() };
         let y_range = ((cy - radius - 1.0).max(0.0) as u32)..((cy + radius + 2.0).min(height as f64) as u32);
         let x_range = ((cx - radius - 1.0).max(0.0) as u32)..((cx + radius + 2.0).min(width as f64) as u32);
@@ -111,24 +120,24 @@ mod tests {
 
     #[test]
     fn the_map_agrees_with_sector_at_on_every_pixel() {
-        for (width, height, n) in [(120, 100, 8), (100, 140, 13), (64, 64, 4), (90, 90, 1000)] {
-            let map = SectorMap::new(width, height, n);
-            let layout = Layout::of(width, height);
+        // Disks inside their canvas, and one whose rim runs off it.
+        for (width, height, (cx, cy), radius, n) in [(120, 100, (52.5, 55.0), 40.0, 8), (100, 140, (50.0, 61.3), 33.7, 13), (64, 64, (30.0, 34.0), 20.0, 4), (90, 90, (45.0, 45.0), 50.0, 1000)] {
+            let map = SectorMap::new(width, height, (cx, cy), radius, n);
             let mut seen = vec![false; (width * height) as usize];
             for (x, y, cell, coverage) in pixels(&map, width) {
                 assert!(!std::mem::replace(&mut seen[(y * width + x) as usize], true), "pixel ({x}, {y}) twice");
-                let (dx, dy) = (x as f64 + 0.5 - layout.cx, layout.cy - (y as f64 + 0.5));
+                let (dx, dy) = (x as f64 + 0.5 - cx, cy - (y as f64 + 0.5));
                 let dist = dx.hypot(dy);
-                let (d, a) = sector_at(n, (dist / layout.radius).min(1.0), dy.atan2(dx).rem_euclid(TAU));
+                let (d, a) = sector_at(n, (dist / radius).min(1.0), dy.atan2(dx).rem_euclid(TAU));
                 let pair = (a.min((a + d) % n), a.max((a + d) % n));
                 assert_eq!(cell as usize, condensed_index(n, pair.0, pair.1), "({x}, {y}), N = {n}");
                 assert!(coverage > 0.0);
-                assert_eq!(coverage, (layout.radius + 0.5 - dist).min(1.0), "({x}, {y})");
+                assert_eq!(coverage, (radius + 0.5 - dist).min(1.0), "({x}, {y})");
             }
             // The pixels left out lie outside the rim.
             for (k, _) in seen.iter().enumerate().filter(|(_, &s)| !s) {
                 let (x, y) = (k as f64 % width as f64 + 0.5, (k / width as usize) as f64 + 0.5);
-                assert!((x - layout.cx).hypot(y - layout.cy) >= layout.radius + 0.5, "({x}, {y}) left out");
+                assert!((x - cx).hypot(y - cy) >= radius + 0.5, "({x}, {y}) left out");
             }
         }
     }

@@ -415,12 +415,26 @@ pub async fn serve_with(listener: TcpListener, state: AppState, shutdown: impl F
     Ok(())
 }
 
+/// Why [`run`] could not serve.
+#[derive(Debug, thiserror::Error)]
+pub enum ServeError {
+    /// The address is not a socket address: the caller's mistake.
+    #[error("--addr {addr}: {source} (expected e.g. 127.0.0.1:8080)")]
+    Address { addr: String, source: std::net::AddrParseError },
+    /// The runtime could not start.
+    #[error("cannot start the server: {0}")]
+    Runtime(std::io::Error),
+    /// The address could not be bound (in use, not ours), or accepting failed.
+    #[error("cannot serve on {addr}: {source}")]
+    Serve { addr: SocketAddr, source: std::io::Error },
+}
+
 /// `close serve`: log to stderr (`RUST_LOG` overrides), start a runtime, serve.
-pub fn run(addr: &str, config: Config) -> Result<(), String> {
-    let addr: SocketAddr = addr.parse().map_err(|e| format!("--addr {addr}: {e} (expected e.g. 127.0.0.1:8080)"))?;
+pub fn run(addr: &str, config: Config) -> Result<(), ServeError> {
+    let addr: SocketAddr = addr.parse().map_err(|source| ServeError::Address { addr: addr.to_string(), source })?;
     let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "close=info,tower_http=info".into());
     // Already initialised (e.g. by an embedding program) is fine.
     let _ = tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr).try_init();
-    let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().map_err(|e| e.to_string())?;
-    runtime.block_on(serve(addr, AppState::with_config(config))).map_err(|e| format!("cannot serve on {addr}: {e}"))
+    let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().map_err(ServeError::Runtime)?;
+    runtime.block_on(serve(addr, AppState::with_config(config))).map_err(|source| ServeError::Serve { addr, source })
 }

@@ -483,15 +483,34 @@ pub struct DiskRequest {
     scale: Option<Scale>,
 }
 
-/// The answer of `POST /api/disk`: the PNG, and in the header `x-disk-scale` the colour
-/// scale it used ("s max"), which a later request can send back as `scale`.
-fn disk_response(cached: Bytes) -> Response {
-    // The cache holds the scale's two floats ahead of the PNG.
-    let (head, png) = cached.split_at(16.min(cached.len()));
-    let float = |k: usize| head.get(8 * k..8 * k + 8).and_then(|b| b.try_into().ok()).map_or(0.0, f64::from_le_bytes);
-    let scale = format!("{} {}", float(0), float(1));
-    ([(header::CONTENT_TYPE, "image/png".to_string()), (header::CACHE_CONTROL, "no-store".to_string()), (DISK_SCALE, scale)], Bytes::copy_from_slice(png))
-        .into_response()
+/// A disk picture as the file cache keeps it: the PNG and the colour scale (s, max) it used.
+struct DiskPicture {
+    scale: [f64; 2],
+    png: Bytes,
+}
+
+impl DiskPicture {
+    /// Bytes of the scale ahead of the PNG in the cache.
+    const HEAD: usize = 16;
+
+    /// The cache's bytes: the scale's two floats (little-endian), then the PNG.
+    fn into_bytes(self) -> Vec<u8> {
+        self.scale.iter().flat_map(|v| v.to_le_bytes()).chain(self.png).collect()
+    }
+
+    /// The picture from its cache bytes ([`DiskPicture::into_bytes`]).
+    fn from_bytes(cached: Bytes) -> DiskPicture {
+        let head = Self::HEAD.min(cached.len());
+        let float = |k: usize| cached.get(8 * k..8 * k + 8).and_then(|b| b.try_into().ok()).map_or(0.0, f64::from_le_bytes);
+        DiskPicture { scale: [float(0), float(1)], png: cached.slice(head..) }
+    }
+
+    /// The answer of `POST /api/disk`: the PNG, and in the header `x-disk-scale` the colour
+    /// scale it used ("s max"), which a later request can send back as `scale`.
+    fn into_response(self) -> Response {
+        let scale = format!("{} {}", self.scale[0], self.scale[1]);
+        ([(header::CONTENT_TYPE, "image/png".to_string()), (header::CACHE_CONTROL, "no-store".to_string()), (DISK_SCALE, scale)], self.png).into_response()
+    }
 }
 
 /// The header naming the colour scale of a disk picture.
@@ -515,10 +534,10 @@ pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskReque
         .cached_bytes(key, n * n, move |deadline| {
             let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
             let (png, used) = disk_png_scaled(&disk, "dGLI disk · current state", scale, size, size)?;
-            Ok([used.s, used.max].iter().flat_map(|v| v.to_le_bytes()).chain(png).collect())
+            Ok(DiskPicture { scale: [used.s, used.max], png: png.into() }.into_bytes())
         })
         .await?;
-    Ok(disk_response(cached))
+    Ok(DiskPicture::from_bytes(cached).into_response())
 }
 
 #[derive(Debug, Deserialize)]
@@ -533,7 +552,7 @@ pub struct PlanRequest {
 /// `POST /api/plan`'s answer: the plan, and the state it starts from.
 #[derive(Serialize)]
 struct PlanResponse<'a> {
-    case: &'a str,
+    case: crate::plan::Case,
     steps: &'a [PlanStep],
     /// In [0, 2π), as the plan's steps.
     goal: [f64; 2],
@@ -572,7 +591,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
             let a = &analyzed.analysis;
             let plan = crate::plan::plan_for(a, goal)?;
             to_json(&PlanResponse {
-                case: &plan.case,
+                case: plan.case,
                 steps: &plan.steps,
                 goal: goal.map(crate::angle::wrap_tau),
                 folds: &a.folds,
