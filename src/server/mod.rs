@@ -315,7 +315,7 @@ fn cors(origins: &[String]) -> Option<CorsLayer> {
 pub fn app(state: AppState) -> Router {
     let config = state.config().clone();
     let doors = Arc::new(Doors { hosts: config.allowed_hosts.clone(), origins: config.cors_origins.clone() });
-    let uploads = Arc::new(UploadBudget::new(config.upload_budget, config.body_limit));
+    let uploads = Arc::new(UploadBudget::new(config.upload_budget, config.body_limit, config.json_body_limit));
     let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
         .route("/", get(assets::index))
