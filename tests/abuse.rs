@@ -602,17 +602,17 @@ async fn a_real_server_checks_host_and_origin() {
     assert_eq!(server.raw(post(&format!("http://{}", server.addr)).as_bytes()).await.0, 200);
 }
 
-// Issue 18 item 12: a reference that cannot match is refused before the cache is asked, so
-// `"reference": []` is 400 even once the border alone is cached.
-async fn an_empty_disk_reference_is_400_cold_or_cached() {
+// Issue 18 item 12: a reference too short for a border is refused before the cache is
+// asked, so `"reference": []` is 422 even once the border alone is cached.
+async fn an_empty_disk_reference_is_422_cold_or_cached() {
     let (app, _) = test_state(Config::default());
     let border = circle(40, 1.0);
     let ask = |body: Value| Request::post("/api/disk").header(header::CONTENT_TYPE, "application/json").body(Body::from(body.to_string())).unwrap();
     let cold = send(&app, ask(json!({ "border": border, "reference": [] }))).await;
-    assert!(cold.refusal(&[StatusCode::BAD_REQUEST]).contains("reference"), "{}", cold.text());
+    assert!(cold.refusal(&[StatusCode::UNPROCESSABLE_ENTITY]).contains("reference"), "{}", cold.text());
     assert_eq!(send(&app, ask(json!({ "border": border }))).await.status, StatusCode::OK);
     let warm = send(&app, ask(json!({ "border": border, "reference": [] }))).await;
-    assert!(warm.refusal(&[StatusCode::BAD_REQUEST]).contains("reference"), "{}", warm.text());
+    assert!(warm.refusal(&[StatusCode::UNPROCESSABLE_ENTITY]).contains("reference"), "{}", warm.text());
 }
 
 // Issue 18 item 14: nesting past 128 levels is refused anywhere, inside an unknown key too.
@@ -780,8 +780,8 @@ mod cases {
     }
 
     #[test]
-    fn an_empty_disk_reference_is_400_cold_or_cached() {
-        super::run(super::an_empty_disk_reference_is_400_cold_or_cached());
+    fn an_empty_disk_reference_is_422_cold_or_cached() {
+        super::run(super::an_empty_disk_reference_is_422_cold_or_cached());
     }
 
     #[test]

@@ -501,10 +501,13 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
 
 pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskRequest>) -> Result<Response, ApiError> {
     let size = picture_size(req.size);
-    // Checked before the cache: a reference that cannot match is refused even when the
-    // border alone is cached (and "with a reference" is its own part of the key).
-    if let Some(reference) = req.reference.as_deref().filter(|r| r.len() != req.border.len()) {
-        return Err(ApiError::BadRequest(format!("\"reference\" has {} vertices, but \"border\" has {}: give one position per border vertex", reference.len(), req.border.len())));
+    // Checked before the cache, which keys "with a reference" apart from "without": a
+    // reference too short for a border is refused even when the border alone is cached.
+    if let Some(reference) = req.reference.as_deref().filter(|r| r.len() < crate::border::MIN_VERTICES) {
+        return Err(ApiError::Rejected(
+            axum::http::StatusCode::UNPROCESSABLE_ENTITY,
+            format!("\"reference\" has {} vertices: a border needs at least {}", reference.len(), crate::border::MIN_VERTICES),
+        ));
     }
     let reference = req.reference.as_deref().map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat()).unwrap_or_default();
     let scale = match req.scale {
