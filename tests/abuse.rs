@@ -675,6 +675,24 @@ async fn a_body_over_its_routes_limit_is_refused_unread() {
     assert_eq!(status, 200, "{answer:.300}");
 }
 
+// Issue 18 item 9: gzip runs on the async threads, so only answers small enough to take
+// milliseconds are compressed; a large answer is sent as it is, even to a browser that asks.
+async fn only_small_answers_are_gzipped() {
+    let (app, _) = test_state(Config::default());
+    let ask = |uri: &str, body: String| {
+        Request::post(uri).header(header::CONTENT_TYPE, "application/json").header(header::ACCEPT_ENCODING, "gzip").body(Body::from(body)).unwrap()
+    };
+    let small = send(&app, ask("/api/analyze", normal_sample("gzip").to_string())).await;
+    assert_eq!(small.status, StatusCode::OK);
+    assert_eq!(small.headers.get(header::CONTENT_ENCODING).map(|v| v.as_bytes()), Some(&b"gzip"[..]));
+    let body = json!({"border": circle(2000, 1.0), "from": [0.1, 3.0], "to": [1.0, 4.0], "steps": 100}).to_string();
+    let large = send(&app, ask("/api/interpolate", body)).await;
+    assert_eq!(large.status, StatusCode::OK);
+    assert!(large.headers.get(header::CONTENT_ENCODING).is_none(), "a large answer is gzipped");
+    assert!(large.body.len() > 1 << 20, "{} bytes", large.body.len());
+    serde_json::from_slice::<Value>(&large.body).expect("plain JSON");
+}
+
 /// Run one case on its own runtime, and do not wait for its blocking threads when it ends:
 /// a reader that spins forever (before the readers' fixes) fails its case instead of
 /// hanging the whole suite.
@@ -797,5 +815,10 @@ mod cases {
     #[test]
     fn a_body_over_its_routes_limit_is_refused_unread() {
         super::run(super::a_body_over_its_routes_limit_is_refused_unread());
+    }
+
+    #[test]
+    fn only_small_answers_are_gzipped() {
+        super::run(super::only_small_answers_are_gzipped());
     }
 }
