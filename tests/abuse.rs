@@ -560,6 +560,35 @@ async fn a_trickling_body_is_answered_408_at_the_time_out() {
     assert_eq!(server.healthz().await, 200, "served right after");
 }
 
+// Issue 18 item 10: a body trickled far below the minimum rate is cut after the grace (the
+// header time-out, here 1 s), long before the request time-out (30 s), and the connection
+// and its worker are freed.
+async fn a_trickled_body_is_cut_at_the_minimum_rate() {
+    let server = Server::start(Config { header_timeout: Duration::from_secs(1), ..Config::default() }).await;
+    let mut stream = TcpStream::connect(server.addr).await.unwrap();
+    let head = format!("POST /api/analyze HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: 100000\r\n\r\n", server.addr);
+    stream.write_all(head.as_bytes()).await.unwrap();
+    let t = Instant::now();
+    let mut answer = Vec::new();
+    let mut buf = [0u8; 4096];
+    while t.elapsed() < Duration::from_secs(20) {
+        match tokio::time::timeout(Duration::from_millis(100), stream.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => break,
+            Ok(Ok(k)) => answer.extend_from_slice(&buf[..k]),
+            Err(_) => {
+                if stream.write_all(b"[").await.is_err() {
+                    break;
+                }
+            }
+        }
+    }
+    let text = String::from_utf8_lossy(&answer);
+    assert!(text.starts_with("HTTP/1.1 408"), "after {:?}: {text:.300}", t.elapsed());
+    assert!(text.contains("slower than"), "{text:.300}");
+    assert!(t.elapsed() < Duration::from_secs(15), "cut after {:?}: the request time-out, not the rate", t.elapsed());
+    assert_eq!(server.healthz().await, 200, "served right after");
+}
+
 // Issue 11 item 6: a cap on connections; the silent ones go within the header time-out,
 // and the server answers again.
 async fn connections_are_capped_and_freed() {
@@ -820,5 +849,10 @@ mod cases {
     #[test]
     fn only_small_answers_are_gzipped() {
         super::run(super::only_small_answers_are_gzipped());
+    }
+
+    #[test]
+    fn a_trickled_body_is_cut_at_the_minimum_rate() {
+        super::run(super::a_trickled_body_is_cut_at_the_minimum_rate());
     }
 }

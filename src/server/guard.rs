@@ -19,6 +19,10 @@
 //!   of multiplying the memory they take; after a large one, freed memory goes back to the
 //!   OS. A body announced over its route's own limit (uploads to `/api/analyze`: the body
 //!   limit; the JSON routes: the JSON limit) is refused at once, holding nothing.
+//! - **Body rate**: a body must keep arriving. After a grace of the header time-out, it must
+//!   have come at [`MIN_BODY_RATE`] bytes a second on average, or the read fails (408) and
+//!   the connection, its budget share and its worker are freed: a client trickling a body
+//!   cannot hold them for the whole request time-out.
 //!
 //! ```
 //! use close::server::guard::host_name;
@@ -26,8 +30,12 @@
 //! assert_eq!(host_name("[::1]:80"), "::1");
 //! ```
 
+use std::future::Future;
 use std::net::{IpAddr, SocketAddr};
+use std::pin::Pin;
 use std::sync::Arc;
+use std::task::{Context, Poll};
+use std::time::Duration;
 
 use axum::extract::{Request, State};
 use axum::http::{header, HeaderMap, Method, StatusCode};
@@ -192,6 +200,67 @@ pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Req
         release_memory();
     }
     response
+}
+
+/// Slowest average a request body may arrive at, after the grace: 16 KiB/s, so a 64 MiB
+/// upload may take about an hour, and a trickle of a byte now and then is cut.
+pub const MIN_BODY_RATE: u64 = 16 * 1024;
+
+/// A request body that fails once it falls behind [`MIN_BODY_RATE`]: by `grace` after it
+/// started plus the time its bytes so far were due at that rate.
+struct MinRate {
+    inner: axum::body::Body,
+    due: Pin<Box<tokio::time::Sleep>>,
+    started: tokio::time::Instant,
+    grace: Duration,
+    received: u64,
+}
+
+impl MinRate {
+    fn new(inner: axum::body::Body, grace: Duration) -> MinRate {
+        let started = tokio::time::Instant::now();
+        MinRate { inner, due: Box::pin(tokio::time::sleep_until(started + grace)), started, grace, received: 0 }
+    }
+}
+
+impl hyper::body::Body for MinRate {
+    type Data = axum::body::Bytes;
+    type Error = axum::Error;
+
+    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
+        let this = &mut *self;
+        match Pin::new(&mut this.inner).poll_frame(cx) {
+            Poll::Ready(Some(Ok(frame))) => {
+                this.received += frame.data_ref().map_or(0, |d| d.len() as u64);
+                let owed = Duration::from_secs_f64(this.received as f64 / MIN_BODY_RATE as f64);
+                let due = this.started + this.grace + owed;
+                this.due.as_mut().reset(due);
+                Poll::Ready(Some(Ok(frame)))
+            }
+            Poll::Pending if this.due.as_mut().poll(cx).is_ready() => Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow)))),
+            other => other,
+        }
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> hyper::body::SizeHint {
+        self.inner.size_hint()
+    }
+}
+
+/// Why a body read failed: it arrived too slowly.
+#[derive(Debug, thiserror::Error)]
+#[error("the request body arrives slower than {MIN_BODY_RATE} bytes a second")]
+pub struct BodyTooSlow;
+
+/// Middleware: read every request body through [`MinRate`], with the header time-out as
+/// its grace.
+pub async fn body_rate(State(grace): State<Duration>, request: Request, next: Next) -> Response {
+    let request = request.map(|body| axum::body::Body::new(MinRate::new(body, grace)));
+    next.run(request).await
 }
 
 /// Requests holding this much of the budget give their freed memory back when answered.

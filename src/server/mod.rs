@@ -357,6 +357,7 @@ pub fn app(state: AppState) -> Router {
                 .layer(axum::middleware::from_fn_with_state(doors, guard::doors))
                 .layer(TimeoutLayer::with_status_code(StatusCode::REQUEST_TIMEOUT, config.timeout))
                 .layer(axum::middleware::from_fn_with_state(uploads, guard::upload_budget))
+                .layer(axum::middleware::from_fn_with_state(config.header_timeout, guard::body_rate))
                 .layer(RequestBodyLimitLayer::new(config.body_limit)),
         )
         .with_state(state)
