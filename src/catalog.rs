@@ -160,10 +160,14 @@ fn sample_file(path: &Path) -> bool {
     SAMPLE_FILES.contains(&extension(path).as_str())
 }
 
+/// One thing found in a dataset folder: its files (or why it could not be walked), where it
+/// is (the file or frame folder) and its category (the sub-folder it is in).
+type Found = (std::result::Result<Vec<PathBuf>, String>, PathBuf, String);
+
 /// What a walked dataset folder holds: each sample file, each sub-folder of frame files (a
 /// sub-folder holding sample files is a folder of samples itself, named as a category), and
 /// each entry that could not be walked, with the category (sub-folder) it is in.
-fn file_samples(root: &Path, folder: &Folder, out: &mut Vec<(std::result::Result<Vec<PathBuf>, String>, PathBuf, String)>) {
+fn file_samples(root: &Path, folder: &Folder, out: &mut Vec<Found>) {
     let category = folder.path.strip_prefix(root).ok().map(|r| r.display().to_string()).unwrap_or_default();
     for node in &folder.entries {
         match node {

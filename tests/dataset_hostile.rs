@@ -61,7 +61,7 @@ fn symlink_loops_are_walked_once_and_links_out_are_not_followed() {
     // A second name for a file inside the folder is the same sample.
     std::os::unix::fs::symlink(root.join("a.csv"), root.join("alias.csv")).unwrap();
 
-    let catalog = Catalog::open(&[root.clone()]);
+    let catalog = Catalog::open(std::slice::from_ref(&root));
     let mut names: Vec<&str> = good(&catalog).iter().map(|e| e.name.as_str()).collect();
     names.sort();
     // `sub` holds frame files only: it is one sample of frames.
@@ -85,7 +85,7 @@ fn fifos_and_devices_are_never_read() {
     // Inside the folder (a bind mount, or the user's own /dev): the reader refuses it.
     assert!(close::formats::read_file(Path::new("/dev/zero")).unwrap_err().to_string().contains("not a regular file"));
     std::os::unix::fs::symlink("/dev/zero", dir.0.join("zero.json")).unwrap();
-    let catalog = Catalog::open(&[dir.0.clone()]);
+    let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     assert_eq!(good(&catalog).len(), 1);
     let errors = errors(&catalog);
     assert_eq!(errors.len(), 3, "{errors:#?}");
@@ -109,7 +109,7 @@ fn a_sample_too_large_is_refused_from_its_sizes_and_the_refusal_is_kept() {
         file.set_len(each).unwrap();
     }
     std::fs::write(dir.0.join("small.csv"), SQUARE).unwrap();
-    let catalog = Catalog::open(&[dir.0.clone()]);
+    let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     let entry = catalog.entries().iter().find(|e| e.name == "frames").unwrap();
     let message = entry.error.as_deref().unwrap();
     assert!(message.contains("bytes in the files of one sample") && message.contains(&MAX_SAMPLE_BYTES.to_string()), "{message}");
@@ -126,7 +126,7 @@ fn a_sample_too_large_is_refused_from_its_sizes_and_the_refusal_is_kept() {
 fn an_expired_deadline_stops_a_load_and_is_not_remembered() {
     let dir = Dir::new("deadline");
     std::fs::write(dir.0.join("small.csv"), SQUARE).unwrap();
-    let catalog = Catalog::open(&[dir.0.clone()]);
+    let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     let id = good(&catalog)[0].id.clone();
     let expired = Deadline::after(std::time::Duration::ZERO);
     assert_eq!(catalog.load(&id, &expired).unwrap_err(), Error::Cancelled);
@@ -143,7 +143,7 @@ fn an_unreadable_sub_folder_is_one_error_and_the_rest_are_kept() {
     std::fs::write(locked.join("inner/x.csv"), SQUARE).unwrap();
     std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o000)).unwrap();
     let listable = std::fs::read_dir(&locked).is_ok();
-    let catalog = Catalog::open(&[dir.0.clone()]);
+    let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
     if listable {
         // Root (or a capability) reads any folder: nothing is unreadable here.
@@ -230,7 +230,7 @@ mod stores {
             z["shape"] = serde_json::json!([1u64 << 40]);
             z["chunks"] = serde_json::json!([1u64 << 40]);
         });
-        let catalog = Catalog::open(&[dir.0.clone()]);
+        let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         let errors = errors(&catalog);
         assert_eq!(errors.len(), 1, "{errors:#?}");
         assert!(errors[0].1.contains("left_grip_vertex_id") && errors[0].1.contains("limit"), "{errors:?}");
@@ -243,7 +243,7 @@ mod stores {
         // Frame 4 ends action 1: the listing reads only frame 0's shape, a load reads frame 4.
         let verts = frames(&dir.0, "Top")[4].join("mesh/cloth_verts");
         edit_json(&verts.join(".zarray"), |z| z["shape"] = serde_json::json!([1u64 << 40, 3]));
-        let catalog = Catalog::open(&[dir.0.clone()]);
+        let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         assert!(errors(&catalog).is_empty(), "{:#?}", errors(&catalog));
         let e = catalog.load(&first_fold(&catalog, "Top"), &Deadline::default()).unwrap_err().to_string();
         assert!(e.contains("cloth_verts") && e.contains("limit"), "{e}");
@@ -268,7 +268,7 @@ mod stores {
         // Blosc's header: bytes 4..8 are the decoded size, which the decoder allocates.
         forged[4..8].copy_from_slice(&(1_500_000_000u32).to_le_bytes());
         std::fs::write(&chunk, &forged).unwrap();
-        let catalog = Catalog::open(&[dir.0.clone()]);
+        let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         let fold = first_fold(&catalog, "Tshirt");
         let e = catalog.load(&fold, &Deadline::default()).unwrap_err();
         assert!(e.to_string().contains("decodes to 1500000000 bytes"), "{e}");
@@ -281,7 +281,7 @@ mod stores {
         let dir = store("attrs");
         std::fs::remove_file(frames(&dir.0, "Skirt")[3].join(".zattrs")).unwrap();
         edit_json(&frames(&dir.0, "Trousers")[2].join(".zattrs"), |a| a["sample_id"] = "two".into());
-        let catalog = Catalog::open(&[dir.0.clone()]);
+        let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         let errors = errors(&catalog);
         assert!(errors.len() >= 2, "{errors:#?}");
         assert!(errors.iter().any(|(_, m)| m.contains("no video_id")), "{errors:#?}");
