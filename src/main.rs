@@ -71,6 +71,9 @@ enum Command {
         /// A VR-Folding Zarr store (or category folder) to export instead of the built-in set.
         #[arg(long)]
         from: Vec<PathBuf>,
+        /// Write into OUT even when it already holds files (those of the same name are replaced).
+        #[arg(long)]
+        force: bool,
     },
     /// Plan how to reach a goal fold from a sample's end state (the paper's planning).
     Plan {
@@ -93,6 +96,9 @@ enum Command {
         /// Where to write the .rrd file.
         #[arg(long)]
         out: PathBuf,
+        /// Replace the file at OUT when there is one.
+        #[arg(long)]
+        force: bool,
     },
     /// Serve the web app (the default when no command is given).
     Serve {
@@ -217,8 +223,35 @@ fn emit(text: &str) -> CliResult {
     }
 }
 
+/// A user's file, read as a regular file through the readers' byte cap.
 fn read(path: &Path) -> CliResult<(String, Vec<u8>)> {
-    std::fs::read(path).map(|b| (path.display().to_string(), b)).map_err(file_error(path))
+    Ok((path.display().to_string(), close::formats::read_file(path)?))
+}
+
+/// Write `bytes` to `path` so that no fault loses data: into a new temporary file beside it
+/// (created exclusively, so never through a link), synced, then renamed over `path` — a full
+/// disk or a kill leaves the old file, or none, never a truncated one, and a link at `path`
+/// is replaced, not followed. An existing `path` is refused unless `force`.
+fn write_file(path: &Path, bytes: &[u8], force: bool) -> CliResult {
+    static TEMPS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    if !force && std::fs::symlink_metadata(path).is_ok() {
+        return Err(CliError::Usage(format!("{} already exists: give --force to replace it", path.display())));
+    }
+    let name = path.file_name().map_or("out".into(), |n| n.to_string_lossy().to_string());
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let k = TEMPS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let temp = dir.join(format!(".{name}.{}-{k}.tmp", std::process::id()));
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&temp)
+        .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
+        .and_then(|()| std::fs::rename(&temp, path));
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&temp);
+        return Err(CliError::File { path: path.to_path_buf(), source: e });
+    }
+    Ok(())
 }
 
 fn load_sample(paths: &[PathBuf]) -> CliResult<Sample> {
@@ -279,7 +312,7 @@ fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Op
         return Err(CliError::Usage("--video takes one VR-Folding store (or category folder)".into()));
     };
     let store = close::vrfolding::Store::open(path)?;
-    let videos = store.videos()?;
+    let (videos, _) = store.videos()?;
     let video = videos
         .iter()
         .find(|v| v.id == id || format!("{}/{}", v.category, v.id) == id)
@@ -304,21 +337,23 @@ fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec
 #[cfg(not(feature = "vrfolding"))]
 const NO_VRFOLDING: &str = "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
 
-/// Every `.json` file under the given files and folders, sorted.
-fn sample_files(paths: &[PathBuf]) -> CliResult<Vec<PathBuf>> {
+/// The evaluation work of the given files and folders: every `.json` file under them, each
+/// once, walked as a dataset folder is ([`close::catalog::walk`]: no loops, not out of the
+/// folder); what cannot be walked is a row with its error.
+fn sample_files(paths: &[PathBuf]) -> CliResult<Vec<Work<'static>>> {
+    let json = |p: &Path| p.extension().is_some_and(|e| e == "json");
     let mut out = Vec::new();
-    let mut stack: Vec<PathBuf> = paths.to_vec();
-    while let Some(p) = stack.pop() {
+    for p in paths {
         if p.is_dir() {
-            let entries = std::fs::read_dir(&p).map_err(file_error(&p))?;
-            stack.extend(entries.filter_map(|e| e.ok()).map(|e| e.path()));
-        } else if p.extension().is_some_and(|e| e == "json") {
-            out.push(p);
-        } else if paths.contains(&p) {
+            let tree = close::catalog::walk::walk(p, &json).map_err(file_error(p))?;
+            out.extend(tree.files().cloned().map(Work::File));
+            out.extend(tree.unreadable().map(|(path, why)| Work::Failed(path.display().to_string(), why.clone())));
+        } else if json(p) {
+            out.push(Work::File(p.clone()));
+        } else {
             return Err(CliError::Usage(format!("{}: not a folder or a Sample JSON file", p.display())));
         }
     }
-    out.sort();
     Ok(out)
 }
 
@@ -328,6 +363,8 @@ enum Work<'a> {
     Builtin(&'a close::dataset::Entry),
     #[cfg(feature = "vrfolding")]
     Video(std::sync::Arc<close::vrfolding::Store>, close::vrfolding::Video),
+    /// What could not be read or walked (its name, and why): one row with the error.
+    Failed(String, String),
 }
 
 impl Work<'_> {
@@ -341,6 +378,7 @@ impl Work<'_> {
                 }]
             }
             Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
+            Work::Failed(name, why) => vec![eval::SampleResult::unreadable(name, why)],
             #[cfg(feature = "vrfolding")]
             Work::Video(store, video) => eval::evaluate_video(store, video, method),
         }
@@ -354,8 +392,9 @@ fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)
     let mut work = Vec::new();
     for path in stores {
         let store = std::sync::Arc::new(close::vrfolding::Store::open(&path)?);
-        let videos = store.videos()?;
+        let (videos, unreadable) = store.videos()?;
         work.extend(videos.into_iter().map(|v| Work::Video(store.clone(), v)));
+        work.extend(unreadable.into_iter().map(|e| Work::Failed(path.display().to_string(), e.to_string())));
     }
     Ok((work, rest))
 }
@@ -371,7 +410,7 @@ fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)
 fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> CliResult {
     let dataset = close::dataset::Dataset::builtin();
     let (mut work, rest) = store_work(paths)?;
-    work.extend(sample_files(&rest)?.into_iter().map(Work::File));
+    work.extend(sample_files(&rest)?);
     if builtin {
         work.extend(dataset.entries().iter().map(Work::Builtin));
     }
@@ -401,11 +440,17 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
     Ok(())
 }
 
-fn run_dataset(out: &Path, from: &[PathBuf]) -> CliResult {
+/// Write the samples into folder `out`, created when missing; one that already holds
+/// anything is refused unless `force`. Each file is written by [`write_file`].
+fn run_dataset(out: &Path, from: &[PathBuf], force: bool) -> CliResult {
     std::fs::create_dir_all(out).map_err(file_error(out))?;
+    let held = std::fs::read_dir(out).map_err(file_error(out))?.next().is_some();
+    if held && !force {
+        return Err(CliError::Usage(format!("{} is not empty: give --force to write into it", out.display())));
+    }
     let write = |name: &str, sample: &Sample| {
         let path = out.join(format!("{}.json", name.replace(['/', '\\'], "_")));
-        std::fs::write(&path, close::formats::json::to_json(sample)).map_err(file_error(&path))
+        write_file(&path, close::formats::json::to_json(sample).as_bytes(), true)
     };
     if !from.is_empty() {
         return export_stores(from, &write);
@@ -480,12 +525,12 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
 }
 
 #[cfg(feature = "rerun")]
-fn run_record(files: &[PathBuf], out: &Path) -> CliResult {
+fn run_record(files: &[PathBuf], out: &Path, force: bool) -> CliResult {
     let sample = load_sample(files)?;
     let frames = sample.border_frames()?;
     let analysis = analyze(&frames, FrameRange::default())?;
     let rrd = close::record::record(&analysis, &frames)?;
-    std::fs::write(out, &rrd).map_err(file_error(out))?;
+    write_file(out, &rrd, force)?;
     eprintln!("wrote {} ({} bytes); open it with `rerun {}`", out.display(), rrd.len(), out.display());
     Ok(())
 }
@@ -505,10 +550,10 @@ fn main() -> ExitCode {
             run_analyze(&files, video.as_deref(), usize::from(fold), options, disks)
         }
         Some(Command::Eval { paths, builtin, json, method }) => run_eval(&paths, builtin, json, method.into()),
-        Some(Command::Dataset { out, from }) => run_dataset(&out, &from),
+        Some(Command::Dataset { out, from, force }) => run_dataset(&out, &from, force),
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
-        Some(Command::Record { files, out }) => run_record(&files, &out),
+        Some(Command::Record { files, out, force }) => run_record(&files, &out, force),
         Some(Command::Serve { addr, datasets, limits }) => serve(&addr, close::server::Config { datasets, ..limits.config() }),
         None => serve(DEFAULT_ADDR, close::server::Config::default()),
     };

@@ -568,6 +568,35 @@ async fn a_trickling_body_is_answered_408_at_the_time_out() {
     assert_eq!(server.healthz().await, 200, "served right after");
 }
 
+// Issue 18 item 10: a body trickled far below the minimum rate is cut after the grace (the
+// header time-out, here 1 s), long before the request time-out (30 s), and the connection
+// and its worker are freed.
+async fn a_trickled_body_is_cut_at_the_minimum_rate() {
+    let server = Server::start(Config { header_timeout: Duration::from_secs(1), ..Config::default() }).await;
+    let mut stream = TcpStream::connect(server.addr).await.unwrap();
+    let head = format!("POST /api/analyze HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: 100000\r\n\r\n", server.addr);
+    stream.write_all(head.as_bytes()).await.unwrap();
+    let t = Instant::now();
+    let mut answer = Vec::new();
+    let mut buf = [0u8; 4096];
+    while t.elapsed() < Duration::from_secs(20) {
+        match tokio::time::timeout(Duration::from_millis(100), stream.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => break,
+            Ok(Ok(k)) => answer.extend_from_slice(&buf[..k]),
+            Err(_) => {
+                if stream.write_all(b"[").await.is_err() {
+                    break;
+                }
+            }
+        }
+    }
+    let text = String::from_utf8_lossy(&answer);
+    assert!(text.starts_with("HTTP/1.1 408"), "after {:?}: {text:.300}", t.elapsed());
+    assert!(text.contains("slower than"), "{text:.300}");
+    assert!(t.elapsed() < Duration::from_secs(15), "cut after {:?}: the request time-out, not the rate", t.elapsed());
+    assert_eq!(server.healthz().await, 200, "served right after");
+}
+
 // Issue 11 item 6: a cap on connections; the silent ones go within the header time-out,
 // and the server answers again.
 async fn connections_are_capped_and_freed() {
@@ -608,6 +637,97 @@ async fn a_real_server_checks_host_and_origin() {
     };
     assert_eq!(server.raw(post("https://evil.example").as_bytes()).await.0, 403);
     assert_eq!(server.raw(post(&format!("http://{}", server.addr)).as_bytes()).await.0, 200);
+}
+
+// Issue 18 item 12: a reference too short for a border is refused before the cache is
+// asked, so `"reference": []` is 422 even once the border alone is cached.
+async fn an_empty_disk_reference_is_422_cold_or_cached() {
+    let (app, _) = test_state(Config::default());
+    let border = circle(40, 1.0);
+    let ask = |body: Value| Request::post("/api/disk").header(header::CONTENT_TYPE, "application/json").body(Body::from(body.to_string())).unwrap();
+    let cold = send(&app, ask(json!({ "border": border, "reference": [] }))).await;
+    assert!(cold.refusal(&[StatusCode::UNPROCESSABLE_ENTITY]).contains("reference"), "{}", cold.text());
+    assert_eq!(send(&app, ask(json!({ "border": border }))).await.status, StatusCode::OK);
+    let warm = send(&app, ask(json!({ "border": border, "reference": [] }))).await;
+    assert!(warm.refusal(&[StatusCode::UNPROCESSABLE_ENTITY]).contains("reference"), "{}", warm.text());
+}
+
+// Issue 18 item 14: nesting past 128 levels is refused anywhere, inside an unknown key too.
+async fn deep_nesting_inside_an_unknown_key_is_400() {
+    let (app, state) = test_state(Config::default());
+    let deep = format!("{}{}", "[".repeat(100_000), "]".repeat(100_000));
+    let border = serde_json::to_string(&circle(40, 1.0)).unwrap();
+    for (uri, body) in [
+        ("/api/disk", format!("{{\"border\": {border}, \"junk\": {deep}}}")),
+        ("/api/analyze", format!("{{\"frames\": [{border}], \"junk\": {deep}}}")),
+    ] {
+        let answer = post(&app, uri, "application/json", body).await;
+        let error = answer.refusal(&[StatusCode::BAD_REQUEST]);
+        assert!(error.contains("nested deeper than 128"), "{uri}: {error}");
+    }
+    // 128 levels in all (the sample's object and 127 inside an unknown key) are still fine.
+    let sample = normal_sample("shallow junk").to_string();
+    let shallow = format!("{}, \"junk\": {}{}}}", sample.trim_end_matches('}'), "[".repeat(127), "]".repeat(127));
+    let ok = post(&app, "/api/analyze", "application/json", shallow).await;
+    assert_eq!(ok.status, StatusCode::OK, "{}", ok.text());
+    assert_recovers(&app, &state, "deep nesting").await;
+}
+
+// Issue 18 item 14: an absolute-form target names its host, which is checked as Host is;
+// two Host headers are refused.
+async fn absolute_targets_and_duplicate_hosts_are_refused() {
+    let server = Server::start(Config::default()).await;
+    let (status, answer) = server.raw(format!("GET http://evil.example/healthz HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n", server.addr).as_bytes()).await;
+    assert_eq!(status, 403, "{answer}");
+    assert!(answer.contains("evil.example"), "{answer}");
+    let (status, answer) = server.raw(format!("GET http://{0}/healthz HTTP/1.1\r\nHost: {0}\r\nConnection: close\r\n\r\n", server.addr).as_bytes()).await;
+    assert_eq!(status, 200, "our own address in absolute form: {answer}");
+    let (status, answer) = server.raw(format!("GET /healthz HTTP/1.1\r\nHost: {}\r\nHost: evil.example\r\nConnection: close\r\n\r\n", server.addr).as_bytes()).await;
+    assert_eq!(status, 400, "{answer}");
+    assert!(answer.contains("more than one Host"), "{answer}");
+}
+
+// Issue 18 item 10: a body announced past its route's own limit is refused at once, before
+// a byte of it arrives, and holds none of the upload budget.
+async fn a_body_over_its_routes_limit_is_refused_unread() {
+    let server = Server::start(Config { upload_budget: 16 << 20, ..Config::default() }).await;
+    let mut held = Vec::new();
+    for _ in 0..4 {
+        let mut stream = TcpStream::connect(server.addr).await.unwrap();
+        let head = format!("POST /api/plan HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n", server.addr, 64 << 20);
+        stream.write_all(head.as_bytes()).await.unwrap();
+        let mut answer = [0u8; 12];
+        tokio::time::timeout(Duration::from_secs(5), stream.read_exact(&mut answer)).await.expect("answered before the body").unwrap();
+        assert_eq!(&answer, b"HTTP/1.1 413", "{}", String::from_utf8_lossy(&answer));
+        held.push(stream);
+    }
+    // Four silent 64 MiB announcements later, a normal upload finds the whole budget.
+    let body = normal_sample("after silent announcements").to_string();
+    let request = format!(
+        "POST /api/analyze HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        server.addr,
+        body.len()
+    );
+    let (status, answer) = tokio::time::timeout(Duration::from_secs(10), server.raw(request.as_bytes())).await.expect("answered");
+    assert_eq!(status, 200, "{answer:.300}");
+}
+
+// Issue 18 item 9: gzip runs on the async threads, so only answers small enough to take
+// milliseconds are compressed; a large answer is sent as it is, even to a browser that asks.
+async fn only_small_answers_are_gzipped() {
+    let (app, _) = test_state(Config::default());
+    let ask = |uri: &str, body: String| {
+        Request::post(uri).header(header::CONTENT_TYPE, "application/json").header(header::ACCEPT_ENCODING, "gzip").body(Body::from(body)).unwrap()
+    };
+    let small = send(&app, ask("/api/analyze", normal_sample("gzip").to_string())).await;
+    assert_eq!(small.status, StatusCode::OK);
+    assert_eq!(small.headers.get(header::CONTENT_ENCODING).map(|v| v.as_bytes()), Some(&b"gzip"[..]));
+    let body = json!({"border": circle(2000, 1.0), "from": [0.1, 3.0], "to": [1.0, 4.0], "steps": 100}).to_string();
+    let large = send(&app, ask("/api/interpolate", body)).await;
+    assert_eq!(large.status, StatusCode::OK);
+    assert!(large.headers.get(header::CONTENT_ENCODING).is_none(), "a large answer is gzipped");
+    assert!(large.body.len() > 1 << 20, "{} bytes", large.body.len());
+    serde_json::from_slice::<Value>(&large.body).expect("plain JSON");
 }
 
 /// Run one case on its own runtime, and do not wait for its blocking threads when it ends:
@@ -712,5 +832,35 @@ mod cases {
     #[test]
     fn a_real_server_checks_host_and_origin() {
         super::run(super::a_real_server_checks_host_and_origin());
+    }
+
+    #[test]
+    fn an_empty_disk_reference_is_422_cold_or_cached() {
+        super::run(super::an_empty_disk_reference_is_422_cold_or_cached());
+    }
+
+    #[test]
+    fn deep_nesting_inside_an_unknown_key_is_400() {
+        super::run(super::deep_nesting_inside_an_unknown_key_is_400());
+    }
+
+    #[test]
+    fn absolute_targets_and_duplicate_hosts_are_refused() {
+        super::run(super::absolute_targets_and_duplicate_hosts_are_refused());
+    }
+
+    #[test]
+    fn a_body_over_its_routes_limit_is_refused_unread() {
+        super::run(super::a_body_over_its_routes_limit_is_refused_unread());
+    }
+
+    #[test]
+    fn only_small_answers_are_gzipped() {
+        super::run(super::only_small_answers_are_gzipped());
+    }
+
+    #[test]
+    fn a_trickled_body_is_cut_at_the_minimum_rate() {
+        super::run(super::a_trickled_body_is_cut_at_the_minimum_rate());
     }
 }

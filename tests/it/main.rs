@@ -12,6 +12,7 @@ mod browser;
 mod cli;
 mod cli_plan;
 mod dataset;
+mod dataset_hostile;
 mod formats;
 mod http;
 mod interpolate_parity;

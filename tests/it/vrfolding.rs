@@ -17,7 +17,7 @@ fn fixture() -> PathBuf {
 fn the_fixture_is_cut_into_two_folds_per_video() {
     let store = Store::open(&fixture()).unwrap();
     assert_eq!(store.categories(), ["Skirt", "Top", "Trousers", "Tshirt"]);
-    let videos = store.videos().unwrap();
+    let videos = store.videos().unwrap().0;
     assert_eq!(videos.len(), 8);
     for video in &videos {
         assert_eq!(video.frames.len(), 10, "{}", video.id);
@@ -37,7 +37,7 @@ fn the_fixture_is_cut_into_two_folds_per_video() {
 #[test]
 fn eval_gives_table_rows_per_category_and_fold() {
     let store = Store::open(&fixture()).unwrap();
-    let results = store.videos().unwrap().iter().flat_map(|v| evaluate_video(&store, v, FoldMethod::default())).collect();
+    let results = store.videos().unwrap().0.iter().flat_map(|v| evaluate_video(&store, v, FoldMethod::default())).collect();
     let report = eval::report(results);
     let names: Vec<&str> = report.categories.iter().map(|s| s.category.as_str()).collect();
     assert_eq!(names, ["Skirt/fold1", "Skirt/fold2", "Top/fold1", "Top/fold2", "Trousers/fold1", "Trousers/fold2", "Tshirt/fold1", "Tshirt/fold2"]);
@@ -84,7 +84,7 @@ fn copy_store(name: &str) -> PathBuf {
 fn error_after(name: &str, breaking: impl FnOnce(&Path)) -> String {
     let root = copy_store(name);
     let store = Store::open(&root).unwrap();
-    let video = store.videos().unwrap().remove(0);
+    let video = store.videos().unwrap().0.remove(0);
     breaking(&root.join(video.frames[0].trim_start_matches('/')));
     let error = store.folds(&video).unwrap_err();
     assert!(matches!(error, Error::Store { .. }), "{error:?}");
@@ -151,7 +151,7 @@ fn grip_ids_out_of_range_and_videos_without_action_are_errors() {
     let bad = fixture().parent().unwrap().join("bad");
     for (store, expected) in [("grip_out_of_range.zarr", "gripped vertex 10000 is out of range"), ("no_action.zarr", "no fold action")] {
         let store = Store::open(&bad.join(store)).unwrap();
-        let video = store.videos().unwrap().remove(0);
+        let video = store.videos().unwrap().0.remove(0);
         let e = store.folds(&video).unwrap_err().to_string();
         assert!(e.contains(expected), "{e}");
         // In an evaluation the video is one error in its row, not a panic.
@@ -165,7 +165,7 @@ fn a_category_folder_is_a_store_of_one_category() {
     assert!(is_store(&fixture()) && is_store(&fixture().join("Top")) && !is_store(&fixture().join("Top/samples/missing")));
     let store = Store::open(&fixture().join("Top")).unwrap();
     assert_eq!(store.categories(), ["Top"]);
-    assert_eq!(store.videos().unwrap().len(), 2);
+    assert_eq!(store.videos().unwrap().0.len(), 2);
 }
 
 fn close_cli(args: &[&str]) -> std::process::Output {

@@ -9,6 +9,12 @@
 //! kept in a bounded cache. An entry that cannot be read carries its error and does not
 //! hide the others.
 //!
+//! The folder is the user's, but not trusted: it is walked once per folder and never left
+//! ([`walk`]); only regular files are read, each through a byte cap, and a sample's files
+//! together are capped at [`MAX_SAMPLE_BYTES`] from their sizes before any is read; a load
+//! checks its deadline between files; a load that fails (other than by its deadline) is
+//! remembered, so asking again costs nothing.
+//!
 //! ```
 //! use close_io::catalog::{Catalog, Query};
 //! let dir = std::env::temp_dir().join(format!("close-catalog-doc-{}", std::process::id()));
@@ -21,9 +27,11 @@
 //! let napkins = catalog.filter(&Query { category: Some("napkin".into()), ..Query::default() });
 //! assert_eq!((napkins[0].n, napkins[0].frames), (Some(4), 1));
 //! assert!(catalog.entries().iter().any(|e| e.error.is_some()));
-//! assert_eq!(catalog.load(&napkins[0].id).unwrap().name, "square");
+//! assert_eq!(catalog.load(&napkins[0].id, &Default::default()).unwrap().name, "square");
 //! std::fs::remove_dir_all(&dir).unwrap();
 //! ```
+
+pub mod walk;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -32,14 +40,19 @@ use std::sync::{Arc, Mutex};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::budget::Deadline;
 use crate::error::{Error, Result};
-use crate::formats::{read_files, Sample, MAX_FILE_BYTES};
+use crate::formats::{read_file, read_files, Sample, MAX_FILE_BYTES};
 use crate::cache::Lru;
+use walk::{Folder, Node};
 
 /// Samples kept loaded at once.
 const CACHED_SAMPLES: usize = 64;
-/// Their largest total size (bytes of coordinates).
+/// Their largest total size (bytes of coordinates and face indices).
 const CACHE_BYTES: usize = 256 * 1024 * 1024;
+/// Most bytes of files one sample may have: the same as one file (an upload), so a folder of
+/// frames costs no more than one file of them.
+pub const MAX_SAMPLE_BYTES: u64 = MAX_FILE_BYTES as u64;
 /// Files that are one sample each in a dataset folder.
 const SAMPLE_FILES: [&str; 8] = ["json", "mat", "txt", "csv", "xyz", "dat", "obj", "ply"];
 /// Files that are one frame each in a sub-folder of frames.
@@ -101,6 +114,8 @@ pub struct Catalog {
     #[cfg(feature = "vrfolding")]
     stores: Vec<(crate::vrfolding::Store, Vec<crate::vrfolding::Video>)>,
     cache: Mutex<Lru<Arc<Sample>>>,
+    /// Loads that failed, by id (at most one per entry): asking again answers at once.
+    refused: Mutex<HashMap<String, Error>>,
 }
 
 /// Lower-case extension of a path.
@@ -113,47 +128,62 @@ fn slug(text: &str) -> String {
     text.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '-' }).collect()
 }
 
-/// Sorted directory listing; unreadable entries are skipped.
-fn listing(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)?.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    paths.sort();
-    Ok(paths)
-}
-
-/// Read a sample's files (size-checked) into a sample.
-fn read_sample(files: &[PathBuf]) -> Result<Sample> {
+/// Read a sample's files into a sample: their total size is checked against
+/// [`MAX_SAMPLE_BYTES`] before any is read, each is read as a regular file through its cap
+/// ([`read_file`]), and `deadline` is checked between files.
+fn read_sample(files: &[PathBuf], deadline: &Deadline) -> Result<Sample> {
+    let size = |p: &PathBuf| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
+    let total = files.iter().map(size).fold(0u64, u64::saturating_add);
+    if total > MAX_SAMPLE_BYTES {
+        return Err(Error::TooLarge { what: "bytes in the files of one sample", got: Some(total), limit: MAX_SAMPLE_BYTES });
+    }
+    let mut read = 0u64;
     let named = files
         .iter()
         .map(|p| {
-            let size = std::fs::metadata(p).map_err(|e| Error::InvalidArgument(format!("{}: {e}", p.display())))?.len();
-            if size > MAX_FILE_BYTES as u64 {
-                return Err(Error::TooLarge { what: "bytes in one file", got: Some(size), limit: MAX_FILE_BYTES as u64 }.in_file(&p.display().to_string()));
+            deadline.check()?;
+            let bytes = read_file(p)?;
+            // Sizes may change between the check and the read: count what was read.
+            read += bytes.len() as u64;
+            if read > MAX_SAMPLE_BYTES {
+                return Err(Error::TooLarge { what: "bytes in the files of one sample", got: Some(read), limit: MAX_SAMPLE_BYTES });
             }
-            let bytes = std::fs::read(p).map_err(|e| Error::InvalidArgument(format!("{}: {e}", p.display())))?;
             Ok((p.display().to_string(), bytes))
         })
         .collect::<Result<Vec<_>>>()?;
+    deadline.check()?;
     read_files(&named)
 }
 
-/// The samples of a dataset folder: each sample file, and each sub-folder of frame files
-/// (a sub-folder holding sample files is a folder of samples itself, named as a category).
-fn file_samples(root: &Path, dir: &Path, out: &mut Vec<(Vec<PathBuf>, String)>) -> std::io::Result<()> {
-    let folder = |p: &Path| p.strip_prefix(root).ok().filter(|r| !r.as_os_str().is_empty()).map(|r| r.display().to_string());
-    for path in listing(dir)? {
-        if path.is_dir() {
-            let files: Vec<PathBuf> = listing(&path)?.into_iter().filter(|p| p.is_file()).collect();
-            let frames: Vec<PathBuf> = files.iter().filter(|p| FRAME_FILES.contains(&extension(p).as_str())).cloned().collect();
-            if files.iter().any(|p| ["json", "mat"].contains(&extension(p).as_str())) || frames.is_empty() {
-                file_samples(root, &path, out)?;
-            } else {
-                out.push((frames, folder(dir).unwrap_or_default()));
+/// Whether a file may hold a sample or a frame (the walk leaves out the others).
+fn sample_file(path: &Path) -> bool {
+    SAMPLE_FILES.contains(&extension(path).as_str())
+}
+
+/// One thing found in a dataset folder: its files (or why it could not be walked), where it
+/// is (the file or frame folder) and its category (the sub-folder it is in).
+type Found = (std::result::Result<Vec<PathBuf>, String>, PathBuf, String);
+
+/// What a walked dataset folder holds: each sample file, each sub-folder of frame files (a
+/// sub-folder holding sample files is a folder of samples itself, named as a category), and
+/// each entry that could not be walked, with the category (sub-folder) it is in.
+fn file_samples(root: &Path, folder: &Folder, out: &mut Vec<Found>) {
+    let category = folder.path.strip_prefix(root).ok().map(|r| r.display().to_string()).unwrap_or_default();
+    for node in &folder.entries {
+        match node {
+            Node::Folder(sub) => {
+                let files: Vec<&PathBuf> = sub.entries.iter().filter_map(|n| if let Node::File(p) = n { Some(p) } else { None }).collect();
+                let frames: Vec<PathBuf> = files.iter().filter(|p| FRAME_FILES.contains(&extension(p).as_str())).map(|p| p.to_path_buf()).collect();
+                if files.iter().any(|p| ["json", "mat"].contains(&extension(p).as_str())) || frames.is_empty() {
+                    file_samples(root, sub, out);
+                } else {
+                    out.push((Ok(frames), sub.path.clone(), category.clone()));
+                }
             }
-        } else if SAMPLE_FILES.contains(&extension(&path).as_str()) {
-            out.push((vec![path], folder(dir).unwrap_or_default()));
+            Node::File(path) => out.push((Ok(vec![path.clone()]), path.clone(), category.clone())),
+            Node::Unreadable(path, why) => out.push((Err(why.clone()), path.clone(), category.clone())),
         }
     }
-    Ok(())
 }
 
 impl Catalog {
@@ -166,6 +196,7 @@ impl Catalog {
             #[cfg(feature = "vrfolding")]
             stores: Vec::new(),
             cache: Mutex::new(Lru::new(CACHED_SAMPLES, CACHE_BYTES)),
+            refused: Mutex::new(HashMap::new()),
         };
         for (k, path) in paths.iter().enumerate() {
             let source = path.display().to_string();
@@ -175,18 +206,23 @@ impl Catalog {
                 catalog.add_store(&prefix, path);
                 continue;
             }
+            let tree = match walk::walk(path, &sample_file) {
+                Ok(tree) => tree,
+                Err(e) => {
+                    catalog.push(&prefix, Entry::broken(&source, &source, format!("cannot read the dataset folder: {e}")), Origin::Broken);
+                    continue;
+                }
+            };
             let mut samples = Vec::new();
-            if let Err(e) = file_samples(path, path, &mut samples) {
-                catalog.push(&prefix, Entry::broken(&source, &source, format!("cannot read the dataset folder: {e}")), Origin::Broken);
-                continue;
-            }
+            file_samples(path, &tree, &mut samples);
+            let fallback = path.file_name().map_or("dataset".into(), |n| n.to_string_lossy().to_string());
             let listed: Vec<Entry> = samples
                 .par_iter()
-                .map(|(files, folder)| {
-                    let name = files[0].strip_prefix(path).unwrap_or(&files[0]).display().to_string();
-                    let name = if files.len() > 1 { files[0].parent().and_then(|p| p.strip_prefix(path).ok()).map_or(name.clone(), |p| p.display().to_string()) } else { name };
-                    let fallback = if folder.is_empty() { path.file_name().map_or("dataset".into(), |n| n.to_string_lossy().to_string()) } else { folder.clone() };
-                    match read_sample(files) {
+                .map(|(files, at, folder)| {
+                    let name = at.strip_prefix(path).unwrap_or(at).display().to_string();
+                    let fallback = if folder.is_empty() { fallback.clone() } else { folder.clone() };
+                    let read = files.as_ref().map_err(Clone::clone).and_then(|files| read_sample(files, &Deadline::default()).map_err(|e| e.to_string()));
+                    match read {
                         Ok(sample) => {
                             let frames = sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len());
                             let category = if sample.category.is_empty() || sample.category == "upload" { fallback } else { sample.category.clone() };
@@ -194,16 +230,18 @@ impl Catalog {
                                 Ok(b) => (Some(b.len()), None),
                                 Err(e) => (None, Some(e.to_string())),
                             };
-                            let shown = if sample.name.is_empty() || sample.name == files[0].file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default() { name.clone() } else { sample.name.clone() };
+                            let first = files.as_ref().ok().and_then(|f| f.first()).and_then(|f| f.file_name()).map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+                            let shown = if sample.name.is_empty() || sample.name == first { name.clone() } else { sample.name.clone() };
                             Entry { id: String::new(), name: shown, category, n, frames, source: source.clone(), error }
                         }
-                        Err(e) => Entry { category: fallback, ..Entry::broken(&name, &source, e.to_string()) },
+                        Err(e) => Entry { category: fallback, ..Entry::broken(&name, &source, e) },
                     }
                 })
                 .collect();
-            for ((files, _), entry) in samples.into_iter().zip(listed) {
+            for ((files, _, _), entry) in samples.into_iter().zip(listed) {
                 let stem = entry.name.clone();
-                catalog.push_named(&prefix, &stem, entry, Origin::Files(files));
+                let origin = files.map_or(Origin::Broken, Origin::Files);
+                catalog.push_named(&prefix, &stem, entry, origin);
             }
         }
         catalog
@@ -215,10 +253,17 @@ impl Catalog {
         use crate::vrfolding::{Store, FOLDS};
         let source = path.display().to_string();
         let opened = Store::open(path).and_then(|store| store.videos().map(|videos| (store, videos)));
-        let (store, videos) = match opened {
+        let (store, (videos, unreadable)) = match opened {
             Ok(found) => found,
             Err(e) => return self.push(prefix, Entry::broken(&source, &source, e.to_string()), Origin::Broken),
         };
+        for e in unreadable {
+            let name = match &e {
+                Error::Store { path, .. } => path.trim_start_matches('/').to_string(),
+                _ => source.clone(),
+            };
+            self.push(prefix, Entry::broken(&name, &source, e.to_string()), Origin::Broken);
+        }
         let cuts: Vec<Result<usize>> = videos.par_iter().map(|v| store.cut(v).map(|c| c.actions.len().min(FOLDS))).collect();
         let index = self.stores.len();
         for (v, (video, cut)) in videos.iter().zip(cuts).enumerate() {
@@ -280,16 +325,39 @@ impl Catalog {
         self.entries.iter().filter(|e| query.matches(&e.id, &e.name, &e.category)).collect()
     }
 
-    /// Load sample `id` (cached).
-    pub fn load(&self, id: &str) -> Result<Arc<Sample>> {
+    /// Load sample `id` (cached), stopping with [`Error::Cancelled`] once `deadline`
+    /// expires. A load that fails for any other reason is remembered and answered again
+    /// without reading.
+    pub fn load(&self, id: &str, deadline: &Deadline) -> Result<Arc<Sample>> {
         let &k = self.index.get(id).ok_or_else(|| Error::UnknownSample { id: id.to_string() })?;
-        let lock = || self.cache.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(hit) = lock().get(id) {
+        let cache = || self.cache.lock().unwrap_or_else(|e| e.into_inner());
+        let refused = || self.refused.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(hit) = cache().get(id) {
             return Ok(hit);
         }
+        if let Some(error) = refused().get(id) {
+            return Err(error.clone());
+        }
+        match self.read(k, deadline) {
+            Ok(sample) => {
+                let sample = Arc::new(sample);
+                cache().insert(id.to_string(), sample.clone(), sample.weight());
+                Ok(sample)
+            }
+            Err(Error::Cancelled) => Err(Error::Cancelled),
+            Err(error) => {
+                refused().insert(id.to_string(), error.clone());
+                Err(error)
+            }
+        }
+    }
+
+    /// Read entry `k`'s sample from its origin.
+    fn read(&self, k: usize, deadline: &Deadline) -> Result<Sample> {
         let entry = &self.entries[k];
+        deadline.check()?;
         let mut sample = match &self.origins[k] {
-            Origin::Files(files) => read_sample(files)?,
+            Origin::Files(files) => read_sample(files, deadline)?,
             #[cfg(feature = "vrfolding")]
             &Origin::Fold { store, video, fold } => {
                 let (store, videos) = &self.stores[store];
@@ -304,9 +372,6 @@ impl Catalog {
         };
         sample.name = entry.name.clone();
         sample.category = entry.category.clone();
-        let bytes = 24 * (sample.frames.iter().map(Vec::len).sum::<usize>() + sample.mesh.as_ref().map_or(0, |m| m.frames.iter().map(Vec::len).sum()));
-        let sample = Arc::new(sample);
-        lock().insert(id.to_string(), sample.clone(), bytes);
         Ok(sample)
     }
 }
@@ -349,12 +414,13 @@ mod tests {
         let ids: std::collections::HashSet<&str> = entries.iter().map(|e| e.id.as_str()).collect();
         assert_eq!(ids.len(), 4);
         assert!(ids.iter().all(|id| id.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))));
-        let loaded = catalog.load(&run.id).unwrap();
+        let forever = Deadline::default();
+        let loaded = catalog.load(&run.id, &forever).unwrap();
         assert_eq!(loaded.frames.len(), 2);
-        assert!(Arc::ptr_eq(&loaded, &catalog.load(&run.id).unwrap()), "the second load is the cached one");
-        assert!(matches!(catalog.load("nope"), Err(Error::UnknownSample { .. })));
+        assert!(Arc::ptr_eq(&loaded, &catalog.load(&run.id, &forever).unwrap()), "the second load is the cached one");
+        assert!(matches!(catalog.load("nope", &forever), Err(Error::UnknownSample { .. })));
         let bad = entries.iter().find(|e| e.name == "bad.json").unwrap();
-        assert!(catalog.load(&bad.id).is_err());
+        assert!(catalog.load(&bad.id, &forever).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -5,7 +5,8 @@
 //! Counts are bounded while the document is read, not after: a list longer than its limit
 //! (frames, vertices of a frame, faces, face corners in all) stops the parse at the first
 //! element past it, so memory never exceeds what the limits allow, and nesting deeper than
-//! serde_json's recursion limit (128) is refused.
+//! [`MAX_NESTING`] (serde_json's recursion limit) is refused anywhere in the document, even
+//! inside a key that is skipped ([`check_nesting`]).
 //!
 //! ```
 //! use close_io::formats::json::parse_sample;
@@ -26,12 +27,40 @@ use crate::border::{MAX_FRAMES, MAX_VERTICES};
 use crate::error::{Error, Format, Result};
 use crate::mesh::{MeshFrames, MAX_FACE_CORNERS, MAX_MESH_FACES, MAX_MESH_VERTICES};
 
+/// Deepest nesting of lists and objects a JSON document may have.
+pub const MAX_NESTING: usize = 128;
+
+/// Refuse a JSON document nested deeper than [`MAX_NESTING`], wherever the nesting is:
+/// serde_json counts depth only for the values it builds, and skips an unknown key's value
+/// at any depth. One pass over the bytes, outside strings.
+pub fn check_nesting(bytes: &[u8]) -> Result<()> {
+    let (mut depth, mut line, mut in_string, mut escaped) = (0usize, 1usize, false, false);
+    for &b in bytes {
+        match (in_string, b) {
+            (true, _) if escaped => escaped = false,
+            (true, b'\\') => escaped = true,
+            (true, b'"') | (false, b'"') => in_string = !in_string,
+            (false, b'[' | b'{') => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Err(Error::parse_at(Format::SampleJson, line, format!("nested deeper than {MAX_NESTING} levels")));
+                }
+            }
+            (false, b']' | b'}') => depth = depth.saturating_sub(1),
+            (_, b'\n') => line += 1,
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Parse a Sample JSON document. Errors name the line serde stopped at; a count over its
 /// limit is [`Error::TooLarge`].
 pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
     if bytes.len() > MAX_FILE_BYTES {
         return Err(Error::too_large("bytes of JSON", bytes.len(), MAX_FILE_BYTES));
     }
+    check_nesting(bytes)?;
     if bytes.iter().all(u8::is_ascii_whitespace) {
         return Err(Error::Empty { what: "the JSON document is empty" });
     }

@@ -360,7 +360,7 @@ pub fn parse_sample(bytes: &[u8], name: &str) -> Result<Sample> {
     let find = |want: &str| {
         vars.iter().find(|(n, _)| n == want).map(|(_, v)| v).ok_or_else(|| {
             let found: Vec<&str> = vars.iter().map(|(n, _)| n.as_str()).collect();
-            bad(format!("no variable {want:?} (the file holds {found:?}); expected phiPositions and Eb"))
+            bad(format!("no variable {want:?} (the file holds {}); expected phiPositions and Eb", super::quote(&found.join(", "))))
         })
     };
     let frames = match find("phiPositions")? {

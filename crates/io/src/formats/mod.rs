@@ -16,6 +16,9 @@ pub mod obj;
 pub mod ply;
 pub mod text;
 
+use std::io::Read;
+use std::path::Path;
+
 use serde::{Deserialize, Serialize};
 
 use crate::border::{prepare, BorderFrames, MAX_FRAMES};
@@ -25,6 +28,48 @@ pub use crate::mesh::MeshFrames;
 
 /// Largest input file the readers accept.
 pub const MAX_FILE_BYTES: usize = 64 * 1024 * 1024;
+/// Most characters of the user's text an error message quotes.
+pub const QUOTE_CHARS: usize = 32;
+
+/// A short quote of the user's text for an error message: its first [`QUOTE_CHARS`]
+/// characters, escaped (`"…"`), and `…` after the quote when cut. An error names the bad
+/// text without copying a whole line (a 60 MiB line would become a 360 MB answer).
+pub(crate) fn quote(text: &str) -> String {
+    let kept = clip(text, QUOTE_CHARS);
+    format!("{kept:?}{}", if kept.len() < text.len() { "…" } else { "" })
+}
+
+/// The first `chars` characters of `text` (a library's message that may quote the input).
+pub(crate) fn clip(text: &str, chars: usize) -> &str {
+    text.char_indices().nth(chars).map_or(text, |(cut, _)| &text[..cut])
+}
+
+/// Read a user's file: a regular file of at most [`MAX_FILE_BYTES`]. A FIFO, device or
+/// socket is refused before a byte is read (opened non-blocking, so a FIFO without a writer
+/// cannot stall the open, then checked on the open handle), and the read stops one byte
+/// past the cap, so a file that grows, or reports a false length, cannot make it read more.
+pub fn read_file(path: &Path) -> Result<Vec<u8>> {
+    let fail = |e: std::io::Error| Error::InvalidArgument(format!("{}: {e}", path.display()));
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
+    let file = options.open(path).map_err(fail)?;
+    let meta = file.metadata().map_err(fail)?;
+    if !meta.is_file() {
+        return Err(Error::InvalidArgument(format!("{}: not a regular file (a FIFO, device or socket is never read)", path.display())));
+    }
+    let too_large = |got: u64| Error::TooLarge { what: "bytes in one file", got: Some(got), limit: MAX_FILE_BYTES as u64 }.in_file(&path.display().to_string());
+    if meta.len() > MAX_FILE_BYTES as u64 {
+        return Err(too_large(meta.len()));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(MAX_FILE_BYTES as u64 + 1).read_to_end(&mut bytes).map_err(fail)?;
+    if bytes.len() > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
 
 /// Known fold of a sample (ground truth), angles in the border convention (vertex k at 2πk/N).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
@@ -61,6 +106,17 @@ impl Sample {
     /// A border sample from frames.
     pub fn from_frames(name: impl Into<String>, category: impl Into<String>, frames: Vec<Vec<[f64; 3]>>) -> Sample {
         Sample { name: name.into(), category: category.into(), frames, mesh: None, truth: None }
+    }
+
+    /// Bytes the sample holds on the heap: its positions (24 bytes a vertex a frame), and a
+    /// mesh's faces (a list each: its 24-byte header and 8 bytes a corner) and border edges;
+    /// what a cache of samples must count.
+    pub fn weight(&self) -> usize {
+        let positions = |frames: &[Vec<[f64; 3]>]| 24 * frames.iter().map(Vec::len).sum::<usize>();
+        let mesh = self.mesh.as_ref().map_or(0, |m| {
+            positions(&m.frames) + m.faces.iter().map(|f| 24 + 8 * f.len()).sum::<usize>() + 16 * m.border_edges.len()
+        });
+        positions(&self.frames) + mesh
     }
 
     /// Validate and orient the border frames ([`prepare`]). For a mesh, the border is

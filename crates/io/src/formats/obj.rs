@@ -43,7 +43,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
                 let mut xyz = [0.0; 3];
                 for c in &mut xyz {
                     let word = words.next().ok_or_else(|| bad(line_no, "a vertex needs x y z"))?;
-                    *c = word.parse().map_err(|_| bad(line_no, format!("{word:?} is not a number")))?;
+                    *c = word.parse().map_err(|_| bad(line_no, format!("{} is not a number", super::quote(word))))?;
                 }
                 mesh.vertices.push(xyz);
             }
@@ -75,7 +75,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
 /// One face corner `v`, `v/t`, `v//n` or `v/t/n` → 0-based vertex index.
 fn corner(word: &str, defined: usize, line: usize) -> Result<usize> {
     let v = word.split('/').next().unwrap_or(word);
-    let index: i64 = v.parse().map_err(|_| bad(line, format!("{word:?} is not a vertex index")))?;
+    let index: i64 = v.parse().map_err(|_| bad(line, format!("{} is not a vertex index", super::quote(word))))?;
     match index {
         0 => Err(bad(line, "vertex index 0 (OBJ counts from 1)")),
         // Negative indices count back from the last vertex defined so far.

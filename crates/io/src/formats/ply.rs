@@ -197,7 +197,8 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
                 Encoding::BinaryLittleEndian => "binary little endian",
                 Encoding::BinaryBigEndian => "binary big endian",
             };
-            bad(format!("{encoding} {} data: {err}", e.name))
+            // The parser's message may quote a whole line of the file.
+            bad(format!("{encoding} {} data: {}", super::clip(&e.name, super::QUOTE_CHARS), super::clip(&err.to_string(), 4 * super::QUOTE_CHARS)))
         };
         match e.name.as_str() {
             "vertex" => {

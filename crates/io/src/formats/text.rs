@@ -29,7 +29,7 @@ pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
             Ok(numbers) => numbers,
             // A header line of words before any vertex.
             Err(_) if out.is_empty() && fields.iter().all(|f| f.chars().all(char::is_alphabetic)) => continue,
-            Err(_) => return Err(Error::parse_at(Format::Text, k + 1, format!("{line:?} is not three numbers"))),
+            Err(_) => return Err(Error::parse_at(Format::Text, k + 1, format!("{} is not three numbers", super::quote(line)))),
         };
         if numbers.len() != 3 {
             return Err(Error::parse_at(Format::Text, k + 1, format!("expected x,y,z but found {} values", numbers.len())));

@@ -21,10 +21,21 @@
 //! A video is read as a stream: each frame's grips, then only the frames the folds use, each
 //! chunk once; a whole mesh is alive only while its frame is tested.
 //!
+//! A store is the user's data, not trusted: before an array is read, its shape is checked
+//! against the mesh limits ([`MAX_MESH_VERTICES`] rows of vertices or grip ids,
+//! [`MAX_MESH_FACES`] of faces), its chunk shape against the same bound, and each stored
+//! chunk's declared decoded size (Blosc's header, which its decoder allocates) against its
+//! chunk shape; a frame whose attributes cannot be read is one error, and the other frames
+//! and videos are kept ([`Store::videos`]).
+//!
 //! ```no_run
 //! use close_io::vrfolding::Store;
 //! let store = Store::open("vr_simulation_folding2_dataset.zarr".as_ref()).unwrap();
-//! for video in store.videos().unwrap() {
+//! let (videos, unreadable) = store.videos().unwrap();
+//! for e in unreadable {
+//!     eprintln!("{e}");
+//! }
+//! for video in videos {
 //!     let folds = store.folds(&video).unwrap();
 //!     println!("{} {}: {} actions", video.category, video.id, folds.actions.len());
 //! }
@@ -48,6 +59,7 @@ use zarrs::storage::{ListableStorageTraits, StorePrefix};
 use crate::error::{Error, Result};
 use crate::formats::Sample;
 use crate::mesh::silhouette::{Silhouette, EPSILON};
+use crate::mesh::{MAX_MESH_FACES, MAX_MESH_VERTICES};
 use cut::Action;
 
 /// Folds scored per video: the paper's Table I has first and second folds.
@@ -183,10 +195,13 @@ impl Store {
     }
 
     /// Every video of every category: frames grouped by `video_id` (else `instance_id`) and
-    /// sorted by `sample_id`. Reads each frame's attributes once.
-    pub fn videos(&self) -> Result<Vec<Video>> {
+    /// sorted by `sample_id`, and an error for each frame whose attributes cannot be read (an
+    /// interrupted download, a forged `sample_id`): it is left out, the rest are kept. Reads
+    /// each frame's attributes once.
+    pub fn videos(&self) -> Result<(Vec<Video>, Vec<Error>)> {
         use rayon::prelude::*;
         let mut out = Vec::new();
+        let mut unreadable = Vec::new();
         for (category, samples) in &self.categories {
             // Opening a group is a few small file reads: the frames are read in parallel.
             let frames = self
@@ -206,10 +221,13 @@ impl Store {
                     let garment = attr_text(attrs, "garment_name").unwrap_or_else(|| category.clone());
                     Ok((video, sample_id, path, garment))
                 })
-                .collect::<Result<Vec<_>>>()?;
+                .collect::<Vec<Result<_>>>();
             let mut videos: BTreeMap<String, Vec<(i64, String, String)>> = BTreeMap::new();
-            for (video, sample_id, path, garment) in frames {
-                videos.entry(video).or_default().push((sample_id, path, garment));
+            for frame in frames {
+                match frame {
+                    Ok((video, sample_id, path, garment)) => videos.entry(video).or_default().push((sample_id, path, garment)),
+                    Err(e) => unreadable.push(e),
+                }
             }
             for (id, mut frames) in videos {
                 frames.sort();
@@ -217,12 +235,13 @@ impl Store {
                 out.push(Video { category: category.clone(), id, garment, frames: frames.into_iter().map(|f| f.1).collect() });
             }
         }
-        Ok(out)
+        Ok((out, unreadable))
     }
 
-    /// Open array `path` and check its shape: 1-D (`width` None) or [rows, width]. Returns
-    /// the array, its row count and its data type's name ("float32", "int64", …).
-    fn open_array(&self, path: &str, width: Option<u64>) -> Result<(Array<FilesystemStore>, usize, String)> {
+    /// Open array `path` and check its shape: 1-D (`width` None) or [rows, width], with at
+    /// most `max_rows` rows, and chunks of at most as many elements. Returns the array, its
+    /// row count and its data type's name ("float32", "int64", …).
+    fn open_array(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<(Array<FilesystemStore>, usize, String)> {
         let array = Array::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
             .map_err(|e| self.error(path, format!("missing or unreadable array: {e}")))?;
         let rows = match (array.shape(), width) {
@@ -233,13 +252,50 @@ impl Store {
                 return Err(self.error(path, format!("shape {shape:?}, expected {expected}")));
             }
         };
+        if rows > max_rows as u64 {
+            return Err(self.error(path, format!("shape {:?}: more than {max_rows} rows, the limit", array.shape())));
+        }
         let rows = usize::try_from(rows).map_err(|_| self.error(path, "too many rows"))?;
+        let most = (max_rows as u64).saturating_mul(width.unwrap_or(1));
+        let chunk = array.chunk_shape(&vec![0; array.dimensionality()]).map_err(|e| self.error(path, e))?;
+        let elements = chunk.iter().map(|d| d.get()).fold(1u64, u64::saturating_mul);
+        if elements > most {
+            return Err(self.error(path, format!("chunks of {elements} elements: more than {most}, the limit of the whole array")));
+        }
         let kind = array.data_type().name(ZarrVersion::V3).map_or_else(|| array.data_type().to_string(), |n| n.to_string());
         Ok((array, rows, kind))
     }
 
     fn retrieve<T: zarrs::array::ElementOwned>(&self, array: &Array<FilesystemStore>, path: &str) -> Result<Vec<T>> {
+        self.check_chunks(array, path)?;
         array.retrieve_array_subset(&array.subset_all()).map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
+    }
+
+    /// Check each stored chunk of `array` before it is decoded: a Blosc chunk's header
+    /// (bytes 4..8, little endian: the decoded size, which the decoder allocates at once)
+    /// and an uncompressed chunk's length must not exceed the chunk's own size, its shape ×
+    /// its element size. A forged header could otherwise ask for gigabytes from a few bytes.
+    fn check_chunks(&self, array: &Array<FilesystemStore>, path: &str) -> Result<()> {
+        let element = array.data_type().fixed_size().ok_or_else(|| self.error(path, "a data type of variable size"))?;
+        let codecs = array.codecs();
+        let outer = codecs.bytes_to_bytes_codecs().last().and_then(|c| c.name(ZarrVersion::V2)).map(|n| n.to_string());
+        let chunks = array.chunks_in_array_subset(&array.subset_all()).map_err(|e| self.error(path, e))?;
+        for indices in chunks.iter().flat_map(|c| c.indices().into_iter()) {
+            let Some(encoded) = array.retrieve_encoded_chunk(&indices).map_err(|e| self.error(path, e))? else {
+                continue;
+            };
+            let shape = array.chunk_shape(&indices).map_err(|e| self.error(path, e))?;
+            let size = shape.iter().map(|d| d.get()).fold(element as u64, u64::saturating_mul);
+            let declared = match outer.as_deref() {
+                Some("blosc") => encoded.get(4..8).map_or(0, |b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+                Some(_) => 0,
+                None => encoded.len() as u64,
+            };
+            if declared > size {
+                return Err(self.error(path, format!("chunk {indices:?} decodes to {declared} bytes, but a chunk of shape {shape:?} holds {size}")));
+            }
+        }
+        Ok(())
     }
 
     /// A float [V, 3] array (float32 or float64) as points.
@@ -247,7 +303,7 @@ impl Store {
         fn widen<T: Into<f64>>(v: Vec<T>) -> Vec<f64> {
             v.into_iter().map(Into::into).collect()
         }
-        let (array, _, kind) = self.open_array(path, Some(3))?;
+        let (array, _, kind) = self.open_array(path, Some(3), MAX_MESH_VERTICES)?;
         let values = match kind.as_str() {
             "float32" => widen(self.retrieve::<f32>(&array, path)?),
             "float64" => self.retrieve::<f64>(&array, path)?,
@@ -259,9 +315,10 @@ impl Store {
         Ok(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
     }
 
-    /// An integer array (any width, signed or not) as i64, with its row count.
-    fn ints(&self, path: &str, width: Option<u64>) -> Result<(usize, Vec<i64>)> {
-        let (array, rows, kind) = self.open_array(path, width)?;
+    /// An integer array (any width, signed or not, at most `max_rows` rows) as i64, with its
+    /// row count.
+    fn ints(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<(usize, Vec<i64>)> {
+        let (array, rows, kind) = self.open_array(path, width, max_rows)?;
         let values = match kind.as_str() {
             "int8" => self.widen::<i8>(&array, path)?,
             "int16" => self.widen::<i16>(&array, path)?,
@@ -284,7 +341,7 @@ impl Store {
     /// `vertices`.
     fn grip(&self, frame: &str, hand: &str, vertices: usize) -> Result<bool> {
         let path = format!("{frame}/grip_vertex_id/{hand}_grip_vertex_id");
-        let (_, ids) = self.ints(&path, None)?;
+        let (_, ids) = self.ints(&path, None, MAX_MESH_VERTICES)?;
         if let Some(&bad) = ids.iter().find(|&&v| v < -1 || v >= vertices as i64) {
             return Err(self.error(&path, format!("gripped vertex {bad} is out of range: the mesh has {vertices} vertices (ids 0…{}, or -1 for none)", vertices - 1)));
         }
@@ -297,7 +354,7 @@ impl Store {
         let Some(first) = video.frames.first() else {
             return Err(self.error(&video.id, "the video has no frame"));
         };
-        let (_, vertices, _) = self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3))?;
+        let (_, vertices, _) = self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3), MAX_MESH_VERTICES)?;
         let grips = video
             .frames
             .iter()
@@ -372,7 +429,7 @@ impl Store {
 
     /// The triangles of `path`, every id checked against the mesh's `vertices`.
     fn faces(&self, path: &str, vertices: usize) -> Result<Vec<[usize; 3]>> {
-        let (_, ids) = self.ints(path, Some(3))?;
+        let (_, ids) = self.ints(path, Some(3), MAX_MESH_FACES)?;
         if let Some(&bad) = ids.iter().find(|&&v| v < 0 || v >= vertices as i64) {
             return Err(self.error(path, format!("face uses vertex {bad}, but the mesh has {vertices} vertices")));
         }

@@ -54,8 +54,8 @@ pub async fn sample(State(state): State<AppState>, AppPath(id): AppPath<String>)
         return routes::sample(State(state), AppPath(id)).await;
     }
     let (catalog, budget) = (state.catalog().clone(), state.config().budget);
-    let done = routes::analysis(&state, format!("{DATASET_KEY}{id}"), move |key| {
-        let sample = catalog.load(&id)?;
+    let done = routes::analysis(&state, format!("{DATASET_KEY}{id}"), move |key, deadline| {
+        let sample = catalog.load(&id, deadline)?;
         let source = catalog.get(&id).map(|e| e.source.clone()).unwrap_or_default();
         Loaded::of(key, &sample.clone(), FrameRange::default(), Some(Listed::Dataset { id, source, sample }), &budget)
     })

@@ -14,6 +14,7 @@ use axum::Json;
 use serde_json::json;
 
 use crate::error::Error;
+use super::guard::BodyTooSlow;
 
 /// Why a request failed.
 #[derive(Debug)]
@@ -90,12 +91,25 @@ impl From<Error> for ApiError {
     }
 }
 
-/// axum rejections all carry a status and a text: keep both.
+/// A 408 when a body read failed because the body came too slowly ([`BodyTooSlow`] among
+/// the error's sources): the client's pace, not its content.
+fn too_slow(error: &(dyn std::error::Error + 'static)) -> Option<ApiError> {
+    let mut source = Some(error);
+    while let Some(s) = source {
+        if let Some(slow) = s.downcast_ref::<BodyTooSlow>() {
+            return Some(ApiError::Rejected(StatusCode::REQUEST_TIMEOUT, slow.to_string()));
+        }
+        source = s.source();
+    }
+    None
+}
+
+/// axum rejections all carry a status and a text: keep both (a body too slow is a 408).
 macro_rules! from_rejection {
     ($($t:ty),*) => {$(
         impl From<$t> for ApiError {
             fn from(r: $t) -> Self {
-                ApiError::Rejected(r.status(), r.body_text())
+                too_slow(&r).unwrap_or_else(|| ApiError::Rejected(r.status(), r.body_text()))
             }
         }
     )*};
@@ -103,10 +117,13 @@ macro_rules! from_rejection {
 
 from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection);
 
-/// A form that could not be read is the client's doing: a body over the limit (413, found in
-/// the error's sources) or a malformed form (400), never a server fault.
+/// A form that could not be read is the client's doing: a body too slow (408) or over the
+/// limit (413, found in the error's sources), or a malformed form (400), never a server fault.
 impl From<MultipartError> for ApiError {
     fn from(e: MultipartError) -> Self {
+        if let Some(slow) = too_slow(&e) {
+            return slow;
+        }
         let mut source: Option<&dyn std::error::Error> = Some(&e);
         while let Some(s) = source {
             if s.to_string().contains("length limit exceeded") {

@@ -11,21 +11,37 @@
 //! let _ = |AppJson(req): AppJson<Goal>| async move { req.goal[0] };
 //! ```
 
+use axum::body::Bytes;
 use axum::extract::{FromRequest, FromRequestParts, Path, Query, Request};
 use axum::http::request::Parts;
+use axum::http::{header, HeaderMap, StatusCode};
 use axum::Json;
 use serde::de::DeserializeOwned;
 
 use super::ApiError;
+use crate::formats::json::check_nesting;
 
-/// A JSON body of type `T`.
+/// A JSON body of type `T`, nested at most [`crate::formats::json::MAX_NESTING`] deep
+/// anywhere (inside an unknown key too).
 pub struct AppJson<T>(pub T);
+
+/// Whether the body says it is JSON: `application/json` or `application/…+json`.
+fn is_json(headers: &HeaderMap) -> bool {
+    let essence = headers.get(header::CONTENT_TYPE).and_then(|t| t.to_str().ok()).and_then(|t| t.split(';').next()).unwrap_or("");
+    let essence = essence.trim().to_ascii_lowercase();
+    essence == "application/json" || (essence.starts_with("application/") && essence.ends_with("+json"))
+}
 
 impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for AppJson<T> {
     type Rejection = ApiError;
 
     async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
-        let Json(value) = Json::<T>::from_request(request, state).await?;
+        if !is_json(request.headers()) {
+            return Err(ApiError::Rejected(StatusCode::UNSUPPORTED_MEDIA_TYPE, "Expected request with `Content-Type: application/json`".into()));
+        }
+        let bytes = Bytes::from_request(request, state).await?;
+        check_nesting(&bytes).map_err(|e| ApiError::Rejected(StatusCode::BAD_REQUEST, e.to_string()))?;
+        let Json(value) = Json::<T>::from_bytes(&bytes)?;
         Ok(AppJson(value))
     }
 }

@@ -4,16 +4,25 @@
 //!   `Host`. A page on `evil.example` whose name was re-pointed to 127.0.0.1 sends
 //!   `Host: evil.example`, so only loopback names, the address the connection was accepted
 //!   on and the names given with `--allow-host` are served (403 otherwise). A request
-//!   without `Host` (HTTP/1.0, in-process tests) comes from no browser and passes.
+//!   without `Host` (HTTP/1.0, in-process tests) comes from no browser and passes. An
+//!   absolute-form target (`GET http://evil.example/`) names its host in the target, which
+//!   then counts as the request's host (RFC 9112, 3.2.2) and is checked the same way; two
+//!   `Host` headers are a 400 (which one counts would be a guess).
 //! - **Origin** (cross-site requests): a multipart POST is a "simple" CORS request that a
 //!   browser sends from any page without asking. A state-changing request (any method but
 //!   GET, HEAD, OPTIONS) whose `Origin` is neither this server's own (same scheme-less
 //!   authority as `Host`) nor one given with `--cors` is refused with 403; so is one that
 //!   carries no `Origin` but a `Sec-Fetch-Site` saying it comes from another site.
 //! - **Upload budget**: every request with a body holds, while it is served, permits for
-//!   its announced length (or the body limit when it announces none) from one semaphore of
-//!   [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead of
-//!   multiplying the memory they take; after a large one, freed memory goes back to the OS.
+//!   its announced length (or its route's body limit when it announces none) from one
+//!   semaphore of [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead
+//!   of multiplying the memory they take; after a large one, freed memory goes back to the
+//!   OS. A body announced over its route's own limit (uploads to `/api/analyze`: the body
+//!   limit; the JSON routes: the JSON limit) is refused at once, holding nothing.
+//! - **Body rate**: a body must keep arriving. After a grace of the header time-out, it must
+//!   have come at [`MIN_BODY_RATE`] bytes a second on average, or the read fails (408) and
+//!   the connection, its budget share and its worker are freed: a client trickling a body
+//!   cannot hold them for the whole request time-out.
 //!
 //! ```
 //! use close_server::server::guard::host_name;
@@ -21,8 +30,12 @@
 //! assert_eq!(host_name("[::1]:80"), "::1");
 //! ```
 
+use std::future::Future;
 use std::net::{IpAddr, SocketAddr};
+use std::pin::Pin;
 use std::sync::Arc;
+use std::task::{Context, Poll};
+use std::time::Duration;
 
 use axum::extract::{Request, State};
 use axum::http::{header, HeaderMap, Method, StatusCode};
@@ -114,10 +127,18 @@ impl Doors {
     }
 }
 
-/// Middleware: 403 for a foreign `Host` or a cross-origin state-changing request.
+/// Middleware: 400 for two `Host` headers; 403 for a foreign `Host` or target authority, or
+/// a cross-origin state-changing request.
 pub async fn doors(State(doors): State<Arc<Doors>>, request: Request, next: Next) -> Response {
     let served_at = request.extensions().get::<ServedAt>().copied();
-    match doors.refuse(request.method(), request.headers(), served_at) {
+    if request.headers().get_all(header::HOST).iter().nth(1).is_some() {
+        return ApiError::Rejected(StatusCode::BAD_REQUEST, "the request has more than one Host header".into()).into_response();
+    }
+    let target = request.uri().authority().map(|a| a.as_str().to_string());
+    let foreign_target = target.filter(|t| !doors.host_allowed(t, served_at)).map(|t| {
+        format!("this server does not answer to the host name {t:?} of the request target: start it with --allow-host {} to allow it", host_name(&t))
+    });
+    match foreign_target.or_else(|| doors.refuse(request.method(), request.headers(), served_at)) {
         Some(why) => ApiError::Rejected(StatusCode::FORBIDDEN, why).into_response(),
         None => next.run(request).await,
     }
@@ -129,14 +150,28 @@ pub struct UploadBudget {
     permits: Arc<Semaphore>,
     /// All permits: no single request asks for more.
     total_kib: u32,
-    /// What a body without `Content-Length` may grow to.
+    /// What an upload to `/api/analyze` may hold.
     body_limit: usize,
+    /// What the body of any other route may hold.
+    json_body_limit: usize,
 }
 
+/// The one route that takes uploads up to the body limit; the others take small JSON.
+const UPLOAD_ROUTE: &str = "/api/analyze";
+
 impl UploadBudget {
-    pub fn new(bytes: usize, body_limit: usize) -> Self {
+    pub fn new(bytes: usize, body_limit: usize, json_body_limit: usize) -> Self {
         let total_kib = u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, Semaphore::MAX_PERMITS as u32);
-        UploadBudget { permits: Arc::new(Semaphore::new(total_kib as usize)), total_kib, body_limit }
+        UploadBudget { permits: Arc::new(Semaphore::new(total_kib as usize)), total_kib, body_limit, json_body_limit }
+    }
+
+    /// The largest body the route at `path` takes.
+    fn limit_of(&self, path: &str) -> usize {
+        if path == UPLOAD_ROUTE {
+            self.body_limit
+        } else {
+            self.json_body_limit
+        }
     }
 
     /// Bytes of the budget not held by a request now.
@@ -151,11 +186,11 @@ pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Req
         return next.run(request).await;
     }
     let announced = request.headers().get(header::CONTENT_LENGTH).and_then(|l| l.to_str().ok()?.parse::<usize>().ok());
-    if announced.is_some_and(|bytes| bytes > budget.body_limit) {
-        // Refused by the body limit unread: nothing to hold.
-        return next.run(request).await;
+    let limit = budget.limit_of(request.uri().path());
+    if let Some(bytes) = announced.filter(|&bytes| bytes > limit) {
+        return ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, format!("the body announces {bytes} bytes; this route takes at most {limit}")).into_response();
     }
-    let kib = u32::try_from(announced.unwrap_or(budget.body_limit).div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, budget.total_kib);
+    let kib = u32::try_from(announced.unwrap_or(limit).div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, budget.total_kib);
     let Ok(held) = budget.permits.clone().acquire_many_owned(kib).await else {
         return ApiError::Internal("the upload budget is closed".into()).into_response();
     };
@@ -165,6 +200,67 @@ pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Req
         release_memory();
     }
     response
+}
+
+/// Slowest average a request body may arrive at, after the grace: 16 KiB/s, so a 64 MiB
+/// upload may take about an hour, and a trickle of a byte now and then is cut.
+pub const MIN_BODY_RATE: u64 = 16 * 1024;
+
+/// A request body that fails once it falls behind [`MIN_BODY_RATE`]: by `grace` after it
+/// started plus the time its bytes so far were due at that rate.
+struct MinRate {
+    inner: axum::body::Body,
+    due: Pin<Box<tokio::time::Sleep>>,
+    started: tokio::time::Instant,
+    grace: Duration,
+    received: u64,
+}
+
+impl MinRate {
+    fn new(inner: axum::body::Body, grace: Duration) -> MinRate {
+        let started = tokio::time::Instant::now();
+        MinRate { inner, due: Box::pin(tokio::time::sleep_until(started + grace)), started, grace, received: 0 }
+    }
+}
+
+impl hyper::body::Body for MinRate {
+    type Data = axum::body::Bytes;
+    type Error = axum::Error;
+
+    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
+        let this = &mut *self;
+        match Pin::new(&mut this.inner).poll_frame(cx) {
+            Poll::Ready(Some(Ok(frame))) => {
+                this.received += frame.data_ref().map_or(0, |d| d.len() as u64);
+                let owed = Duration::from_secs_f64(this.received as f64 / MIN_BODY_RATE as f64);
+                let due = this.started + this.grace + owed;
+                this.due.as_mut().reset(due);
+                Poll::Ready(Some(Ok(frame)))
+            }
+            Poll::Pending if this.due.as_mut().poll(cx).is_ready() => Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow)))),
+            other => other,
+        }
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> hyper::body::SizeHint {
+        self.inner.size_hint()
+    }
+}
+
+/// Why a body read failed: it arrived too slowly.
+#[derive(Debug, thiserror::Error)]
+#[error("the request body arrives slower than {MIN_BODY_RATE} bytes a second")]
+pub struct BodyTooSlow;
+
+/// Middleware: read every request body through [`MinRate`], with the header time-out as
+/// its grace.
+pub async fn body_rate(State(grace): State<Duration>, request: Request, next: Next) -> Response {
+    let request = request.map(|body| axum::body::Body::new(MinRate::new(body, grace)));
+    next.run(request).await
 }
 
 /// Requests holding this much of the budget give their freed memory back when answered.
@@ -224,7 +320,8 @@ mod tests {
 
     #[test]
     fn the_upload_budget_counts_kib() {
-        let b = UploadBudget::new(10 * 1024, 64 * 1024);
+        let b = UploadBudget::new(10 * 1024, 64 * 1024, 8 * 1024);
         assert_eq!((b.total_kib, b.available()), (10, 10 * 1024));
+        assert_eq!((b.limit_of("/api/analyze"), b.limit_of("/api/plan")), (64 * 1024, 8 * 1024));
     }
 }

@@ -46,6 +46,7 @@ use hyper_util::rt::{TokioIo, TokioTimer};
 use tokio::net::TcpListener;
 use tokio::sync::Semaphore;
 use tower::{ServiceBuilder, ServiceExt};
+use tower_http::compression::predicate::{DefaultPredicate, Predicate};
 use tower_http::compression::CompressionLayer;
 use tower_http::cors::{AllowOrigin, CorsLayer};
 use tower_http::limit::RequestBodyLimitLayer;
@@ -308,6 +309,22 @@ where
     ApiError::Rejected(status, message).into_response()
 }
 
+/// Largest answer that is gzipped. The compression layer runs on the async threads, where a
+/// 90 MB interpolation took seconds and stalled every other request (`/healthz` too); an
+/// answer up to 1 MiB takes milliseconds. Larger answers, which only the interpolation and
+/// a huge analysis give, are sent as they are.
+const COMPRESS_AT_MOST: u64 = 1 << 20;
+
+/// Compress an answer whose size is known and at most [`COMPRESS_AT_MOST`].
+#[derive(Debug, Clone, Copy)]
+struct SmallAnswers;
+
+impl Predicate for SmallAnswers {
+    fn should_compress<B: axum::body::HttpBody>(&self, response: &Response<B>) -> bool {
+        response.body().size_hint().exact().is_some_and(|bytes| bytes <= COMPRESS_AT_MOST)
+    }
+}
+
 /// CORS for the `--cors` origins only; none (the browser's same-origin rule) by default.
 fn cors(origins: &[String]) -> Option<CorsLayer> {
     let origins: Vec<HeaderValue> = origins.iter().filter_map(|o| HeaderValue::from_str(o.trim_end_matches('/')).ok()).collect();
@@ -320,7 +337,7 @@ fn cors(origins: &[String]) -> Option<CorsLayer> {
 pub fn app(state: AppState) -> Router {
     let config = state.config().clone();
     let doors = Arc::new(Doors { hosts: config.allowed_hosts.clone(), origins: config.cors_origins.clone() });
-    let uploads = Arc::new(UploadBudget::new(config.upload_budget, config.body_limit));
+    let uploads = Arc::new(UploadBudget::new(config.upload_budget, config.body_limit, config.json_body_limit));
     let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
         .route("/", get(assets::index))
@@ -340,11 +357,12 @@ pub fn app(state: AppState) -> Router {
             ServiceBuilder::new()
                 .layer(TraceLayer::new_for_http())
                 .option_layer(cors(&config.cors_origins))
-                .layer(CompressionLayer::new())
+                .layer(CompressionLayer::new().compress_when(DefaultPredicate::new().and(SmallAnswers)))
                 .layer(axum::middleware::map_response(json_errors))
                 .layer(axum::middleware::from_fn_with_state(doors, guard::doors))
                 .layer(TimeoutLayer::with_status_code(StatusCode::REQUEST_TIMEOUT, config.timeout))
                 .layer(axum::middleware::from_fn_with_state(uploads, guard::upload_budget))
+                .layer(axum::middleware::from_fn_with_state(config.header_timeout, guard::body_rate))
                 .layer(RequestBodyLimitLayer::new(config.body_limit)),
         )
         .with_state(state)

@@ -164,13 +164,13 @@ impl Loaded {
     }
 }
 
-/// The cached analysis under `key`, or `load` the sample and analyse it. Both run on a
-/// worker: a light analysis in the same job as its loading, a heavy one (over
+/// The cached analysis under `key`, or `load` the sample (within the job's deadline) and
+/// analyse it. Both run on a worker: a light analysis in the same job as its loading, a heavy one (over
 /// [`Lane::of`]'s threshold) in the heavy lane, so it never holds the light workers.
 pub(super) async fn analysis(
     state: &AppState,
     key: String,
-    load: impl FnOnce(String) -> Result<Loaded, ApiError> + Send + 'static,
+    load: impl FnOnce(String, &Deadline) -> Result<Loaded, ApiError> + Send + 'static,
 ) -> Result<Arc<Analyzed>, ApiError> {
     if let Some(hit) = state.cached_analysis(&key) {
         return Ok(hit);
@@ -178,7 +178,7 @@ pub(super) async fn analysis(
     let job = state.clone();
     let loaded = state
         .run_cpu(Lane::Light, move |deadline| {
-            let loaded = load(key)?;
+            let loaded = load(key, deadline)?;
             // A request gone while its sample was read hands nothing on to the heavy lane.
             deadline.check()?;
             match Lane::of(loaded.cells()) {
@@ -300,7 +300,7 @@ pub async fn analyze(State(state): State<AppState>, AppQuery(range): AppQuery<Ra
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
     let budget = state.config().budget;
-    let done = analysis(&state, key, move |key| Loaded::of(key, &upload.sample()?, frames, None, &budget)).await?;
+    let done = analysis(&state, key, move |key, _| Loaded::of(key, &upload.sample()?, frames, None, &budget)).await?;
     Ok(JsonBytes(done.response.clone()))
 }
 
@@ -369,7 +369,7 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<Analyzed>, Ap
         return Err(unknown_sample(id));
     }
     let (job, id) = (state.clone(), id.to_string());
-    analysis(state, format!("{SAMPLE_KEY}{id}"), move |key| {
+    analysis(state, format!("{SAMPLE_KEY}{id}"), move |key, _| {
         let entry = job.entry(&id).ok_or_else(|| unknown_sample(&id))?;
         Loaded::of(key, &entry.sample, FrameRange::default(), Some(Listed::Builtin(id)), &job.config().budget)
     })
@@ -522,7 +522,15 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
 
 pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskRequest>) -> Result<Response, ApiError> {
     let size = picture_size(req.size);
-    let reference = req.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
+    // Checked before the cache, which keys "with a reference" apart from "without": a
+    // reference too short for a border is refused even when the border alone is cached.
+    if let Some(reference) = req.reference.as_deref().filter(|r| r.len() < crate::border::MIN_VERTICES) {
+        return Err(ApiError::Rejected(
+            axum::http::StatusCode::UNPROCESSABLE_ENTITY,
+            format!("\"reference\" has {} vertices: a border needs at least {}", reference.len(), crate::border::MIN_VERTICES),
+        ));
+    }
+    let reference = req.reference.as_deref().map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat()).unwrap_or_default();
     let scale = match req.scale {
         Some(s) => Some(Scale::fixed(s.s, s.max).ok_or_else(|| ApiError::BadRequest("\"scale\" needs s > 0 and max ≥ 0, both finite".into()))?),
         None => None,
@@ -581,7 +589,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
         Some(b'{') => {
             let key = content_key(&[b"plan", raw.as_bytes()]);
             let budget = state.config().budget;
-            analysis(&state, key, move |key| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None, &budget)).await?
+            analysis(&state, key, move |key, _| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None, &budget)).await?
         }
         _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
     };
