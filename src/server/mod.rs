@@ -128,8 +128,8 @@ struct Inner {
     /// worker; each on as many threads as cores (the OS shares them with light jobs).
     heavy: Workers,
     dataset: Dataset,
-    /// `GET /api/samples`, written once: the dataset never changes.
-    sample_list: OnceLock<Bytes>,
+    /// The rows of `GET /api/samples`, built once: the datasets never change.
+    sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
     /// The user's datasets, listed at start.
     catalog: Arc<crate::catalog::Catalog>,
 }
@@ -323,7 +323,7 @@ pub fn app(state: AppState) -> Router {
         .route("/healthz", get(routes::healthz))
         .route("/api/analyze", post(routes::analyze))
         .route("/api/samples", get(datasets::samples))
-        .route("/api/samples/{id}", get(datasets::sample))
+        .route("/api/samples/{id}", get(routes::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate).layer(small_bodies))
