@@ -564,6 +564,10 @@ async fn dataset_samples_are_rows_analyses_pictures_and_plans_like_built_in_ones
     for url in analysis["images"].as_object().expect("images").values() {
         assert_png(&app, url.as_str().expect("a URL")).await;
     }
+    // The truth is drawn beside the found folds, with the angle errors (item 12).
+    let circle = get(&app, &format!("/api/images/sample:{id}/close.png?format=svg")).await;
+    let circle = String::from_utf8_lossy(&circle.body);
+    assert!(circle.contains(">true fold 1 (○)") && circle.contains(">true fold 2 (○)") && circle.contains("° off"), "{}", &circle[circle.len().saturating_sub(3000)..]);
     // Planned by its id.
     let plan = post_json(&app, "/api/plan", &json!({ "sample": id, "goal": [0.5, 3.5] })).await;
     assert_eq!(plan.status, StatusCode::OK, "{}", String::from_utf8_lossy(&plan.body));
