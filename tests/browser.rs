@@ -364,6 +364,11 @@ async fn the_app_works_in_a_real_browser() {
     // Click to enlarge: the full-resolution picture in a dialog; Escape closes it.
     js(&client, "document.querySelector('#browse-result .step-pictures .zoom').click()").await;
     until(&client, "the full-resolution picture", "document.getElementById('lightbox').open && document.querySelector('#lightbox img').naturalWidth >= 1400").await;
+    // The wheel zooms in about the pointer, up to more than the fitted size (item 6).
+    let zoomed = js(&client, "const f = document.querySelector('#lightbox .lightbox-frame'), r = f.getBoundingClientRect(); \
+                              f.dispatchEvent(new WheelEvent('wheel', { deltaY: -600, clientX: r.x + r.width / 2, clientY: r.y + r.height / 2, bubbles: true, cancelable: true })); \
+                              const img = document.querySelector('#lightbox img'); return img.getBoundingClientRect().width / f.getBoundingClientRect().width").await;
+    assert!(zoomed.as_f64().is_some_and(|z| z > 5.0), "the picture did not zoom: {zoomed}");
     screenshot(&client, &shots, "1400-02-full-resolution.png").await;
     violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("lightbox: {v}")));
     client.active_element().await.expect("focus").send_keys("\u{E00C}").await.expect("Escape");
@@ -701,6 +706,9 @@ async fn the_app_works_in_a_real_browser() {
     let meta = text(&client, "document.querySelector('#browse-result .result-meta').textContent").await;
     assert!(meta.starts_with(&format!("dataset {}", own.display())) && meta.contains("napkin_second_fold"), "{meta}");
     assert!(text(&client, "document.querySelector('#browse-result .close-table').innerText").await.contains("true fold 2"));
+    // The whole span of a sequence draws no curve and says so.
+    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"0\"]').click()").await;
+    until(&client, "the whole span's caption", "[...document.querySelectorAll('#browse-result figcaption')].some(f => f.textContent.startsWith('|diff| (the fold curves: see each step)'))").await;
     let card = until(&client, "the dataset card in its category", &format!("document.querySelector('.sample-card[data-id=\"{q3}\"]')?.closest('details').querySelector('summary').textContent")).await;
     assert!(card.as_str().unwrap_or_default().starts_with("napkin_second_fold"), "{card}");
     until(&client, "the open card in view", &format!("(r => r.top >= 0 && r.bottom <= window.innerHeight)(document.querySelector('.sample-card[data-id=\"{q3}\"]').getBoundingClientRect())")).await;

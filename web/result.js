@@ -105,10 +105,50 @@ function codePanel(result, stem) {
   return details;
 }
 
-/** Show `url` in the full-resolution dialog. */
+/** The lightbox's zoom: scale over the fitted size, and the pan in CSS px. */
+const zoom = { scale: 1, x: 0, y: 0 };
+
+function applyZoom(img) {
+  img.style.transform = `translate(${zoom.x}px, ${zoom.y}px) scale(${zoom.scale})`;
+}
+
+/** Wheel or pinch (ctrl+wheel) zooms about the pointer, up to the picture's full resolution and beyond; drag pans. */
+function setupZoom(dialog) {
+  const img = dialog.querySelector("img");
+  const frame = dialog.querySelector(".lightbox-frame");
+  frame.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    const r = frame.getBoundingClientRect();
+    const [px, py] = [e.clientX - r.left, e.clientY - r.top];
+    const next = Math.min(8, Math.max(1, zoom.scale * Math.exp(-e.deltaY / 300)));
+    // Keep the point under the pointer where it is.
+    zoom.x = px - ((px - zoom.x) * next) / zoom.scale;
+    zoom.y = py - ((py - zoom.y) * next) / zoom.scale;
+    zoom.scale = next;
+    if (next === 1) Object.assign(zoom, { x: 0, y: 0 });
+    applyZoom(img);
+  }, { passive: false });
+  let drag = null;
+  frame.addEventListener("pointerdown", (e) => {
+    drag = { x: e.clientX - zoom.x, y: e.clientY - zoom.y };
+    frame.setPointerCapture(e.pointerId);
+  });
+  frame.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    Object.assign(zoom, { x: e.clientX - drag.x, y: e.clientY - drag.y });
+    applyZoom(img);
+  });
+  frame.addEventListener("pointerup", () => (drag = null));
+  dialog.dataset.zoom = "ready";
+}
+
+/** Show `url` in the full-resolution dialog (fitted first; wheel, pinch and drag zoom and pan). */
 export function enlarge(url, caption) {
   const dialog = document.getElementById("lightbox");
+  if (!dialog.dataset.zoom) setupZoom(dialog);
   const img = dialog.querySelector("img");
+  Object.assign(zoom, { scale: 1, x: 0, y: 0 });
+  applyZoom(img);
   img.src = url;
   img.alt = caption;
   dialog.querySelector(".lightbox-caption").textContent = caption;
@@ -122,7 +162,9 @@ function stepPictures(result, stem, { step: wanted = null, onStep = null } = {})
   const steps = result.steps || [];
   const show = (step) => {
     const suffix = step ? ` · step ${step} (frames ${steps[step - 1].from_frame}→${steps[step - 1].to_frame})` : "";
-    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, caption + suffix, step, stem)));
+    // Over several steps the curves are fitted per step: the whole span shows none.
+    const captionOf = (name, caption) => (name === "diff" && !step && steps.length > 1 ? "|diff| (the fold curves: see each step)" : caption);
+    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem)));
   };
   if (steps.length > 1) {
     const group = el("div", { className: "segmented", role: "radiogroup" });
