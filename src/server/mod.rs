@@ -1,7 +1,8 @@
 //! The web app: an axum server over the library, same JSON as `close analyze --json`.
 //!
 //! Routes: `GET /` (the app in `web/`, embedded), `GET /healthz`, `POST /api/analyze`,
-//! `GET /api/samples`, `GET /api/samples/{id}`, `GET /api/images/{key}/{picture}.png`,
+//! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
+//! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
