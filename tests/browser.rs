@@ -593,6 +593,7 @@ async fn the_app_works_in_a_real_browser() {
     assert!(steps.first().is_some_and(|s| s.starts_with("Now")), "{steps:?}");
     assert_eq!(steps.iter().filter(|s| s.contains("· Unfold")).count(), 2, "{steps:?}");
     assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
+    assert!(steps.iter().skip(1).all(|s| s.contains("(x, y in the sample's units)")), "coordinates without units: {steps:?}");
     assert!(text(&client, "document.title").await.contains("half_then_half"));
     screenshot(&client, &shots, "1400-07-plan.png").await;
     assert_eq!(wrapped_box_names(&client).await, json!([]), "goal box names wrap");

@@ -30,7 +30,9 @@ function stepText(step, cornerOf) {
     const what = corner ? `corner ${corner} (vertex ${p.vertex})` : `vertex ${p.vertex}`;
     return step.action === "unfold" ? `grasp ${what} at ${fmtPoint(p.from)} and put it back at ${fmtPoint(p.to)}` : `grasp ${what} at ${fmtPoint(p.from)} and place it at ${fmtPoint(p.to)}`;
   });
-  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}.`;
+  // Points are the sample's own (x, y) coordinates, in whatever unit its file uses.
+  const where = picks.length ? ` (x, y in the sample's units)` : "";
+  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${where}.`;
 }
 
 function fillCloths() {
