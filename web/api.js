@@ -27,6 +27,8 @@ export function errorText(status, statusText, body) {
   } catch {
     // An HTML or plain text page from a proxy or an older server: keep its words only.
     const doc = new DOMParser().parseFromString(body || "", "text/html");
+    // Block elements end a phrase: "503 Service Unavailable" and "upstream down" stay apart.
+    for (const block of doc.querySelectorAll("h1, h2, h3, h4, h5, h6, p, div, li, br, tr, pre")) block.after(" ");
     message = (doc.body ? doc.body.textContent : body || "").replace(/\s+/g, " ").trim().slice(0, 300);
   }
   if (message) return `${message} (HTTP ${status})`;
@@ -90,9 +92,10 @@ export async function disk(request, channel = "disk") {
   return { url, scale: Number.isFinite(s) && s > 0 ? { s, max } : null };
 }
 
-/** The URL of picture `name` of an analysis, for `step` (1-based) or the whole, at `size` px. */
-export function imageUrl(key, name, { step = null, size = 480 } = {}) {
+/** The URL of picture `name` of an analysis, for `step` (1-based) or the whole, at `size` px, as PNG or SVG. */
+export function imageUrl(key, name, { step = null, size = 480, format = "png" } = {}) {
   const query = new URLSearchParams({ size: String(size) });
   if (step) query.set("step", String(step));
+  if (format !== "png") query.set("format", format);
   return `/api/images/${encodeURIComponent(key)}/${name}.png?${query}`;
 }

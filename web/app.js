@@ -8,6 +8,7 @@ import * as browse from "./view-browse.js";
 import * as upload from "./view-upload.js";
 import * as interpolate from "./view-interpolate.js";
 import * as plan from "./view-plan.js";
+import * as compare from "./view-compare.js";
 
 const $ = (sel) => document.querySelector(sel);
 
@@ -41,7 +42,7 @@ const resultActions = {
 
 let pendingGoal = null;
 
-function show({ view, id }) {
+function show({ view, id, ids, params }) {
   for (const name of router.VIEWS) {
     $(`#view-${name}`).hidden = name !== view;
     const tab = $(`#tab-${name}`);
@@ -54,15 +55,17 @@ function show({ view, id }) {
     const wanted = id || browse.opened() || browse.first();
     // The default sample replaces the bare URL rather than adding a history entry.
     if (!id && wanted) location.replace(router.hashOf("samples", wanted));
-    else if (wanted && wanted !== browse.current()) browse.open(wanted, showError);
+    else if (wanted && wanted !== browse.current()) browse.open(wanted, showError, params.get("step"));
     else document.title = router.title("samples", $("#browse-result .result-name")?.textContent || "");
   } else if (view === "upload") {
     document.title = router.title("upload", upload.titleName());
   } else if (view === "interpolate") {
-    interpolate.shown();
+    interpolate.shown(params);
   } else if (view === "plan") {
-    plan.shown(pendingGoal);
+    plan.shown(pendingGoal || router.angles(params.get("goal")), interpolate.clothParam(params));
     pendingGoal = null;
+  } else if (view === "compare") {
+    compare.shown(ids, showError);
   }
 }
 
@@ -74,6 +77,7 @@ interpolate.setup(showError, (cloth, goal) => {
   router.go("plan");
 });
 plan.setup(showError);
+compare.setup();
 
 // The list first, then the route (a sample URL opens its sample at once either way).
 const listed = browse.loadSamples();

@@ -19,11 +19,18 @@ import { deg, el, fmtFold, row } from "./format.js";
  */
 export const WEAK = { sameToCross: 1.0, residual: 0.6, flipMargin: 0.25, rmse: 0.1 };
 
-/** Why the fold of analysis step `step` is doubtful ([] when its evidence is strong). */
+/**
+ * Why analysis step `step` is doubtful ([] when its evidence is strong): a fold's weak
+ * evidence, or a step with no fold whose observed frame is far from the unchanged one (the
+ * cloth changed beyond noise, but no fold explains it).
+ */
 export function doubts(step) {
   const out = [];
-  if (!step.fold) return out;
   const { cut, orientation, metrics } = step;
+  if (!step.fold) {
+    if (metrics && metrics.rmse > WEAK.rmse) out.push(`changed, but no fold found (the observed frame is ${metrics.rmse.toFixed(3)} RMSE from the unchanged one, > ${WEAK.rmse})`);
+    return out;
+  }
   if (cut && cut.same_to_cross > WEAK.sameToCross) out.push(`same-to-cross ratio ${cut.same_to_cross.toFixed(2)} > ${WEAK.sameToCross}`);
   if (cut && cut.residual > WEAK.residual) out.push(`cut residual ${cut.residual.toFixed(2)} > ${WEAK.residual}`);
   if (orientation) {
@@ -52,20 +59,96 @@ const WHOLE = [
   ["close", "CloSE fold circle"],
 ];
 
-/** A picture that opens large in the shared dialog. */
-function figure(key, name, caption, step) {
+/** A file name made of `parts` (letters, digits, "_", "-" and "." kept). */
+const fileName = (...parts) => parts.filter(Boolean).join("_").replace(/[^\w.-]+/g, "-");
+
+/** Links that download picture `name` as PNG (1400 px) and as SVG (the same drawing). */
+function downloads(key, name, step, stem) {
+  const file = fileName(stem, name, step && `step${step}`);
+  const link = (format, text) => {
+    const a = el("a", { href: imageUrl(key, name, { step, size: 1400, format }), download: `${file}.${format}`, textContent: text, className: "download" });
+    a.dataset.format = format;
+    return a;
+  };
+  return el("span", { className: "downloads small" }, link("png", "PNG"), " · ", link("svg", "SVG"));
+}
+
+/** A picture that opens large in the shared dialog, with its download links. */
+function figure(key, name, caption, step, stem) {
   const img = el("img", { src: imageUrl(key, name, { step }), alt: caption, width: 480, height: 480, loading: "lazy" });
   img.dataset.picture = name;
   const button = el("button", { type: "button", className: "zoom", title: "Open at full resolution" }, img);
   button.setAttribute("aria-label", `${caption}: open at full resolution`);
   button.addEventListener("click", () => enlarge(imageUrl(key, name, { step, size: 1400 }), caption));
-  return el("figure", {}, button, el("figcaption", { textContent: caption }));
+  return el("figure", {}, button, el("figcaption", {}, caption, " ", downloads(key, name, step, stem)));
 }
 
-/** Show `url` in the full-resolution dialog. */
+/** Where a result comes from, in words: built in, which dataset, or an upload. */
+export function provenance(result) {
+  if (result.source === "builtin") return "built-in sample";
+  if (result.source === "upload" || !result.source) return "your upload";
+  return `dataset ${result.source}`;
+}
+
+/** The exact calls that return this analysis from code: curl and Python. */
+function codePanel(result, stem) {
+  const origin = location.origin;
+  const listed = Boolean(result.id);
+  const url = listed ? `${origin}/api/samples/${encodeURIComponent(result.id)}` : `${origin}/api/analyze`;
+  const curl = listed ? `curl -s ${url}` : `curl -s -F sample=@${stem || "sample.json"} ${url}`;
+  const python = listed
+    ? `import requests\nanalysis = requests.get("${url}").json()\nprint(analysis["label"]["text"], analysis["close"])`
+    : `import requests\nwith open("${stem || "sample.json"}", "rb") as f:\n    analysis = requests.post("${url}", files={"sample": f}).json()\nprint(analysis["label"]["text"], analysis["close"])`;
+  const block = (lang, text) => el("pre", { className: `code code-${lang}` }, el("code", { textContent: text }));
+  const details = el("details", { className: "use-code" }, el("summary", { textContent: "Use from code" }));
+  details.append(el("p", { className: "muted small", textContent: "The same JSON as `close analyze --json`, from the running server:" }), block("curl", curl), block("python", python));
+  return details;
+}
+
+/** The lightbox's zoom: scale over the fitted size, and the pan in CSS px. */
+const zoom = { scale: 1, x: 0, y: 0 };
+
+function applyZoom(img) {
+  img.style.transform = `translate(${zoom.x}px, ${zoom.y}px) scale(${zoom.scale})`;
+}
+
+/** Wheel or pinch (ctrl+wheel) zooms about the pointer, up to the picture's full resolution and beyond; drag pans. */
+function setupZoom(dialog) {
+  const img = dialog.querySelector("img");
+  const frame = dialog.querySelector(".lightbox-frame");
+  frame.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    const r = frame.getBoundingClientRect();
+    const [px, py] = [e.clientX - r.left, e.clientY - r.top];
+    const next = Math.min(8, Math.max(1, zoom.scale * Math.exp(-e.deltaY / 300)));
+    // Keep the point under the pointer where it is.
+    zoom.x = px - ((px - zoom.x) * next) / zoom.scale;
+    zoom.y = py - ((py - zoom.y) * next) / zoom.scale;
+    zoom.scale = next;
+    if (next === 1) Object.assign(zoom, { x: 0, y: 0 });
+    applyZoom(img);
+  }, { passive: false });
+  let drag = null;
+  frame.addEventListener("pointerdown", (e) => {
+    drag = { x: e.clientX - zoom.x, y: e.clientY - zoom.y };
+    frame.setPointerCapture(e.pointerId);
+  });
+  frame.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    Object.assign(zoom, { x: e.clientX - drag.x, y: e.clientY - drag.y });
+    applyZoom(img);
+  });
+  frame.addEventListener("pointerup", () => (drag = null));
+  dialog.dataset.zoom = "ready";
+}
+
+/** Show `url` in the full-resolution dialog (fitted first; wheel, pinch and drag zoom and pan). */
 export function enlarge(url, caption) {
   const dialog = document.getElementById("lightbox");
+  if (!dialog.dataset.zoom) setupZoom(dialog);
   const img = dialog.querySelector("img");
+  Object.assign(zoom, { scale: 1, x: 0, y: 0 });
+  applyZoom(img);
   img.src = url;
   img.alt = caption;
   dialog.querySelector(".lightbox-caption").textContent = caption;
@@ -73,27 +156,34 @@ export function enlarge(url, caption) {
 }
 
 /** The step-picture block: a choice of span and the four disk pictures of it. */
-function stepPictures(result) {
+function stepPictures(result, stem, { step: wanted = null, onStep = null } = {}) {
   const block = el("div", { className: "step-pictures" });
   const grid = el("div", { className: "images" });
   const steps = result.steps || [];
   const show = (step) => {
     const suffix = step ? ` · step ${step} (frames ${steps[step - 1].from_frame}→${steps[step - 1].to_frame})` : "";
-    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, caption + suffix, step)));
+    // Over several steps the curves are fitted per step: the whole span shows none.
+    const captionOf = (name, caption) => (name === "diff" && !step && steps.length > 1 ? "|diff| (the fold curves: see each step)" : caption);
+    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem)));
   };
   if (steps.length > 1) {
     const group = el("div", { className: "segmented", role: "radiogroup" });
     group.setAttribute("aria-label", "Which frames the disks compare");
     const choices = [[null, `All: frames ${result.start_frame}→${result.end_frame}`], ...steps.map((s, k) => [k + 1, `Step ${k + 1}: ${s.from_frame}→${s.to_frame}`])];
+    // A link's step ("all" or 1…), else step 1.
+    const first = wanted === "all" ? null : Number(wanted) >= 1 && Number(wanted) <= steps.length ? Number(wanted) : 1;
     choices.forEach(([step, text]) => {
       const id = `span-${result.key}-${step || 0}`.replace(/[^\w-]/g, "_");
-      const input = el("input", { type: "radio", name: `span-${result.key}`, id, checked: step === 1 });
+      const input = el("input", { type: "radio", name: `span-${result.key}`, id, checked: step === first });
       input.dataset.step = step || 0;
-      input.addEventListener("change", () => show(step));
+      input.addEventListener("change", () => {
+        show(step);
+        if (onStep) onStep(step || "all");
+      });
       group.append(el("span", {}, input, el("label", { htmlFor: id, textContent: text })));
     });
     block.append(group);
-    show(1);
+    show(first);
   } else {
     show(null);
   }
@@ -101,21 +191,26 @@ function stepPictures(result) {
   return block;
 }
 
-/** Render `result` into `slot`; `actions` {interpolate(result), plan(result)} for its buttons. */
-export function renderResult(slot, result, displayName, actions) {
+/**
+ * Render `result` into `slot`; `actions` {interpolate(result), plan(result)} for its buttons;
+ * `options` {step, onStep(step)}: the step pictures to show first, and who hears of a change.
+ */
+export function renderResult(slot, result, displayName, actions, options = {}) {
+  // The previous result's JSON download is no longer reachable.
+  for (const a of slot.querySelectorAll("a.download-analysis")) URL.revokeObjectURL(a.href);
   const node = document.getElementById("result-template").content.firstElementChild.cloneNode(true);
   const $ = (sel) => node.querySelector(sel);
   $(".result-name").textContent = displayName || result.name || "(unnamed)";
   const reversed = result.reversed ? " · given clockwise, walked anticlockwise" : "";
   const source = result.border_source === "border" ? "border given" : `border from the ${result.border_source}`;
-  $(".result-meta").textContent = `${result.category || "upload"} · N = ${result.n} vertices (${source}) · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
+  $(".result-meta").textContent = `${provenance(result)} · ${result.category || "upload"} · N = ${result.n} vertices (${source}) · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
   $(".result-label").textContent = result.label.text;
 
   const close = $(".close-table tbody");
   row(close, "corners", `${result.corners.length}: ${result.corners.map((c) => deg(c).toFixed(0) + "°").join(", ") || "none"}`);
   if (result.folds.length === 0) row(close, "folds", "none found");
   result.folds.forEach((f, k) => row(close, `fold ${k + 1} (f₁, f₂)`, fmtFold(f)));
-  const truth = result.sample && result.sample.truth;
+  const truth = result.truth;
   if (truth && truth.folds) truth.folds.forEach((f, k) => row(close, `true fold ${k + 1}`, fmtFold(f)));
 
   const metrics = $(".metrics-table tbody");
@@ -131,11 +226,8 @@ export function renderResult(slot, result, displayName, actions) {
   const flagged = [];
   (result.steps || []).forEach((s, k) => {
     const name = `step ${k + 1} (${s.from_frame}→${s.to_frame})`;
-    if (!s.fold) {
-      row(evidence, name, "no fold");
-      return;
-    }
     const parts = [];
+    if (!s.fold) parts.push("no fold");
     if (s.cut) parts.push(`cut residual ${s.cut.residual.toFixed(3)}`, `same/cross ${s.cut.same_to_cross.toFixed(2)}`);
     if (s.orientation) parts.push(`flip scores ${s.orientation.flip_forward.toFixed(2)} / ${s.orientation.flip_backward.toFixed(2)}${s.orientation.tie_break ? " (tie-break)" : ""}`);
     if (s.metrics) parts.push(`RMSE ${s.metrics.rmse.toFixed(3)}`);
@@ -149,12 +241,17 @@ export function renderResult(slot, result, displayName, actions) {
   const verdict = $(".confidence");
   if (flagged.length) {
     verdict.hidden = false;
-    verdict.textContent = `Low confidence — the disks give weak evidence for this fold (${flagged.join(" — ")}). The prediction may be wrong.`;
+    const what = result.folds.length ? "the disks give weak evidence for this fold" : "the cloth changed, but no fold was found";
+    verdict.textContent = `Low confidence — ${what} (${flagged.join(" — ")}). The prediction may be wrong.`;
   }
 
   const images = $(".images-slot");
-  images.append(stepPictures(result));
-  images.append(el("div", { className: "images whole" }, ...WHOLE.map(([name, caption]) => figure(result.key, name, caption, null))));
+  const stem = fileName(result.id || displayName || result.name);
+  images.append(stepPictures(result, stem, options));
+  images.append(el("div", { className: "images whole" }, ...WHOLE.map(([name, caption]) => figure(result.key, name, caption, null, stem))));
+  const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
+  const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
+  images.append(el("p", { className: "small" }, jsonLink), codePanel(result, displayName));
 
   if (result.recording) {
     const file = `${result.id || "sample"}.rrd`;

@@ -33,14 +33,22 @@ function cardName(name) {
   return span;
 }
 
+/** Where a row comes from, shortly: "built-in", or the dataset folder's last part. */
+const origin = (s) => (s.source === "builtin" ? "built-in" : `dataset ${String(s.source || "").split(/[\\/]/).filter(Boolean).pop() || "?"}`);
+
 function card(s) {
-  const button = el("button", { type: "button", className: "sample-card", title: `${s.name} · N = ${s.n} · ${s.frames} frames` });
+  const n = s.n === null ? "N unknown" : `N = ${s.n}`;
+  const button = el("button", { type: "button", className: "sample-card", title: `${s.name} · ${n} · ${s.frames} frames · ${s.source === "builtin" ? "built-in" : s.source}` });
   button.dataset.id = s.id;
+  button.dataset.source = s.source;
   button.classList.toggle("active", s.id === openId);
   button.setAttribute("aria-pressed", String(s.id === openId));
-  const img = el("img", { loading: "lazy", src: s.thumbnail, alt: "", width: 160, height: 160 });
+  // A row that cannot be read has no picture: say why instead.
+  const img = s.error
+    ? el("span", { className: "card-error", textContent: s.error.slice(0, 120) })
+    : el("img", { loading: "lazy", src: s.thumbnail, alt: "", width: 160, height: 160 });
   const folds = s.frames > 2 ? ` · ${s.frames - 1} folds` : "";
-  button.append(img, cardName(s.name), el("span", { className: "card-meta", textContent: `N = ${s.n}${folds}${s.mesh ? " · mesh" : ""}` }));
+  button.append(img, cardName(s.name), el("span", { className: "card-meta", textContent: `${n}${folds}${s.mesh ? " · mesh" : ""} · ${origin(s)}` }));
   button.addEventListener("click", () => router.go("samples", s.id));
   return button;
 }
@@ -82,7 +90,10 @@ export function drawList() {
     sections.push(details);
   }
   if (!sections.length) sections.push(el("p", { className: "muted", textContent: "No sample matches the filter." }));
+  const first = !list.querySelector(".sample-card");
   list.replaceChildren(...sections);
+  // A sample opened from its URL before the list came: show where it is.
+  if (first) revealCard();
 }
 
 /** Fill the category box once the list is there. */
@@ -103,13 +114,20 @@ export async function loadSamples() {
   }
 }
 
-/** Open sample `id` (from the URL): highlight its card, load it, show it; a newer open wins. */
-export async function open(id, showError) {
+/** Scroll the open sample's card into view inside the list (wide windows: on a phone the result comes first). */
+function revealCard() {
+  const active = document.querySelector(".sample-card.active");
+  if (active && !window.matchMedia("(max-width: 900px)").matches) active.scrollIntoView({ block: "nearest" });
+}
+
+/** Open sample `id` (from the URL, with its `step` pictures): highlight its card, load it, show it; a newer open wins. */
+export async function open(id, showError, step = null) {
   openId = id;
   for (const c of document.querySelectorAll(".sample-card")) {
     c.classList.toggle("active", c.dataset.id === id);
     c.setAttribute("aria-pressed", String(c.dataset.id === id));
   }
+  revealCard();
   const slot = $("#browse-result");
   slot.setAttribute("aria-busy", "true");
   slot.classList.add("loading");
@@ -124,7 +142,8 @@ export async function open(id, showError) {
   try {
     const result = await api.sample(id);
     if (openId !== id) return;
-    renderResult(slot, result, null, actions);
+    const onStep = (k) => router.keep("samples", new URLSearchParams({ step: String(k) }));
+    renderResult(slot, result, null, actions, { step, onStep });
     shownId = id;
     document.title = router.title("samples", result.name);
     showError("");

@@ -165,10 +165,13 @@ function fillSteps() {
   select.value = view.mode;
 }
 
-/** Take cloth `cloth` ({kind, id}): load its analysis and start on its first fold. */
-async function useCloth(cloth) {
+/** Take cloth `cloth` ({kind, id}): load its analysis and start on its first fold, or on a link's state (`params`). */
+async function useCloth(cloth, params = null) {
   view.cloth = cloth;
   fillCloths();
+  // The previous cloth's messages do not speak of this one.
+  $("#interp-check").textContent = "";
+  $("#fold-input-status").textContent = "";
   try {
     let result;
     if (cloth.kind === "upload") {
@@ -184,7 +187,9 @@ async function useCloth(cloth) {
     view.mode = result.folds.length ? "1" : "free";
     fillSteps();
     setMode(view.mode);
-    document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
+    if (params) applyParams(params);
+    // Only while the view is on screen: Back may have left it during the load.
+    if (!$("#view-interpolate").hidden) document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
   } catch (e) {
     if (!api.isAbort(e)) showError(e.message);
   }
@@ -206,13 +211,46 @@ function setMode(mode) {
   for (const id of ["#from-1", "#from-2", "#to-1", "#to-2", "#swap-folds"]) $(id).disabled = sequence;
   changed();
   setTau(0);
+  keepUrl();
+}
+
+/** The view's state as URL parameters: cloth, step, the free folds and t. */
+function keepUrl() {
+  if (!view.cloth || !view.result) return;
+  const params = new URLSearchParams({ cloth: `${view.cloth.kind}:${view.cloth.id}`, step: view.mode });
+  if (view.mode !== SEQUENCE) {
+    params.set("from", router.angleText(view.from));
+    params.set("to", router.angleText(view.to));
+  }
+  params.set("t", view.tau.toFixed(3));
+  router.keep("interpolate", params);
+}
+
+/** Take a link's step, folds and t (once the cloth they belong to is loaded). */
+function applyParams(params) {
+  const step = params.get("step");
+  if (step && [...$("#interp-step").options].some((o) => o.value === step)) {
+    $("#interp-step").value = step;
+    setMode(step);
+  }
+  if (view.mode !== SEQUENCE) {
+    const [from, to] = [router.angles(params.get("from")), router.angles(params.get("to"))];
+    if (from) view.from = from.map(wrap);
+    if (to) view.to = to.map(wrap);
+    if (from || to) changed();
+  }
+  const t = Number(params.get("t"));
+  if (params.has("t") && Number.isFinite(t)) setTau(t);
 }
 
 /** After folds or the cloth changed: new motion, bounds, inputs, circle. */
 function changed() {
   if (!view.border) return;
+  // A check of another motion no longer holds.
+  $("#interp-check").textContent = "";
   view.motion += 1;
-  view.bounds = boundsOf(motionStates().map((folds) => foldAll(view.border, folds)));
+  // The flat outline is drawn too: it must fit as well as every folded state.
+  view.bounds = boundsOf([view.border, ...motionStates().map((folds) => foldAll(view.border, folds))]);
   inputs.write({ "from-1": view.from[0], "from-2": view.from[1], "to-1": view.to[0], "to-2": view.to[1] });
   draw();
 }
@@ -221,6 +259,8 @@ function setTau(tau) {
   view.tau = Math.min(1, Math.max(0, tau));
   $("#interp-slider").value = Math.round(view.tau * 1000);
   draw();
+  // While playing, the URL is written once the motion stops (not 60 times a second).
+  if (!view.playing) keepUrl();
 }
 
 /** Names the state drawn: the cloth, the motion and the folds. */
@@ -267,6 +307,8 @@ function draw() {
     }
   }
   drawCircle(fold);
+  // In sequence mode the (disabled) inputs show the fold playing now.
+  if (view.mode === SEQUENCE) inputs.write({ "from-1": fold[0], "from-2": fold[0], "to-1": fold[0], "to-2": fold[1] });
   const which = view.mode === SEQUENCE ? `fold ${folds.length} of ${view.result.folds.length}` : "fold";
   $("#interp-readout").textContent = `t = ${view.tau.toFixed(3)}   ${which} ${fmtFold(fold)}`;
   // The disk only while it is on screen; showing the view draws again.
@@ -311,7 +353,10 @@ function play() {
     }
     setTau(view.tau + (now - last) / (1000 * seconds));
     last = now;
-    if (view.tau >= 1) view.playing = false;
+    if (view.tau >= 1) {
+      view.playing = false;
+      keepUrl();
+    }
     requestAnimationFrame(tick);
   };
   requestAnimationFrame(tick);
@@ -357,6 +402,7 @@ export function setup(errors, planGoal) {
       const [which, k] = key.split("-");
       view[which] = view[which].map((a, i) => (i === Number(k) - 1 ? angle : a));
       changed();
+      keepUrl();
     },
     () => $("#deg").checked,
   );
@@ -376,6 +422,7 @@ export function setup(errors, planGoal) {
   $("#swap-folds").addEventListener("click", () => {
     [view.from, view.to] = [view.to, view.from];
     changed();
+    keepUrl();
   });
   $("#interp-disk-zoom").addEventListener("click", () => disk.enlarge(`dGLI disk of the state drawn (${$("#interp-readout").textContent.replace(/\s+/g, " ").trim()})`));
   $("#check-server").addEventListener("click", checkServer);
@@ -384,19 +431,33 @@ export function setup(errors, planGoal) {
     const [which, k] = id.split(":");
     view[which] = view[which].map((a, i) => (i === Number(k) ? angle : a));
     changed();
+    keepUrl();
   });
   store.subscribe(() => fillCloths());
 }
 
-/** The view came on screen: follow the store's cloth, or take the first one. */
-export function shown() {
+/** A cloth named in a URL ("sample:ID" or "upload:KEY"), or null. */
+export function clothParam(params) {
+  const text = params && params.get("cloth");
+  if (!text || !text.includes(":")) return null;
+  const [kind, ...rest] = text.split(":");
+  return ["sample", "upload"].includes(kind) ? { kind, id: rest.join(":") } : null;
+}
+
+/** The view came on screen: a link's cloth and state, else the store's cloth, else the first one. */
+export function shown(params = null) {
+  const linked = clothParam(params);
+  if (linked) store.set({ cloth: linked });
   const { cloth } = store.get();
   const wanted = cloth || store.cloths()[0] || null;
   fillCloths();
-  if (wanted && (!view.cloth || view.cloth.kind !== wanted.kind || view.cloth.id !== wanted.id)) useCloth(wanted);
+  const same = view.cloth && wanted && view.cloth.kind === wanted.kind && view.cloth.id === wanted.id;
+  if (wanted && !same) useCloth(wanted, linked ? params : null);
   else if (view.cloth) {
     document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
+    if (linked && view.result) applyParams(params);
     draw();
+    keepUrl();
   } else document.title = router.title("interpolate");
 }
 

@@ -30,7 +30,9 @@ function stepText(step, cornerOf) {
     const what = corner ? `corner ${corner} (vertex ${p.vertex})` : `vertex ${p.vertex}`;
     return step.action === "unfold" ? `grasp ${what} at ${fmtPoint(p.from)} and put it back at ${fmtPoint(p.to)}` : `grasp ${what} at ${fmtPoint(p.from)} and place it at ${fmtPoint(p.to)}`;
   });
-  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}.`;
+  // Points are the sample's own (x, y) coordinates, in whatever unit its file uses.
+  const where = picks.length ? ` (x, y in the sample's units)` : "";
+  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${where}.`;
 }
 
 function fillCloths() {
@@ -38,6 +40,12 @@ function fillCloths() {
   const value = view.cloth ? `${view.cloth.kind}:${view.cloth.id}` : select.value;
   select.replaceChildren(...store.cloths().map((c) => new Option(c.name, `${c.kind}:${c.id}`)));
   if (value) select.value = value;
+}
+
+/** The view's state as URL parameters: the cloth and the goal. */
+function keepUrl() {
+  if (!view.cloth) return;
+  router.keep("plan", new URLSearchParams({ cloth: `${view.cloth.kind}:${view.cloth.id}`, goal: router.angleText(view.goal) }));
 }
 
 /** Load the current state of `cloth`; `takeGoal` starts the goal on a diagonal. */
@@ -61,7 +69,9 @@ async function load(cloth, takeGoal) {
     $("#plan-case").textContent = "";
     drawCircle();
     writeInputs();
-    document.title = router.title("plan", view.name);
+    keepUrl();
+    // Only while the view is on screen: Back may have left it during the load.
+    if (!$("#view-plan").hidden) document.title = router.title("plan", view.name);
   } catch (e) {
     if (!api.isAbort(e)) showError(e.message);
   }
@@ -82,12 +92,18 @@ async function plan() {
   const list = $("#plan-list");
   list.setAttribute("aria-busy", "true");
   $("#plan-case").textContent = "Planning…";
+  $("#plan-json").hidden = true;
   try {
     const res = await api.plan({ sample: view.cloth.id, goal: view.goal });
     Object.assign(view, { folds: res.folds, corners: res.corners });
     drawCircle();
     const count = res.steps.length;
     $("#plan-case").textContent = `${count} step${count === 1 ? "" : "s"} · ${CASES[res.case] || res.case}`;
+    const download = $("#plan-json");
+    if (download.href) URL.revokeObjectURL(download.href);
+    download.href = URL.createObjectURL(new Blob([JSON.stringify(res, null, 1)], { type: "application/json" }));
+    download.download = `plan_${view.cloth.id}.json`.replace(/[^\w.-]+/g, "-");
+    download.hidden = false;
     list.replaceChildren();
     stepCards(res, list);
     showError("");
@@ -166,6 +182,7 @@ export function setup(errors) {
   inputs = new AngleInputs({ "goal-1": $("#goal-1"), "goal-2": $("#goal-2") }, $("#goal-input-status"), (key, angle) => {
     view.goal = view.goal.map((a, i) => (i === Number(key.slice(-1)) - 1 ? angle : a));
     drawCircle();
+    keepUrl();
   });
   $("#plan-sample").addEventListener("change", (e) => {
     const [kind, ...rest] = e.target.value.split(":");
@@ -178,12 +195,14 @@ export function setup(errors) {
     view.goal = view.goal.map((a, i) => (i === Number(id) ? angle : a));
     drawCircle();
     writeInputs();
+    keepUrl();
   });
   store.subscribe(() => fillCloths());
 }
 
-/** The view came on screen, maybe with a goal to plan for (from Interpolate). */
-export function shown(goal = null) {
+/** The view came on screen, maybe with a goal to plan for (from Interpolate or the URL) and a link's cloth. */
+export function shown(goal = null, linked = null) {
+  if (linked) store.set({ cloth: linked });
   const { cloth } = store.get();
   const wanted = cloth || store.cloths()[0] || null;
   if (goal) view.goal = [wrap(goal[0]), wrap(goal[1])];
@@ -193,6 +212,7 @@ export function shown(goal = null) {
     if (view.cloth) {
       drawCircle();
       writeInputs();
+      keepUrl();
     }
     document.title = router.title("plan", view.name);
   }

@@ -45,6 +45,8 @@ async function upload(fileList) {
     if (api.isAbort(e)) return;
     slot.replaceChildren();
     status.textContent = "";
+    // The previous upload is no longer shown: the title must not name it.
+    document.title = router.title("upload");
     showError(nameFrames(e.message, files));
   } finally {
     slot.removeAttribute("aria-busy");

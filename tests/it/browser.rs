@@ -272,7 +272,7 @@ async fn the_app_works_in_a_real_browser() {
         axum::Router::new()
             .route(
                 "/api/samples",
-                get(|| async { (axum::http::StatusCode::SERVICE_UNAVAILABLE, axum::response::Html("<html><body><h1>503 Service Unavailable</h1></body></html>")) }),
+                get(|| async { (axum::http::StatusCode::SERVICE_UNAVAILABLE, axum::response::Html("<html><body><h1>503 Service Unavailable</h1><p>upstream down</p></body></html>")) }),
             )
             .fallback_service(app(state.clone())),
     )
@@ -292,6 +292,14 @@ async fn the_app_works_in_a_real_browser() {
             .fallback_service(app(state)),
     )
     .await;
+
+    // A fourth with the user's own dataset: copies of two physics samples with their truth.
+    let own = scratch.join("own-dataset");
+    std::fs::create_dir_all(&own).expect("dataset folder");
+    for file in ["h1_half_left_onto_right_31x31.json", "q3_napkin_half_then_quarter_31x31.json"] {
+        std::fs::copy(root.join("tests/fixtures/physics").join(file), own.join(file)).expect("copy a fixture");
+    }
+    let with_dataset = serve(app(AppState::with_config(close::server::Config { datasets: vec![own.clone()], ..Default::default() }))).await;
 
     let port = free_port();
     let _driver = Driver(
@@ -356,6 +364,11 @@ async fn the_app_works_in_a_real_browser() {
     // Click to enlarge: the full-resolution picture in a dialog; Escape closes it.
     js(&client, "document.querySelector('#browse-result .step-pictures .zoom').click()").await;
     until(&client, "the full-resolution picture", "document.getElementById('lightbox').open && document.querySelector('#lightbox img').naturalWidth >= 1400").await;
+    // The wheel zooms in about the pointer, up to more than the fitted size (item 6).
+    let zoomed = js(&client, "const f = document.querySelector('#lightbox .lightbox-frame'), r = f.getBoundingClientRect(); \
+                              f.dispatchEvent(new WheelEvent('wheel', { deltaY: -600, clientX: r.x + r.width / 2, clientY: r.y + r.height / 2, bubbles: true, cancelable: true })); \
+                              const img = document.querySelector('#lightbox img'); return img.getBoundingClientRect().width / f.getBoundingClientRect().width").await;
+    assert!(zoomed.as_f64().is_some_and(|z| z > 5.0), "the picture did not zoom: {zoomed}");
     screenshot(&client, &shots, "1400-02-full-resolution.png").await;
     violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("lightbox: {v}")));
     client.active_element().await.expect("focus").send_keys("\u{E00C}").await.expect("Escape");
@@ -449,12 +462,32 @@ async fn the_app_works_in_a_real_browser() {
     until(&client, "the doubtful upload", "document.querySelector('#upload-result .result-name')?.textContent === 'slid-napkin.json'").await;
     let verdict = text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
     assert!(verdict.contains("Low confidence"), "a fold that does not explain the end frame is not flagged: {verdict}");
+    // An uploaded Sample JSON keeps its truth (issue 19, item 4).
+    choose_files(&client, &[own.join("h1_half_left_onto_right_31x31.json")]).await;
+    until(&client, "the upload with a truth", "document.querySelector('#upload-result .result-name')?.textContent === 'h1_half_left_onto_right_31x31.json'").await;
+    let facts = text(&client, "document.querySelector('#upload-result .close-table').innerText").await;
+    assert!(facts.contains("true fold 1"), "the upload's truth is not shown: {facts}");
+    assert!(text(&client, "document.querySelector('#upload-result .result-meta').textContent").await.starts_with("your upload"));
+    // A change with no fold is flagged (item 13): the flat napkin moved by a third of its
+    // side has the same disks (no fold) but is far from the start frame.
+    let mut shrunk = entry.sample.clone();
+    let start = shrunk.frames[0].clone();
+    shrunk.frames[1] = start.iter().map(|p| [p[0] + side / 3.0, p[1], p[2]]).collect();
+    choose_files(&client, &[write(&scratch, "shrunk-napkin.json", &serde_json::to_vec(&shrunk).expect("sample JSON"))]).await;
+    until(&client, "the shrunk upload", "document.querySelector('#upload-result .result-name')?.textContent === 'shrunk-napkin.json'").await;
+    let label = text(&client, "document.querySelector('#upload-result .result-label').textContent").await;
+    let verdict = text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
+    assert!(label.contains("changed, but no fold found") && verdict.contains("changed, but no fold found"), "{label} / {verdict}");
+    // A failed upload leaves no old name in the title.
+    choose_files(&client, &[write(&scratch, "broken.json", b"{")]).await;
+    until(&client, "the failed upload", "!document.getElementById('error').hidden").await;
+    assert!(!text(&client, "document.title").await.contains("shrunk-napkin"), "the title names the previous upload");
     // Mismatched frames name their files.
     let frames = entry.sample.frames.clone();
     let short = write(&scratch, "b-end.txt", text_frame(&frames[1][..frames[1].len() - 3]).as_bytes());
     let long = write(&scratch, "a-start.txt", text_frame(&frames[0]).as_bytes());
     choose_files(&client, &[short, long]).await;
-    let error = until(&client, "the mismatch message", "document.getElementById('error').textContent").await;
+    let error = until(&client, "the mismatch message", "(t => !t.includes('broken.json') && t)(document.getElementById('error').textContent)").await;
     let error = error.as_str().unwrap_or_default();
     assert!(error.contains("a-start.txt") && error.contains("b-end.txt"), "the files are not named: {error}");
     screenshot(&client, &shots, "1400-04-upload-error.png").await;
@@ -463,7 +496,7 @@ async fn the_app_works_in_a_real_browser() {
     choose_files(&client, &[scratch.join("my-napkin.json")]).await;
     until(&client, "the upload again", "document.querySelector('#upload-result .result-name')?.textContent === 'my-napkin.json' && document.getElementById('error').hidden").await;
     js(&client, "document.querySelector('#upload-result .interp-this').click()").await;
-    until(&client, "the interpolate view", "location.hash === '#/interpolate' && !document.getElementById('view-interpolate').hidden").await;
+    until(&client, "the interpolate view", "location.hash.startsWith('#/interpolate') && !document.getElementById('view-interpolate').hidden").await;
     let chosen = until(&client, "the upload chosen", "document.getElementById('interp-sample').selectedOptions[0]?.textContent.includes('my-napkin.json') && document.getElementById('interp-sample').selectedOptions[0].textContent").await;
     assert!(chosen.as_str().unwrap_or_default().starts_with("upload"), "{chosen}");
     assert!(text(&client, "document.title").await.contains("my-napkin.json"));
@@ -552,7 +585,7 @@ async fn the_app_works_in_a_real_browser() {
     let moved = turned(&before, &after, 0);
     assert!((moved - 1.0).abs() < 1e-9, "one arrow key moved the handle {moved}° from {}", before[0]);
     client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
-    until(&client, "the plan view", "location.hash === '#/plan' && !document.getElementById('view-plan').hidden").await;
+    until(&client, "the plan view", "location.hash.startsWith('#/plan') && !document.getElementById('view-plan').hidden").await;
     js(&client, "for (const [id, v] of [['goal-1', 10], ['goal-2', 150]]) { const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }").await;
     client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
     until(&client, "a plan", "document.getElementById('plan-case').textContent.includes('unfold first')").await;
@@ -560,6 +593,7 @@ async fn the_app_works_in_a_real_browser() {
     assert!(steps.first().is_some_and(|s| s.starts_with("Now")), "{steps:?}");
     assert_eq!(steps.iter().filter(|s| s.contains("· Unfold")).count(), 2, "{steps:?}");
     assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
+    assert!(steps.iter().skip(1).all(|s| s.contains("(x, y in the sample's units)")), "coordinates without units: {steps:?}");
     assert!(text(&client, "document.title").await.contains("half_then_half"));
     screenshot(&client, &shots, "1400-07-plan.png").await;
     assert_eq!(wrapped_box_names(&client).await, json!([]), "goal box names wrap");
@@ -592,6 +626,110 @@ async fn the_app_works_in_a_real_browser() {
     // The upload is listed by its file name.
     let options = text(&client, "[...document.getElementById('plan-sample').options].map(o => o.textContent).join('|')").await;
     assert!(options.contains("upload · my-napkin.json"), "{options}");
+
+    // The plan downloads as JSON (issue 19, item 9).
+    let plan_json = client.execute_async("const a = document.getElementById('plan-json'); fetch(a.href).then(r => r.json()).then(j => arguments[0]([a.hidden, a.download, j.steps.length])).catch(e => arguments[0](String(e)))", vec![]).await.expect("plan JSON");
+    assert!(plan_json[0] == json!(false) && plan_json[1].as_str().is_some_and(|d| d.ends_with(".json")) && plan_json[2] == json!(0), "the plan shown (already there: no step) is the one downloaded: {plan_json}");
+
+    // ---- Every picture downloads as PNG and SVG, the analysis as JSON; "use from code"
+    // gives calls that return the same analysis (items 9 and 11).
+    route(&client, &format!("#/samples/{}", twice.id)).await;
+    shows_sample(&client, &twice.sample.name).await;
+    let fetched = |selector: &str| format!("const a = document.querySelector({selector:?}); fetch(a.href).then(r => r.text().then(t => arguments[0]([r.headers.get('content-type'), t.slice(0, 5), a.download]))).catch(e => arguments[0](String(e)))");
+    for (selector, kind, head) in [("#browse-result a.download[data-format=svg]", "image/svg+xml", "<svg "), ("#browse-result a.download[data-format=png]", "image/png", "\u{fffd}PNG\r")] {
+        let got = client.execute_async(&fetched(selector), vec![]).await.expect("a download");
+        assert_eq!(got[0], json!(kind), "{selector}: {got}");
+        assert!(got[2].as_str().is_some_and(|d| d.ends_with(&kind[6..9])), "{selector}: {got}");
+        if kind.ends_with("xml") {
+            assert_eq!(got[1], json!(head));
+        }
+    }
+    let links = js(&client, "return [...document.querySelectorAll('#browse-result figure')].map(f => f.querySelectorAll('a.download').length)").await;
+    assert!(links.as_array().is_some_and(|l| l.len() == 6 && l.iter().all(|n| n == 2)), "every picture has PNG and SVG links: {links}");
+    let label_shown = text(&client, "document.querySelector('#browse-result .result-label').textContent").await;
+    let analysis = client.execute_async("fetch(document.querySelector('#browse-result a.download-analysis').href).then(r => r.json()).then(j => arguments[0](j.label.text))", vec![]).await.expect("analysis JSON");
+    assert_eq!(analysis, json!(label_shown));
+    let curl = text(&client, "document.querySelector('#browse-result .use-code .code-curl').textContent").await;
+    assert_eq!(curl, format!("curl -s {base}/api/samples/{}", twice.id));
+    let python = text(&client, "document.querySelector('#browse-result .use-code .code-python').textContent").await;
+    assert!(python.contains(&format!("requests.get(\"{base}/api/samples/{}\")", twice.id)), "{python}");
+    let called = client.execute_async(&format!("fetch({:?}).then(r => r.json()).then(j => arguments[0](j.label.text))", curl.trim_start_matches("curl -s ")), vec![]).await.expect("the call");
+    assert_eq!(called, json!(label_shown));
+
+    // ---- State in the URL (item 10): the step, Interpolate's cloth, step, folds and t,
+    // Plan's goal; a reload shows the same.
+    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"2\"]').click()").await;
+    until(&client, "the step in the URL", "location.hash.endsWith('?step=2')").await;
+    client.refresh().await.expect("reload");
+    shows_sample(&client, &twice.sample.name).await;
+    until(&client, "step 2 after the reload", "document.querySelector('#browse-result .segmented input:checked')?.dataset.step === '2'").await;
+    route(&client, "#/interpolate?cloth=sample:tshirt__sleeve_left&step=1&t=0.400").await;
+    until(&client, "the linked cloth", "document.getElementById('interp-sample').value === 'sample:tshirt__sleeve_left' && Math.abs(window.closeApp.interpolate.state().tau - 0.4) < 1e-9").await;
+    js(&client, "window.closeApp.interpolate.setTau(0.25)").await;
+    until(&client, "t in the URL", "location.hash.includes('t=0.250') && location.hash.includes('cloth=sample%3Atshirt__sleeve_left')").await;
+    let folds = js(&client, "return window.closeApp.interpolate.state().to").await;
+    client.refresh().await.expect("reload");
+    until(&client, "the same state after a reload", "document.getElementById('interp-sample').value === 'sample:tshirt__sleeve_left' && Math.abs(window.closeApp.interpolate.state().tau - 0.25) < 1e-9").await;
+    let again = js(&client, "return window.closeApp.interpolate.state().to").await;
+    let close_to = |a: &Value, b: &Value| (0..2).all(|k| (a[k].as_f64().unwrap_or(f64::NAN) - b[k].as_f64().unwrap_or(0.0)).abs() < 1e-5);
+    assert!(close_to(&folds, &again), "{folds} → {again}");
+    // Back from Interpolate to a sample: the title names the sample again.
+    route(&client, &format!("#/samples/{}", twice.id)).await;
+    shows_sample(&client, &twice.sample.name).await;
+    route(&client, "#/interpolate").await;
+    until(&client, "interpolate", "!document.getElementById('view-interpolate').hidden").await;
+    client.back().await.expect("back");
+    shows_sample(&client, &twice.sample.name).await;
+    tokio::time::sleep(Duration::from_millis(800)).await;
+    let title = text(&client, "document.title").await;
+    assert!(title.contains(&twice.sample.name) && !title.contains("Interpolate"), "{title}");
+    route(&client, "#/plan?cloth=sample:napkin__half_vertical&goal=0.500000,3.600000").await;
+    until(&client, "the linked goal", "document.getElementById('plan-sample').value === 'sample:napkin__half_vertical' && Math.abs(parseFloat(document.getElementById('goal-1').value) - 28.65) < 0.1").await;
+
+    // ---- Compare (item 15): two states on one colour scale, and a frame scrubber.
+    route(&client, &format!("#/compare/{0}@1/{0}", twice.id)).await;
+    until(&client, "the compared states", "document.querySelectorAll('#compare-result .compare-panels img').length === 5").await;
+    images_loaded(&client, "#compare-result img").await;
+    let scales = js(&client, "return [...document.querySelectorAll('#compare-result .compare-panels')].map(p => [...p.querySelectorAll('img')].map(i => i.dataset.scale))").await;
+    let shared = |k: usize| scales[k].as_array().is_some_and(|s| s.iter().all(|v| v == &s[0] && v.as_str().is_some_and(|t| !t.is_empty())));
+    assert!(shared(0) && shared(1), "the panels do not share one colour scale: {scales}");
+    let captions = text(&client, "[...document.querySelectorAll('#compare-result figcaption')].map(f => f.textContent).join('|')").await;
+    assert!(captions.contains("after step 1 of 2") && captions.contains("after step 2 of 2") && captions.contains("predicted frame 1"), "{captions}");
+    assert!(text(&client, "document.title").await.contains("Compare"));
+    screenshot(&client, &shots, "1400-09-compare.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare: {v}")));
+
+    // ---- The user's own dataset (items 1–3): listed with thumbnails and provenance, second
+    // folds filed as such, opened, planned like a built-in sample.
+    let q3 = "d0-q3_napkin_half_then_quarter_31x31";
+    goto_view(&client, &with_dataset, &format!("#/samples/{q3}")).await;
+    shows_sample(&client, "q3_napkin_half_then_quarter_31x31").await;
+    let meta = text(&client, "document.querySelector('#browse-result .result-meta').textContent").await;
+    assert!(meta.starts_with(&format!("dataset {}", own.display())) && meta.contains("napkin_second_fold"), "{meta}");
+    assert!(text(&client, "document.querySelector('#browse-result .close-table').innerText").await.contains("true fold 2"));
+    // The whole span of a sequence draws no curve and says so.
+    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"0\"]').click()").await;
+    until(&client, "the whole span's caption", "[...document.querySelectorAll('#browse-result figcaption')].some(f => f.textContent.startsWith('|diff| (the fold curves: see each step)'))").await;
+    let card = until(&client, "the dataset card in its category", &format!("document.querySelector('.sample-card[data-id=\"{q3}\"]')?.closest('details').querySelector('summary').textContent")).await;
+    assert!(card.as_str().unwrap_or_default().starts_with("napkin_second_fold"), "{card}");
+    until(&client, "the open card in view", &format!("(r => r.top >= 0 && r.bottom <= window.innerHeight)(document.querySelector('.sample-card[data-id=\"{q3}\"]').getBoundingClientRect())")).await;
+    images_loaded(&client, &format!(".sample-card[data-id=\"{q3}\"] img")).await;
+    // Every dataset card's thumbnail is a picture (the ones out of sight load lazily).
+    let statuses = client.execute_async("Promise.all([...document.querySelectorAll('.sample-card[data-source]:not([data-source=builtin]) img')].map(i => fetch(i.src).then(r => r.status + ' ' + r.headers.get('content-type')))).then(arguments[0])", vec![]).await.expect("thumbnails");
+    assert_eq!(statuses, json!(["200 image/png", "200 image/png"]));
+    let missing = js(&client, "return performance.getEntriesByType('resource').map(r => r.name).filter(n => n.includes('undefined'))").await;
+    assert_eq!(missing, json!([]), "requests for missing pictures");
+    assert!(text(&client, "document.querySelector('.sample-card[data-source]:not([data-source=builtin]) .card-meta').textContent").await.contains("dataset own-dataset"));
+    screenshot(&client, &shots, "1400-10-own-dataset.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("own dataset: {v}")));
+    js(&client, "document.querySelector('#browse-result .plan-this').click()").await;
+    until(&client, "the plan view", "location.hash.startsWith('#/plan') && document.getElementById('plan-sample').value === 'sample:d0-q3_napkin_half_then_quarter_31x31'").await;
+    until(&client, "its state", "document.getElementById('plan-now').textContent.includes('now')").await;
+    client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
+    until(&client, "a plan for the dataset sample", "/\\d+ steps? ·/.test(document.getElementById('plan-case').textContent)").await;
+    assert!(js(&client, "return document.getElementById('error').hidden").await.as_bool().unwrap_or(false), "{}", text(&client, "document.getElementById('error').textContent").await);
+    goto_view(&client, &base, &format!("#/samples/{}", twice.id)).await;
+    shows_sample(&client, &twice.sample.name).await;
 
     // ---- Phone width: no overflow, the result first, the plan's controls above its results.
     client.set_window_size(420, 900).await.expect("phone size");
@@ -629,6 +767,12 @@ async fn the_app_works_in_a_real_browser() {
     }
     let order = js(&client, "return document.querySelector('.plan-side').getBoundingClientRect().top < document.querySelector('.plan-main').getBoundingClientRect().top").await;
     assert_eq!(order, json!(true), "the plan's controls are below its results");
+    route(&client, &format!("#/compare/{0}@1/{0}", twice.id)).await;
+    until(&client, "the compared states", "document.querySelectorAll('#compare-result .compare-panels img').length === 5").await;
+    images_loaded(&client, "#compare-result img").await;
+    assert_no_overflow(&client, "compare").await;
+    screenshot(&client, &shots, "420-05-compare.png").await;
+    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare 420: {v}")));
 
     // ---- Five thousand samples: the list stays paged, the filter finds any of them.
     goto_view(&client, &many, "").await;
@@ -645,7 +789,7 @@ async fn the_app_works_in_a_real_browser() {
     goto_view(&client, &broken, "").await;
     let error = until(&client, "the list's error", "document.getElementById('sample-list').textContent.includes('could not be loaded') && document.getElementById('sample-list').textContent").await;
     let error = error.as_str().unwrap_or_default();
-    assert!(error.contains("503 Service Unavailable") && !error.contains("<h1>"), "{error}");
+    assert!(error.contains("503 Service Unavailable upstream down") && !error.contains("<h1>"), "{error}");
     route(&client, "#/interpolate").await;
     let error = until(&client, "the message in Interpolate", "!document.getElementById('error').hidden && document.getElementById('error').textContent").await;
     assert!(error.as_str().unwrap_or_default().contains("could not be loaded"), "{error}");

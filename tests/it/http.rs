@@ -519,3 +519,102 @@ async fn mesh_uploads_name_how_their_border_was_found() {
     assert!(post(&app, "/api/analyze", &ct, body).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("no face"));
     assert_healthy(&app).await;
 }
+
+/// A folder holding copies of two physics fixtures (a single fold and a fold sequence, both
+/// with their truth), as `close serve --dataset` would be given.
+fn physics_folder(name: &str) -> std::path::PathBuf {
+    let folder = std::env::temp_dir().join(format!("close-http-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).expect("a scratch folder");
+    let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/physics");
+    for file in ["h1_half_left_onto_right_31x31.json", "q3_napkin_half_then_quarter_31x31.json"] {
+        std::fs::copy(fixtures.join(file), folder.join(file)).expect("copy a fixture");
+    }
+    folder
+}
+
+#[tokio::test]
+async fn dataset_samples_are_rows_analyses_pictures_and_plans_like_built_in_ones() {
+    let folder = physics_folder("dataset");
+    let app = app(AppState::with_config(Config { datasets: vec![folder.clone()], ..Config::default() }));
+    let list = get(&app, "/api/samples").await.json();
+    let rows = list["samples"].as_array().expect("rows");
+    let keys = |row: &Value| row.as_object().map(|o| o.keys().cloned().collect::<Vec<_>>()).unwrap_or_default();
+    let builtin = rows.iter().find(|r| r["source"] == "builtin").expect("a built-in row");
+    let ours: Vec<&Value> = rows.iter().filter(|r| r["source"] == folder.display().to_string().as_str()).collect();
+    assert_eq!(ours.len(), 2, "{ours:?}");
+    for row in &ours {
+        // One shape for every source.
+        assert_eq!(keys(row), keys(builtin), "{row} / {builtin}");
+        assert!(row["error"].is_null() && row["n"].as_u64() > Some(0), "{row}");
+        assert_png(&app, row["thumbnail"].as_str().expect("a thumbnail URL")).await;
+    }
+    // The sequence is filed as the built-in sequences are.
+    let sequence = ours.iter().find(|r| r["frames"] == 3).expect("the three-frame sample");
+    assert_eq!(sequence["category"], "napkin_second_fold");
+    let in_category = rows.iter().filter(|r| r["category"] == "napkin_second_fold").count();
+    let counted = list["categories"].as_array().expect("categories").iter().find(|c| c["name"] == "napkin_second_fold").map(|c| c["count"].clone());
+    assert_eq!(counted, Some(json!(in_category)));
+
+    // Analysed as a built-in sample is: its id, its sample, its truth, its provenance.
+    let id = sequence["id"].as_str().expect("id");
+    let analysis = get(&app, &format!("/api/samples/{id}")).await.json();
+    assert_eq!((analysis["id"].as_str(), analysis["source"].as_str()), (Some(id), Some(folder.display().to_string().as_str())));
+    assert_eq!(analysis["truth"]["folds"].as_array().map(Vec::len), Some(2), "{}", analysis["truth"]);
+    for url in analysis["images"].as_object().expect("images").values() {
+        assert_png(&app, url.as_str().expect("a URL")).await;
+    }
+    // The truth is drawn beside the found folds, with the angle errors (item 12).
+    let circle = get(&app, &format!("/api/images/sample:{id}/close.png?format=svg")).await;
+    let circle = String::from_utf8_lossy(&circle.body);
+    assert!(circle.contains(">true fold 1 (○)") && circle.contains(">true fold 2 (○)") && circle.contains("° off"), "{}", &circle[circle.len().saturating_sub(3000)..]);
+    // Planned by its id.
+    let plan = post_json(&app, "/api/plan", &json!({ "sample": id, "goal": [0.5, 3.5] })).await;
+    assert_eq!(plan.status, StatusCode::OK, "{}", String::from_utf8_lossy(&plan.body));
+    assert_eq!(plan.json()["folds"], analysis["folds"]);
+    let unknown = post_json(&app, "/api/plan", &json!({ "sample": "d0-nothing", "goal": [0.5, 3.5] })).await;
+    assert!(unknown.error(StatusCode::NOT_FOUND).contains("GET /api/samples lists them"));
+    let builtin = get(&app, &format!("/api/samples/{}", builtin["id"].as_str().expect("id"))).await.json();
+    assert_eq!(builtin["source"], "builtin");
+    std::fs::remove_dir_all(&folder).expect("clean up");
+}
+
+#[tokio::test]
+async fn an_upload_keeps_its_truth_and_says_it_is_an_upload() {
+    let app = test_app();
+    let folder = physics_folder("upload");
+    let body = std::fs::read(folder.join("h1_half_left_onto_right_31x31.json")).expect("the fixture");
+    let given: Value = serde_json::from_slice(&body).expect("JSON");
+    let a = post(&app, "/api/analyze", "application/json", body).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    let a = a.json();
+    assert_eq!(a["source"], "upload");
+    assert_eq!(a["truth"]["folds"], given["truth"]["folds"]);
+    // Without a truth there is none in the answer.
+    let entry = first_entry();
+    let bare = json!({ "name": "bare", "frames": entry.sample.frames });
+    let b = post_json(&app, "/api/analyze", &bare).await.json();
+    assert!(b.get("truth").is_none(), "{}", b["truth"]);
+    std::fs::remove_dir_all(&folder).expect("clean up");
+}
+
+#[tokio::test]
+async fn every_picture_is_also_an_svg_of_the_same_drawing() {
+    let app = test_app();
+    let entry = first_entry();
+    let analysis = get(&app, &format!("/api/samples/{}", entry.id)).await.json();
+    for (name, url) in analysis["images"].as_object().expect("images") {
+        let url = url.as_str().expect("a URL");
+        let svg = get(&app, &format!("{url}&format=svg")).await;
+        assert_eq!((svg.status, svg.content_type.as_str()), (StatusCode::OK, "image/svg+xml"), "{name}");
+        let text = String::from_utf8_lossy(&svg.body);
+        // Text stays text, lines stay lines; the fills are the PNG's pixels under them.
+        assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"), "{name}: {}", &text[..text.len().min(200)]);
+        assert!(text.contains("<text") && text.contains("<polyline") && text.contains("data:image/png;base64,"), "{name}");
+        assert_png(&app, url).await;
+    }
+    let thumbnail = format!("/api/images/sample:{}/thumbnail.png?format=svg", entry.id);
+    assert_eq!(get(&app, &thumbnail).await.content_type, "image/svg+xml");
+    let bad = get(&app, &format!("/api/images/sample:{}/close.png?format=gif", entry.id)).await;
+    assert!(bad.error(StatusCode::BAD_REQUEST).contains("format"), "{}", String::from_utf8_lossy(&bad.body));
+}

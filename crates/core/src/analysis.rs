@@ -14,7 +14,7 @@ use crate::disk::Disk;
 use crate::error::{Error, Result};
 use crate::fold::reflect::{apply_fold_line, fold_line};
 use crate::fold::{detect, FoldDetection, FoldMethod, Line};
-use crate::label::{label, Label};
+use crate::label::{label, Label, CHANGED_RMSE};
 use crate::metrics::Metrics;
 
 /// Which frames to analyse (defaults: first and last).
@@ -164,7 +164,9 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
-    let label = label(n, &found.vertices, &folds);
+    let mut label = label(n, &found.vertices, &folds);
+    let changed: Vec<usize> = steps.iter().enumerate().filter(|(_, s)| s.detection.fold.is_none() && s.metrics.rmse > CHANGED_RMSE).map(|(k, _)| k + 1).collect();
+    label.changed_without_fold(&changed);
     Ok(Analysis {
         n,
         close: Close { corners: found.angles.clone(), folds: folds.clone() },

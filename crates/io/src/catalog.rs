@@ -55,6 +55,8 @@ const CACHE_BYTES: usize = 256 * 1024 * 1024;
 pub const MAX_SAMPLE_BYTES: u64 = MAX_FILE_BYTES as u64;
 /// Files that are one sample each in a dataset folder.
 const SAMPLE_FILES: [&str; 8] = ["json", "mat", "txt", "csv", "xyz", "dat", "obj", "ply"];
+/// The category suffix of fold sequences.
+const SECOND_FOLD: &str = "_second_fold";
 /// Files that are one frame each in a sub-folder of frames.
 const FRAME_FILES: [&str; 6] = ["txt", "csv", "xyz", "dat", "obj", "ply"];
 
@@ -68,6 +70,8 @@ pub struct Entry {
     /// Border vertex count, when known without analysing (a store's fold: after loading).
     pub n: Option<usize>,
     pub frames: usize,
+    /// Whether it is a mesh sample (its border is extracted from a triangle mesh).
+    pub mesh: bool,
     /// The dataset folder or store it comes from.
     pub source: String,
     /// Why it cannot be loaded, when it cannot.
@@ -232,7 +236,7 @@ impl Catalog {
                             };
                             let first = files.as_ref().ok().and_then(|f| f.first()).and_then(|f| f.file_name()).map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
                             let shown = if sample.name.is_empty() || sample.name == first { name.clone() } else { sample.name.clone() };
-                            Entry { id: String::new(), name: shown, category, n, frames, source: source.clone(), error }
+                            Entry { id: String::new(), name: shown, category, n, frames, mesh: sample.mesh.is_some(), source: source.clone(), error }
                         }
                         Err(e) => Entry { category: fallback, ..Entry::broken(&name, &source, e) },
                     }
@@ -277,6 +281,7 @@ impl Catalog {
                             category: video.category.clone(),
                             n: None,
                             frames: fold + 1,
+                            mesh: true,
                             source: source.clone(),
                             error: None,
                         };
@@ -294,8 +299,13 @@ impl Catalog {
         self.push_named(prefix, &stem, entry, origin);
     }
 
-    /// Add an entry under a unique id `<prefix>-<slug of stem>`.
+    /// Add an entry under a unique id `<prefix>-<slug of stem>`. A sequence (more than two
+    /// frames: a fold after a fold) is filed under `<category>_second_fold`, as the built-in
+    /// sequences are.
     fn push_named(&mut self, prefix: &str, stem: &str, mut entry: Entry, origin: Origin) {
+        if entry.frames > 2 && !entry.category.ends_with(SECOND_FOLD) {
+            entry.category.push_str(SECOND_FOLD);
+        }
         let base = format!("{prefix}-{}", slug(stem));
         let mut id = base.clone();
         let mut k = 1;
@@ -378,7 +388,7 @@ impl Catalog {
 
 impl Entry {
     fn broken(name: &str, source: &str, error: String) -> Entry {
-        Entry { id: String::new(), name: name.to_string(), category: String::new(), n: None, frames: 0, source: source.to_string(), error: Some(error) }
+        Entry { id: String::new(), name: name.to_string(), category: String::new(), n: None, frames: 0, mesh: false, source: source.to_string(), error: Some(error) }
     }
 }
 

@@ -22,6 +22,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 use super::raster::text_width;
 use super::{endpoint_name, fold_colour, label_size, line_width, outward, plot, Canvas, INK, MUTED, PAPER};
 use crate::analysis::Analysis;
+use crate::angle;
 use crate::error::Result;
 
 /// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).
@@ -34,8 +35,9 @@ pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
     (0..=last).map(|k| f1 + span * k as f64 / last as f64).collect()
 }
 
-/// The lines of text under the circle: corners, one line per fold, the label sentence.
-fn caption(analysis: &Analysis, size: f64, width: f64) -> Vec<(String, [u8; 3])> {
+/// The lines of text under the circle: corners, one line per fold (and per true fold, with
+/// the found fold's angle errors), the label sentence.
+fn caption(analysis: &Analysis, truth: &[[f64; 2]], size: f64, width: f64) -> Vec<(String, [u8; 3])> {
     let corners = match analysis.corners.len() {
         0 => "no corners".to_string(),
         1 => "1 corner".to_string(),
@@ -49,6 +51,14 @@ fn caption(analysis: &Analysis, size: f64, width: f64) -> Vec<(String, [u8; 3])>
     }
     if count == 0 {
         lines.push(("no fold detected".into(), MUTED));
+    }
+    for (k, t) in truth.iter().enumerate() {
+        let error = analysis.folds.get(k).map_or_else(
+            || "not found".to_string(),
+            |f| format!("found {:.1}°, {:.1}° off", angle::distance(f[0], t[0]).to_degrees(), angle::distance(f[1], t[1]).to_degrees()),
+        );
+        let name = if truth.len() > 1 { format!("true fold {}", k + 1) } else { "true fold".into() };
+        lines.push((format!("{name} (○) = {:.2}, {:.2} rad: {error}", t[0], t[1]), MUTED));
     }
     lines.extend(wrap(&analysis.label.text, |line| text_width(line, size) <= width).into_iter().map(|l| (l, INK)));
     lines
@@ -83,12 +93,13 @@ impl Frame {
     }
 }
 
-/// Draw the fold circle of `analysis`.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
+/// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
+/// markers joined by a thin chord beside the found ones.
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]]) -> Result<()> {
     let unit = canvas.unit();
     let (w, h) = (canvas.width as f64, canvas.height as f64);
     let label = label_size(unit);
-    let lines = caption(analysis, label, w - label);
+    let lines = caption(analysis, truth, label, w - label);
     let line_height = 1.35 * label;
     let top = canvas.title_band();
     let text_top = h - line_height * lines.len() as f64 - 0.4 * label;
@@ -103,6 +114,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     canvas.stroke(&[frame.at(1.0, 0.0), frame.at(1.0 - tick, 0.0)], line_width(unit, 0.003), INK);
     canvas.text("0", frame.at(1.0 - 1.5 * tick, 0.0), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
     let mut taken = draw_corners(canvas, &analysis.corners, &frame);
+    draw_truth(canvas, truth, &frame);
     draw_folds(canvas, analysis, &frame, &mut taken);
     for (k, (text, colour)) in lines.iter().enumerate() {
         let y = text_top + line_height * (k as f64 + 0.5);
@@ -165,6 +177,19 @@ fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) -> Vec<[f64
         }
     }
     taken
+}
+
+/// Each true fold: its chord thin, its two points as hollow rings in its fold's colour.
+fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
+    let unit = canvas.unit();
+    let marker = (unit * 0.022).max(4.0);
+    for (k, t) in truth.iter().enumerate() {
+        let colour = fold_colour(k);
+        canvas.stroke(&[frame.at(1.0, t[0]), frame.at(1.0, t[1])], line_width(unit, 0.003), MUTED);
+        for &a in t {
+            canvas.ring(frame.at(1.0, a), marker, line_width(unit, 0.004), colour);
+        }
+    }
 }
 
 /// Each fold: its arc (the folded side), the chord (the fold line) and the named endpoints,

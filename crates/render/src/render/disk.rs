@@ -112,7 +112,12 @@ pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, sc
     let t_range = bar_range(ramp, scale);
     paint_bar(canvas, ramp, t_range, &layout);
     canvas.title(title);
-    canvas.replay(&template.guides);
+    if canvas.is_vector() {
+        // The recorded guides are pixels: an SVG draws them as vectors.
+        draw_guides(canvas, &layout, disk.n());
+    } else {
+        canvas.replay(&template.guides);
+    }
     draw_bar_ticks(canvas, &layout, scale, t_range);
     draw_bar_notes(canvas, &layout, scale, disk.n());
     if let Some(marks) = marks {
@@ -155,12 +160,15 @@ impl Template {
 
     fn new(width: u32, height: u32, n: usize) -> Template {
         let layout = Layout::of(width, height);
-        let guides = Canvas::record(width, height, |canvas| {
-            draw_frame(canvas, &layout);
-            draw_ring_ruler(canvas, &layout, n / 2);
-        });
+        let guides = Canvas::record(width, height, |canvas| draw_guides(canvas, &layout, n));
         Template { sectors: SectorMap::new(width, height, (layout.cx, layout.cy), layout.radius, n), guides }
     }
+}
+
+/// The rim outline with its angle marks, and the ring ruler, of a disk of N = `n`.
+fn draw_guides(canvas: &mut Canvas, layout: &Layout, n: usize) {
+    draw_frame(canvas, layout);
+    draw_ring_ruler(canvas, layout, n / 2);
 }
 
 /// The t interval the colour bar shows: the data's, from −max (or 0) to max.

@@ -24,6 +24,7 @@ pub mod colour;
 pub mod disk;
 pub mod raster;
 mod sector_map;
+pub mod svg;
 
 use std::sync::OnceLock;
 
@@ -82,6 +83,27 @@ pub const MIN_SIZE: u32 = 64;
 /// Largest width or height; larger requests are clamped down.
 pub const MAX_SIZE: u32 = 2048;
 
+/// The file a picture is written as.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Format {
+    /// An 8-bit RGB PNG.
+    #[default]
+    Png,
+    /// An SVG document: strokes and text as vectors over the fills' pixels ([`svg`]).
+    Svg,
+}
+
+impl Format {
+    /// The HTTP content type.
+    pub fn content_type(self) -> &'static str {
+        match self {
+            Format::Png => "image/png",
+            Format::Svg => "image/svg+xml",
+        }
+    }
+}
+
 /// Draw one picture of `analysis` as a PNG of `width`×`height` pixels (each clamped to
 /// [`MIN_SIZE`]…[`MAX_SIZE`]): the whole analysis, start frame → end frame.
 pub fn render_png(analysis: &Analysis, picture: Picture, width: u32, height: u32) -> Result<Vec<u8>> {
@@ -93,12 +115,21 @@ pub fn render_png(analysis: &Analysis, picture: Picture, width: u32, height: u32
 /// and its diffs, with the fold curves fitted on that step. The start and end disks of a
 /// picture pair share one colour scale, so a colour means one value in both panels.
 pub fn render_step_png(analysis: &Analysis, picture: Picture, step: Option<usize>, width: u32, height: u32) -> Result<Vec<u8>> {
+    render_step(analysis, picture, step, width, height, Format::Png, &[])
+}
+
+/// [`render_step_png`] written as `format`: the same drawing as a PNG or an SVG; `truth`,
+/// the sample's known folds (may be empty), drawn beside the found ones on the fold circle.
+pub fn render_step(analysis: &Analysis, picture: Picture, step: Option<usize>, width: u32, height: u32, format: Format, truth: &[[f64; 2]]) -> Result<Vec<u8>> {
     let mut canvas = Canvas::new(width, height)?;
+    if format == Format::Svg {
+        canvas.vector = Some(svg::Vector::default());
+    }
     match picture {
         Picture::Close | Picture::Borders | Picture::Thumbnail if step.is_some() => {
             return Err(Error::InvalidArgument(format!("the {} picture shows the whole analysis: it takes no step", picture.name())));
         }
-        Picture::Close => circle::draw(&mut canvas, analysis)?,
+        Picture::Close => circle::draw(&mut canvas, analysis, truth)?,
         Picture::Borders => borders::draw(&mut canvas, analysis)?,
         Picture::Thumbnail => borders::draw_thumbnail(&mut canvas, analysis),
         _ => {
@@ -127,7 +158,7 @@ pub fn render_step_png(analysis: &Analysis, picture: Picture, step: Option<usize
             }
         }
     }
-    canvas.png()
+    canvas.encode()
 }
 
 /// The frames a disk picture compares, and the step they are, if one.
@@ -226,6 +257,8 @@ pub(crate) struct Canvas {
     png_filter: png::FilterType,
     /// On a recording canvas ([`Canvas::record`]), the blends made so far instead of pixels.
     recording: Option<raster::Recording>,
+    /// On an SVG canvas, strokes and text as vector elements instead of pixels.
+    vector: Option<svg::Vector>,
 }
 
 impl Canvas {
@@ -233,7 +266,7 @@ impl Canvas {
     fn new(width: u32, height: u32) -> Result<Canvas> {
         ensure_font()?;
         let (width, height) = (width.clamp(MIN_SIZE, MAX_SIZE), height.clamp(MIN_SIZE, MAX_SIZE));
-        Ok(Canvas { width, height, rgb: vec![255; width as usize * height as usize * 3], png_filter: png::FilterType::Sub, recording: None })
+        Ok(Canvas { width, height, rgb: vec![255; width as usize * height as usize * 3], png_filter: png::FilterType::Sub, recording: None, vector: None })
     }
 
     /// The unit every length and font is scaled from: the shorter side in pixels.
@@ -253,6 +286,20 @@ impl Canvas {
         let out = f(&area).map_err(|e| Error::Render(e.to_string()))?;
         area.present().map_err(|e| Error::Render(e.to_string()))?;
         Ok(out)
+    }
+
+    /// The finished picture: its PNG, or on an SVG canvas the SVG document.
+    fn encode(&self) -> Result<Vec<u8>> {
+        let png = self.png()?;
+        Ok(match &self.vector {
+            Some(vector) => vector.document(self.width, self.height, &png).into_bytes(),
+            None => png,
+        })
+    }
+
+    /// Whether strokes and text are written as vectors (an SVG canvas).
+    fn is_vector(&self) -> bool {
+        self.vector.is_some()
     }
 
     /// Encode as an 8-bit RGB PNG with `png_filter`, at the fast setting (fdeflate: run

@@ -87,7 +87,7 @@ impl Canvas {
     /// The blends `draw` makes with strokes and text on a `width`×`height` canvas (a
     /// canvas without pixels: `draw` must not touch them otherwise).
     pub(crate) fn record(width: u32, height: u32, draw: impl FnOnce(&mut Canvas)) -> Recording {
-        let mut canvas = Canvas { width, height, rgb: Vec::new(), png_filter: png::FilterType::Sub, recording: Some(Recording::default()) };
+        let mut canvas = Canvas { width, height, rgb: Vec::new(), png_filter: png::FilterType::Sub, recording: Some(Recording::default()), vector: None };
         draw(&mut canvas);
         canvas.recording.unwrap_or_default()
     }
@@ -101,6 +101,9 @@ impl Canvas {
 
     /// An anti-aliased polyline through `points` (pixel coordinates), `width` pixels wide.
     pub(crate) fn stroke(&mut self, points: &[(f64, f64)], width: f64, colour: [u8; 3]) {
+        if let Some(vector) = &mut self.vector {
+            return vector.stroke(points, width, colour);
+        }
         let Some(&first) = points.first() else { return };
         let half = width / 2.0;
         let reach = half + 1.0;
@@ -177,6 +180,9 @@ impl Canvas {
             VPos::Center => cap / 2.0,
             VPos::Bottom => descent,
         };
+        if let Some(vector) = &mut self.vector {
+            return vector.text(text, (left, baseline), size, width, colour);
+        }
         for (x, c) in glyphs {
             let glyph = scaled.scaled_glyph(c);
             let glyph = ab_glyph::Glyph { position: ab_glyph::point(left as f32 + x, baseline as f32), ..glyph };

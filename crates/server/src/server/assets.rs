@@ -12,7 +12,7 @@ const JS: &str = "text/javascript; charset=utf-8";
 
 /// (file name, content type, content) of every file under `web/` but `index.html`: the
 /// stylesheet, the favicon and the ES modules (no build step: the browser loads them as they are).
-const FILES: [(&str, &str, &str); 15] = [
+const FILES: [(&str, &str, &str); 16] = [
     ("app.css", CSS, include_str!("../../../../web/app.css")),
     ("favicon.svg", "image/svg+xml", include_str!("../../../../web/favicon.svg")),
     ("app.js", JS, include_str!("../../../../web/app.js")),
@@ -27,6 +27,7 @@ const FILES: [(&str, &str, &str); 15] = [
     ("view-upload.js", JS, include_str!("../../../../web/view-upload.js")),
     ("view-interpolate.js", JS, include_str!("../../../../web/view-interpolate.js")),
     ("view-plan.js", JS, include_str!("../../../../web/view-plan.js")),
+    ("view-compare.js", JS, include_str!("../../../../web/view-compare.js")),
     ("fold.mjs", JS, include_str!("../../../../web/fold.mjs")),
 ];
 

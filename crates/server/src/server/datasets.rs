@@ -1,64 +1,56 @@
-//! The user's datasets in the sample list (`close serve --dataset PATH`, [`crate::catalog`]).
+//! The sample list: built-in samples and the user's datasets ([`crate::catalog`], `close
+//! serve --dataset PATH`) as one list of typed rows.
 //!
-//! `GET /api/samples?category=&q=&offset=&limit=` merges the built-in list (source
-//! `"builtin"`) with the catalog's entries (source: their folder or store; `error` when one
-//! cannot be read), filters both alike and pages the result; without `limit` it is the whole
-//! list. `GET /api/samples/{id}` answers built-in ids as before and falls back to the
-//! catalog: the sample is loaded and analysed on first request and cached like any analysis.
+//! `GET /api/samples?category=&q=&offset=&limit=` filters the rows of every source alike
+//! and pages the result; without `limit` it is the whole list. Each row has the same fields
+//! ([`SampleRow`]): `source` is `"builtin"` or the dataset's folder or store, `error` says
+//! why a dataset entry cannot be read. Every listed id is answered, pictured and planned by
+//! the same handlers (`routes::sample_analysis`).
 
 use axum::extract::State;
-use serde_json::{json, Value};
+use serde::Serialize;
 
-use super::routes::{self, JsonBytes, Listed, Loaded};
-use super::{ApiError, AppPath, AppQuery, AppState};
-use crate::analysis::FrameRange;
+use super::routes::{sample_rows, JsonBytes, SampleRow};
+use super::{ApiError, AppQuery, AppState};
 use crate::catalog;
 
-/// Cache keys of dataset samples start with this.
-const DATASET_KEY: &str = "dataset:";
-
-pub async fn samples(State(state): State<AppState>, AppQuery(query): AppQuery<catalog::Query>) -> Result<JsonBytes, ApiError> {
-    let JsonBytes(builtin) = routes::samples(State(state.clone())).await?;
-    let builtin: Value = serde_json::from_slice(&builtin).map_err(|e| ApiError::Internal(format!("the built-in list: {e}")))?;
-    let text = |v: &Value, key: &str| v[key].as_str().unwrap_or_default().to_string();
-    let mut all: Vec<Value> = builtin["samples"]
-        .as_array()
-        .cloned()
-        .unwrap_or_default()
-        .into_iter()
-        .map(|mut v| {
-            v["source"] = "builtin".into();
-            v["error"] = Value::Null;
-            v
-        })
-        .collect();
-    all.extend(state.catalog().entries().iter().filter_map(|e| serde_json::to_value(e).ok()));
-    let mut categories: Vec<(String, usize)> = Vec::new();
-    for v in &all {
-        let c = text(v, "category");
-        match categories.iter_mut().find(|(name, _)| *name == c) {
-            Some((_, count)) => *count += 1,
-            None => categories.push((c, 1)),
-        }
-    }
-    let matching: Vec<Value> = all.into_iter().filter(|v| query.matches(&text(v, "id"), &text(v, "name"), &text(v, "category"))).collect();
-    let total = matching.len();
-    let page: Vec<Value> = matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
-    let categories: Vec<Value> = categories.into_iter().map(|(name, count)| json!({ "name": name, "count": count })).collect();
-    let body = json!({ "samples": page, "total": total, "offset": query.offset, "limit": query.limit, "categories": categories });
-    Ok(JsonBytes(serde_json::to_vec(&body).map_err(|e| ApiError::Internal(e.to_string()))?.into()))
+/// A category and how many rows of the whole list it holds.
+#[derive(Serialize)]
+struct Category<'a> {
+    name: &'a str,
+    count: usize,
 }
 
-pub async fn sample(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<JsonBytes, ApiError> {
-    if state.dataset().get(&id).is_some() || state.catalog().get(&id).is_none() {
-        return routes::sample(State(state), AppPath(id)).await;
+/// The answer of `GET /api/samples`.
+#[derive(Serialize)]
+struct SampleList<'a> {
+    samples: Vec<&'a SampleRow>,
+    /// Rows that pass the filters (before paging).
+    total: usize,
+    offset: usize,
+    limit: Option<usize>,
+    /// Every category of the whole list, in first-seen order.
+    categories: Vec<Category<'a>>,
+}
+
+/// Categories of `rows` with their counts, in first-seen order.
+fn categories(rows: &[SampleRow]) -> Vec<Category<'_>> {
+    let mut out: Vec<Category> = Vec::new();
+    for row in rows {
+        match out.iter_mut().find(|c| c.name == row.category) {
+            Some(c) => c.count += 1,
+            None => out.push(Category { name: &row.category, count: 1 }),
+        }
     }
-    let (catalog, budget) = (state.catalog().clone(), state.config().budget);
-    let done = routes::analysis(&state, format!("{DATASET_KEY}{id}"), move |key, deadline| {
-        let sample = catalog.load(&id, deadline)?;
-        let source = catalog.get(&id).map(|e| e.source.clone()).unwrap_or_default();
-        Loaded::of(key, &sample.clone(), FrameRange::default(), Some(Listed::Dataset { id, source, sample }), &budget)
-    })
-    .await?;
-    Ok(JsonBytes(done.response.clone()))
+    out
+}
+
+pub async fn samples(State(state): State<AppState>, AppQuery(query): AppQuery<catalog::Query>) -> Result<JsonBytes, ApiError> {
+    let rows = sample_rows(&state).await?;
+    let matching: Vec<&SampleRow> = rows.iter().filter(|r| query.matches(&r.id, &r.name, &r.category)).collect();
+    let total = matching.len();
+    let page = matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
+    let list = SampleList { samples: page, total, offset: query.offset, limit: query.limit, categories: categories(&rows) };
+    let body = serde_json::to_vec(&list).map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))?;
+    Ok(JsonBytes(body.into()))
 }

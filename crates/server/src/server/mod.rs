@@ -1,7 +1,8 @@
 //! The web app: an axum server over the library, same JSON as `close analyze --json`.
 //!
 //! Routes: `GET /` (the app in `web/`, embedded), `GET /healthz`, `POST /api/analyze`,
-//! `GET /api/samples`, `GET /api/samples/{id}`, `GET /api/images/{key}/{picture}.png`,
+//! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
+//! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
@@ -129,8 +130,8 @@ struct Inner {
     /// worker; each on as many threads as cores (the OS shares them with light jobs).
     heavy: Workers,
     dataset: Dataset,
-    /// `GET /api/samples`, written once: the dataset never changes.
-    sample_list: OnceLock<Bytes>,
+    /// The rows of `GET /api/samples`, built once: the datasets never change.
+    sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
     /// The user's datasets, listed at start.
     catalog: Arc<crate::catalog::Catalog>,
 }
@@ -345,7 +346,7 @@ pub fn app(state: AppState) -> Router {
         .route("/healthz", get(routes::healthz))
         .route("/api/analyze", post(routes::analyze))
         .route("/api/samples", get(datasets::samples))
-        .route("/api/samples/{id}", get(datasets::sample))
+        .route("/api/samples/{id}", get(routes::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate).layer(small_bodies))

@@ -19,10 +19,10 @@ use crate::analysis::{analyze_with, Analysis, FrameRange, Options};
 use crate::border::{to_xyz, BorderFrames};
 use crate::budget::{Budget, Deadline};
 use crate::error::{Error, Result};
-use crate::formats::{json::parse_sample, read_files, Sample};
+use crate::formats::{json::parse_sample, read_files, Sample, Truth};
 use crate::plan::PlanStep;
 use crate::render::colour::Scale;
-use crate::render::{disk_png_scaled, render_step_png, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
+use crate::render::{disk_png_scaled, render_step, Format, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
 /// Thumbnail size in the sample list.
 const THUMBNAIL_SIZE: u32 = 160;
@@ -34,6 +34,8 @@ pub struct Analyzed {
     pub key: String,
     pub analysis: Analysis,
     pub response: Bytes,
+    /// The sample's known folds (empty when it carries none), drawn beside the found ones.
+    pub truth: Vec<[f64; 2]>,
 }
 
 impl Analyzed {
@@ -59,22 +61,26 @@ fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
 }
 
 /// What a listed sample's analysis adds: its id, the sample itself, and where its
-/// recording is (built-in samples) or which dataset it came from (`--dataset`).
+/// recording is (built-in samples with the `rerun` feature).
 #[derive(Serialize)]
 struct ListedFields<'a> {
     id: &'a str,
     sample: &'a Sample,
     #[serde(skip_serializing_if = "Option::is_none")]
     recording: Option<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    source: Option<&'a str>,
 }
 
-/// A sample of a list: a built-in one (by id) or one of the user's datasets.
+/// A sample that `GET /api/samples` lists, by id: built-in, or from one of the user's
+/// datasets (`--dataset`). Both are answered, pictured and planned alike.
 pub(super) enum Listed {
     Builtin(String),
-    Dataset { id: String, source: String, sample: Arc<Sample> },
+    Dataset { id: String, sample: Arc<Sample> },
 }
+
+/// Where a sample comes from, as rows and analyses name it: `"builtin"`, the dataset
+/// folder or store, or `"upload"`.
+pub(super) const BUILTIN: &str = "builtin";
+const UPLOAD: &str = "upload";
 
 /// `POST /api/analyze` and `GET /api/samples/{id}`: the CLI's analysis JSON plus what the
 /// app draws.
@@ -91,6 +97,11 @@ struct AnalyzeResponse<'a> {
     end_border: Vec<[f64; 3]>,
     /// Picture name → URL of its PNG.
     images: BTreeMap<&'static str, String>,
+    /// Provenance: `"builtin"`, the dataset's folder or store, or `"upload"`.
+    source: &'a str,
+    /// The sample's known folds, when it carries them (any source, uploads too).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    truth: Option<&'a Truth>,
     #[serde(flatten)]
     listed: Option<ListedFields<'a>>,
 }
@@ -103,6 +114,8 @@ pub(super) struct Loaded {
     frames: usize,
     border: BorderFrames,
     range: FrameRange,
+    source: String,
+    truth: Option<Truth>,
     /// A listed sample, whose answer includes the sample.
     listed: Option<Listed>,
 }
@@ -112,7 +125,7 @@ impl Loaded {
     /// cell budget before its border is prepared (a copy of every frame); otherwise (a frame
     /// range, a mesh's border shorter than its vertex list) the analysis checks the budget
     /// once the border is known.
-    pub(super) fn of(key: String, sample: &Sample, range: FrameRange, listed: Option<Listed>, budget: &Budget) -> Result<Loaded, ApiError> {
+    pub(super) fn of(key: String, sample: &Sample, range: FrameRange, source: &str, listed: Option<Listed>, budget: &Budget) -> Result<Loaded, ApiError> {
         if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), range) {
             budget.analysis(sample.frames.len(), first.len())?;
         }
@@ -123,6 +136,8 @@ impl Loaded {
             frames: frame_count(sample),
             border: sample.border_frames()?,
             range,
+            source: source.to_string(),
+            truth: sample.truth.clone(),
             listed,
         })
     }
@@ -144,9 +159,8 @@ impl Loaded {
                 id: &entry.id,
                 sample: &entry.sample,
                 recording: cfg!(feature = "rerun").then(|| format!("/api/samples/{}/recording.rrd", entry.id)),
-                source: None,
             }),
-            Some(Listed::Dataset { id, source, sample }) => Some(ListedFields { id, sample, recording: None, source: Some(source) }),
+            Some(Listed::Dataset { id, sample }) => Some(ListedFields { id, sample, recording: None }),
             None => None,
         };
         let response = to_json(&AnalyzeResponse {
@@ -158,9 +172,12 @@ impl Loaded {
             start_border: analysis.start_border().iter().map(to_xyz).collect(),
             end_border: analysis.end_border().iter().map(to_xyz).collect(),
             images,
+            source: &self.source,
+            truth: self.truth.as_ref(),
             listed,
         })?;
-        Ok(Analyzed { key, analysis, response })
+        let truth = self.truth.map(|t| t.folds).unwrap_or_default();
+        Ok(Analyzed { key, analysis, response, truth })
     }
 }
 
@@ -300,7 +317,7 @@ pub async fn analyze(State(state): State<AppState>, AppQuery(range): AppQuery<Ra
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
     let budget = state.config().budget;
-    let done = analysis(&state, key, move |key, _| Loaded::of(key, &upload.sample()?, frames, None, &budget)).await?;
+    let done = analysis(&state, key, move |key, _| Loaded::of(key, &upload.sample()?, frames, UPLOAD, None, &budget)).await?;
     Ok(JsonBytes(done.response.clone()))
 }
 
@@ -314,64 +331,97 @@ fn frame_count(sample: &Sample) -> usize {
     sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len())
 }
 
-/// One row of `GET /api/samples`.
-#[derive(Serialize)]
-struct SampleSummary<'a> {
-    id: &'a str,
-    name: &'a str,
-    category: &'a str,
-    /// Border vertices (0 when the border cannot be found).
-    n: usize,
-    frames: usize,
-    mesh: bool,
-    thumbnail: String,
+/// One row of `GET /api/samples`: the same fields for a built-in sample and a dataset's.
+#[derive(Debug, Clone, Serialize)]
+pub(super) struct SampleRow {
+    pub id: String,
+    pub name: String,
+    pub category: String,
+    /// Border vertices (`null` when the border cannot be found).
+    pub n: Option<usize>,
+    pub frames: usize,
+    pub mesh: bool,
+    /// URL of its small borders picture.
+    pub thumbnail: String,
+    /// `"builtin"`, or the dataset folder or store it comes from.
+    pub source: String,
+    /// Why it cannot be loaded, when it cannot.
+    pub error: Option<String>,
 }
 
-#[derive(Serialize)]
-struct SampleList<'a> {
-    samples: Vec<SampleSummary<'a>>,
-}
-
-pub async fn samples(State(state): State<AppState>) -> Result<JsonBytes, ApiError> {
-    if let Some(list) = state.0.sample_list.get() {
-        return Ok(JsonBytes(list.clone()));
+impl SampleRow {
+    fn builtin(e: &crate::dataset::Entry) -> SampleRow {
+        let border = e.sample.border_frames();
+        SampleRow {
+            id: e.id.clone(),
+            name: e.sample.name.clone(),
+            category: e.sample.category.clone(),
+            n: border.as_ref().ok().map(BorderFrames::len),
+            frames: frame_count(&e.sample),
+            mesh: e.sample.mesh.is_some(),
+            thumbnail: thumbnail(&e.id),
+            source: BUILTIN.into(),
+            error: border.err().map(|e| e.to_string()),
+        }
     }
-    // A mesh's border vertex count takes finding its border: a worker's job, done once.
+
+    fn dataset(e: &crate::catalog::Entry) -> SampleRow {
+        SampleRow {
+            id: e.id.clone(),
+            name: e.name.clone(),
+            category: e.category.clone(),
+            n: e.n,
+            frames: e.frames,
+            mesh: e.mesh,
+            thumbnail: thumbnail(&e.id),
+            source: e.source.clone(),
+            error: e.error.clone(),
+        }
+    }
+}
+
+/// The thumbnail URL of listed sample `id`: its analysis is cached under `sample:{id}`.
+fn thumbnail(id: &str) -> String {
+    format!("/api/images/{SAMPLE_KEY}{id}/thumbnail.png?size={THUMBNAIL_SIZE}")
+}
+
+/// Every row of the sample list, built-in samples first, built once (a mesh's border
+/// vertex count takes finding its border: a worker's job).
+pub(super) async fn sample_rows(state: &AppState) -> Result<Arc<Vec<SampleRow>>, ApiError> {
+    if let Some(rows) = state.0.sample_list.get() {
+        return Ok(rows.clone());
+    }
     let job = state.clone();
-    let list = state
+    let rows = state
         .run_cpu(Lane::Light, move |_| {
-            let samples = job
-                .entries()
-                .iter()
-                .map(|e| SampleSummary {
-                    id: &e.id,
-                    name: &e.sample.name,
-                    category: &e.sample.category,
-                    n: e.sample.border_frames().map_or(0, |b| b.len()),
-                    frames: frame_count(&e.sample),
-                    mesh: e.sample.mesh.is_some(),
-                    thumbnail: format!("/api/images/{SAMPLE_KEY}{}/thumbnail.png?size={THUMBNAIL_SIZE}", e.id),
-                })
-                .collect();
-            to_json(&SampleList { samples })
+            let builtin = job.entries().iter().map(SampleRow::builtin);
+            Ok(builtin.chain(job.catalog().entries().iter().map(SampleRow::dataset)).collect::<Vec<_>>())
         })
         .await?;
-    Ok(JsonBytes(state.0.sample_list.get_or_init(|| list).clone()))
+    Ok(state.0.sample_list.get_or_init(|| Arc::new(rows)).clone())
 }
 
 fn unknown_sample(id: &str) -> ApiError {
-    ApiError::NotFound(format!("no built-in sample {id:?}; GET /api/samples lists them"))
+    ApiError::NotFound(format!("no sample {id:?}; GET /api/samples lists them"))
 }
 
-/// The analysis of built-in sample `id`, cached under its id.
+/// The analysis of listed sample `id` (built-in or from a dataset), cached under
+/// `sample:{id}`, so its pictures, plan and thumbnail are found alike.
 async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<Analyzed>, ApiError> {
-    if state.entry(id).is_none() {
+    if state.entry(id).is_none() && state.catalog().get(id).is_none() {
         return Err(unknown_sample(id));
     }
     let (job, id) = (state.clone(), id.to_string());
-    analysis(state, format!("{SAMPLE_KEY}{id}"), move |key, _| {
-        let entry = job.entry(&id).ok_or_else(|| unknown_sample(&id))?;
-        Loaded::of(key, &entry.sample, FrameRange::default(), Some(Listed::Builtin(id)), &job.config().budget)
+    analysis(state, format!("{SAMPLE_KEY}{id}"), move |key, deadline| {
+        let budget = job.config().budget;
+        match job.entry(&id) {
+            Some(entry) => Loaded::of(key, &entry.sample, FrameRange::default(), BUILTIN, Some(Listed::Builtin(id)), &budget),
+            None => {
+                let sample = job.catalog().load(&id, deadline)?;
+                let source = job.catalog().get(&id).map_or(String::new(), |e| e.source.clone());
+                Loaded::of(key, &sample.clone(), FrameRange::default(), &source, Some(Listed::Dataset { id, sample }), &budget)
+            }
+        }
     })
     .await
 }
@@ -408,6 +458,9 @@ pub struct ImageQuery {
     size: Option<u32>,
     /// One step's disk pictures (1-based: step k goes from analysed frame k − 1 to k).
     step: Option<usize>,
+    /// `png` (the default) or `svg`: the same drawing.
+    #[serde(default)]
+    format: Format,
 }
 
 /// A picture's side in pixels as drawn: the request's, clamped. The cache is keyed by it,
@@ -430,14 +483,14 @@ pub async fn image(
         (None, Some(id)) => sample_analysis(&state, id).await?,
         (None, None) => return Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
     };
-    let (size, step) = (picture_size(query.size), query.step);
-    let png = state
-        .cached_bytes(format!("{key}/{}/{size}/{step:?}", picture.name()), cells(&analyzed.analysis), move |_| {
-            Ok(render_step_png(&analyzed.analysis, picture, step, size, size)?)
+    let (size, step, format) = (picture_size(query.size), query.step, query.format);
+    let file = state
+        .cached_bytes(format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()), cells(&analyzed.analysis), move |_| {
+            Ok(render_step(&analyzed.analysis, picture, step, size, size, format, &analyzed.truth)?)
         })
         .await?;
     // The key names the content, so the picture never changes.
-    Ok(([(header::CONTENT_TYPE, "image/png"), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], png).into_response())
+    Ok(([(header::CONTENT_TYPE, format.content_type()), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], file).into_response())
 }
 
 fn default_steps() -> usize {
@@ -578,7 +631,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
     }
     let raw = req.sample.get();
     let analyzed = match raw.trim_start().as_bytes().first() {
-        // An analysis still cached (an upload's "key") or a built-in sample's id.
+        // An analysis still cached (an upload's "key") or a listed sample's id.
         Some(b'"') => {
             let id: String = serde_json::from_str(raw).map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
             match state.cached_analysis(&id) {
@@ -589,9 +642,9 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
         Some(b'{') => {
             let key = content_key(&[b"plan", raw.as_bytes()]);
             let budget = state.config().budget;
-            analysis(&state, key, move |key, _| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), None, &budget)).await?
+            analysis(&state, key, move |key, _| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), UPLOAD, None, &budget)).await?
         }
-        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a built-in sample id or an analysis key".into())),
+        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a listed sample id or an analysis key".into())),
     };
     let goal = req.goal;
     let answer = state
