@@ -50,9 +50,18 @@ pub fn fold_line(points: &[Point], fold: [f64; 2], direction: Option<[f64; 2]>) 
 /// The border after folding it along (f1, f2) across `line`: the folded arc reflected in XY,
 /// z kept.
 pub fn apply_fold_line(points: &[Point], fold: [f64; 2], line: &Line) -> Vec<Point> {
+    apply_arcs(points, &[fold], line)
+}
+
+/// The border after a fold of several arcs (a multi-arc fold, angles [a, b] each folded
+/// anticlockwise from a to b) across `line`: only the vertices inside the arcs are
+/// reflected in XY, z kept; what lies between the arcs stays.
+pub fn apply_arcs(points: &[Point], arcs: &[[f64; 2]], line: &Line) -> Vec<Point> {
     let mut out = points.to_vec();
-    for v in folded_vertices(points.len(), fold) {
-        out[v] = line.reflect(&points[v]);
+    for &arc in arcs {
+        for v in folded_vertices(points.len(), arc) {
+            out[v] = line.reflect(&points[v]);
+        }
     }
     out
 }
