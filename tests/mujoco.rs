@@ -52,6 +52,11 @@ fn every_second_fold_is_found_near_its_floor() {
         let step = &analysis.steps[1].detection;
         if multi_arc(&sample.name) {
             assert!(step.arcs.len() >= 2, "{}: arcs {:?}", sample.name, step.arcs);
+            let text = &analysis.label.folds[1].text;
+            assert!(text.contains("multi-arc fold") && text.contains(&format!("crosses the border {} times", 2 * step.arcs.len())), "{}: {text}", sample.name);
+            // The fold circle draws each arc.
+            let png = close::render::render_png(analysis, close::render::Picture::Close, 400, 400).unwrap();
+            assert!(png.starts_with(b"\x89PNG"), "{}", sample.name);
         }
         let fold = step.fold.unwrap();
         assert_eq!([step.arcs[0][0], step.arcs[step.arcs.len() - 1][1]], fold, "{}", sample.name);

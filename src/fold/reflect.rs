@@ -90,6 +90,19 @@ mod tests {
     }
 
     #[test]
+    fn a_multi_arc_fold_turns_only_its_arcs() {
+        // Arcs 1.5 → 3.5 and 7.5 → 9.5 of 12 vertices: vertices 2, 3, 8, 9 cross y = 0.
+        let points: Vec<Point> = (0..12).map(|k| Point::new(k as f64, 1.0 + (k as f64).sin(), 0.5)).collect();
+        let line = Line { point: [0.0, 0.0], direction: [1.0, 0.0] };
+        let q = edge(12);
+        let out = apply_arcs(&points, &[[1.5 * q, 3.5 * q], [7.5 * q, 9.5 * q]], &line);
+        for (v, (p, o)) in points.iter().zip(&out).enumerate() {
+            let expected = if [2, 3, 8, 9].contains(&v) { Point::new(p.x, -p.y, p.z) } else { *p };
+            assert!((o - expected).norm() < 1e-12, "vertex {v}: {o:?}");
+        }
+    }
+
+    #[test]
     fn reflection_is_an_involution() {
         let (a, b) = (Point::new(0.0, 0.0, 0.0), Point::new(1.0, 2.0, 5.0));
         let p = Point::new(0.3, -0.7, 0.25);
