@@ -15,10 +15,10 @@ import { deg, el, fmtFold, row } from "./format.js";
  * GET /api/samples/{id}): same-to-cross at most 0.38, residual at most 0.52 (noisy samples,
  * predictions still right, RMSE ≤ 0.03), flip margin at least 0.75, no tie-break; RMSE at
  * most 0.073 except `trousers__legs_up_then_half` step 2 (0.227, visibly wrong), the one
- * step these limits flag. The synthesis's mismatch over the unfolded state's says how much of
- * the change the fold it found explains: measured at most 0.45 on the physics and reference
- * folds and 0.49 on the MuJoCo second folds, 0.73 and more for the wrong lines a stacked step
- * found before the probe scale was mended (a step past 0.8 has no fold).
+ * step these limits flag. On a stacked start (a step without an orientation) the synthesis's
+ * mismatch over the unfolded state's says how much of the change the line it found explains:
+ * measured at most 0.49 on the physics and MuJoCo second folds, 0.73 and more for the wrong
+ * lines found before the stacked probe scale was mended (a step past 0.8 has no fold).
  */
 export const WEAK = { sameToCross: 1.0, residual: 0.6, flipMargin: 0.25, rmse: 0.1, unexplained: 0.6 };
 
@@ -27,7 +27,7 @@ export function doubts(step) {
   const out = [];
   if (!step.fold) return out;
   const { cut, orientation, metrics, synthesis } = step;
-  if (synthesis && synthesis.unfolded_mismatch > 0) {
+  if (synthesis && !orientation && synthesis.unfolded_mismatch > 0) {
     const ratio = synthesis.mismatch / synthesis.unfolded_mismatch;
     if (ratio > WEAK.unexplained) out.push(`the synthesised fold leaves ${(100 * ratio).toFixed(0)}% of the disks' mismatch unexplained (> ${100 * WEAK.unexplained}%)`);
   }

@@ -42,14 +42,16 @@ const STEP: f64 = 0.125;
 pub const COINCIDE_EDGES: f64 = 3.0;
 /// Distinct arcs of the line search refined in full.
 const CANDIDATES: usize = 3;
-/// Scale of the compression of dGLI values before comparing: asinh(v / SCALE) is close to
-/// sign(v)·ln(2|v| / SCALE) for every value but the smallest, so a pair counts by its sign
-/// and the order of its magnitude. Stacked layers that slide and bunch (MuJoCo cloth) change
-/// their pairs' magnitudes several-fold without changing their signs. (Measured, foldeval
-/// step 2: 1.0 → 0.03 took MuJoCo second folds from a wrong line on two of six to mean
-/// RMSE 0.071, the physics folds from 0.0128 to 0.0113 and the reference samples from
-/// 0.0024 to 0.0022; 0.003–0.1 are alike, 0.3 and up lose the circle's second fold.)
-const SCALE: f64 = 0.03;
+/// Scale of the compression of dGLI values before comparing, on a flat start.
+const SCALE: f64 = 1.0;
+/// The same on a stacked start: asinh(v / s) is close to sign(v)·ln(2|v| / s) for every
+/// value but the smallest, so a pair counts by its sign and the order of its magnitude.
+/// Stacked layers that slide and bunch (MuJoCo cloth) change their pairs' magnitudes
+/// several-fold without changing their signs. (Measured, foldeval step 2: 1.0 → 0.03 took
+/// MuJoCo second folds from a wrong line on two of six to mean RMSE 0.071; 0.003–0.1 are
+/// alike, 0.3 and up lose the circle's second fold. On flat starts it moved the built-in
+/// towels' exact folds by a tenth of a degree, so those keep 1.0.)
+const STACKED_SCALE: f64 = 0.03;
 /// Edges on each side of a fold point whose rows are probed.
 const NEAR: usize = 3;
 /// Most probe edges sampled along the whole border (the cost per candidate is bounded
@@ -166,19 +168,24 @@ struct Probe {
     /// and the negation is exact; on a stacked one it holds to first order in ε, which is
     /// close enough to screen lines ([`search_line`]) but not to refine them.
     flap_negates: bool,
+    /// The compression's scale ([`SCALE`], [`STACKED_SCALE`]).
+    scale: f64,
 }
 
 impl Probe {
     /// Probe `pairs`, compressed, on the start disk and the measured end disk.
-    fn of(pairs: Vec<(usize, usize)>, start: &Disk, end: &Disk, flap_negates: bool) -> Probe {
-        let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j))).collect();
-        let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j))).collect();
-        Probe { pairs, measured, start, flap_negates }
+    /// `flat`: whether the step starts flat, which sets the compression's scale.
+    fn of(pairs: Vec<(usize, usize)>, start: &Disk, end: &Disk, flap_negates: bool, flat: bool) -> Probe {
+        let scale = if flat { SCALE } else { STACKED_SCALE };
+        let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j), scale)).collect();
+        let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j), scale)).collect();
+        Probe { pairs, measured, start, flap_negates, scale }
     }
 
     /// Probe pairs around the ends of the folded `arcs`: every edge near them against a
     /// strided sample of all edges, and sampled edges of the folded arcs against the rest.
-    fn around(start: &Disk, end: &Disk, arcs: &[[f64; 2]], flap_negates: bool) -> Probe {
+    /// On a flat start the flap's pairs take their negated start values ([`Probe::flap_negates`]).
+    fn around(start: &Disk, end: &Disk, arcs: &[[f64; 2]], flat: bool) -> Probe {
         let n = end.n();
         let sampled = sampled_edges(n, SAMPLES);
         let mut near: Vec<usize> = Vec::new();
@@ -202,7 +209,7 @@ impl Probe {
         }
         pairs.sort_unstable();
         pairs.dedup();
-        Probe::of(pairs, start, end, flap_negates)
+        Probe::of(pairs, start, end, flat, flat)
     }
 
     /// Mean mismatch of the synthesised state `turned` with the measured end disk.
@@ -229,7 +236,7 @@ impl Probe {
                 }),
                 |v| {
                     if let Some(&k) = slots.next() {
-                        values[k] = Some(compress(v));
+                        values[k] = Some(compress(v, self.scale));
                     }
                 },
             );
@@ -244,10 +251,10 @@ impl Probe {
     }
 }
 
-/// asinh(v / SCALE), written out: the standard library's careful form (hypot, ln_1p) is a
+/// asinh(v / scale), written out: the standard library's careful form (hypot, ln_1p) is a
 /// fifth of the cost of a probe, and the few ulps it saves do not matter to a mismatch.
-fn compress(v: f64) -> f64 {
-    let a = (v / SCALE).abs();
+fn compress(v: f64, scale: f64) -> f64 {
+    let a = (v / scale).abs();
     let magnitude = if a < 1e150 { (a + (a * a + 1.0).sqrt()).ln() } else { (2.0 * a).ln() };
     magnitude.copysign(v)
 }
@@ -443,7 +450,7 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
     let n = before.len();
     let sampled = sampled_edges(n, SCREEN_SAMPLES);
     let pairs = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
-    let probe = Probe::of(pairs, start, end, true);
+    let probe = Probe::of(pairs, start, end, true, false);
     let unfolded = probe.unfolded();
     let axis = flap_axis(before);
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
