@@ -18,6 +18,7 @@ mod http;
 mod interpolate_parity;
 mod invariance;
 mod modules;
+mod mujoco;
 mod physics;
 mod pictures;
 mod plan;

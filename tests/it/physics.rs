@@ -71,7 +71,7 @@ fn physics_folds() {
     let (_, q3) = analysed.iter().find(|(s, _)| s.name.starts_with("q3")).unwrap();
     let step = &q3.steps[1];
     let line = step.line.expect("a fold has a line");
-    assert!(step.detection.synthesis.and_then(|s| s.direction).is_some(), "the direction came from the disks");
+    assert!(step.detection.synthesis.as_ref().and_then(|s| s.direction).is_some(), "the direction came from the disks");
     assert!(line.direction[1].abs() < 0.2, "direction {:?}", line.direction);
     assert!(step.metrics.rmse < 0.08, "RMSE {}", step.metrics.rmse);
 }

@@ -13,7 +13,7 @@ fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
     let data = close::dataset::Dataset::builtin();
     let entry = data.get("napkin__half_then_half").expect("a built-in sample");
     let analysis = close::analyze(&entry.sample.border_frames().unwrap(), Default::default()).unwrap();
-    assert!(analysis.steps[1].detection.synthesis.and_then(|s| s.direction).is_some(), "the second fold's line comes from the disks");
+    assert!(analysis.steps[1].detection.synthesis.as_ref().and_then(|s| s.direction).is_some(), "the second fold's line comes from the disks");
     let p = plan_for(&analysis, [0.0, PI]).unwrap();
     assert_eq!(p.case, Case::UnfoldThenFold);
     let first = &p.steps[0];

@@ -22,6 +22,7 @@ const SNAPSHOTS: &[(&str, &[&str])] = &[
     ("reference", &["tests/fixtures/reference"]),
     ("reference_paper", &["tests/fixtures/reference", "--method", "paper"]),
     ("physics", &["assets/physics"]),
+    ("mujoco", &["tests/fixtures/physics-mujoco/border"]),
     ("vrfolding", &["tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr"]),
 ];
 
@@ -188,13 +189,29 @@ fn folds(name: &str) -> String {
     out
 }
 
-/// The rendering a region's header names: `table NAME`, `methods NAME NAME`, `folds NAME`.
+/// Each sample's fold count and the RMSE and Fréchet of its last step, of a snapshot.
+fn steps(name: &str) -> String {
+    let r = report(name);
+    let mut out = String::from("| sample | folds found / expected | RMSE (last step) | Fréchet (last step) |\n|---|---|---|---|\n");
+    for s in &r.samples {
+        let last = s.steps.last();
+        let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.4}"));
+        out += &format!("| `{}` | {} / {} | {} | {} |\n", s.name, s.folds, s.expected_folds, cell(last.map(|t| t.rmse)), cell(last.map(|t| t.frechet)));
+    }
+    let last = |f: fn(&close::eval::StepResult) -> f64| stat_of(&r.samples.iter().collect::<Vec<_>>(), |s| s.steps.last().map(f));
+    out += &format!("| mean | | {} | {} |", mean(last(|t| t.rmse)), mean(last(|t| t.frechet)));
+    out
+}
+
+/// The rendering a region's header names: `table NAME`, `methods NAME NAME`, `folds NAME`,
+/// `steps NAME`.
 fn render(header: &str) -> String {
     let words: Vec<&str> = header.split_whitespace().collect();
     match words.as_slice() {
         ["table", name] => table(name),
         ["methods", names @ ..] => methods(names),
         ["folds", name] => folds(name),
+        ["steps", name] => steps(name),
         _ => panic!("README: unknown generated region {header:?}"),
     }
 }

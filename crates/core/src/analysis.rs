@@ -12,9 +12,9 @@ use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_fold_line, fold_line};
+use crate::fold::reflect::{apply_arcs, fold_line};
 use crate::fold::{detect, FoldDetection, FoldMethod, Line};
-use crate::label::{label, Label, CHANGED_RMSE};
+use crate::label::{label_arcs, Label, CHANGED_RMSE};
 use crate::metrics::Metrics;
 
 /// Which frames to analyse (defaults: first and last).
@@ -107,6 +107,13 @@ impl Analysis {
         self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect()
     }
 
+    /// The arcs each fold of [`Analysis::folds`] turned over (`steps[k].arcs` of the steps
+    /// that found a fold), in fold order: one arc, the fold itself, unless the fold line
+    /// crossed the border more than twice.
+    pub fn fold_arcs(&self) -> Vec<&[[f64; 2]]> {
+        self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.detection.arcs.as_slice()).collect()
+    }
+
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
     /// by the start frame's transform, as the analysis computed it; `None` past the end.
     pub fn disk(&self, k: usize) -> Option<Disk> {
@@ -164,7 +171,8 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
-    let mut label = label(n, &found.vertices, &folds);
+    let arcs: Vec<&[[f64; 2]]> = steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.detection.arcs.as_slice()).collect();
+    let mut label = label_arcs(n, &found.vertices, &folds, &arcs);
     let changed: Vec<usize> = steps.iter().enumerate().filter(|(_, s)| s.detection.fold.is_none() && s.metrics.rmse > CHANGED_RMSE).map(|(k, _)| k + 1).collect();
     label.changed_without_fold(&changed);
     Ok(Analysis {
@@ -202,8 +210,8 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
         let detection = detect(before_border, before, &after, options.method);
         options.deadline.check()?;
         let line = detection.fold.and_then(|fold| {
-            let line = fold_line(&predicted, fold, detection.synthesis.and_then(|s| s.direction))?;
-            predicted = apply_fold_line(&predicted, fold, &line);
+            let line = fold_line(&predicted, fold, detection.synthesis.as_ref().and_then(|s| s.direction))?;
+            predicted = apply_arcs(&predicted, &detection.arcs, &line);
             Some(line)
         });
         let metrics = Metrics::measure(norm, &predicted, frame);

@@ -125,8 +125,23 @@ fn overlap(n: f64, a: f64, la: f64, b: f64, lb: f64) -> f64 {
 ///
 /// A cloth with no fold is "not folded" — unless it changed: see [`Label::changed_without_fold`].
 pub fn label(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]]) -> Label {
+    label_arcs(n, corner_vertices, folds, &[])
+}
+
+/// [`label`] for folds that may turn several arcs over (`arcs[k]`, angles [a, b] each folded
+/// anticlockwise, for fold k; a fold with no entry, or one arc, is the arc of `folds[k]`).
+/// A multi-arc fold is classed by the pair that spans its arcs; its folded corners and share
+/// are those of its arcs, and its sentence says how many separate flaps turned over.
+pub fn label_arcs(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]], arcs: &[&[[f64; 2]]]) -> Label {
     let circular = corner_vertices.len() > CIRCULAR_CORNERS || corner_vertices.is_empty();
-    let fold_labels: Vec<FoldLabel> = folds.iter().map(|&f| label_fold(n, corner_vertices, f, circular)).collect();
+    let fold_labels: Vec<FoldLabel> = folds
+        .iter()
+        .enumerate()
+        .map(|(k, &f)| match arcs.get(k) {
+            Some(&several) if several.len() > 1 => label_multi_arc(n, corner_vertices, f, several, circular),
+            _ => label_fold(n, corner_vertices, f, circular),
+        })
+        .collect();
     let mut text = if corner_vertices.len() > CIRCULAR_CORNERS {
         format!("Cloth is circular ({} corners).", corner_vertices.len())
     } else if corner_vertices.is_empty() {
@@ -250,6 +265,29 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
         text.push_str(&format!(" The border from {:.0}° to {:.0}° is folded over.", border_degrees[0], border_degrees[1]));
     }
     FoldLabel { class, folded_corners, corners_on_fold_line: on_line, corner_sides, cut_sides, folded_percent, border_degrees, text }
+}
+
+/// The label of a fold that turned the `arcs` over together (a line crossing the border
+/// 2k times, k ≥ 2): classed by the pair `fold` that spans them, with the corners and the
+/// share of the border that lie on the arcs themselves, and a sentence naming the flaps.
+fn label_multi_arc(n: usize, corners: &[usize], fold: [f64; 2], arcs: &[[f64; 2]], circular: bool) -> FoldLabel {
+    let mut out = label_fold(n, corners, fold, circular);
+    let nf = n as f64;
+    let on_arcs = |v: usize| arcs.iter().any(|&[a, b]| (v as f64 - angle_to_param(a, n)).rem_euclid(nf) < angle_to_param(b - a, n));
+    out.folded_corners.retain(|&c| on_arcs(corners[c - 1]));
+    out.corner_sides.retain(|s| on_arcs(s.vertex));
+    out.folded_percent = arcs.iter().map(|&[a, b]| 100.0 * angle_to_param(b - a, n) / nf).sum();
+    let flaps = match arcs.len() {
+        2 => "both".to_string(),
+        k => format!("all {k}"),
+    };
+    out.text = format!(
+        "{} The fold line crosses the border {} times and {flaps} flaps on its folded side turn over together ({:.0}% of the border; a multi-arc fold).",
+        out.text,
+        2 * arcs.len(),
+        out.folded_percent
+    );
+    out
 }
 
 fn list(items: &[usize]) -> String {

@@ -42,7 +42,7 @@ use crate::analysis::Analysis;
 use crate::angle::{angle_to_param, distance, edge, folds_vertex, param_to_angle, wrap_tau, ON_LINE_EDGES};
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_fold_line, fold_line, folded_vertices, reflect_xy};
+use crate::fold::reflect::{apply_arcs, fold_line, folded_vertices, reflect_xy};
 use crate::fold::Line;
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.
@@ -186,15 +186,16 @@ fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
 }
 
 /// A step that folds `before` along `fold` (or, `unfold`, takes the folded state back).
-/// `line` is the line the fold is made along (by default through its two fold points of
-/// `before`); `from_state` gives where a grasped vertex is now when the step starts a fold.
-fn step(action: Action, before: &[Point], corners: &[usize], fold: [f64; 2], line: Option<Line>, from_state: &[Point]) -> PlanStep {
+/// `arcs` are the arcs the fold turns (a multi-arc fold; `[fold]` otherwise). `line` is the
+/// line the fold is made along (by default through its two fold points of `before`);
+/// `from_state` gives where a grasped vertex is now when the step starts a fold.
+fn step(action: Action, before: &[Point], corners: &[usize], (fold, arcs): ([f64; 2], &[[f64; 2]]), line: Option<Line>, from_state: &[Point]) -> PlanStep {
     let n = before.len();
     let (p1, p2) = (point_at(before, param(fold[0], n)), point_at(before, param(fold[1], n)));
     let line = line.or_else(|| fold_line(before, fold, None));
     let reflect = |p: &Point| line.as_ref().map_or(*p, |l| l.reflect(p));
-    let arc = folded_vertices(n, fold);
-    let moved = corners_moved(n, corners, fold);
+    let arc: Vec<usize> = arcs.iter().flat_map(|&a| folded_vertices(n, a)).collect();
+    let moved: Vec<usize> = arcs.iter().flat_map(|&a| corners_moved(n, corners, a)).collect();
     let picks = grasped(before, &moved, &arc, &p1, &p2)
         .into_iter()
         .map(|v| {
@@ -225,13 +226,14 @@ fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
 /// far in order) to the goal fold (g1, g2), all folds in angles. Each current fold is made
 /// along the line through its two fold points of the state before it.
 pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], goal: [f64; 2]) -> Result<Plan> {
-    plan_along(flat, corner_vertices, current_folds, &vec![None; current_folds.len()], goal)
+    plan_along(flat, corner_vertices, current_folds, &vec![None; current_folds.len()], &[], goal)
 }
 
 /// [`plan`] with the line each current fold was made along where it is known (`lines[k]`
 /// for fold k): a fold through two stacked layers has its two fold points (nearly) on top of
-/// each other, so the line through them is no guide, and the analysis gives its line.
-fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], lines: &[Option<Line>], goal: [f64; 2]) -> Result<Plan> {
+/// each other, so the line through them is no guide, and the analysis gives its line. A
+/// multi-arc fold k turns only its `arcs[k]` (a fold without an entry turns its own arc).
+fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], lines: &[Option<Line>], arcs: &[&[[f64; 2]]], goal: [f64; 2]) -> Result<Plan> {
     let n = flat.len();
     if n < crate::border::MIN_VERTICES {
         return Err(Error::TooFewVertices { got: n, min: crate::border::MIN_VERTICES });
@@ -251,10 +253,12 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
     // The line of each current fold, and states[k], the border after the first k folds.
     let mut states = vec![flat.to_vec()];
     let mut made_along = Vec::with_capacity(current_folds.len());
+    let own: Vec<[[f64; 2]; 1]> = current_folds.iter().map(|&f| [f]).collect();
+    let arcs_of = |k: usize| -> &[[f64; 2]] { arcs.get(k).copied().filter(|a| !a.is_empty()).unwrap_or(&own[k]) };
     for (k, &f) in current_folds.iter().enumerate() {
         let before = states.last().expect("the flat state");
         let line = lines.get(k).copied().flatten().or_else(|| fold_line(before, f, None));
-        let next = line.as_ref().map_or_else(|| before.clone(), |l| apply_fold_line(before, f, l));
+        let next = line.as_ref().map_or_else(|| before.clone(), |l| apply_arcs(before, arcs_of(k), l));
         made_along.push(line);
         states.push(next);
     }
@@ -266,18 +270,18 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
         }
     }
     if current_folds.is_empty() {
-        return Ok(Plan { case: Case::Fold, steps: vec![step(Action::Fold, flat, &corners, goal, None, flat)] });
+        return Ok(Plan { case: Case::Fold, steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat)] });
     }
-    let folded_now: BTreeSet<usize> = current_folds.iter().flat_map(|&f| corners_moved(n, &corners, f)).collect();
+    let folded_now: BTreeSet<usize> = (0..current_folds.len()).flat_map(|k| arcs_of(k).iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()).collect();
     let folded_by_goal: BTreeSet<usize> = corners_moved(n, &corners, goal).into_iter().collect();
     if folded_now == folded_by_goal {
-        return Ok(Plan { case: Case::Direct, steps: vec![step(Action::Fold, flat, &corners, goal, None, current)] });
+        return Ok(Plan { case: Case::Direct, steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, current)] });
     }
     let mut steps: Vec<PlanStep> = (0..current_folds.len())
         .rev()
-        .map(|k| step(Action::Unfold, &states[k], &corners, current_folds[k], made_along[k], &states[k]))
+        .map(|k| step(Action::Unfold, &states[k], &corners, (current_folds[k], arcs_of(k)), made_along[k], &states[k]))
         .collect();
-    steps.push(step(Action::Fold, flat, &corners, goal, None, flat));
+    steps.push(step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat));
     Ok(Plan { case: Case::UnfoldThenFold, steps })
 }
 
@@ -287,7 +291,7 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
 /// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
 pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
     // Each fold along the line the analysis made it along (its `predicted_end`).
-    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &analysis.fold_lines(), goal)?;
+    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &analysis.fold_lines(), &analysis.fold_arcs(), goal)?;
     for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
         pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
             Error::InvalidArgument(format!("border vertex {} has no input index ({} known)", pick.vertex, analysis.border_indices.len()))

@@ -29,7 +29,7 @@ pub use orientation::Orientation;
 pub use synth::{Line, Synthesis};
 
 use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
-use crate::border::Point;
+use crate::border::{point_at, Point};
 use crate::disk::Disk;
 use loss::RingTables;
 
@@ -58,7 +58,14 @@ pub enum FoldMethod {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FoldDetection {
     /// (f1, f2) in [0, 2π), the folded side anticlockwise from f1; `None` without a fold.
+    /// For a fold of several arcs, the pair that spans them (the first point of the first
+    /// arc, the last point of the last).
     pub fold: Option<[f64; 2]>,
+    /// The arcs the fold turned over, each [a, b] in [0, 2π) folded anticlockwise from a to
+    /// b, in walking order from f1: `[fold]` when the fold line crosses the border twice,
+    /// k arcs when it crosses 2k times (our extension of CloSE: a *multi-arc fold*). Empty
+    /// without a fold.
+    pub arcs: Vec<[f64; 2]>,
     /// The fold's curves on the diff disk. With [`FoldMethod::Cut`], the paper's curve through
     /// each fold point ([`fit::curves_through`]); with [`FoldMethod::Paper`], every distinct
     /// curve of the free fit, lowest loss first ([`fit::fit_curves`]), the first two giving the
@@ -107,7 +114,7 @@ pub(crate) fn is_flat(points: &[Point]) -> bool {
 /// ```
 pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) -> FoldDetection {
     let g = start.abs_diff(end);
-    let mut found = FoldDetection { fold: None, curves: Vec::new(), cut: None, orientation: None, synthesis: None };
+    let mut found = FoldDetection { fold: None, arcs: Vec::new(), curves: Vec::new(), cut: None, orientation: None, synthesis: None };
     if g.values().iter().all(|&v| v <= FLAT_DIFF) {
         return found;
     }
@@ -129,19 +136,28 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
                 let (fold, orientation) = orientation::orient(start, end, first.rim, second.rim);
                 found.fold = Some(fold);
                 found.orientation = Some(orientation);
+                found.arcs = vec![fold];
             }
         }
         Some((refined, orientation)) => {
             found.orientation = orientation;
             if let Some(refined) = refined {
-                let fold = refined.s.map(|s| wrap_tau(param_to_angle(s, n)));
+                let angle = |s: [f64; 2]| s.map(|s| wrap_tau(param_to_angle(s, n)));
+                let fold = angle(refined.s);
                 found.curves = fit::curves_through(&tables, n, fold);
                 found.fold = Some(fold);
+                found.arcs = refined.arcs.iter().map(|&arc| angle(arc)).collect();
                 found.synthesis = Some(refined);
             }
         }
     }
     found
+}
+
+/// The line through the border point at parameter `s` of `points` at angle `phi`.
+fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
+    let p = point_at(points, s);
+    Line::at_angle([p.x, p.y], phi)
 }
 
 /// [`FoldMethod::Cut`]: on a flat start the cut, oriented, refined; on a stacked one the
@@ -158,7 +174,12 @@ fn fold_by_cut(before: &[Point], start: &Disk, end: &Disk, cut: Option<Cut>) -> 
     } else {
         let refined = synth::search_line(before, start, end)
             .into_iter()
-            .map(|line| synth::refine(before, start, end, line.s, line.direction.map(|[x, y]| y.atan2(x))))
+            .filter_map(|found| match (found.arcs.len(), found.direction) {
+                (1, direction) => Some(synth::refine(before, start, end, found.s, direction.map(|[x, y]| y.atan2(x)))),
+                // Every arc left of the line: the line is refined, the arcs follow it.
+                (_, Some([x, y])) => Some(synth::refine_arcs(before, start, end, &crossing_line(before, found.s[0], y.atan2(x)))),
+                (_, None) => None,
+            })
             .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
             .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch));
         (refined, None)
@@ -225,7 +246,7 @@ mod tests {
         assert!(crate::angle::distance(f1, param_to_angle(9.0, n)) <= edge(n) + 1e-9, "{}", f1 / edge(n));
         assert!(crate::angle::distance(f2, param_to_angle(21.0, n)) <= edge(n) + 1e-9, "{}", f2 / edge(n));
         // The line came from the disks: horizontal.
-        let direction = found.synthesis.and_then(|s| s.direction).expect("the fold points coincide");
+        let direction = found.synthesis.as_ref().and_then(|s| s.direction).expect("the fold points coincide");
         assert!(direction[1].abs() < 0.1, "{direction:?}");
         assert!(found.orientation.is_none(), "a stacked start is not oriented by flips");
     }

@@ -50,9 +50,18 @@ pub fn fold_line(points: &[Point], fold: [f64; 2], direction: Option<[f64; 2]>) 
 /// The border after folding it along (f1, f2) across `line`: the folded arc reflected in XY,
 /// z kept.
 pub fn apply_fold_line(points: &[Point], fold: [f64; 2], line: &Line) -> Vec<Point> {
+    apply_arcs(points, &[fold], line)
+}
+
+/// The border after a fold of several arcs (a multi-arc fold, angles [a, b] each folded
+/// anticlockwise from a to b) across `line`: only the vertices inside the arcs are
+/// reflected in XY, z kept; what lies between the arcs stays.
+pub fn apply_arcs(points: &[Point], arcs: &[[f64; 2]], line: &Line) -> Vec<Point> {
     let mut out = points.to_vec();
-    for v in folded_vertices(points.len(), fold) {
-        out[v] = line.reflect(&points[v]);
+    for &arc in arcs {
+        for v in folded_vertices(points.len(), arc) {
+            out[v] = line.reflect(&points[v]);
+        }
     }
     out
 }
@@ -78,6 +87,19 @@ mod tests {
         assert_eq!(folded_vertices(n, [6.5 * q, 1.5 * q]), vec![7, 0, 1]);
         // Endpoints on vertices are not folded.
         assert_eq!(folded_vertices(n, [2.0 * q, 5.0 * q]), vec![3, 4]);
+    }
+
+    #[test]
+    fn a_multi_arc_fold_turns_only_its_arcs() {
+        // Arcs 1.5 → 3.5 and 7.5 → 9.5 of 12 vertices: vertices 2, 3, 8, 9 cross y = 0.
+        let points: Vec<Point> = (0..12).map(|k| Point::new(k as f64, 1.0 + (k as f64).sin(), 0.5)).collect();
+        let line = Line { point: [0.0, 0.0], direction: [1.0, 0.0] };
+        let q = edge(12);
+        let out = apply_arcs(&points, &[[1.5 * q, 3.5 * q], [7.5 * q, 9.5 * q]], &line);
+        for (v, (p, o)) in points.iter().zip(&out).enumerate() {
+            let expected = if [2, 3, 8, 9].contains(&v) { Point::new(p.x, -p.y, p.z) } else { *p };
+            assert!((o - expected).norm() < 1e-12, "vertex {v}: {o:?}");
+        }
     }
 
     #[test]

@@ -123,16 +123,18 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     Ok(())
 }
 
-/// The folded side of each fold, between its arc and its chord, lightly shaded.
+/// The folded side of each fold, between each of its arcs and its chord, lightly shaded.
 fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -> Result<()> {
     canvas.draw(|area| {
-        for (k, &fold) in analysis.folds.iter().enumerate() {
-            let arc: Vec<(i32, i32)> = folded_arc(fold, 361)
-                .into_iter()
-                .map(|t| frame.at(1.0, t))
-                .map(|(x, y)| (x.round() as i32, y.round() as i32))
-                .collect();
-            area.draw(&Polygon::new(arc, plot(fold_colour(k)).mix(0.14).filled()))?;
+        for (k, arcs) in analysis.fold_arcs().into_iter().enumerate() {
+            for &fold in arcs {
+                let arc: Vec<(i32, i32)> = folded_arc(fold, 361)
+                    .into_iter()
+                    .map(|t| frame.at(1.0, t))
+                    .map(|(x, y)| (x.round() as i32, y.round() as i32))
+                    .collect();
+                area.draw(&Polygon::new(arc, plot(fold_colour(k)).mix(0.14).filled()))?;
+            }
         }
         Ok(())
     })
@@ -192,18 +194,21 @@ fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
     }
 }
 
-/// Each fold: its arc (the folded side), the chord (the fold line) and the named endpoints,
-/// each name moved outwards until it clears the corner numbers and the names before it.
+/// Each fold: its arcs (the folded side: one, or several for a multi-arc fold), the chord of
+/// each (the fold line) and the named endpoints of the pair that spans them, each name moved
+/// outwards until it clears the corner numbers and the names before it.
 fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame, taken: &mut Vec<[f64; 4]>) {
     let unit = canvas.unit();
     let count = analysis.folds.len();
     let size = label_size(unit);
     let marker = (unit * 0.016).max(3.0);
-    for (k, &fold) in analysis.folds.iter().enumerate() {
+    for (k, (&fold, arcs)) in analysis.folds.iter().zip(analysis.fold_arcs()).enumerate() {
         let colour = fold_colour(k);
-        let arc: Vec<(f64, f64)> = folded_arc(fold, 361).into_iter().map(|t| frame.at(1.0, t)).collect();
-        canvas.stroke(&arc, line_width(unit, 0.014), colour);
-        canvas.stroke(&[frame.at(1.0, fold[0]), frame.at(1.0, fold[1])], line_width(unit, 0.005), colour);
+        for &[a, b] in arcs {
+            let arc: Vec<(f64, f64)> = folded_arc([a, b], 361).into_iter().map(|t| frame.at(1.0, t)).collect();
+            canvas.stroke(&arc, line_width(unit, 0.014), colour);
+            canvas.stroke(&[frame.at(1.0, a), frame.at(1.0, b)], line_width(unit, 0.005), colour);
+        }
         for (e, &f) in fold.iter().enumerate() {
             canvas.disc(frame.at(1.0, f), marker + 1.5, PAPER);
             canvas.disc(frame.at(1.0, f), marker, colour);
