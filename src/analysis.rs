@@ -112,6 +112,21 @@ impl Analysis {
     pub fn disk(&self, k: usize) -> Option<Disk> {
         self.frames.get(k).map(|frame| Disk::of_border(&self.normalisation.apply_all(frame)))
     }
+
+    /// The object `close analyze --json` prints (every serialised field, keys sorted), and
+    /// with `disks` also `disk_start` and `disk_end`: the start and end frames' dGLI disks as
+    /// condensed pair vectors (pairs (i, j), i < j, row-major), recomputed by
+    /// [`Analysis::disk`]. The CLI and the Python package both print this object.
+    pub fn to_json_value(&self, disks: bool) -> serde_json::Result<serde_json::Value> {
+        let mut out = serde_json::to_value(self)?;
+        if disks {
+            let last = self.frames.len().saturating_sub(1);
+            for (key, k) in [("disk_start", 0), ("disk_end", last)] {
+                out[key] = self.disk(k).map(|d| d.values().to_vec()).unwrap_or_default().into();
+            }
+        }
+        Ok(out)
+    }
 }
 
 /// Analyse frames `range` of a prepared sample.

@@ -11,15 +11,16 @@
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::analysis::{analyze_with, Options};
 use crate::angle;
 use crate::fold::FoldMethod;
 use crate::formats::Sample;
 
-/// The outcome for one sample.
-#[derive(Debug, Clone, Serialize)]
+/// The outcome for one sample. Rows scored elsewhere (another process, another machine)
+/// come back as JSON and are reported as they were.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SampleResult {
     pub name: String,
     pub category: String,
@@ -39,7 +40,7 @@ pub struct SampleResult {
 }
 
 /// How one step of a sample went.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct StepResult {
     pub fold_found: bool,
     pub rmse: f64,

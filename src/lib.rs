@@ -30,6 +30,7 @@
 //! ```
 
 pub mod analysis;
+pub mod batch;
 pub mod catalog;
 pub mod angle;
 pub mod border;

@@ -225,15 +225,9 @@ fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Opt
         // The border was gathered from the mesh: report mesh vertex ids.
         analysis.border_indices = analysis.border_indices.iter().map(|&k| mesh[k]).collect();
     }
-    let mut out = serde_json::to_value(&analysis)?;
+    let mut out = analysis.to_json_value(disks)?;
     if let serde_json::Value::Object(extra) = extra {
         out.as_object_mut().into_iter().for_each(|o| o.extend(extra.clone()));
-    }
-    if disks {
-        let last = analysis.frames.len() - 1;
-        for (key, k) in [("disk_start", 0), ("disk_end", last)] {
-            out[key] = analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default().into();
-        }
     }
     emit(&out.to_string())?;
     Ok(())
@@ -270,76 +264,26 @@ fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec
 }
 
 #[cfg(not(feature = "vrfolding"))]
-const NO_VRFOLDING: &str = "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
-
-/// Every `.json` file under the given files and folders, sorted.
-fn sample_files(paths: &[PathBuf]) -> CliResult<Vec<PathBuf>> {
-    let mut out = Vec::new();
-    let mut stack: Vec<PathBuf> = paths.to_vec();
-    while let Some(p) = stack.pop() {
-        if p.is_dir() {
-            let entries = std::fs::read_dir(&p).map_err(file_error(&p))?;
-            stack.extend(entries.filter_map(|e| e.ok()).map(|e| e.path()));
-        } else if p.extension().is_some_and(|e| e == "json") {
-            out.push(p);
-        } else if paths.contains(&p) {
-            return Err(CliError::Usage(format!("{}: not a folder or a Sample JSON file", p.display())));
-        }
-    }
-    out.sort();
-    Ok(out)
-}
+use close::batch::NO_VRFOLDING;
 
 /// One unit of evaluation work (one progress-bar tick).
 enum Work<'a> {
-    File(PathBuf),
+    Unit(close::batch::Unit),
     Builtin(&'a close::dataset::Entry),
-    #[cfg(feature = "vrfolding")]
-    Video(std::sync::Arc<close::vrfolding::Store>, close::vrfolding::Video),
 }
 
 impl Work<'_> {
     fn evaluate(&self, method: FoldMethod) -> Vec<eval::SampleResult> {
         match self {
-            Work::File(path) => {
-                let sample = read(path).and_then(|f| Ok(close::formats::json::parse_sample(&f.1)?));
-                vec![match sample {
-                    Ok(sample) => eval::evaluate_with(&sample, method),
-                    Err(e) => eval::SampleResult::unreadable(&path.display().to_string(), &e.to_string()),
-                }]
-            }
+            Work::Unit(unit) => unit.evaluate(method),
             Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
-            #[cfg(feature = "vrfolding")]
-            Work::Video(store, video) => close::vrfolding::evaluate(store, video, method),
         }
-    }
-}
-
-/// The videos of every VR-Folding store among `paths`; the other paths are returned.
-#[cfg(feature = "vrfolding")]
-fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)> {
-    let (stores, rest): (Vec<PathBuf>, Vec<PathBuf>) = paths.iter().cloned().partition(|p| close::vrfolding::is_store(p));
-    let mut work = Vec::new();
-    for path in stores {
-        let store = std::sync::Arc::new(close::vrfolding::Store::open(&path)?);
-        let videos = store.videos()?;
-        work.extend(videos.into_iter().map(|v| Work::Video(store.clone(), v)));
-    }
-    Ok((work, rest))
-}
-
-#[cfg(not(feature = "vrfolding"))]
-fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)> {
-    match paths.iter().find(|p| p.join(".zgroup").is_file()) {
-        Some(p) => Err(CliError::Usage(format!("{}: {NO_VRFOLDING}", p.display()))),
-        None => Ok((Vec::new(), paths.to_vec())),
     }
 }
 
 fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> CliResult {
     let dataset = close::dataset::Dataset::builtin();
-    let (mut work, rest) = store_work(paths)?;
-    work.extend(sample_files(&rest)?.into_iter().map(Work::File));
+    let mut work: Vec<Work> = close::batch::units(paths)?.into_iter().map(Work::Unit).collect();
     if builtin {
         work.extend(dataset.entries().iter().map(Work::Builtin));
     }
@@ -390,14 +334,14 @@ fn run_dataset(out: &Path, from: &[PathBuf]) -> CliResult {
 /// category `<Category>/fold<k>`); broken folds and unreadable videos are reported and skipped.
 #[cfg(feature = "vrfolding")]
 fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> CliResult + Sync)) -> CliResult {
-    let (work, rest) = store_work(from)?;
+    let (work, rest) = close::batch::store_units(from)?;
     if let Some(p) = rest.first() {
         return Err(CliError::Usage(format!("{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)", p.display())));
     }
     let counts = work
         .par_iter()
         .map(|w| {
-            let Work::Video(store, video) = w else { return Ok::<_, CliError>([0, 0, 0]) };
+            let close::batch::Unit::Video(store, video) = w else { return Ok::<_, CliError>([0, 0, 0]) };
             match store.folds(video) {
                 Ok(folds) => {
                     for k in 1..=folds.usable() {
