@@ -346,6 +346,11 @@ impl PyAnalysis {
 /// What `close.analyze` does with the GIL released: the library's pipeline under the
 /// server's budget.
 fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close::Error> {
+    // As the server does: every frame of a border sample analysed is refused over the cell
+    // budget before its border is prepared (a copy of every frame).
+    if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), options.frames) {
+        options.budget.analysis(sample.frames.len(), first.len())?;
+    }
     let frames = sample.border_frames()?;
     PyAnalysis::of(close::analyze_with(&frames, options.clone())?)
 }

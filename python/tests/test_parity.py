@@ -85,13 +85,9 @@ def test_evaluate_of_samples_equals_close_eval_of_their_files():
     expected = cli_json("eval", *paths)
     assert close.evaluate(paths) == expected
     samples = [close.load(p) for p in paths]
-    # Samples carry no file name: compare everything but the names.
-    got = close.evaluate(samples)
-    for row in got["samples"] + expected["samples"]:
-        row.pop("name")
-    assert got == expected
+    assert close.evaluate(samples) == expected
     with ThreadPoolExecutor(2) as pool:
-        assert close.evaluate(samples, executor=pool) == got
+        assert close.evaluate(samples, executor=pool) == expected
 
 
 def test_plan_and_interpolate_answer_as_the_cli():
