@@ -343,16 +343,20 @@ impl PyAnalysis {
     }
 }
 
-/// What `close.analyze` does with the GIL released: the library's pipeline under the
-/// server's budget.
-fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close::Error> {
+/// The library's pipeline on a sample, under the budget of `options` (run with the GIL
+/// released).
+fn analysis_of(sample: &Sample, options: &Options) -> Result<Analysis, close::Error> {
     // As the server does: every frame of a border sample analysed is refused over the cell
     // budget before its border is prepared (a copy of every frame).
     if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), options.frames) {
         options.budget.analysis(sample.frames.len(), first.len())?;
     }
-    let frames = sample.border_frames()?;
-    PyAnalysis::of(close::analyze_with(&frames, options.clone())?)
+    close::analyze_with(&sample.border_frames()?, options.clone())
+}
+
+/// What `close.analyze` does with the GIL released.
+fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close::Error> {
+    PyAnalysis::of(analysis_of(sample, options)?)
 }
 
 fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyResult<Options> {
@@ -472,7 +476,7 @@ fn plan<'py>(py: Python<'py>, sample_or_analysis: &Bound<'py, PyAny>, goal: (f64
         Err(_) => {
             let sample = sample_of(sample_or_analysis)?;
             let options = options("default", None, None)?;
-            py.detach(|| sample.border_frames().and_then(|f| close::analyze_with(&f, options))).map(Arc::new).map_err(close_error)?
+            py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)?
         }
     };
     let answer = close::plan::answer(&analysis, goal).map_err(close_error)?;
