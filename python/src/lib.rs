@@ -66,7 +66,7 @@ fn float_array<'py>(obj: &Bound<'py, PyAny>) -> PyResult<PyReadonlyArrayDyn<'py,
     let numpy = obj.py().import("numpy")?;
     let kwargs = [("dtype", numpy.getattr("float64")?)].into_py_dict(obj.py())?;
     let array = numpy.call_method("asarray", (obj,), Some(&kwargs)).map_err(|e| invalid(format!("not an array of numbers: {e}")))?;
-    Ok(array.extract()?)
+    array.extract()
 }
 
 /// One border state, an (N, 3) array-like of x, y, z; `what` names it in errors.
@@ -103,6 +103,9 @@ fn frames_array<'py>(py: Python<'py>, frames: &[Vec<[f64; 3]>]) -> PyResult<Boun
     let array = Array3::from_shape_vec((frames.len(), n, 3), flat).map_err(|e| invalid(format!("frames: {e}")))?;
     Ok(array.into_pyarray(py))
 }
+
+/// A float64 vector for Python.
+type Floats<'py> = Bound<'py, PyArray1<f64>>;
 
 fn points_array<'py>(py: Python<'py>, points: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((points.len(), 3), |(k, c)| points[k][c]).into_pyarray(py)
@@ -433,7 +436,7 @@ fn dgli_disk<'py>(py: Python<'py>, border: &Bound<'py, PyAny>, reference: Option
 /// (L − d + 1)/L for cyclic distance d (the rim is 1) and angle π(2a + d + 1)/N (radians),
 /// two (N(N−1)/2,) arrays in the same order. For `matplotlib`'s polar axes.
 #[pyfunction]
-fn disk_layout<'py>(py: Python<'py>, n: usize) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+fn disk_layout(py: Python<'_>, n: usize) -> PyResult<(Floats<'_>, Floats<'_>)> {
     if !(close::border::MIN_VERTICES..=close::border::MAX_VERTICES).contains(&n) {
         return Err(invalid(format!("a disk has {} to {} edges, not {n}", close::border::MIN_VERTICES, close::border::MAX_VERTICES)));
     }
