@@ -335,82 +335,26 @@ fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec
 }
 
 #[cfg(not(feature = "vrfolding"))]
-const NO_VRFOLDING: &str = "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
-
-/// The evaluation work of the given files and folders: every `.json` file under them, each
-/// once, walked as a dataset folder is ([`close::catalog::walk`]: no loops, not out of the
-/// folder); what cannot be walked is a row with its error.
-fn sample_files(paths: &[PathBuf]) -> CliResult<Vec<Work<'static>>> {
-    let json = |p: &Path| p.extension().is_some_and(|e| e == "json");
-    let mut out = Vec::new();
-    for p in paths {
-        if p.is_dir() {
-            let tree = close::catalog::walk::walk(p, &json).map_err(file_error(p))?;
-            out.extend(tree.files().cloned().map(Work::File));
-            out.extend(tree.unreadable().map(|(path, why)| Work::Failed(path.display().to_string(), why.clone())));
-        } else if json(p) {
-            out.push(Work::File(p.clone()));
-        } else {
-            return Err(CliError::Usage(format!("{}: not a folder or a Sample JSON file", p.display())));
-        }
-    }
-    Ok(out)
-}
+use close::batch::NO_VRFOLDING;
 
 /// One unit of evaluation work (one progress-bar tick).
 enum Work<'a> {
-    File(PathBuf),
+    Unit(close::batch::Unit),
     Builtin(&'a close::dataset::Entry),
-    #[cfg(feature = "vrfolding")]
-    Video(std::sync::Arc<close::vrfolding::Store>, close::vrfolding::Video),
-    /// What could not be read or walked (its name, and why): one row with the error.
-    Failed(String, String),
 }
 
 impl Work<'_> {
     fn evaluate(&self, method: FoldMethod) -> Vec<eval::SampleResult> {
         match self {
-            Work::File(path) => {
-                let sample = read(path).and_then(|f| Ok(close::formats::json::parse_sample(&f.1)?));
-                vec![match sample {
-                    Ok(sample) => eval::evaluate_with(&sample, method),
-                    Err(e) => eval::SampleResult::unreadable(&path.display().to_string(), &e.to_string()),
-                }]
-            }
+            Work::Unit(unit) => unit.evaluate(method),
             Work::Builtin(entry) => vec![eval::evaluate_with(&entry.sample, method)],
-            Work::Failed(name, why) => vec![eval::SampleResult::unreadable(name, why)],
-            #[cfg(feature = "vrfolding")]
-            Work::Video(store, video) => eval::evaluate_video(store, video, method),
         }
-    }
-}
-
-/// The videos of every VR-Folding store among `paths`; the other paths are returned.
-#[cfg(feature = "vrfolding")]
-fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)> {
-    let (stores, rest): (Vec<PathBuf>, Vec<PathBuf>) = paths.iter().cloned().partition(|p| close::vrfolding::is_store(p));
-    let mut work = Vec::new();
-    for path in stores {
-        let store = std::sync::Arc::new(close::vrfolding::Store::open(&path)?);
-        let (videos, unreadable) = store.videos()?;
-        work.extend(videos.into_iter().map(|v| Work::Video(store.clone(), v)));
-        work.extend(unreadable.into_iter().map(|e| Work::Failed(path.display().to_string(), e.to_string())));
-    }
-    Ok((work, rest))
-}
-
-#[cfg(not(feature = "vrfolding"))]
-fn store_work(paths: &[PathBuf]) -> CliResult<(Vec<Work<'static>>, Vec<PathBuf>)> {
-    match paths.iter().find(|p| p.join(".zgroup").is_file()) {
-        Some(p) => Err(CliError::Usage(format!("{}: {NO_VRFOLDING}", p.display()))),
-        None => Ok((Vec::new(), paths.to_vec())),
     }
 }
 
 fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) -> CliResult {
     let dataset = close::dataset::Dataset::builtin();
-    let (mut work, rest) = store_work(paths)?;
-    work.extend(sample_files(&rest)?);
+    let mut work: Vec<Work> = close::batch::units(paths)?.into_iter().map(Work::Unit).collect();
     if builtin {
         work.extend(dataset.entries().iter().map(Work::Builtin));
     }
@@ -467,14 +411,14 @@ fn run_dataset(out: &Path, from: &[PathBuf], force: bool) -> CliResult {
 /// category `<Category>/fold<k>`); broken folds and unreadable videos are reported and skipped.
 #[cfg(feature = "vrfolding")]
 fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> CliResult + Sync)) -> CliResult {
-    let (work, rest) = store_work(from)?;
+    let (work, rest) = close::batch::store_units(from)?;
     if let Some(p) = rest.first() {
         return Err(CliError::Usage(format!("{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)", p.display())));
     }
     let counts = work
         .par_iter()
         .map(|w| {
-            let Work::Video(store, video) = w else { return Ok::<_, CliError>([0, 0, 0]) };
+            let close::batch::Unit::Video(store, video) = w else { return Ok::<_, CliError>([0, 0, 0]) };
             match store.folds(video) {
                 Ok(folds) => {
                     for k in 1..=folds.usable() {

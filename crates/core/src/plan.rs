@@ -300,6 +300,36 @@ pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
     Ok(plan)
 }
 
+/// `POST /api/plan`'s answer (and Python's `close.plan`): the plan, and the state it starts from.
+#[derive(Debug, Clone, Serialize)]
+pub struct Answer<'a> {
+    pub case: Case,
+    pub steps: Vec<PlanStep>,
+    /// In [0, 2π), as the plan's steps.
+    pub goal: [f64; 2],
+    pub folds: &'a [[f64; 2]],
+    /// The line each current fold was made along (as the analysis's `steps[k].line`).
+    pub lines: Vec<Option<Line>>,
+    pub corners: &'a [f64],
+    pub start_border: Vec<[f64; 3]>,
+    pub border_indices: &'a [usize],
+}
+
+/// [`plan_for`] with the analysed state it starts from: the answer of `POST /api/plan`.
+pub fn answer(analysis: &Analysis, goal: [f64; 2]) -> Result<Answer<'_>> {
+    let plan = plan_for(analysis, goal)?;
+    Ok(Answer {
+        case: plan.case,
+        steps: plan.steps,
+        goal: goal.map(wrap_tau),
+        folds: &analysis.folds,
+        lines: analysis.fold_lines(),
+        corners: &analysis.corners,
+        start_border: analysis.start_border().iter().map(to_xyz).collect(),
+        border_indices: &analysis.border_indices,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -22,7 +22,8 @@ use crate::formats::Sample;
 #[cfg(feature = "vrfolding")]
 use crate::vrfolding::{Store, Video};
 
-/// The outcome for one sample.
+/// The outcome for one sample. Rows scored elsewhere (another process, another machine)
+/// come back as JSON and are reported as they were.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SampleResult {
     pub name: String,

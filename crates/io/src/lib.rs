@@ -4,10 +4,11 @@
 //! [`formats`] (Sample JSON, text/CSV, OBJ, PLY, MATLAB v5) → [`mesh`] (a mesh's border) →
 //! [`dataset`] (the built-in samples) → [`eval`] (the evaluation table) → [`vrfolding`]
 //! (VR-Folding Zarr stores, feature `vrfolding`: Blosc is C) → [`catalog`] (the user's
-//! datasets); [`cache`] is a bounded LRU.
+//! datasets) → [`batch`] (the units of `close eval`'s work); [`cache`] is a bounded LRU.
 
 pub use close_core::*;
 
+pub mod batch;
 pub mod cache;
 pub mod catalog;
 pub mod dataset;

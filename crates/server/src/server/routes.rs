@@ -20,7 +20,6 @@ use crate::border::{to_xyz, BorderFrames};
 use crate::budget::{Budget, Deadline};
 use crate::error::{Error, Result};
 use crate::formats::{json::parse_sample, read_files, Sample, Truth};
-use crate::plan::PlanStep;
 use crate::render::colour::Scale;
 use crate::render::{disk_png_scaled, render_step, Format, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
@@ -610,21 +609,6 @@ pub struct PlanRequest {
     goal: [f64; 2],
 }
 
-/// `POST /api/plan`'s answer: the plan, and the state it starts from.
-#[derive(Serialize)]
-struct PlanResponse<'a> {
-    case: crate::plan::Case,
-    steps: &'a [PlanStep],
-    /// In [0, 2π), as the plan's steps.
-    goal: [f64; 2],
-    folds: &'a [[f64; 2]],
-    /// The line each current fold was made along (as the analysis's `steps[k].line`).
-    lines: Vec<Option<crate::fold::Line>>,
-    corners: &'a [f64],
-    start_border: Vec<[f64; 3]>,
-    border_indices: &'a [usize],
-}
-
 pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanRequest>) -> Result<JsonBytes, ApiError> {
     if req.goal.iter().any(|g| !g.is_finite()) {
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
@@ -649,18 +633,7 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
     let goal = req.goal;
     let answer = state
         .run_cpu(Lane::Light, move |_| {
-            let a = &analyzed.analysis;
-            let plan = crate::plan::plan_for(a, goal)?;
-            to_json(&PlanResponse {
-                case: plan.case,
-                steps: &plan.steps,
-                goal: goal.map(crate::angle::wrap_tau),
-                folds: &a.folds,
-                lines: a.fold_lines(),
-                corners: &a.corners,
-                start_border: a.start_border().iter().map(to_xyz).collect(),
-                border_indices: &a.border_indices,
-            })
+            to_json(&crate::plan::answer(&analyzed.analysis, goal)?)
         })
         .await?;
     Ok(JsonBytes(answer))

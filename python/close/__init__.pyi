@@ -1,0 +1,96 @@
+"""Type stubs of the `close` package (CloSE cloth-state representation).
+
+Angles are radians in [0, 2π), vertex k of N at 2πk/N; a fold (f1, f2) has its folded side
+anticlockwise from f1 to f2. Arrays are numpy float64.
+"""
+
+import os
+from concurrent.futures import Executor
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import vrfolding as vrfolding
+
+__version__: str
+
+PathLike = Union[str, os.PathLike[str]]
+Frames = Union[npt.ArrayLike, Sequence[npt.ArrayLike]]
+FloatArray = npt.NDArray[np.float64]
+
+class CloseError(ValueError):
+    """Bad input, with the message the `close` command line prints."""
+
+class Sample:
+    """A cloth sample: border frames (or a mesh), frame 0 the flat start."""
+
+    def __init__(self, frames: Frames, *, name: str = "", category: str = "", truth: Optional[Dict[str, Any]] = None) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def category(self) -> str: ...
+    @property
+    def frames(self) -> FloatArray:
+        """(F, N, 3) vertex positions per frame (a mesh sample: its vertex frames)."""
+    @property
+    def truth(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def mesh(self) -> Optional[Dict[str, Any]]: ...
+    @property
+    def meta(self) -> Dict[str, Any]: ...
+    def to_json(self) -> str: ...
+
+class Analysis:
+    """What `close analyze --json` reports about a sample."""
+
+    @property
+    def n(self) -> int: ...
+    @property
+    def corners(self) -> List[float]: ...
+    @property
+    def folds(self) -> List[Tuple[float, float]]: ...
+    @property
+    def close(self) -> Dict[str, Any]: ...
+    @property
+    def label(self) -> str: ...
+    @property
+    def predicted_end(self) -> FloatArray: ...
+    @property
+    def metrics(self) -> Optional[Dict[str, float]]: ...
+    @property
+    def border_indices(self) -> npt.NDArray[np.int64]: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """The object `close analyze --json` prints, key for key."""
+    def to_json(self) -> str: ...
+
+def analyze(frames: Union[Frames, Sample], *, method: str = "default", start: Optional[int] = None, end: Optional[int] = None) -> Analysis:
+    """Analyse frames start → end as `close analyze --json` does (radians, vertex k at 2πk/N,
+    folded side anticlockwise from f1 to f2)."""
+
+def analyze_many(items: Iterable[Union[Frames, Sample]], *, threads: Optional[int] = None, method: str = "default") -> List[Analysis]:
+    """`analyze` of every item on native threads, the GIL released."""
+
+def load(*paths: PathLike) -> Sample:
+    """Read a sample from files (Sample JSON, .mat, text/CSV per frame, OBJ/PLY per frame)."""
+
+def dgli_disk(border: npt.ArrayLike, *, reference: Optional[npt.ArrayLike] = None) -> FloatArray:
+    """The condensed dGLI pair vector of one (N, 3) border state, as `close analyze --disks`."""
+
+def disk_layout(n: int) -> Tuple[FloatArray, FloatArray]:
+    """(radius, angle) of each pair of `dgli_disk`'s vector on the disk."""
+
+def interpolate(border: npt.ArrayLike, from_: Tuple[float, float], to: Tuple[float, float], steps: int, *, reference: Optional[npt.ArrayLike] = None) -> FloatArray:
+    """(steps, N, 3) borders of the folding motion from fold `from_` to fold `to`."""
+
+def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> Dict[str, Any]:
+    """The `POST /api/plan` answer: how to reach the goal fold from the sample's state."""
+
+def evaluate(
+    items_or_path: Union[PathLike, Sequence[PathLike], Iterable[Union[Frames, Sample]]],
+    *,
+    threads: Optional[int] = None,
+    executor: Optional[Executor] = None,
+    method: str = "default",
+) -> Dict[str, Any]:
+    """The object `close eval --json` prints; `executor`: any concurrent.futures.Executor."""

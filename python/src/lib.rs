@@ -1,0 +1,656 @@
+//! `close._close`: the native half of the Python package `close`.
+//!
+//! A thin layer: every number comes from the `close` library (the same functions as the CLI
+//! and the server), nothing is computed here. What this file does is convert — numpy arrays
+//! in and out, the library's JSON objects as Python dicts (through `json.loads`, so
+//! `Analysis.to_dict()` is exactly what `close analyze --json` prints) — map errors
+//! (`close::Error` → `close.CloseError` with the CLI's message; a missing file →
+//! `FileNotFoundError`), apply the server's input limits ([`Budget::SERVER`]; the readers'
+//! and [`close::border::prepare`]'s own limits hold everywhere), and release the GIL
+//! around the work. A Rust panic unwinds into `pyo3_runtime.PanicException` (the release
+//! profile keeps `panic = "unwind"`).
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use close::budget::Budget;
+use close::formats::{MAX_FILE_BYTES, Sample};
+use close::{Analysis, FoldMethod, FrameRange, Options};
+use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArrayDyn};
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{IntoPyDict, PyList, PyTuple};
+use rayon::prelude::*;
+use serde_json::Value;
+
+pyo3::create_exception!(
+    close,
+    CloseError,
+    PyValueError,
+    "Bad input: not parseable, too few vertices, NaN, mismatched frames, degenerate, over a limit, … \
+     The message is the one the `close` command line prints."
+);
+
+/// The library's error as `close.CloseError`, with the CLI's message.
+fn close_error(e: close::Error) -> PyErr {
+    CloseError::new_err(e.to_string())
+}
+
+fn invalid(message: String) -> PyErr {
+    close_error(close::Error::InvalidArgument(message))
+}
+
+/// A JSON value of the library as the Python object `json.loads` makes of it.
+fn to_python<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| invalid(format!("could not write JSON: {e}")))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// A Python object (a dict of a truth, …) as JSON, through `json.dumps`.
+fn from_python<T: serde::de::DeserializeOwned>(value: &Bound<'_, PyAny>, what: &str) -> PyResult<T> {
+    let text: String = value.py().import("json")?.call_method1("dumps", (value,))?.extract()?;
+    serde_json::from_str(&text).map_err(|e| invalid(format!("{what}: {e}")))
+}
+
+/// The fold method named `name`: "default", or a name `close analyze --method` takes.
+fn method(name: &str) -> PyResult<FoldMethod> {
+    if name == "default" {
+        return Ok(FoldMethod::default());
+    }
+    serde_json::from_value(Value::String(name.into())).map_err(|_| invalid(format!("unknown method {name:?}: expected \"default\", \"cut\" or \"paper\"")))
+}
+
+/// A numpy float64 array of anything array-like.
+fn float_array<'py>(obj: &Bound<'py, PyAny>) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
+    let numpy = obj.py().import("numpy")?;
+    let kwargs = [("dtype", numpy.getattr("float64")?)].into_py_dict(obj.py())?;
+    let array = numpy.call_method("asarray", (obj,), Some(&kwargs)).map_err(|e| invalid(format!("not an array of numbers: {e}")))?;
+    array.extract()
+}
+
+/// One border state, an (N, 3) array-like of x, y, z; `what` names it in errors.
+fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 3]>> {
+    let array = float_array(obj)?;
+    let view = array.as_array();
+    match view.shape() {
+        [_, 3] => Ok(view.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect()),
+        shape => Err(invalid(format!("{what}: expected an (N, 3) array of x, y, z, got shape {shape:?}"))),
+    }
+}
+
+/// Frames of border positions: an (F, N, 3) array-like, or a list of (N, 3) ones (which
+/// may differ in N: the library names the frame that does).
+fn frames(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<[f64; 3]>>> {
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        return obj.try_iter()?.enumerate().map(|(k, frame)| points(&frame?, &format!("frame {k}"))).collect();
+    }
+    let array = float_array(obj)?;
+    let view = array.as_array();
+    match view.shape() {
+        [_, _, 3] => Ok(view.outer_iter().map(|f| f.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect()).collect()),
+        shape => Err(invalid(format!("frames: expected an (F, N, 3) array or a list of (N, 3) arrays, got shape {shape:?}"))),
+    }
+}
+
+/// An (F, N, 3) array of frames (N = 0 when there is no frame).
+fn frames_array<'py>(py: Python<'py>, frames: &[Vec<[f64; 3]>]) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    let n = frames.first().map_or(0, Vec::len);
+    if let Some(k) = frames.iter().position(|f| f.len() != n) {
+        return Err(close_error(close::Error::FrameSizeMismatch { frame: k, expected: n, got: frames[k].len() }));
+    }
+    let flat: Vec<f64> = frames.iter().flatten().flatten().copied().collect();
+    let array = Array3::from_shape_vec((frames.len(), n, 3), flat).map_err(|e| invalid(format!("frames: {e}")))?;
+    Ok(array.into_pyarray(py))
+}
+
+/// A float64 vector for Python.
+type Floats<'py> = Bound<'py, PyArray1<f64>>;
+
+fn points_array<'py>(py: Python<'py>, points: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((points.len(), 3), |(k, c)| points[k][c]).into_pyarray(py)
+}
+
+/// A file's bytes for the readers; a missing file is `FileNotFoundError`, a file over the
+/// readers' (and the server's upload) limit is refused before it is read.
+fn read(path: &PathBuf) -> PyResult<(String, Vec<u8>)> {
+    let name = path.display().to_string();
+    let io = |e: std::io::Error| match e.kind() {
+        std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err((e.raw_os_error().unwrap_or(2), e.to_string(), name.clone())),
+        _ => PyOSError::new_err((e.raw_os_error().unwrap_or(0), e.to_string(), name.clone())),
+    };
+    let size = std::fs::metadata(path).map_err(io)?.len();
+    if size > MAX_FILE_BYTES as u64 {
+        return Err(close_error(close::Error::TooLarge { what: "bytes of file", got: Some(size), limit: MAX_FILE_BYTES as u64 }.in_file(&name)));
+    }
+    if close::vrfolding::is_store(path) {
+        return Err(invalid(format!("{name} is a VR-Folding Zarr store: open it with close.vrfolding.open")));
+    }
+    Ok((name.clone(), std::fs::read(path).map_err(io)?))
+}
+
+/// A cloth sample: border frames (or a mesh), frame 0 the flat start.
+///
+/// `Sample(frames, *, name="", category="", truth=None)`: `frames` an (F, N, 3) array or a list
+/// of (N, 3) arrays of border vertices, anticlockwise seen from +z (a clockwise border is
+/// reversed by the analysis); `truth` a dict {"folds": [[f1, f2]], "folded_vertices": [...]}
+/// in radians, vertex k at 2πk/N. `close.load` reads one from files.
+#[pyclass(frozen, module = "close", name = "Sample")]
+struct PySample {
+    sample: Arc<Sample>,
+    /// Where the sample came from (a VR-Folding action: video_id, category, fold).
+    meta: Value,
+}
+
+impl PySample {
+    fn state(&self) -> (String, String) {
+        (close::formats::json::to_json(&self.sample), self.meta.to_string())
+    }
+}
+
+#[pymethods]
+impl PySample {
+    #[new]
+    #[pyo3(signature = (frames, *, name = String::new(), category = String::new(), truth = None))]
+    fn new(frames: &Bound<'_, PyAny>, name: String, category: String, truth: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let mut sample = Sample::from_frames(name, category, crate::frames(frames)?);
+        sample.truth = truth.map(|t| from_python(t, "truth")).transpose()?;
+        Ok(PySample { sample: Arc::new(sample), meta: Value::Object(Default::default()) })
+    }
+
+    #[getter]
+    fn name(&self) -> &str {
+        &self.sample.name
+    }
+
+    #[getter]
+    fn category(&self) -> &str {
+        &self.sample.category
+    }
+
+    /// Vertex positions per frame, an (F, N, 3) float64 array: the border frames, or for a
+    /// mesh sample the mesh's vertex frames.
+    #[getter]
+    fn frames<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        match &self.sample.mesh {
+            Some(mesh) => frames_array(py, &mesh.frames),
+            None => frames_array(py, &self.sample.frames),
+        }
+    }
+
+    /// The known folds, {"folds": [[f1, f2], ...], "folded_vertices": [...]}, or None.
+    #[getter]
+    fn truth<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.sample.truth.as_ref().map(|t| to_python(py, t)).transpose()
+    }
+
+    /// {"faces": list of vertex-index lists, "frames": (F, V, 3) array} for a mesh sample, else None.
+    #[getter]
+    fn mesh<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(mesh) = &self.sample.mesh else { return Ok(None) };
+        let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("faces", mesh.faces.clone())?;
+        dict.set_item("frames", frames_array(py, &mesh.frames)?)?;
+        Ok(Some(dict.into_any()))
+    }
+
+    /// Where the sample came from: for a VR-Folding action {"video_id", "category", "fold"}.
+    #[getter]
+    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.meta)
+    }
+
+    /// The sample as Sample JSON (the file format `close analyze` reads).
+    fn to_json(&self) -> String {
+        close::formats::json::to_json(&self.sample)
+    }
+
+    fn __repr__(&self) -> String {
+        let (frames, n) = match &self.sample.mesh {
+            Some(mesh) => (mesh.frames.len(), mesh.frames.first().map_or(0, Vec::len)),
+            None => (self.sample.frames.len(), self.sample.frames.first().map_or(0, Vec::len)),
+        };
+        format!("Sample(name={:?}, category={:?}, frames={frames}, vertices={n})", self.sample.name, self.sample.category)
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
+        Ok((slf.get_type().getattr("_from_state")?, slf.get().state()))
+    }
+
+    /// Rebuild a pickled sample from its Sample JSON and meta JSON.
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, pyo3::types::PyType>, json: &str, meta: &str) -> PyResult<Self> {
+        let sample = close::formats::json::parse_sample(json.as_bytes()).map_err(close_error)?;
+        let meta = serde_json::from_str(meta).map_err(|e| invalid(format!("sample meta: {e}")))?;
+        Ok(PySample { sample: Arc::new(sample), meta })
+    }
+}
+
+/// The sample of `obj`: a `close.Sample`, or frames (an (F, N, 3) array, a list of (N, 3) arrays).
+fn sample_of(obj: &Bound<'_, PyAny>) -> PyResult<Arc<Sample>> {
+    match obj.cast::<PySample>() {
+        Ok(s) => Ok(s.get().sample.clone()),
+        Err(_) => Ok(Arc::new(Sample::from_frames("", "", frames(obj)?))),
+    }
+}
+
+/// The result of `close.analyze`: the CloSE value of the end state, its label, the predicted
+/// end border and its metrics. Angles in radians in [0, 2π), vertex k at 2πk/N; each fold
+/// (f1, f2) has its folded side anticlockwise from f1 to f2. `to_dict()` is the object that
+/// `close analyze --json` prints, key for key.
+#[pyclass(frozen, module = "close", name = "Analysis")]
+struct PyAnalysis {
+    /// `close analyze --json`'s object.
+    value: Value,
+    /// The analysis itself, for `close.plan`; `None` once pickled and loaded again.
+    analysis: Option<Arc<Analysis>>,
+}
+
+impl PyAnalysis {
+    fn of(analysis: Analysis) -> Result<Self, close::Error> {
+        let value = serde_json::to_value(&analysis).map_err(|e| close::Error::InvalidArgument(format!("could not write JSON: {e}")))?;
+        Ok(PyAnalysis { value, analysis: Some(Arc::new(analysis)) })
+    }
+
+    fn field(&self, key: &str) -> &Value {
+        &self.value[key]
+    }
+
+    fn floats(value: &Value) -> Vec<f64> {
+        value.as_array().map(|a| a.iter().filter_map(Value::as_f64).collect()).unwrap_or_default()
+    }
+}
+
+#[pymethods]
+impl PyAnalysis {
+    /// Border vertex count N.
+    #[getter]
+    fn n(&self) -> usize {
+        self.field("n").as_u64().unwrap_or_default() as usize
+    }
+
+    /// Corner angles θ_1 < … < θ_n (radians; vertex k at 2πk/N).
+    #[getter]
+    fn corners(&self) -> Vec<f64> {
+        Self::floats(self.field("corners"))
+    }
+
+    /// One (f1, f2) per detected fold, in order; the folded side runs anticlockwise from f1 to f2.
+    #[getter]
+    fn folds(&self) -> Vec<(f64, f64)> {
+        let pairs = self.field("folds").as_array().cloned().unwrap_or_default();
+        pairs.iter().map(Self::floats).filter_map(|f| (f.len() == 2).then(|| (f[0], f[1]))).collect()
+    }
+
+    /// The CloSE value, {"corners": [...], "folds": [[f1, f2], ...]}.
+    #[getter]
+    fn close<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, self.field("close"))
+    }
+
+    /// The semantic label as a sentence (the structured fields are in `to_dict()["label"]`).
+    #[getter]
+    fn label(&self) -> String {
+        self.field("label")["text"].as_str().unwrap_or_default().to_string()
+    }
+
+    /// The start border with the folds applied in order, (N, 3), input coordinates, in
+    /// `border_indices` order.
+    #[getter]
+    fn predicted_end<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let rows = self.field("predicted_end").as_array().cloned().unwrap_or_default();
+        let points: Vec<[f64; 3]> = rows.iter().map(Self::floats).filter_map(|p| p.try_into().ok()).collect();
+        points_array(py, &points)
+    }
+
+    /// {"rmse", "frechet"} of `predicted_end` against the end frame (XY, normalised units), or None.
+    #[getter]
+    fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let metrics = self.field("metrics");
+        if metrics.is_null() {
+            return Ok(None);
+        }
+        to_python(py, metrics).map(Some)
+    }
+
+    /// For each border vertex, its index in the input frames (a mesh vertex for a mesh).
+    #[getter]
+    fn border_indices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let indices = self.field("border_indices").as_array().cloned().unwrap_or_default();
+        Array1::from_iter(indices.iter().filter_map(Value::as_i64)).into_pyarray(py)
+    }
+
+    /// The object `close analyze --json` prints, key for key.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.value)
+    }
+
+    /// `close analyze --json`'s output.
+    fn to_json(&self) -> String {
+        self.value.to_string()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Analysis(n={}, corners={}, folds={:?}, label={:?})", self.n(), self.corners().len(), self.folds(), self.label())
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        Ok((slf.get_type().getattr("_from_state")?, (slf.get().to_json(),)))
+    }
+
+    /// Rebuild a pickled analysis from its JSON.
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, pyo3::types::PyType>, json: &str) -> PyResult<Self> {
+        let value = serde_json::from_str(json).map_err(|e| invalid(format!("analysis JSON: {e}")))?;
+        Ok(PyAnalysis { value, analysis: None })
+    }
+}
+
+/// The library's pipeline on a sample, under the budget of `options` (run with the GIL
+/// released).
+fn analysis_of(sample: &Sample, options: &Options) -> Result<Analysis, close::Error> {
+    // As the server does: every frame of a border sample analysed is refused over the cell
+    // budget before its border is prepared (a copy of every frame).
+    if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), options.frames) {
+        options.budget.analysis(sample.frames.len(), first.len())?;
+    }
+    close::analyze_with(&sample.border_frames()?, options.clone())
+}
+
+/// What `close.analyze` does with the GIL released.
+fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close::Error> {
+    PyAnalysis::of(analysis_of(sample, options)?)
+}
+
+fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyResult<Options> {
+    Ok(Options { frames: FrameRange { start, end }, method: method(method_name)?, budget: Budget::SERVER, ..Options::default() })
+}
+
+/// Analyse frames `start` → `end` (default: first → last) of a sample, one fold per step
+/// between consecutive frames, exactly as `close analyze --json` does.
+///
+/// `frames`: an (F, N, 3) array, a list of (N, 3) arrays, or a `close.Sample`. The border is
+/// a closed polyline listed anticlockwise seen from +z (z up, the table the XY plane); a
+/// clockwise one is reversed. Conventions: angles in radians in [0, 2π); vertex k sits at
+/// angle 2πk/N (a fractional vertex index s at 2πs/N); each fold (f1, f2) has its folded side
+/// anticlockwise from f1 to f2. `method`: "default" (= "cut") or "paper".
+///
+/// Raises `close.CloseError` (a ValueError) with the CLI's message on bad input, and on
+/// inputs over the server's limits (frames × N² dGLI cells).
+#[pyfunction]
+#[pyo3(signature = (frames, *, method = "default", start = None, end = None))]
+fn analyze(py: Python<'_>, frames: &Bound<'_, PyAny>, method: &str, start: Option<usize>, end: Option<usize>) -> PyResult<PyAnalysis> {
+    let options = options(method, start, end)?;
+    let sample = sample_of(frames)?;
+    py.detach(|| analyze_sample(&sample, &options)).map_err(close_error)
+}
+
+/// A pool of `threads` workers (None: one per core).
+fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
+    if threads == Some(0) {
+        return Err(invalid("threads must be at least 1".into()));
+    }
+    rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| invalid(format!("could not start threads: {e}")))
+}
+
+/// `close.analyze` of every item (frames or `close.Sample`), on `threads` native threads
+/// (default: one per core) with the GIL released: other Python threads run meanwhile.
+/// The first item that fails raises `close.CloseError` naming its index.
+#[pyfunction]
+#[pyo3(signature = (items, *, threads = None, method = "default"))]
+fn analyze_many(py: Python<'_>, items: &Bound<'_, PyAny>, threads: Option<usize>, method: &str) -> PyResult<Vec<PyAnalysis>> {
+    let options = options(method, None, None)?;
+    let samples = items.try_iter()?.map(|item| sample_of(&item?)).collect::<PyResult<Vec<_>>>()?;
+    let pool = pool(threads)?;
+    let results: Vec<_> = py.detach(|| pool.install(|| samples.par_iter().map(|s| analyze_sample(s, &options)).collect()));
+    results.into_iter().enumerate().map(|(k, r)| r.map_err(|e| CloseError::new_err(format!("item {k}: {e}")))).collect()
+}
+
+/// Read a sample from files, as `close analyze FILE...` does: one Sample JSON or MATLAB .mat
+/// file, one text/CSV file per frame, or one OBJ/PLY mesh per frame. A missing file raises
+/// FileNotFoundError; a file that cannot be parsed, `close.CloseError`.
+#[pyfunction]
+#[pyo3(signature = (*paths))]
+fn load(paths: Vec<PathBuf>) -> PyResult<PySample> {
+    let files = paths.iter().map(read).collect::<PyResult<Vec<_>>>()?;
+    let sample = close::formats::read_files(&files).map_err(close_error)?;
+    Ok(PySample { sample: Arc::new(sample), meta: Value::Object(Default::default()) })
+}
+
+/// The dGLI disk of one border state ((N, 3) array) as the condensed pair vector of
+/// `close analyze --disks`: pairs (i, j), i < j, row-major (index i·N − i(i+1)/2 + j − i − 1),
+/// N(N−1)/2 values. Computed on the border normalised by `reference` (the flat start frame,
+/// whose normalisation and orientation apply, as in an analysis; default: the border itself).
+/// `close.disk_layout(N)` gives each pair's place on the disk.
+#[pyfunction]
+#[pyo3(signature = (border, *, reference = None))]
+fn dgli_disk<'py>(py: Python<'py>, border: &Bound<'py, PyAny>, reference: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let border = points(border, "border")?;
+    let reference = reference.map(|r| points(r, "reference")).transpose()?;
+    Budget::SERVER.analysis(1, border.len()).map_err(close_error)?;
+    let disk = py.detach(|| close::disk::of_state(border, reference, &Default::default())).map_err(close_error)?;
+    Ok(disk.values().to_vec().into_pyarray(py))
+}
+
+/// Where each pair of `dgli_disk`'s vector sits on the disk of an N-edge border: radius
+/// (L − d + 1)/L for cyclic distance d (the rim is 1) and angle π(2a + d + 1)/N (radians),
+/// two (N(N−1)/2,) arrays in the same order. For `matplotlib`'s polar axes.
+#[pyfunction]
+fn disk_layout(py: Python<'_>, n: usize) -> PyResult<(Floats<'_>, Floats<'_>)> {
+    if !(close::border::MIN_VERTICES..=close::border::MAX_VERTICES).contains(&n) {
+        return Err(invalid(format!("a disk has {} to {} edges, not {n}", close::border::MIN_VERTICES, close::border::MAX_VERTICES)));
+    }
+    let (radius, angle): (Vec<f64>, Vec<f64>) = (0..n).flat_map(|i| (i + 1..n).map(move |j| close::disk::position(n, i, j))).map(|p| (p.radius, p.angle)).unzip();
+    Ok((radius.into_pyarray(py), angle.into_pyarray(py)))
+}
+
+/// A folding motion between two folds (f1, f2) → (g1, g2) (radians, vertex k at 2πk/N): each
+/// endpoint moves along the border circle, and each of the `steps` intermediate folds is
+/// applied to `border` ((N, 3), the flat border, or a folded state with its flat `reference`).
+/// Returns a (steps, N, 3) array of borders, as `POST /api/interpolate` does.
+#[pyfunction]
+#[pyo3(signature = (border, from_, to, steps, *, reference = None))]
+fn interpolate<'py>(
+    py: Python<'py>,
+    border: &Bound<'py, PyAny>,
+    from_: (f64, f64),
+    to: (f64, f64),
+    steps: usize,
+    reference: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    let border = points(border, "border")?;
+    let reference = reference.map(|r| points(r, "reference")).transpose()?;
+    Budget::SERVER.interpolation(border.len(), steps).map_err(close_error)?;
+    let motion = py
+        .detach(|| close::interpolate::interpolate_border(border, reference, [from_.0, from_.1], [to.0, to.1], steps))
+        .map_err(close_error)?;
+    frames_array(py, &motion.borders)
+}
+
+/// How to reach the goal fold (g1, g2) (radians) from the state a sample ends in: the answer
+/// of `POST /api/plan` ({"case", "steps": [{"action", "fold", "corners", "picks"}], ...}).
+/// Takes a `close.Sample` (or frames: analysed first → last) or a `close.Analysis` made in
+/// this process.
+#[pyfunction]
+fn plan<'py>(py: Python<'py>, sample_or_analysis: &Bound<'py, PyAny>, goal: (f64, f64)) -> PyResult<Bound<'py, PyAny>> {
+    let goal = [goal.0, goal.1];
+    let analysis = match sample_or_analysis.cast::<PyAnalysis>() {
+        Ok(a) => a.get().analysis.clone().ok_or_else(|| invalid("this Analysis was unpickled: plan from its Sample instead".into()))?,
+        Err(_) => {
+            let sample = sample_of(sample_or_analysis)?;
+            let options = options("default", None, None)?;
+            py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)?
+        }
+    };
+    let answer = close::plan::answer(&analysis, goal).map_err(close_error)?;
+    to_python(py, &answer)
+}
+
+/// The paths of `close.evaluate`, each of which must exist.
+fn existing(paths: Vec<PathBuf>) -> PyResult<Vec<PathBuf>> {
+    match paths.iter().find(|p| !p.exists()) {
+        Some(p) => Err(PyFileNotFoundError::new_err((2, "No such file or directory", p.display().to_string()))),
+        None => Ok(paths),
+    }
+}
+
+/// The evaluation rows of units `indices` of `paths` (all when None).
+fn unit_rows(paths: &[PathBuf], indices: Option<&[usize]>, method: FoldMethod) -> Result<Vec<close::eval::SampleResult>, close::Error> {
+    let units = close::batch::units(paths)?;
+    let chosen: Vec<&close::batch::Unit> = match indices {
+        Some(indices) => indices
+            .iter()
+            .map(|&k| units.get(k).ok_or_else(|| close::Error::InvalidArgument(format!("unit {k} does not exist ({} found)", units.len()))))
+            .collect::<Result<_, _>>()?,
+        None => units.iter().collect(),
+    };
+    Ok(chosen.par_iter().flat_map_iter(|u| u.evaluate(method)).collect())
+}
+
+/// How many units of work (`.json` files, videos of VR-Folding stores) `close eval PATHS`
+/// has: what `close.evaluate` partitions over an executor's workers.
+#[pyfunction]
+fn _eval_units(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<usize> {
+    let paths = existing(paths)?;
+    py.detach(|| close::batch::units(&paths).map(|u| u.len())).map_err(close_error)
+}
+
+/// The rows of units `indices` of `paths` (all when None), each as JSON: one worker's share.
+#[pyfunction]
+#[pyo3(signature = (paths, indices = None, *, threads = None, method = "default"))]
+fn _eval_rows(py: Python<'_>, paths: Vec<PathBuf>, indices: Option<Vec<usize>>, threads: Option<usize>, method: &str) -> PyResult<Vec<String>> {
+    let paths = existing(paths)?;
+    let method = self::method(method)?;
+    let pool = pool(threads)?;
+    let rows = py.detach(|| pool.install(|| unit_rows(&paths, indices.as_deref(), method))).map_err(close_error)?;
+    rows_json(&rows)
+}
+
+/// The rows of samples (or frames) `items`, each as JSON.
+#[pyfunction]
+#[pyo3(signature = (items, *, threads = None, method = "default"))]
+fn _eval_sample_rows(py: Python<'_>, items: &Bound<'_, PyAny>, threads: Option<usize>, method: &str) -> PyResult<Vec<String>> {
+    let method = self::method(method)?;
+    let samples = items.try_iter()?.map(|item| sample_of(&item?)).collect::<PyResult<Vec<_>>>()?;
+    let pool = pool(threads)?;
+    let rows: Vec<close::eval::SampleResult> = py.detach(|| pool.install(|| samples.par_iter().map(|s| close::eval::evaluate_with(s, method)).collect()));
+    rows_json(&rows)
+}
+
+/// Evaluation rows as JSON, to travel between processes.
+fn rows_json(rows: &[close::eval::SampleResult]) -> PyResult<Vec<String>> {
+    rows.iter().map(|r| serde_json::to_string(r).map_err(|e| invalid(format!("could not write JSON: {e}")))).collect()
+}
+
+/// The `close eval --json` report of rows (JSON, in order).
+#[pyfunction]
+fn _eval_report<'py>(py: Python<'py>, rows: Vec<String>) -> PyResult<Bound<'py, PyAny>> {
+    let rows = rows.iter().map(|r| serde_json::from_str(r).map_err(|e| invalid(format!("evaluation row: {e}")))).collect::<PyResult<Vec<_>>>()?;
+    to_python(py, &close::eval::report(rows))
+}
+
+/// An open VR-Folding Zarr store (or one category of it): its usable fold actions as
+/// `close.Sample`s (frames: the border at the start of action 1 and at the end of each action
+/// up to this one; `meta`: video_id, category, fold). `len(store)` actions; `store.dropped`
+/// folds left out because a mesh they use is broken; `store.errors` videos that could not be read.
+#[pyclass(frozen, module = "close.vrfolding", name = "Store")]
+struct PyStore {
+    path: String,
+    actions: Vec<Py<PySample>>,
+    dropped: usize,
+    errors: Vec<String>,
+}
+
+#[pymethods]
+impl PyStore {
+    fn __len__(&self) -> usize {
+        self.actions.len()
+    }
+
+    fn __getitem__(&self, py: Python<'_>, k: usize) -> PyResult<Py<PySample>> {
+        self.actions.get(k).map(|s| s.clone_ref(py)).ok_or_else(|| pyo3::exceptions::PyIndexError::new_err(format!("action {k} of {}", self.actions.len())))
+    }
+
+    fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        PyList::new(py, self.actions.iter().map(|s| s.clone_ref(py)))?.into_any().try_iter().map(Bound::into_any)
+    }
+
+    #[getter]
+    fn path(&self) -> &str {
+        &self.path
+    }
+
+    #[getter]
+    fn dropped(&self) -> usize {
+        self.dropped
+    }
+
+    #[getter]
+    fn errors(&self) -> Vec<String> {
+        self.errors.clone()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Store({:?}, actions={}, dropped={})", self.path, self.actions.len(), self.dropped)
+    }
+}
+
+/// Open a VR-Folding store (or one category of it) and read every video: a `close.vrfolding.Store`.
+#[pyfunction]
+fn vrfolding_open(py: Python<'_>, store: PathBuf) -> PyResult<PyStore> {
+    let store = existing(vec![store])?.remove(0);
+    let (read, errors) = py.detach(|| -> Result<_, close::Error> {
+        let opened = close::vrfolding::Store::open(&store)?;
+        let videos = opened.videos()?;
+        let folds: Vec<_> = videos.par_iter().map(|v| opened.folds(v)).collect();
+        let mut read = Vec::new();
+        let mut errors = Vec::new();
+        for (video, folds) in videos.iter().zip(folds) {
+            match folds {
+                Ok(folds) => read.push((video.clone(), folds)),
+                Err(e) => errors.push(e.to_string()),
+            }
+        }
+        Ok((read, errors))
+    })
+    .map_err(close_error)?;
+    let mut actions = Vec::new();
+    for (video, folds) in &read {
+        for k in 1..=folds.usable() {
+            let Some(sample) = folds.sample(video, k) else { continue };
+            let meta = serde_json::json!({ "video_id": video.id, "category": video.category, "fold": k });
+            actions.push(Py::new(py, PySample { sample: Arc::new(sample), meta })?);
+        }
+    }
+    let dropped = read.iter().map(|(_, f)| f.dropped()).sum();
+    Ok(PyStore { path: store.display().to_string(), actions, dropped, errors })
+}
+
+/// Panics, for the test that a Rust panic becomes a Python exception (no abort).
+#[pyfunction]
+fn _panic_for_tests() {
+    panic!("a panic raised on purpose by close._close._panic_for_tests");
+}
+
+#[pymodule]
+fn _close(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("CloseError", m.py().get_type::<CloseError>())?;
+    m.add_class::<PySample>()?;
+    m.add_class::<PyAnalysis>()?;
+    m.add_class::<PyStore>()?;
+    m.add_function(wrap_pyfunction!(analyze, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze_many, m)?)?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(dgli_disk, m)?)?;
+    m.add_function(wrap_pyfunction!(disk_layout, m)?)?;
+    m.add_function(wrap_pyfunction!(interpolate, m)?)?;
+    m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(vrfolding_open, m)?)?;
+    m.add_function(wrap_pyfunction!(_eval_units, m)?)?;
+    m.add_function(wrap_pyfunction!(_eval_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(_eval_sample_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(_eval_report, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
