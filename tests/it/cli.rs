@@ -6,34 +6,16 @@ use crate::common;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-use common::{fixture, fold_frame, napkin};
+use common::{fixture, fold_frame, napkin, TempDir};
 
 fn close(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_close")).args(args).output().unwrap()
 }
 
-fn write(dir: &tempdir::Dir, name: &str, contents: &[u8]) -> String {
+fn write(dir: &TempDir, name: &str, contents: &[u8]) -> String {
     let path = dir.0.join(name);
     std::fs::write(&path, contents).unwrap();
     path.display().to_string()
-}
-
-/// A scratch folder under target/ that is removed afterwards (no tempfile crate needed).
-mod tempdir {
-    pub struct Dir(pub std::path::PathBuf);
-    impl Dir {
-        pub fn new(name: &str) -> Dir {
-            let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-            let _ = std::fs::remove_dir_all(&dir);
-            std::fs::create_dir_all(&dir).unwrap();
-            Dir(dir)
-        }
-    }
-    impl Drop for Dir {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_dir_all(&self.0);
-        }
-    }
 }
 
 fn frame_text(frame: &[[f64; 3]]) -> String {
@@ -59,7 +41,7 @@ fn analyze_prints_the_spec_fields() {
 
 #[test]
 fn analyze_reads_one_text_file_per_frame() {
-    let dir = tempdir::Dir::new("cli-text");
+    let dir = TempDir::new("cli-text");
     let start = napkin(10);
     let end = fold_frame(&start, 5.0, 25.0);
     let a = write(&dir, "start.csv", frame_text(&start).as_bytes());
@@ -73,7 +55,7 @@ fn analyze_reads_one_text_file_per_frame() {
 
 #[test]
 fn every_bad_input_gets_a_clear_error() {
-    let dir = tempdir::Dir::new("cli-bad");
+    let dir = TempDir::new("cli-bad");
     let square = frame_text(&napkin(3));
     let cases: Vec<(Vec<String>, &str)> = vec![
         (vec![write(&dir, "garbage.json", b"{not json")], "could not parse sample JSON"),
@@ -115,7 +97,7 @@ fn frame_range_is_checked() {
 /// reference set is evaluated in tests/reference.rs, the built-in set in tests/dataset.rs).
 #[test]
 fn eval_prints_a_table_per_category() {
-    let dir = tempdir::Dir::new("cli-eval");
+    let dir = TempDir::new("cli-eval");
     for name in ["napkin__corner_sym__jitter.json", "towel__half_short.json"] {
         std::fs::copy(fixture("reference/folded").join(name), dir.0.join(name)).unwrap();
     }
@@ -133,7 +115,7 @@ fn eval_prints_a_table_per_category() {
 
 #[test]
 fn eval_scores_second_folds_apart() {
-    let dir = tempdir::Dir::new("cli-second");
+    let dir = TempDir::new("cli-second");
     let start = napkin(19);
     let first = fold_frame(&start, 9.5, 47.5);
     // Then the bottom-left corner of the folded cloth (a single layer there).
@@ -164,7 +146,7 @@ fn eval_scores_second_folds_apart() {
 /// `close eval` takes (two of them here: the built-in evaluation runs in tests/dataset.rs).
 #[test]
 fn the_builtin_dataset_exports_and_evaluates() {
-    let dir = tempdir::Dir::new("cli-dataset");
+    let dir = TempDir::new("cli-dataset");
     let out = close(&["dataset", dir.0.to_str().unwrap()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let data = close::dataset::Dataset::builtin();

@@ -107,3 +107,36 @@ pub fn angle_diff(a: f64, b: f64) -> f64 {
 pub fn error_in_edges(found: [f64; 2], truth: [f64; 2], n: usize) -> f64 {
     angle_diff(found[0], truth[0]).max(angle_diff(found[1], truth[1])) * n as f64 / TAU
 }
+
+/// A scratch folder under target/ that is removed afterwards (no tempfile crate needed).
+pub struct TempDir(pub PathBuf);
+
+impl TempDir {
+    /// A new empty folder `name` (each test its own name: tests run in parallel).
+    pub fn new(name: &str) -> TempDir {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        TempDir(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Copy the folder `from` to `to`, recursively.
+pub fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.file_type().unwrap().is_dir() {
+            copy_dir(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), target).unwrap();
+        }
+    }
+}

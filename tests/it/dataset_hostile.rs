@@ -10,22 +10,11 @@ use close::budget::Deadline;
 use close::catalog::{Catalog, Entry, MAX_SAMPLE_BYTES};
 use close::Error;
 
-/// A scratch folder under target/ that is removed afterwards.
-struct Dir(PathBuf);
+use crate::common::{copy_dir, TempDir};
 
-impl Dir {
-    fn new(name: &str) -> Dir {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("hostile-{name}"));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Dir(dir)
-    }
-}
-
-impl Drop for Dir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
+/// A scratch folder of this file's tests.
+fn scratch(name: &str) -> TempDir {
+    TempDir::new(&format!("hostile-{name}"))
 }
 
 const SQUARE: &str = "0,0,0\n1,0,0\n1,1,0\n0,1,0\n";
@@ -46,8 +35,8 @@ fn good(catalog: &Catalog) -> Vec<&Entry> {
 
 #[test]
 fn symlink_loops_are_walked_once_and_links_out_are_not_followed() {
-    let dir = Dir::new("loops");
-    let outside = Dir::new("loops-outside");
+    let dir = scratch("loops");
+    let outside = scratch("loops-outside");
     std::fs::write(outside.0.join("far.csv"), SQUARE).unwrap();
     let root = dir.0.join("data");
     std::fs::create_dir_all(root.join("sub")).unwrap();
@@ -78,7 +67,7 @@ fn symlink_loops_are_walked_once_and_links_out_are_not_followed() {
 
 #[test]
 fn fifos_and_devices_are_never_read() {
-    let dir = Dir::new("special");
+    let dir = scratch("special");
     std::fs::write(dir.0.join("ok.csv"), SQUARE).unwrap();
     mkfifo(&dir.0.join("pipe.json"));
     mkfifo(&dir.0.join("frames.csv"));
@@ -99,7 +88,7 @@ fn fifos_and_devices_are_never_read() {
 
 #[test]
 fn a_sample_too_large_is_refused_from_its_sizes_and_the_refusal_is_kept() {
-    let dir = Dir::new("large");
+    let dir = scratch("large");
     let frames = dir.0.join("frames");
     std::fs::create_dir_all(&frames).unwrap();
     // Sparse files: their sizes say more than a sample may hold, without a byte on disk.
@@ -124,7 +113,7 @@ fn a_sample_too_large_is_refused_from_its_sizes_and_the_refusal_is_kept() {
 
 #[test]
 fn an_expired_deadline_stops_a_load_and_is_not_remembered() {
-    let dir = Dir::new("deadline");
+    let dir = scratch("deadline");
     std::fs::write(dir.0.join("small.csv"), SQUARE).unwrap();
     let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     let id = good(&catalog)[0].id.clone();
@@ -136,7 +125,7 @@ fn an_expired_deadline_stops_a_load_and_is_not_remembered() {
 #[test]
 fn an_unreadable_sub_folder_is_one_error_and_the_rest_are_kept() {
     use std::os::unix::fs::PermissionsExt;
-    let dir = Dir::new("unreadable");
+    let dir = scratch("unreadable");
     std::fs::write(dir.0.join("ok.csv"), SQUARE).unwrap();
     let locked = dir.0.join("locked");
     std::fs::create_dir_all(locked.join("inner")).unwrap();
@@ -183,23 +172,10 @@ mod stores {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr")
     }
 
-    fn copy(from: &Path, to: &Path) {
-        std::fs::create_dir_all(to).unwrap();
-        for entry in std::fs::read_dir(from).unwrap() {
-            let entry = entry.unwrap();
-            let target = to.join(entry.file_name());
-            if entry.file_type().unwrap().is_dir() {
-                copy(&entry.path(), &target);
-            } else {
-                std::fs::copy(entry.path(), target).unwrap();
-            }
-        }
-    }
-
     /// A private copy of the fixture store (4 categories, 8 videos, 16 folds).
-    fn store(name: &str) -> Dir {
-        let dir = Dir::new(&format!("store-{name}"));
-        copy(&fixture(), &dir.0);
+    fn store(name: &str) -> TempDir {
+        let dir = scratch(&format!("store-{name}"));
+        copy_dir(&fixture(), &dir.0);
         dir
     }
 
@@ -300,7 +276,7 @@ fn close_cli(args: &[&std::ffi::OsStr]) -> std::process::Output {
 /// errors, and ends.
 #[test]
 fn eval_counts_each_sample_once_and_names_what_it_cannot_read() {
-    let dir = Dir::new("eval");
+    let dir = scratch("eval");
     let data = dir.0.join("data");
     std::fs::create_dir_all(data.join("sub")).unwrap();
     let out = close_cli(&["dataset".as_ref(), dir.0.join("builtin").as_os_str()]);
@@ -330,7 +306,7 @@ fn eval_counts_each_sample_once_and_names_what_it_cannot_read() {
 /// OUT is replaced and not written through, and no temporary file is left behind.
 #[test]
 fn dataset_out_refuses_a_non_empty_folder_and_never_writes_through_links() {
-    let dir = Dir::new("out");
+    let dir = scratch("out");
     let out = dir.0.join("out");
     let outside = dir.0.join("precious.txt");
     std::fs::write(&outside, "keep me").unwrap();

@@ -60,23 +60,11 @@ fn eval_gives_table_rows_per_category_and_fold() {
 
 /// A private copy of the fixture's Skirt category (a whole store) to break.
 fn copy_store(name: &str) -> PathBuf {
-    fn copy(from: &Path, to: &Path) {
-        std::fs::create_dir_all(to).unwrap();
-        for entry in std::fs::read_dir(from).unwrap() {
-            let entry = entry.unwrap();
-            let target = to.join(entry.file_name());
-            if entry.file_type().unwrap().is_dir() {
-                copy(&entry.path(), &target);
-            } else {
-                std::fs::copy(entry.path(), target).unwrap();
-            }
-        }
-    }
     let to = std::env::temp_dir().join(format!("close-vrfolding-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&to);
     std::fs::create_dir_all(&to).unwrap();
     std::fs::copy(fixture().join(".zgroup"), to.join(".zgroup")).unwrap();
-    copy(&fixture().join("Skirt"), &to.join("Skirt"));
+    crate::common::copy_dir(&fixture().join("Skirt"), &to.join("Skirt"));
     to
 }
 
