@@ -601,10 +601,11 @@ fn vrfolding_open(py: Python<'_>, store: PathBuf) -> PyResult<PyStore> {
     let store = existing(vec![store])?.remove(0);
     let (read, errors) = py.detach(|| -> Result<_, close::Error> {
         let opened = close::vrfolding::Store::open(&store)?;
-        let videos = opened.videos()?;
+        // Videos that cannot be read are errors of their own; the rest of the store is kept.
+        let (videos, unreadable) = opened.videos()?;
         let folds: Vec<_> = videos.par_iter().map(|v| opened.folds(v)).collect();
         let mut read = Vec::new();
-        let mut errors = Vec::new();
+        let mut errors: Vec<String> = unreadable.iter().map(|e| e.to_string()).collect();
         for (video, folds) in videos.iter().zip(folds) {
             match folds {
                 Ok(folds) => read.push((video.clone(), folds)),
