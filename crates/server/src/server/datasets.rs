@@ -37,9 +37,9 @@ struct SampleList<'a> {
 fn categories(rows: &[SampleRow]) -> Vec<Category<'_>> {
     let mut out: Vec<Category> = Vec::new();
     for row in rows {
-        match out.iter_mut().find(|c| c.name == row.category) {
+        match out.iter_mut().find(|c| c.name == row.entry.category) {
             Some(c) => c.count += 1,
-            None => out.push(Category { name: &row.category, count: 1 }),
+            None => out.push(Category { name: &row.entry.category, count: 1 }),
         }
     }
     out
@@ -47,7 +47,7 @@ fn categories(rows: &[SampleRow]) -> Vec<Category<'_>> {
 
 pub async fn samples(State(state): State<AppState>, AppQuery(query): AppQuery<catalog::Query>) -> Result<JsonBytes, ApiError> {
     let rows = sample_rows(&state).await?;
-    let matching: Vec<&SampleRow> = rows.iter().filter(|r| query.matches(&r.id, &r.name, &r.category)).collect();
+    let matching: Vec<&SampleRow> = rows.iter().filter(|r| query.matches(&r.entry.id, &r.entry.name, &r.entry.category)).collect();
     let total = matching.len();
     let page = matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
     let list = SampleList { samples: page, total, offset: query.offset, limit: query.limit, categories: categories(&rows) };

@@ -330,52 +330,33 @@ fn frame_count(sample: &Sample) -> usize {
     sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len())
 }
 
-/// One row of `GET /api/samples`: the same fields for a built-in sample and a dataset's.
+/// One row of `GET /api/samples`: the same fields for a built-in sample and a dataset's (a
+/// catalog entry, `source` `"builtin"` for the built-in ones), and its thumbnail's URL.
 #[derive(Debug, Clone, Serialize)]
 pub(super) struct SampleRow {
-    pub id: String,
-    pub name: String,
-    pub category: String,
-    /// Border vertices (`null` when the border cannot be found).
-    pub n: Option<usize>,
-    pub frames: usize,
-    pub mesh: bool,
+    #[serde(flatten)]
+    pub entry: crate::catalog::Entry,
     /// URL of its small borders picture.
     pub thumbnail: String,
-    /// `"builtin"`, or the dataset folder or store it comes from.
-    pub source: String,
-    /// Why it cannot be loaded, when it cannot.
-    pub error: Option<String>,
 }
 
 impl SampleRow {
     fn builtin(e: &crate::dataset::Entry) -> SampleRow {
         let border = e.sample.border_frames();
-        SampleRow {
+        SampleRow::dataset(&crate::catalog::Entry {
             id: e.id.clone(),
             name: e.sample.name.clone(),
             category: e.sample.category.clone(),
             n: border.as_ref().ok().map(BorderFrames::len),
             frames: frame_count(&e.sample),
             mesh: e.sample.mesh.is_some(),
-            thumbnail: thumbnail(&e.id),
             source: BUILTIN.into(),
             error: border.err().map(|e| e.to_string()),
-        }
+        })
     }
 
     fn dataset(e: &crate::catalog::Entry) -> SampleRow {
-        SampleRow {
-            id: e.id.clone(),
-            name: e.name.clone(),
-            category: e.category.clone(),
-            n: e.n,
-            frames: e.frames,
-            mesh: e.mesh,
-            thumbnail: thumbnail(&e.id),
-            source: e.source.clone(),
-            error: e.error.clone(),
-        }
+        SampleRow { entry: e.clone(), thumbnail: thumbnail(&e.id) }
     }
 }
 
