@@ -232,6 +232,38 @@ async fn analyses_are_cached_by_content_and_frame_range() {
     assert!(bad_query.error(StatusCode::BAD_REQUEST).contains("start"));
 }
 
+// Issue 18 item 15: an answer's image URLs outlive its analysis in the cache. With room for
+// 2 analyses and 4 drawings, the first upload's analysis is gone after 3 more, yet its
+// pictures draw; the drawings cache is bounded too: 4 more later, its URLs are 404.
+#[tokio::test]
+async fn image_urls_outlive_the_analysis_cache() {
+    let app = app(AppState::with_config(Config { cached_analyses: 2, cached_drawings: 4, ..Config::default() }));
+    let entry = first_entry();
+    let upload = |name: &str| json!({ "name": name, "category": "napkin", "frames": entry.sample.frames });
+    let analyze = |name: String| {
+        let (app, body) = (app.clone(), upload(&name));
+        async move {
+            let a = post_json(&app, "/api/analyze", &body).await;
+            assert_eq!(a.status, StatusCode::OK, "{name}: {}", String::from_utf8_lossy(&a.body));
+            a.json()
+        }
+    };
+    let first = analyze("first".into()).await;
+    for k in 0..3 {
+        analyze(format!("pushes the first out {k}")).await;
+    }
+    let images = first["images"].as_object().expect("images");
+    assert_eq!(images.len(), 6);
+    for url in images.values() {
+        assert_png(&app, url.as_str().expect("a URL")).await;
+    }
+    for k in 0..4 {
+        analyze(format!("pushes the first drawing out {k}")).await;
+    }
+    let gone = get(&app, images["close"].as_str().expect("a URL")).await;
+    assert!(gone.error(StatusCode::NOT_FOUND).contains("expired"), "{}", String::from_utf8_lossy(&gone.body));
+}
+
 /// A square border of `k` vertices a side, in frames.
 fn square(k: usize) -> Vec<[f64; 3]> {
     let c = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];

@@ -10,7 +10,9 @@
 //! (one light worker per core, a heavy lane of one fewer for jobs of many dGLI cells), never
 //! on the async threads. Results are cached by content: an analysis under the hash of the
 //! request body and frame range (a built-in sample under its id), a PNG under (analysis,
-//! picture, clamped size); both caches are bounded.
+//! picture, clamped size); both caches are bounded. An analysis's drawing (the analysis
+//! without its JSON answer) is kept in a third, longer cache, so an answer's image URLs
+//! still draw once the analysis cache has let the analysis go.
 //!
 //! Bounded work: each CPU job is estimated first (a [`Budget`]: analysed frames × N² dGLI
 //! cells, interpolated points; 413 over the limit) and carries a [`Deadline`] that is
@@ -56,7 +58,7 @@ use tower_http::trace::TraceLayer;
 
 pub use error::ApiError;
 pub use extract::{AppJson, AppPath, AppQuery};
-pub use routes::Analyzed;
+pub use routes::{Analyzed, Drawing};
 
 use crate::budget::{Budget, Deadline};
 use crate::dataset::{Dataset, Entry};
@@ -85,6 +87,11 @@ pub struct Config {
     /// Analyses kept in memory, and their largest total size in bytes.
     pub cached_analyses: usize,
     pub analysis_cache_bytes: usize,
+    /// Drawings (an analysis without its JSON answer: what its pictures and plans need)
+    /// kept in memory, and their largest total size in bytes. They outlive the analyses
+    /// cache, so an answer's image URLs stay reachable under a flood of new analyses.
+    pub cached_drawings: usize,
+    pub drawing_cache_bytes: usize,
     /// PNGs and recordings kept in memory, and their largest total size in bytes.
     pub cached_images: usize,
     pub image_cache_bytes: usize,
@@ -110,6 +117,8 @@ impl Default for Config {
             budget: Budget::SERVER,
             cached_analyses: 256,
             analysis_cache_bytes: 256 * 1024 * 1024,
+            cached_drawings: 4096,
+            drawing_cache_bytes: 64 * 1024 * 1024,
             cached_images: 512,
             image_cache_bytes: 64 * 1024 * 1024,
             workers: std::thread::available_parallelism().map_or(2, |n| n.get()),
@@ -123,6 +132,7 @@ impl Default for Config {
 struct Inner {
     config: Config,
     analyses: Mutex<Lru<Arc<Analyzed>>>,
+    drawings: Mutex<Lru<Arc<Drawing>>>,
     images: Mutex<Lru<Bytes>>,
     /// Light jobs: one worker per core, each on one thread.
     light: Workers,
@@ -186,6 +196,7 @@ impl AppState {
         AppState(Arc::new(Inner {
             dataset: Dataset::builtin(),
             analyses: Mutex::new(Lru::new(config.cached_analyses, config.analysis_cache_bytes)),
+            drawings: Mutex::new(Lru::new(config.cached_drawings, config.drawing_cache_bytes)),
             images: Mutex::new(Lru::new(config.cached_images, config.image_cache_bytes)),
             light: Workers::new("light", config.workers, 1),
             heavy: Workers::new("heavy", config.workers.saturating_sub(1), config.workers),
@@ -260,6 +271,15 @@ impl AppState {
         lock(&self.0.analyses).get(key)
     }
 
+    /// What the pictures of analysis `key` are drawn from: its cached analysis, or, once
+    /// that was evicted, the drawing kept after it.
+    fn drawing(&self, key: &str) -> Option<Arc<Drawing>> {
+        match self.cached_analysis(key) {
+            Some(hit) => Some(hit.drawing.clone()),
+            None => lock(&self.0.drawings).get(key),
+        }
+    }
+
     /// The cached file (a PNG, a recording) under `key`, or `render` it (off the runtime,
     /// in the lane of `cells` dGLI cells) and cache it.
     async fn cached_bytes(
@@ -276,8 +296,11 @@ impl AppState {
         Ok(png)
     }
 
+    /// Cache `analyzed`, and its drawing apart: the drawing is shared, not copied, while
+    /// both hold it, and each cache counts its full weight (an over-count, never an under-).
     fn cache_analysis(&self, analyzed: &Arc<Analyzed>) {
         lock(&self.0.analyses).insert(analyzed.key.clone(), analyzed.clone(), analyzed.bytes());
+        lock(&self.0.drawings).insert(analyzed.key.clone(), analyzed.drawing.clone(), analyzed.drawing.bytes);
     }
 }
 

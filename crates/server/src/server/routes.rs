@@ -28,21 +28,52 @@ const THUMBNAIL_SIZE: u32 = 160;
 /// Cache keys of built-in samples start with this; uploads are hex digests.
 const SAMPLE_KEY: &str = "sample:";
 
+/// What an analysis's pictures and plans need: the analysis and the sample's known folds,
+/// without the JSON answer. It outlives its [`Analyzed`] in the server's drawings cache, so
+/// the image URLs of an answer stay reachable after the analysis cache let it go.
+pub struct Drawing {
+    pub analysis: Analysis,
+    /// The sample's known folds (empty when it carries none), drawn beside the found ones.
+    pub truth: Vec<[f64; 2]>,
+    /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
+    pub bytes: usize,
+}
+
+impl Drawing {
+    fn new(analysis: Analysis, truth: Vec<[f64; 2]>) -> Drawing {
+        let bytes = Self::weigh(&analysis, &truth);
+        Drawing { analysis, truth, bytes }
+    }
+
+    /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
+    /// (O(frames·N), the bulk), its index and angle lists, its steps with their arcs and
+    /// curves, and its texts.
+    fn weigh(a: &Analysis, truth: &[[f64; 2]]) -> usize {
+        use std::mem::{size_of, size_of_val};
+        let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
+        let steps: usize = a.steps.iter().map(|s| size_of_val(s) + size_of_val(s.detection.arcs.as_slice()) + size_of_val(s.detection.curves.as_slice())).sum();
+        let lists = size_of_val(a.corners.as_slice())
+            + size_of_val(a.corner_vertices.as_slice())
+            + size_of_val(a.border_indices.as_slice())
+            + size_of_val(a.folds.as_slice())
+            + size_of_val(a.predicted_end.as_slice())
+            + size_of_val(truth);
+        let texts = a.border_source.len() + a.warnings.iter().map(String::len).sum::<usize>();
+        size_of::<Drawing>() + frames + steps + lists + texts
+    }
+}
+
 /// An analysis, with the response JSON already written (a cache hit costs a copy).
 pub struct Analyzed {
     pub key: String,
-    pub analysis: Analysis,
+    pub drawing: Arc<Drawing>,
     pub response: Bytes,
-    /// The sample's known folds (empty when it carries none), drawn beside the found ones.
-    pub truth: Vec<[f64; 2]>,
 }
 
 impl Analyzed {
-    /// Roughly the memory it holds: the frames and the response.
+    /// Roughly the memory it holds: the drawing and the response.
     pub fn bytes(&self) -> usize {
-        let a = &self.analysis;
-        let floats = 3 * a.frames.iter().map(Vec::len).sum::<usize>();
-        8 * floats + self.response.len()
+        self.drawing.bytes + self.response.len()
     }
 }
 
@@ -176,7 +207,7 @@ impl Loaded {
             listed,
         })?;
         let truth = self.truth.map(|t| t.folds).unwrap_or_default();
-        Ok(Analyzed { key, analysis, response, truth })
+        Ok(Analyzed { key, drawing: Arc::new(Drawing::new(analysis, truth)), response })
     }
 }
 
@@ -417,9 +448,9 @@ pub async fn recording(State(state): State<AppState>, AppPath(id): AppPath<Strin
     let job = state.clone();
     let sample_id = id.clone();
     let rrd = state
-        .cached_bytes(format!("{}/recording.rrd", analyzed.key), cells(&analyzed.analysis), move |_| {
+        .cached_bytes(format!("{}/recording.rrd", analyzed.key), cells(&analyzed.drawing.analysis), move |_| {
             let entry = job.entry(&sample_id).ok_or_else(|| unknown_sample(&sample_id))?;
-            Ok(crate::record::record(&analyzed.analysis, &entry.sample.border_frames()?)?)
+            Ok(crate::record::record(&analyzed.drawing.analysis, &entry.sample.border_frames()?)?)
         })
         .await?;
     let disposition = format!("attachment; filename=\"{}.rrd\"", id.replace(|c: char| !c.is_ascii_alphanumeric() && c != '_' && c != '-', "_"));
@@ -458,15 +489,15 @@ pub async fn image(
         let names: Vec<&str> = Picture::ALL.iter().map(|p| p.name()).collect();
         ApiError::NotFound(format!("no picture {file:?}: expected one of {}.png", names.join(".png, ")))
     })?;
-    let analyzed = match (state.cached_analysis(&key), key.strip_prefix(SAMPLE_KEY)) {
+    let drawing = match (state.drawing(&key), key.strip_prefix(SAMPLE_KEY)) {
         (Some(hit), _) => hit,
-        (None, Some(id)) => sample_analysis(&state, id).await?,
+        (None, Some(id)) => sample_analysis(&state, id).await?.drawing.clone(),
         (None, None) => return Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
     };
     let (size, step, format) = (picture_size(query.size), query.step, query.format);
     let file = state
-        .cached_bytes(format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()), cells(&analyzed.analysis), move |_| {
-            Ok(render_step(&analyzed.analysis, picture, step, size, size, format, &analyzed.truth)?)
+        .cached_bytes(format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()), cells(&drawing.analysis), move |_| {
+            Ok(render_step(&drawing.analysis, picture, step, size, size, format, &drawing.truth)?)
         })
         .await?;
     // The key names the content, so the picture never changes.
@@ -595,26 +626,29 @@ pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanReque
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
     let raw = req.sample.get();
-    let analyzed = match raw.trim_start().as_bytes().first() {
+    let drawing = match raw.trim_start().as_bytes().first() {
         // An analysis still cached (an upload's "key") or a listed sample's id.
         Some(b'"') => {
             let id: String = serde_json::from_str(raw).map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
-            match state.cached_analysis(&id) {
+            match state.drawing(&id) {
                 Some(hit) => hit,
-                None => sample_analysis(&state, &id).await?,
+                None => sample_analysis(&state, &id).await?.drawing.clone(),
             }
         }
         Some(b'{') => {
             let key = content_key(&[b"plan", raw.as_bytes()]);
             let budget = state.config().budget;
-            analysis(&state, key, move |key, _| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), UPLOAD, None, &budget)).await?
+            analysis(&state, key, move |key, _| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), UPLOAD, None, &budget))
+                .await?
+                .drawing
+                .clone()
         }
         _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a listed sample id or an analysis key".into())),
     };
     let goal = req.goal;
     let answer = state
         .run_cpu(Lane::Light, move |_| {
-            to_json(&crate::plan::answer(&analyzed.analysis, goal)?)
+            to_json(&crate::plan::answer(&drawing.analysis, goal)?)
         })
         .await?;
     Ok(JsonBytes(answer))
