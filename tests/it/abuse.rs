@@ -466,10 +466,15 @@ struct Server {
 
 impl Server {
     async fn start(config: Config) -> Server {
+        Server::start_with(AppState::with_config(config)).await
+    }
+
+    /// A server of `state`, which the caller keeps to look into.
+    async fn start_with(state: AppState) -> Server {
         let listener = TcpListener::bind("127.0.0.1:0").await.expect("a loopback port");
         let addr = listener.local_addr().expect("its address");
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-        tokio::spawn(serve_with(listener, AppState::with_config(config), async {
+        tokio::spawn(serve_with(listener, state, async {
             let _ = stopped.await;
         }));
         Server { addr, stop: Some(stop) }
@@ -719,6 +724,84 @@ async fn only_small_answers_are_gzipped() {
     serde_json::from_slice::<Value>(&large.body).expect("plain JSON");
 }
 
+/// Wait until `holds` says yes, for at most [`HANG`].
+async fn eventually(case: &str, mut holds: impl FnMut() -> bool) {
+    let t = Instant::now();
+    while !holds() {
+        assert!(t.elapsed() < HANG, "{case}: not after {:?}", t.elapsed());
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+}
+
+// Issue 18 item 8: an answer nobody reads holds its length of the memory budget while it
+// waits, and its connection is dropped at the write time-out (here 1 s), which frees it.
+async fn an_unread_answer_is_counted_then_dropped() {
+    let state = AppState::with_config(Config { write_timeout: Duration::from_secs(1), ..Config::default() });
+    let server = Server::start_with(state.clone()).await;
+    let total = state.free_budget();
+    // 1000 vertices × 1000 steps: an answer of about 45 MB, far past what loopback buffers.
+    let body = json!({"border": circle(1000, 1.0), "from": [0.1, 3.0], "to": [1.0, 4.0], "steps": 1000}).to_string();
+    let request = format!(
+        "POST /api/interpolate HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        server.addr,
+        body.len()
+    );
+    let mut unread = TcpStream::connect(server.addr).await.unwrap();
+    unread.write_all(request.as_bytes()).await.unwrap();
+    let mut status = [0u8; 12];
+    tokio::time::timeout(HANG, unread.read_exact(&mut status)).await.expect("answered").unwrap();
+    assert_eq!(&status, b"HTTP/1.1 200");
+    // The answer left the handler and its head is out: its body still holds the budget.
+    let held = total - state.free_budget();
+    assert!(held >= 32 << 20, "an answer being written holds {held} bytes of the budget");
+    eventually("the unread answer is dropped at the write time-out", || state.free_budget() == total).await;
+    // Its connection is gone: reading now ends short of the announced length.
+    let mut answer = Vec::new();
+    tokio::time::timeout(HANG, unread.read_to_end(&mut answer)).await.expect("closed").ok();
+    let text = String::from_utf8_lossy(&answer[..answer.len().min(1024)]).into_owned();
+    let length: usize = text.lines().find_map(|l| l.strip_prefix("content-length: ")).and_then(|l| l.trim().parse().ok()).expect("a length");
+    assert!(answer.len() + 12 < length, "all {length} bytes of the answer came");
+    // A reading client gets the whole answer.
+    let (status, whole) = tokio::time::timeout(HANG, server.raw(request.replace("\r\n\r\n", "\r\nConnection: close\r\n\r\n").as_bytes())).await.expect("answered");
+    assert_eq!(status, 200);
+    let (_, json) = whole.split_once("\r\n\r\n").expect("a body");
+    assert_eq!(json.len(), length);
+    serde_json::from_str::<Value>(json).expect("the whole answer");
+    assert_eq!(state.free_budget(), total, "a read answer leaves the budget whole");
+}
+
+// Issue 18 item 13: what hyper answers by itself (a request head it cannot read) has the
+// same JSON error body as every other error.
+async fn the_http_layers_own_errors_are_json() {
+    let server = Server::start(Config::default()).await;
+    let host = server.addr;
+    let long_target = format!("GET /{} HTTP/1.1\r\nHost: {host}\r\n\r\n", "a".repeat(70_000));
+    let huge_head = format!("GET /healthz HTTP/1.1\r\nHost: {host}\r\nX-Big: {}\r\n\r\n", "b".repeat(500_000));
+    let many_headers = format!("GET /healthz HTTP/1.1\r\nHost: {host}\r\n{}\r\n", (0..120).map(|k| format!("X-H{k}: v\r\n")).collect::<String>());
+    let two_lengths = format!("POST /api/plan HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\nContent-Length: 2\r\nContent-Length: 3\r\n\r\n{{}}");
+    let cases = [
+        (long_target, 414, "target is too long"),
+        (huge_head, 431, "head is too large"),
+        (many_headers, 431, "head is too large"),
+        (two_lengths, 400, "Content-Length"),
+    ];
+    for (request, status, words) in cases {
+        let (got, answer) = server.raw(request.as_bytes()).await;
+        assert_eq!(got, status, "{answer:.300}");
+        let (head, body) = answer.split_once("\r\n\r\n").expect("a head and a body");
+        assert!(head.to_ascii_lowercase().contains("content-type: application/json"), "{head}");
+        let length: usize = head.lines().find_map(|l| l.to_ascii_lowercase().strip_prefix("content-length: ").map(|v| v.trim().parse().ok())).flatten().expect("a length");
+        assert_eq!(length, body.len(), "{answer:.300}");
+        let error: Value = serde_json::from_str(body).unwrap_or_else(|e| panic!("{status}: not JSON ({e}): {body}"));
+        assert!(error["error"].as_str().is_some_and(|e| e.contains(words)), "{status}: {error}");
+    }
+    // An app error of the same statuses keeps its own message.
+    let (status, answer) = server.raw(format!("GET /healthz HTTP/1.1\r\nHost: {host}\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes()).await;
+    assert_eq!(status, 400);
+    assert!(answer.contains("more than one Host"), "{answer}");
+    assert_eq!(server.healthz().await, 200, "served right after");
+}
+
 /// Run one case on its own runtime, and do not wait for its blocking threads when it ends:
 /// a reader that spins forever (before the readers' fixes) fails its case instead of
 /// hanging the whole suite.
@@ -846,6 +929,16 @@ mod cases {
     #[test]
     fn only_small_answers_are_gzipped() {
         super::run(super::only_small_answers_are_gzipped());
+    }
+
+    #[test]
+    fn an_unread_answer_is_counted_then_dropped() {
+        super::run(super::an_unread_answer_is_counted_then_dropped());
+    }
+
+    #[test]
+    fn the_http_layers_own_errors_are_json() {
+        super::run(super::the_http_layers_own_errors_are_json());
     }
 
     #[test]

@@ -18,7 +18,11 @@
 //!   semaphore of [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead
 //!   of multiplying the memory they take; after a large one, freed memory goes back to the
 //!   OS. A body announced over its route's own limit (uploads to `/api/analyze`: the body
-//!   limit; the JSON routes: the JSON limit) is refused at once, holding nothing.
+//!   limit; the JSON routes: the JSON limit) is refused at once, holding nothing. Answers
+//!   count too: an answer of 64 KiB or more holds permits for its length until it is
+//!   written or its connection dropped (at the write time-out of [`super::socket`] when its
+//!   client does not read), and an answer whose size is known beforehand (an
+//!   interpolation's) is reserved before it is built.
 //! - **Body rate**: a body must keep arriving. After a grace of the header time-out, it must
 //!   have come at [`MIN_BODY_RATE`] bytes a second on average, or the read fails (408) and
 //!   the connection, its budget share and its worker are freed: a client trickling a body
@@ -38,10 +42,11 @@ use std::task::{Context, Poll};
 use std::time::Duration;
 
 use axum::extract::{Request, State};
+use axum::body::HttpBody;
 use axum::http::{header, HeaderMap, Method, StatusCode};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
-use tokio::sync::Semaphore;
+use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 
 use super::ApiError;
 
@@ -180,26 +185,178 @@ impl UploadBudget {
     }
 }
 
-/// Middleware: hold the request's share of the upload budget until its answer is ready.
+/// Middleware: hold the request's share of the budget until its answer is ready, then the
+/// answer's own share until it is written ([`hold_answer`]).
 pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Request, next: Next) -> Response {
-    if matches!(*request.method(), Method::GET | Method::HEAD | Method::OPTIONS) {
-        return next.run(request).await;
-    }
+    let response = if matches!(*request.method(), Method::GET | Method::HEAD | Method::OPTIONS) {
+        next.run(request).await
+    } else {
+        match hold_request(&budget, request, next).await {
+            Ok(response) | Err(response) => response,
+        }
+    };
+    hold_answer(&budget, response).await
+}
+
+/// Serve `request` holding permits for its announced length (its route's limit when it
+/// announces none); `Err` when it is refused, over the limit, or the budget is closed.
+async fn hold_request(budget: &UploadBudget, request: Request, next: Next) -> Result<Response, Response> {
     let announced = request.headers().get(header::CONTENT_LENGTH).and_then(|l| l.to_str().ok()?.parse::<usize>().ok());
     let limit = budget.limit_of(request.uri().path());
     if let Some(bytes) = announced.filter(|&bytes| bytes > limit) {
-        return ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, format!("the body announces {bytes} bytes; this route takes at most {limit}")).into_response();
+        return Err(ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, format!("the body announces {bytes} bytes; this route takes at most {limit}")).into_response());
     }
-    let kib = u32::try_from(announced.unwrap_or(limit).div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, budget.total_kib);
-    let Ok(held) = budget.permits.clone().acquire_many_owned(kib).await else {
-        return ApiError::Internal("the upload budget is closed".into()).into_response();
-    };
+    let kib = budget.kib(announced.unwrap_or(limit));
+    let held = budget.permits.clone().acquire_many_owned(kib).await.map_err(|_| closed().into_response())?;
     let response = next.run(request).await;
     drop(held);
     if kib >= RELEASE_AFTER_KIB {
         release_memory();
     }
-    response
+    Ok(response)
+}
+
+fn closed() -> ApiError {
+    ApiError::Internal("the memory budget is closed".into())
+}
+
+/// Answers from this size on are counted in the budget until written; smaller ones go
+/// into the socket's buffers at once.
+const COUNTED_ANSWER: usize = 64 * 1024;
+
+/// Permits a handler took for the answer it is about to build ([`UploadBudget::reserve`]),
+/// put in the answer's extensions: [`hold_answer`] keeps them, resized to the answer's
+/// length, until the answer is written.
+#[derive(Clone)]
+pub struct Reserved(Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>>);
+
+impl Reserved {
+    fn take(&self) -> Option<OwnedSemaphorePermit> {
+        self.0.lock().unwrap_or_else(|e| e.into_inner()).take()
+    }
+}
+
+impl UploadBudget {
+    /// KiB permits for `bytes`: at least one, at most all.
+    fn kib(&self, bytes: usize) -> u32 {
+        u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, self.total_kib)
+    }
+
+    /// Take `bytes` of the budget for the answer a JSON route is about to build, waiting
+    /// until they are free: an answer whose size is known beforehand (an interpolation's)
+    /// is then never built while the budget is spent. At most the budget less the largest
+    /// JSON body is taken, which the request may hold itself while it waits.
+    pub async fn reserve(&self, bytes: usize) -> Result<Reserved, ApiError> {
+        let most = self.total_kib.saturating_sub(self.kib(self.json_body_limit)).max(1);
+        let permits = self.permits.clone().acquire_many_owned(self.kib(bytes).min(most)).await.map_err(|_| closed())?;
+        Ok(Reserved(Arc::new(std::sync::Mutex::new(Some(permits)))))
+    }
+}
+
+/// Hold the answer's length in the budget until its body is written (or the connection
+/// is dropped, e.g. at the write time-out): with permits the handler reserved, resized to
+/// the length, or with permits waited for now. Answers nobody reads thus hold at most the
+/// budget, and further requests wait, instead of each keeping its answer in memory.
+async fn hold_answer(budget: &UploadBudget, mut response: Response) -> Response {
+    let reserved = response.extensions_mut().remove::<Reserved>().and_then(|r| r.take());
+    let Some(bytes) = response.body().size_hint().exact().and_then(|b| usize::try_from(b).ok()) else {
+        return match reserved {
+            Some(permits) => response.map(|body| axum::body::Body::new(Held::new(body, permits))),
+            None => response,
+        };
+    };
+    if bytes < COUNTED_ANSWER && reserved.is_none() {
+        return response;
+    }
+    let kib = budget.kib(bytes);
+    let permits = match reserved {
+        Some(mut permits) if permits.num_permits() >= kib as usize => {
+            let surplus = permits.num_permits() - kib as usize;
+            drop(permits.split(surplus));
+            Ok(permits)
+        }
+        Some(mut permits) => {
+            let more = (kib as usize - permits.num_permits()) as u32;
+            budget.permits.clone().acquire_many_owned(more).await.map(|more| {
+                permits.merge(more);
+                permits
+            })
+        }
+        None => budget.permits.clone().acquire_many_owned(kib).await,
+    };
+    match permits {
+        Ok(permits) => response.map(|body| axum::body::Body::new(Held::new(body, permits))),
+        Err(_) => closed().into_response(),
+    }
+}
+
+/// Slices an answer is handed to hyper in: hyper asks for the next one only once it has
+/// written most of the last, so the body (and its permits) is dropped only when nearly all
+/// of it is out.
+const ANSWER_SLICE: usize = 64 * 1024;
+
+/// An answer's body holding its share of the budget until it is dropped.
+struct Held {
+    inner: axum::body::Body,
+    /// The rest of a data frame larger than [`ANSWER_SLICE`].
+    rest: axum::body::Bytes,
+    permits: OwnedSemaphorePermit,
+}
+
+impl Held {
+    fn new(inner: axum::body::Body, permits: OwnedSemaphorePermit) -> Held {
+        Held { inner, rest: axum::body::Bytes::new(), permits }
+    }
+
+    /// The next slice of `rest`.
+    fn slice(&mut self) -> hyper::body::Frame<axum::body::Bytes> {
+        let k = ANSWER_SLICE.min(self.rest.len());
+        hyper::body::Frame::data(self.rest.split_to(k))
+    }
+}
+
+impl hyper::body::Body for Held {
+    type Data = axum::body::Bytes;
+    type Error = axum::Error;
+
+    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
+        let this = &mut *self;
+        if !this.rest.is_empty() {
+            return Poll::Ready(Some(Ok(this.slice())));
+        }
+        match Pin::new(&mut this.inner).poll_frame(cx) {
+            Poll::Ready(Some(Ok(frame))) => match frame.into_data() {
+                Ok(data) => {
+                    this.rest = data;
+                    Poll::Ready(Some(Ok(this.slice())))
+                }
+                Err(frame) => Poll::Ready(Some(Ok(frame))),
+            },
+            other => other,
+        }
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.rest.is_empty() && self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> hyper::body::SizeHint {
+        let (inner, rest) = (self.inner.size_hint(), self.rest.len() as u64);
+        let mut hint = hyper::body::SizeHint::new();
+        if let Some(upper) = inner.upper() {
+            hint.set_upper(upper + rest);
+        }
+        hint.set_lower(inner.lower() + rest);
+        hint
+    }
+}
+
+impl Drop for Held {
+    fn drop(&mut self) {
+        if self.permits.num_permits() >= RELEASE_AFTER_KIB as usize {
+            release_memory();
+        }
+    }
 }
 
 /// Slowest average a request body may arrive at, after the grace: 16 KiB/s, so a 64 MiB
@@ -263,17 +420,20 @@ pub async fn body_rate(State(grace): State<Duration>, request: Request, next: Ne
     next.run(request).await
 }
 
-/// Requests holding this much of the budget give their freed memory back when answered.
+/// Requests and answers holding this much of the budget give their freed memory back when
+/// done.
 const RELEASE_AFTER_KIB: u32 = 16 * 1024;
 
-/// Hand the heap pages freed by a large request back to the OS. glibc keeps them in its
-/// arenas otherwise: a burst of large uploads would stay resident as hundreds of MB.
+/// Hand the heap pages freed by a large request or answer back to the OS. glibc keeps them
+/// in its arenas otherwise: a burst of large uploads would stay resident as hundreds of MB.
 fn release_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    tokio::task::spawn_blocking(|| {
-        // SAFETY: malloc_trim takes no pointer; it walks glibc's own arenas under their locks.
-        unsafe { libc::malloc_trim(0) };
-    });
+    if let Ok(runtime) = tokio::runtime::Handle::try_current() {
+        runtime.spawn_blocking(|| {
+            // SAFETY: malloc_trim takes no pointer; it walks glibc's own arenas under their locks.
+            unsafe { libc::malloc_trim(0) };
+        });
+    }
 }
 
 #[cfg(test)]

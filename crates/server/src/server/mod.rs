@@ -32,6 +32,7 @@ mod error;
 mod extract;
 pub mod guard;
 mod routes;
+mod socket;
 mod workers;
 
 use std::future::Future;
@@ -64,6 +65,7 @@ use crate::budget::{Budget, Deadline};
 use crate::dataset::{Dataset, Entry};
 use crate::cache::Lru;
 use guard::{Doors, ServedAt, UploadBudget};
+use socket::Socket;
 use workers::Workers;
 
 /// Limits and sizes of a server.
@@ -73,13 +75,16 @@ pub struct Config {
     pub body_limit: usize,
     /// Largest JSON body of the other POST routes (a border, a fold, a goal).
     pub json_body_limit: usize,
-    /// Bytes of request bodies held at once, across all requests.
+    /// Bytes of request bodies and unwritten answers held at once, across all requests.
     pub upload_budget: usize,
     /// Longest a request may take; its CPU job is stopped then too.
     pub timeout: Duration,
     /// Longest a connection may take to send a request's headers, and may stay idle
     /// between requests.
     pub header_timeout: Duration,
+    /// Longest an answer's writing may make no progress (its client reads nothing) before
+    /// the connection is dropped.
+    pub write_timeout: Duration,
     /// Connections open at once; more wait to be accepted.
     pub max_connections: usize,
     /// What one analysis or interpolation may cost.
@@ -113,6 +118,7 @@ impl Default for Config {
             upload_budget: 256 * 1024 * 1024,
             timeout: Duration::from_secs(30),
             header_timeout: Duration::from_secs(10),
+            write_timeout: Duration::from_secs(30),
             max_connections: 256,
             budget: Budget::SERVER,
             cached_analyses: 256,
@@ -140,6 +146,8 @@ struct Inner {
     /// worker; each on as many threads as cores (the OS shares them with light jobs).
     heavy: Workers,
     dataset: Dataset,
+    /// Bytes of bodies and answers in flight ([`guard::upload_budget`]).
+    memory: Arc<UploadBudget>,
     /// The rows of `GET /api/samples`, built once: the datasets never change.
     sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
     /// The user's datasets, listed at start.
@@ -201,6 +209,7 @@ impl AppState {
             light: Workers::new("light", config.workers, 1),
             heavy: Workers::new("heavy", config.workers.saturating_sub(1), config.workers),
             sample_list: OnceLock::new(),
+            memory: Arc::new(UploadBudget::new(config.upload_budget, config.body_limit, config.json_body_limit)),
             catalog: Arc::new(crate::catalog::Catalog::open(&config.datasets)),
             config,
         }))
@@ -228,6 +237,11 @@ impl AppState {
     /// The built-in sample `id`.
     fn entry(&self, id: &str) -> Option<&Entry> {
         self.0.dataset.get(id)
+    }
+
+    /// Bytes of the memory budget not held by a request body or an unwritten answer now.
+    pub fn free_budget(&self) -> usize {
+        self.0.memory.available()
     }
 
     /// Workers free now, light and heavy (all of them when no job runs).
@@ -361,7 +375,7 @@ fn cors(origins: &[String]) -> Option<CorsLayer> {
 pub fn app(state: AppState) -> Router {
     let config = state.config().clone();
     let doors = Arc::new(Doors { hosts: config.allowed_hosts.clone(), origins: config.cors_origins.clone() });
-    let uploads = Arc::new(UploadBudget::new(config.upload_budget, config.body_limit, config.json_body_limit));
+    let uploads = state.0.memory.clone();
     let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
         .route("/", get(assets::index))
@@ -409,13 +423,18 @@ pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
 ///
 /// At most [`Config::max_connections`] connections are served at once (the others wait in
 /// the listen queue); a connection that does not send a request's headers within
-/// [`Config::header_timeout`], first or between keep-alive requests, is closed.
+/// [`Config::header_timeout`], first or between keep-alive requests, is closed; one whose
+/// answer is not read for [`Config::write_timeout`] is dropped. hyper's own answers to heads
+/// it cannot read get the JSON error body too ([`socket`]).
 pub async fn serve_with(listener: TcpListener, state: AppState, shutdown: impl Future<Output = ()>) -> std::io::Result<()> {
     let config = state.config().clone();
     let app = app(state);
     let slots = Arc::new(Semaphore::new(config.max_connections.max(1)));
     let mut http = hyper::server::conn::http1::Builder::new();
-    http.timer(TokioTimer::new()).header_read_timeout(config.header_timeout);
+    http.timer(TokioTimer::new())
+        .header_read_timeout(config.header_timeout)
+        .max_buf_size(socket::MAX_HEAD)
+        .max_headers(socket::MAX_HEADERS);
     let graceful = hyper_util::server::graceful::GracefulShutdown::new();
     tokio::pin!(shutdown);
     loop {
@@ -444,7 +463,7 @@ pub async fn serve_with(listener: TcpListener, state: AppState, shutdown: impl F
             }
             request
         });
-        let connection = graceful.watch(http.serve_connection(TokioIo::new(stream), hyper_util::service::TowerToHyperService::new(service)));
+        let connection = graceful.watch(http.serve_connection(TokioIo::new(Socket::new(stream, config.write_timeout)), hyper_util::service::TowerToHyperService::new(service)));
         tokio::spawn(async move {
             let _slot = slot;
             if let Err(e) = connection.await {

@@ -522,12 +522,21 @@ pub struct InterpolateRequest {
     steps: usize,
 }
 
-pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<JsonBytes, ApiError> {
+/// Bytes an interpolation's answer may take per point while it is built: the point (24)
+/// and its JSON, three floats of at most 24 characters with their brackets and commas (80).
+const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
+
+pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<Response, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
+    // The answer's size is known now: reserved before it is built, not found after.
+    let points = req.border.len().saturating_mul(req.steps.saturating_add(1));
+    let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
     let answer = state
         .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, req.from, req.to, req.steps)?))
         .await?;
-    Ok(JsonBytes(answer))
+    let mut response = JsonBytes(answer).into_response();
+    response.extensions_mut().insert(reserved);
+    Ok(response)
 }
 
 /// `POST /api/disk`: the dGLI disk of one border state (e.g. a frame of an interpolation).
