@@ -351,6 +351,8 @@ pub fn app(state: AppState) -> Router {
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate).layer(small_bodies))
         .route("/api/disk", post(routes::disk).layer(small_bodies))
+        .route("/api/disk/cells", post(routes::disk_cells).layer(small_bodies))
+        .route("/api/readout/{key}", get(routes::readout))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))
