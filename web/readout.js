@@ -84,7 +84,6 @@ export function readable(button, img, kind, load, onCell = () => {}) {
   let data = null;
   let pending = null;
   let current = null;
-  let touched = false;
   const ready = () => {
     if (data) return Promise.resolve(data);
     if (!pending) pending = load().then((d) => (data = d)).finally(() => (pending = null));
@@ -121,23 +120,30 @@ export function readable(button, img, kind, load, onCell = () => {}) {
   button.addEventListener("pointerleave", (e) => {
     if (e.pointerType === "mouse" && document.activeElement !== button) show(null);
   });
-  // A tap on the disk reads it (the click that follows does not enlarge); off the disk it enlarges.
+  // A tap on the disk reads it, and the click that follows does not enlarge; off the disk it
+  // enlarges. The cell is known once the values are: `tap` says how far a touch has got
+  // ("pending" → "cell" or "off"; "clicked" when the click came first).
+  let tap = null;
   button.addEventListener("pointerdown", (e) => {
-    touched = false;
-    if (e.pointerType === "mouse") return;
+    if (e.pointerType === "mouse") return (tap = null);
+    tap = "pending";
     under(e).then((c) => {
+      const clicked = tap === "clicked";
+      tap = clicked ? null : c ? "cell" : "off";
       if (c) show(c);
-    }, fail);
-    touched = true;
+      else if (clicked) button.click();
+    }, (e) => {
+      tap = null;
+      fail(e);
+    });
   });
   button.addEventListener(
     "click",
     (e) => {
-      if (touched && current) {
-        touched = false;
-        e.stopImmediatePropagation();
-        e.preventDefault();
-      }
+      if (tap === null || tap === "off") return void (tap = null);
+      tap = tap === "pending" ? "clicked" : null;
+      e.stopImmediatePropagation();
+      e.preventDefault();
     },
     { capture: true },
   );

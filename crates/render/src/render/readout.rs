@@ -12,6 +12,8 @@
 //! of the two frames a step's pictures compare; the diffs follow from them as the pictures
 //! compute them (| |end| − |start| | and end − start). Values are sent as `f32`: seven
 //! significant digits, more than a readout shows, in half the JSON.
+//! A readout of more than [`MAX_VALUES`] values is refused: past N ≈ 1000 a cell is
+//! narrower than a pixel of any picture served, and the JSON would weigh tens of megabytes.
 
 use serde::Serialize;
 
@@ -20,6 +22,18 @@ use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
 use crate::analysis::Analysis;
 use crate::disk::Disk;
 use crate::error::{Error, Result};
+
+/// Most disk values one readout sends (about 10 MB of JSON): two disks of N = 1000.
+pub const MAX_VALUES: usize = 1_000_000;
+
+/// Refuse `disks` disks of `n` edges over [`MAX_VALUES`].
+pub fn within_limit(disks: usize, n: usize) -> Result<()> {
+    let values = disks * n * n.saturating_sub(1) / 2;
+    if values > MAX_VALUES {
+        return Err(Error::too_large("disk values in a readout", values, MAX_VALUES));
+    }
+    Ok(())
+}
 
 /// Where the disk lies on a square disk picture, in its pixels (y grows downwards): the
 /// point (r, θ) of the disk is at (cx + radius·r·cos θ, cy − radius·r·sin θ).
@@ -80,6 +94,7 @@ pub struct Readout {
 /// analysis, as [`super::render_step`] takes it) drawn `size`×`size`.
 pub fn readout(analysis: &Analysis, step: Option<usize>, size: u32) -> Result<Readout> {
     let span = StepSpan::of(analysis, step)?;
+    within_limit(2, analysis.n)?;
     let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
     let (start, end) = (disk_of(span.from)?, disk_of(span.to)?);
     Ok(Readout {
@@ -105,9 +120,10 @@ pub struct DiskCells {
 }
 
 impl DiskCells {
-    /// The cells of `disk` drawn `size`×`size`.
-    pub fn of(disk: &Disk, size: u32) -> DiskCells {
-        DiskCells { n: disk.n(), size: size.clamp(MIN_SIZE, MAX_SIZE), disk: DiskGeometry::of(size), values: single(disk) }
+    /// The cells of `disk` drawn `size`×`size`; refused over [`MAX_VALUES`].
+    pub fn of(disk: &Disk, size: u32) -> Result<DiskCells> {
+        within_limit(1, disk.n())?;
+        Ok(DiskCells { n: disk.n(), size: size.clamp(MIN_SIZE, MAX_SIZE), disk: DiskGeometry::of(size), values: single(disk) })
     }
 }
 
@@ -169,6 +185,13 @@ mod tests {
         // Vertex 0 carries a filled disc: ink, not paper.
         let pixel = &rgb[(y as usize * size as usize + x as usize) * 3..][..3];
         assert!(pixel.iter().any(|&c| c < 200), "vertex 0 at ({x}, {y}) is {pixel:?}");
+    }
+
+    #[test]
+    fn too_many_values_are_refused_before_any_is_written() {
+        assert!(within_limit(2, 1000).is_ok());
+        assert!(matches!(within_limit(2, 1001), Err(Error::TooLarge { got: Some(1_001_000), .. })));
+        assert!(within_limit(1, 1414).is_ok());
     }
 
     #[test]

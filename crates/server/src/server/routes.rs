@@ -620,8 +620,9 @@ pub async fn disk_cells(State(state): State<AppState>, AppJson(req): AppJson<Dis
     let n = req.border.len() as u64;
     let answer = state
         .cached_bytes(key, n * n, move |deadline| {
+            crate::render::readout::within_limit(1, req.border.len())?;
             let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
-            Ok(to_json(&crate::render::readout::DiskCells::of(&disk, size))?.to_vec())
+            Ok(to_json(&crate::render::readout::DiskCells::of(&disk, size)?)?.to_vec())
         })
         .await?;
     Ok(JsonBytes(answer))
