@@ -864,6 +864,7 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     let b = (a + d) % n;
     goto_view(client, base, &format!("#/samples/{}?step=2", entry.id)).await;
     shows_sample(client, &entry.sample.name).await;
+    until(client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
     images_loaded(client, "#browse-result .step-pictures img").await;
     let signed = "#browse-result .step-pictures figure:nth-child(4)";
     point_at(client, &format!("{signed} img"), (x, y), false).await;
@@ -914,7 +915,9 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     route(client, &format!("#/interpolate?cloth=sample:{}&step=1&t=1.000", entry.id)).await;
     until(client, "the cloth", &format!("document.getElementById('interp-sample').value === 'sample:{}' && window.closeApp.interpolate.state().tau === 1", entry.id)).await;
     disk_picture(client).await;
-    let drawn: Vec<[f64; 3]> = serde_json::from_value(js(client, "return window.closeApp.interpolate.state().drawn").await).expect("the drawn border");
+    // The disk is of the state drawn with its layers stacked (draw.js `stacked`), as sent to the server.
+    let script = "const done = arguments[0]; import('/assets/draw.js').then(d => { const s = window.closeApp.interpolate.state(); done(d.stacked(s.border, s.folds)); })";
+    let drawn: Vec<[f64; 3]> = serde_json::from_value(client.execute_async(script, vec![]).await.expect("the state")).expect("the drawn border");
     let flat: Vec<[f64; 3]> = analysis.start_border().iter().map(close::border::to_xyz).collect();
     let state = close::disk::of_state(drawn, Some(flat), &close::budget::Deadline::default()).expect("the state's disk");
     let ((x, y), (d, a)) = cell_pixel(n, largest_pair(n, |i, j| state.get(i, j)));
@@ -931,8 +934,10 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     // Compare's scrubber: the predicted frame k is the analysis's prediction for step k.
     js(client, "window.diskBodies = []; window.realFetch = window.fetch; window.fetch = (u, o) => { \
                 if (String(u).endsWith('/api/disk') && o && o.body) window.diskBodies.push(JSON.parse(o.body)); return window.realFetch(u, o); }").await;
+    // The earlier comparison's panels go first: the ones waited for are this one's.
+    js(client, "document.getElementById('compare-result').replaceChildren()").await;
     route(client, &format!("#/compare/{0}@1/{0}", entry.id)).await;
-    until(client, "the scrubber", "document.querySelectorAll('#compare-result .scrubber img').length === 3").await;
+    until(client, "the scrubber", "document.querySelectorAll('#compare-result .scrubber img').length === 3 && document.querySelector('#compare-result .scrubber input')").await;
     js(client, "const s = document.querySelector('#compare-result .scrubber input'); s.value = 2; s.dispatchEvent(new Event('input'))").await;
     until(client, "step 2 in the scrubber", "document.querySelector('#compare-result .scrubber figcaption:last-of-type') && [...document.querySelectorAll('#compare-result .scrubber figcaption')].some(f => f.textContent.startsWith('predicted frame 2'))").await;
     let bodies = js(client, "return window.diskBodies.map(b => b.border)").await;
@@ -947,10 +952,12 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     until(client, "the linked goal", &format!("document.getElementById('plan-sample').value === 'sample:{}' && document.getElementById('plan-now').textContent.includes('now')", entry.id)).await;
     client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
     until(client, "a plan", "document.getElementById('plan-case').textContent.includes('unfold first')").await;
+    // At each arrow's middle, within two pixels, its colour (#2f855a); its middle off the straight chord.
     let arrows = js(client, "return [...document.querySelectorAll('#plan-list canvas[data-arrows]')].flatMap(c => JSON.parse(c.dataset.arrows).map(a => { \
-                             const p = c.getContext('2d').getImageData(Math.round(a.mid[0]), Math.round(a.mid[1]), 1, 1).data; \
+                             const p = c.getContext('2d').getImageData(Math.round(a.mid[0]) - 2, Math.round(a.mid[1]) - 2, 5, 5).data; let green = false; \
+                             for (let k = 0; k < p.length; k += 4) green ||= Math.abs(p[k] - 47) + Math.abs(p[k + 1] - 133) + Math.abs(p[k + 2] - 90) < 30; \
                              const chord = [(a.from[0] + a.to[0]) / 2, (a.from[1] + a.to[1]) / 2]; \
-                             return { off: Math.hypot(a.mid[0] - chord[0], a.mid[1] - chord[1]), green: p[3] > 0 && p[1] > p[0] + 40 && p[1] > p[2] + 20 }; }))").await;
+                             return { off: Math.hypot(a.mid[0] - chord[0], a.mid[1] - chord[1]), green, at: a.mid }; }))").await;
     let arrows = arrows.as_array().cloned().unwrap_or_default();
     assert!(arrows.len() >= 2, "{arrows:?}");
     assert!(arrows.iter().all(|a| a["off"].as_f64().is_some_and(|o| o >= 13.9) && a["green"] == json!(true)), "arrows on the edges: {arrows:?}");
@@ -960,6 +967,7 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     until(client, "a narrow window", "window.innerWidth <= 420").await;
     route(client, &format!("#/samples/{}?step=2", entry.id)).await;
     shows_sample(client, &entry.sample.name).await;
+    until(client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
     images_loaded(client, "#browse-result .step-pictures img").await;
     let ((x, y), (d, a)) = cell_pixel(n, largest_pair(n, delta));
     point_at(client, &format!("{signed} img"), (x, y), true).await;
