@@ -92,6 +92,19 @@ export async function disk(request, channel = "disk") {
   return { url, scale: Number.isFinite(s) && s > 0 ? { s, max } : null };
 }
 
+/** The cells of the disk `disk(request)` draws: {n, size, disk: {cx, cy, radius}, values} (condensed pairs). */
+export const diskCells = (request, channel = "disk-cells") => json(channel, "/api/disk/cells", request);
+
+/**
+ * What reading the disk pictures of analysis `key` at `step` (null: the whole span) takes:
+ * {n, size, from_frame, to_frame, disk: {cx, cy, radius}, borders: {x, y}, start, end}.
+ */
+export function readout(key, step, size = 480) {
+  const query = new URLSearchParams({ size: String(size) });
+  if (step) query.set("step", String(step));
+  return json(null, `/api/readout/${encodeURIComponent(key)}?${query}`);
+}
+
 /** The URL of picture `name` of an analysis, for `step` (1-based) or the whole, at `size` px, as PNG or SVG. */
 export function imageUrl(key, name, { step = null, size = 480, format = "png" } = {}) {
   const query = new URLSearchParams({ size: String(size) });

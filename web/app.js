@@ -56,7 +56,11 @@ function show({ view, id, ids, params }) {
     // The default sample replaces the bare URL rather than adding a history entry.
     if (!id && wanted) location.replace(router.hashOf("samples", wanted));
     else if (wanted && wanted !== browse.current()) browse.open(wanted, showError, params.get("step"));
-    else document.title = router.title("samples", $("#browse-result .result-name")?.textContent || "");
+    else {
+      // The sample on screen: a link may still name another step.
+      if (params.get("step")) browse.showStep(params.get("step"));
+      document.title = router.title("samples", $("#browse-result .result-name")?.textContent || "");
+    }
   } else if (view === "upload") {
     document.title = router.title("upload", upload.titleName());
   } else if (view === "interpolate") {

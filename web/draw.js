@@ -158,11 +158,35 @@ export function line(ctx, v, p, q, color, width = 3) {
   ctx.stroke();
 }
 
-/** An arrow from p to q (border points) through the viewport `v`. */
-export function arrow(ctx, v, p, q, color) {
+/**
+ * A pick → place arrow from p to q (border points) bowed away from `centre` (a point of the
+ * cloth), or towards it when there is no room on the canvas outside: a corner put straight back or folded straight over travels along the cloth's own
+ * edge (a half fold's corner lands on the neighbouring corner), where a straight arrow would
+ * hide under the outline. The bow, a quadratic curve whose middle stands a quarter of the
+ * arrow's length off the chord (at least 14 px), keeps it visible. Gives its middle point
+ * (canvas px).
+ */
+export function bowedArrow(ctx, v, p, q, centre, color) {
   const [x1, y1, x2, y2] = [v.X(p), v.Y(p), v.X(q), v.Y(q)];
-  line(ctx, v, p, q, color, 2.5);
-  const ang = Math.atan2(y2 - y1, x2 - x1);
+  const len = Math.hypot(x2 - x1, y2 - y1) || 1;
+  const [mx, my] = [(x1 + x2) / 2, (y1 + y2) / 2];
+  // The chord's normal on the side away from the cloth's centre, unless the bow would leave
+  // the canvas there: then over the cloth, where it is drawn on top.
+  let [nx, ny] = [-(y2 - y1) / len, (x2 - x1) / len];
+  if (nx * (mx - v.X(centre)) + ny * (my - v.Y(centre)) < 0) [nx, ny] = [-nx, -ny];
+  const bow = Math.max(14, 0.25 * len);
+  const inside = (x, y) => x > 8 && y > 8 && x < ctx.canvas.width - 8 && y < ctx.canvas.height - 8;
+  if (!inside(mx + bow * nx, my + bow * ny)) [nx, ny] = [-nx, -ny];
+  // The control point stands twice the bow off: a quadratic's middle is halfway to it.
+  const [cx, cy] = [mx + 2 * bow * nx, my + 2 * bow * ny];
+  ctx.beginPath();
+  ctx.moveTo(x1, y1);
+  ctx.quadraticCurveTo(cx, cy, x2, y2);
+  ctx.strokeStyle = color;
+  ctx.lineWidth = 2.5;
+  ctx.stroke();
+  // The head along the curve's end tangent (from the control point to q).
+  const ang = Math.atan2(y2 - cy, x2 - cx);
   ctx.beginPath();
   ctx.moveTo(x2, y2);
   ctx.lineTo(x2 - 14 * Math.cos(ang - 0.4), y2 - 14 * Math.sin(ang - 0.4));
@@ -173,6 +197,7 @@ export function arrow(ctx, v, p, q, color) {
   ctx.beginPath();
   ctx.arc(x1, y1, 5, 0, TAU);
   ctx.fill();
+  return [mx + bow * nx, my + bow * ny];
 }
 
 /** Vertex of a corner angle on a border of n vertices. */

@@ -2,8 +2,9 @@
 // evidence for each fold with a "low confidence" flag, and its pictures, per step for
 // samples folded more than once. Any picture opens at full resolution on a click.
 
-import { imageUrl } from "./api.js";
+import { imageUrl, readout } from "./api.js";
 import { deg, el, fmtFold, row } from "./format.js";
+import { condensedIndex, edgeOverlay, readable } from "./readout.js";
 
 /**
  * Limits past which a fold's evidence is weak. The cut's same-to-cross ratio is 0 for an
@@ -80,14 +81,16 @@ function downloads(key, name, step, stem) {
   return el("span", { className: "downloads small" }, link("png", "PNG"), " · ", link("svg", "SVG"));
 }
 
-/** A picture that opens large in the shared dialog, with its download links. */
-function figure(key, name, caption, step, stem) {
+/** A picture that opens large in the shared dialog, with its download links; `enhance(button, img)` adds to it. */
+function figure(key, name, caption, step, stem, enhance = null) {
   const img = el("img", { src: imageUrl(key, name, { step }), alt: caption, width: 480, height: 480, loading: "lazy" });
   img.dataset.picture = name;
   const button = el("button", { type: "button", className: "zoom", title: "Open at full resolution" }, img);
   button.setAttribute("aria-label", `${caption}: open at full resolution`);
   button.addEventListener("click", () => enlarge(imageUrl(key, name, { step, size: 1400 }), caption));
-  return el("figure", {}, button, el("figcaption", {}, caption, " ", downloads(key, name, step, stem)));
+  const node = el("figure", {}, button, el("figcaption", {}, caption, " ", downloads(key, name, step, stem)));
+  if (enhance) enhance(button, img);
+  return node;
 }
 
 /** Where a result comes from, in words: built in, which dataset, or an upload. */
@@ -162,8 +165,35 @@ export function enlarge(url, caption) {
   dialog.showModal();
 }
 
+/**
+ * Reads cells off the disk pictures of `result` and marks their edges on its border plot:
+ * one readout request per span, shared by the span's four pictures.
+ */
+function cellReader(result) {
+  const spans = new Map();
+  let plot = null;
+  const load = (step) => {
+    if (!spans.has(step)) {
+      const got = readout(result.key, step).then((r) => ({ ...r, values: (i, j) => ({ start: r.start[condensedIndex(r.n, i, j)], end: r.end[condensedIndex(r.n, i, j)] }) }));
+      got.catch(() => spans.delete(step));
+      spans.set(step, got);
+    }
+    return spans.get(step);
+  };
+  const borders = [result.start_border, result.end_border].filter(Boolean);
+  return {
+    /** Make disk picture `name` of span `step` readable. */
+    disk: (name, step) => (button, img) => {
+      button.classList.add("readable");
+      readable(button, img, name, () => load(step), (c, data) => plot && plot.show(borders, data && data.borders, data ? data.size : 480, c));
+    },
+    /** The border plot, on which the edges are marked. */
+    plot: (button, img) => (plot = edgeOverlay(img)),
+  };
+}
+
 /** The step-picture block: a choice of span and the four disk pictures of it. */
-function stepPictures(result, stem, { step: wanted = null, onStep = null } = {}) {
+function stepPictures(result, stem, cells, { step: wanted = null, onStep = null } = {}) {
   const block = el("div", { className: "step-pictures" });
   const grid = el("div", { className: "images" });
   const steps = result.steps || [];
@@ -171,7 +201,7 @@ function stepPictures(result, stem, { step: wanted = null, onStep = null } = {})
     const suffix = step ? ` · step ${step} (frames ${steps[step - 1].from_frame}→${steps[step - 1].to_frame})` : "";
     // Over several steps the curves are fitted per step: the whole span shows none.
     const captionOf = (name, caption) => (name === "diff" && !step && steps.length > 1 ? "|diff| (the fold curves: see each step)" : caption);
-    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem)));
+    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem, cells.disk(name, step))));
   };
   if (steps.length > 1) {
     const group = el("div", { className: "segmented", role: "radiogroup" });
@@ -254,8 +284,9 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
 
   const images = $(".images-slot");
   const stem = fileName(result.id || displayName || result.name);
-  images.append(stepPictures(result, stem, options));
-  images.append(el("div", { className: "images whole" }, ...WHOLE.map(([name, caption]) => figure(result.key, name, caption, null, stem))));
+  const cells = cellReader(result);
+  images.append(stepPictures(result, stem, cells, options));
+  images.append(el("div", { className: "images whole" }, ...WHOLE.map(([name, caption]) => figure(result.key, name, caption, null, stem, name === "borders" ? cells.plot : null))));
   const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
   images.append(el("p", { className: "small" }, jsonLink), codePanel(result, displayName));

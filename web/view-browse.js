@@ -120,6 +120,12 @@ function revealCard() {
   if (active && !window.matchMedia("(max-width: 900px)").matches) active.scrollIntoView({ block: "nearest" });
 }
 
+/** Show the pictures of step `step` ("all", "1", …) of the sample on screen, as a link to it asks. */
+export function showStep(step) {
+  const input = document.querySelector(`#browse-result .segmented input[data-step="${step === "all" ? 0 : Number(step)}"]`);
+  if (input && !input.checked) input.click();
+}
+
 /** Open sample `id` (from the URL, with its `step` pictures): highlight its card, load it, show it; a newer open wins. */
 export async function open(id, showError, step = null) {
   openId = id;

@@ -1,12 +1,12 @@
 // The Compare view: #/compare/{a}/{b}, two cloth states side by side on one colour scale.
 // A state is a sample id (its last analysed frame) or `id@k` (the state after step k;
 // k = 0 is the start). A sample folded more than once also gets a frame scrubber: frame
-// k − 1, frame k and the state predicted for frame k (frame k − 1 folded by step k's fold),
-// again on one colour scale, so a colour means one value across the panels.
+// k − 1, frame k and the state the analysis predicts for frame k (its step k `predicted`:
+// the start folded by the folds found in steps 1…k), again on one colour scale, so a colour
+// means one value across the panels.
 
 import * as api from "./api.js";
 import * as router from "./router.js";
-import { stacked } from "./draw.js";
 import { el } from "./format.js";
 import { enlarge } from "./result.js";
 
@@ -28,13 +28,6 @@ function borderAt(result, k) {
 
 /** Steps of an answer (analysed frames − 1). */
 const stepsOf = (result) => (result.steps || []).length;
-
-/** Step k's fold as the analysis made it (along its line when its fold points coincide). */
-function stepFold(result, k) {
-  const s = result.steps[k - 1];
-  if (!s || !s.fold) return null;
-  return s.synthesis?.direction && s.line ? { fold: s.fold, line: s.line, turn: 1 } : s.fold;
-}
 
 /**
  * Draw `states` ({border, reference, caption}) into `slot` as disks of one colour scale:
@@ -88,12 +81,14 @@ function scrubber(result) {
     const k = Number(input.value);
     out.textContent = `${k} of ${steps}`;
     const [before, after] = [borderAt(result, k - 1), borderAt(result, k)];
-    const fold = stepFold(result, k);
+    const step = result.steps[k - 1];
     const reference = borderAt(result, 0);
+    const folds = result.steps.slice(0, k).filter((s) => s.fold).length;
+    const how = folds ? `the start folded by the ${folds === 1 ? "fold" : `${folds} folds`} found in steps 1…${k}` : "no fold found yet: the start";
     const states = [
       { border: before, reference, caption: `frame ${result.start_frame + k - 1} (before step ${k})` },
       { border: after, reference, caption: `frame ${result.start_frame + k} (observed)` },
-      { border: fold ? stacked(before, [fold]) : before, reference, caption: fold ? `predicted frame ${result.start_frame + k} (frame ${result.start_frame + k - 1} folded by step ${k}'s fold)` : `predicted frame ${result.start_frame + k}: no fold found, unchanged` },
+      { border: step.predicted, reference, caption: `predicted frame ${result.start_frame + k} (the analysis's: ${how})` },
     ];
     try {
       await drawShared(panels, states, "scrub");

@@ -10,6 +10,7 @@ import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
 import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, textSize, viewport } from "./draw.js";
 import { fmtFold } from "./format.js";
 import { enlarge } from "./result.js";
+import { condensedIndex, markEdges, readable } from "./readout.js";
 
 const $ = (sel) => document.querySelector(sel);
 const SEQUENCE = "all";
@@ -23,7 +24,7 @@ let showError = () => {};
  */
 class DiskFollower {
   constructor(img, status, size = 480) {
-    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null, job: null, large: null });
+    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null, job: null, large: null, onShown: null });
   }
 
   /** The request for `job`'s disk at `size` px, in the motion's colour scale. */
@@ -77,6 +78,7 @@ class DiskFollower {
         this.job = job;
         this.img.dataset.key = job.key;
         this.status.textContent = "";
+        if (this.onShown) this.onShown();
       } catch (e) {
         if (!api.isAbort(e)) this.status.textContent = `(not drawn: ${e.message})`;
       }
@@ -97,6 +99,8 @@ const view = {
   /** The step animated ("1", "2", …), SEQUENCE, or "free". */
   mode: "1",
   tau: 0,
+  /** The disk cell read ({i, j, d}), whose edges are marked; null: none. */
+  cell: null,
   bounds: null,
   playing: false,
   motion: 0,
@@ -288,6 +292,8 @@ function draw() {
   const folded = drawCloth(ctx, v, view.border, folds);
   const size = textSize(canvas);
   labelCorners(ctx, v, folded, view.corners, size);
+  // The edges of the disk cell read, on the state drawn.
+  markEdges(ctx, [folded], (p) => [v.X(p), v.Y(p)], view.cell, size / 15);
   // The line of the fold animated, on the state it folds.
   const last = folds[folds.length - 1];
   const fold = anglesOf(last);
@@ -395,6 +401,18 @@ let inputs = null;
 export function setup(errors, planGoal) {
   showError = errors;
   disk = new DiskFollower($("#interp-disk"), $("#interp-disk-status"));
+  // The disk's cells read by hover, tap or arrow keys; their edges marked on the cloth.
+  const cells = readable($("#interp-disk-zoom"), $("#interp-disk"), "state", async () => {
+    if (!disk.job) throw new Error("no disk drawn yet");
+    const r = await api.diskCells({ border: disk.job.border, reference: disk.job.reference, size: disk.size });
+    return { ...r, values: (i, j) => ({ value: r.values[condensedIndex(r.n, i, j)] }) };
+  }, (c) => {
+    view.cell = c;
+    draw();
+  });
+  $("#interp-disk-zoom").classList.add("readable");
+  // A new state's disk: the cell read keeps its place, its value is the new state's.
+  disk.onShown = () => cells.reset();
   inputs = new AngleInputs(
     Object.fromEntries(["from-1", "from-2", "to-1", "to-2"].map((id) => [id, $(`#${id}`)])),
     $("#fold-input-status"),

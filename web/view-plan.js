@@ -6,7 +6,7 @@ import * as store from "./store.js";
 import * as router from "./router.js";
 import { wrap } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { arrow, boundsOf, cornerVertex, drawCloth, foldAll, labelCorners, line, made, polygon, textSize, viewport } from "./draw.js";
+import { boundsOf, bowedArrow, cornerVertex, drawCloth, foldAll, labelCorners, line, made, polygon, textSize, viewport } from "./draw.js";
 import { el, fmtDeg, fmtPoint } from "./format.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -172,7 +172,10 @@ function stepCards(res, list) {
       const undone = before[before.length - 1];
       const { a, b } = step.action === "unfold" ? made(state, undone) : made(flat, step.fold);
       line(ctx, v, a, b, "#d1495b", 2.5);
-      for (const pick of step.picks) arrow(ctx, v, pick.from, pick.to, "#2f855a");
+      // Bowed away from the cloth's middle, so an arrow along an edge is not hidden by it.
+      const centre = [0, 1].map((c) => flat.reduce((sum, p) => sum + p[c], 0) / n);
+      const mids = step.picks.map((pick) => bowedArrow(ctx, v, pick.from, pick.to, centre, "#2f855a"));
+      canvas.dataset.arrows = JSON.stringify(step.picks.map((pick, k) => ({ from: [v.X(pick.from), v.Y(pick.from)], to: [v.X(pick.to), v.Y(pick.to)], mid: mids[k] })));
     }
   });
 }

@@ -698,6 +698,7 @@ async fn the_app_works_in_a_real_browser() {
     assert!(text(&client, "document.title").await.contains("Compare"));
     screenshot(&client, &shots, "1400-09-compare.png").await;
     violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare: {v}")));
+    violations.extend(disk_readout(&client, &base, &shots, &axe).await);
 
     // ---- The user's own dataset (items 1–3): listed with thumbnails and provenance, second
     // folds filed as such, opened, planned like a built-in sample.
@@ -798,4 +799,183 @@ async fn the_app_works_in_a_real_browser() {
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);
     assert!(violations.is_empty(), "axe-core found serious or critical violations:\n{}", violations.join("\n"));
+}
+
+/// The picture pixel (480 px picture) at the middle of disk cell (i, j), and the cell the
+/// server paints there: (ring d, first edge a), by its own rule (`sector_at`).
+fn cell_pixel(n: usize, (i, j): (usize, usize)) -> ((f64, f64), (usize, usize)) {
+    let layout = close::render::disk::Layout::of(480, 480);
+    let cell = close::disk::position(n, i, j);
+    let (x, y) = layout.pixel(cell.radius - 0.5 / (n / 2) as f64, cell.angle);
+    let (dx, dy) = (x + 0.5 - layout.cx, layout.cy - (y + 0.5));
+    let painted = close::render::disk::sector_at(n, dx.hypot(dy) / layout.radius, dy.atan2(dx).rem_euclid(std::f64::consts::TAU));
+    ((x, y), painted)
+}
+
+/// The pair of the largest |value| of `values` (condensed, pairs i < j row-major).
+fn largest_pair(n: usize, values: impl Fn(usize, usize) -> f64) -> (usize, usize) {
+    let pairs = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)));
+    pairs.max_by(|a, b| values(a.0, a.1).abs().total_cmp(&values(b.0, b.1).abs())).unwrap_or((0, 1))
+}
+
+/// Move the mouse (or tap, with `touch`) over picture pixel `at` of the 480 px picture
+/// `selector`, scrolled into the middle of the window first.
+async fn point_at(client: &Client, selector: &str, (x, y): (f64, f64), touch: bool) {
+    use fantoccini::actions::{InputSource, MouseActions, PointerAction, TouchActions, MOUSE_BUTTON_LEFT};
+    let rect = js(client, &format!("const i = document.querySelector({selector:?}); i.scrollIntoView({{ block: 'center' }}); const r = i.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]")).await;
+    let f = |k: usize| rect[k].as_f64().unwrap_or(0.0);
+    let (cx, cy) = ((f(0) + (x + 0.5) * f(2) / 480.0).round(), (f(1) + (y + 0.5) * f(3) / 480.0).round());
+    let to = PointerAction::MoveTo { duration: None, x: cx, y: cy };
+    if touch {
+        let tap = TouchActions::new("finger".into()).then(to).then(PointerAction::Down { button: MOUSE_BUTTON_LEFT }).then(PointerAction::Up { button: MOUSE_BUTTON_LEFT });
+        client.perform_actions(tap).await.expect("tap");
+    } else {
+        client.perform_actions(MouseActions::new("mouse".into()).then(to)).await.expect("move the mouse");
+    }
+}
+
+/// The readout under a disk picture once it names cell (a, a + d): its text and its value.
+async fn readout_of(client: &Client, figure: &str, n: usize, (d, a): (usize, usize)) -> (String, f64) {
+    let want = format!("edges i = {a}, j = {} · d = {d} ·", (a + d) % n);
+    let got = until(client, &format!("the readout of {want}"), &format!("(o => o.textContent.startsWith({want:?}) && [o.textContent, Number(o.dataset.value)])(document.querySelector({:?}))", format!("{figure} .cell-readout"))).await;
+    (got[0].as_str().unwrap_or_default().to_string(), got[1].as_f64().unwrap_or(f64::NAN))
+}
+
+/// Whether pixel (x, y) of the canvas `selector` has ink (alpha > 0).
+async fn inked(client: &Client, selector: &str, (x, y): (f64, f64)) -> bool {
+    js(client, &format!("return document.querySelector({selector:?}).getContext('2d').getImageData({}, {}, 1, 1).data[3] > 0", x.round(), y.round())).await.as_bool().unwrap_or(false)
+}
+
+/// Issue 19, item 5: hovering, tapping or arrowing over a disk cell (Browse and
+/// Interpolate) names its edges i and j, their distance d and the value the analysis has
+/// there (for a diff also its start and end), outlines it, and marks the two edges on the
+/// border plot; item 15: Compare's predicted frame is the analysis's own; Plan's arrows
+/// stand off the cloth's edges. Screenshots at 1400 and 420 px. Gives axe's serious or
+/// critical violations.
+async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> Vec<String> {
+    let mut violations = Vec::new();
+    let entry = close::dataset::Dataset::builtin().get("napkin__half_then_half").expect("a second fold").clone();
+    let analysis = close::analyze(&entry.sample.border_frames().expect("frames"), Default::default()).expect("analysis");
+    let n = analysis.n;
+    // Step 2: analysed frames 1 → 2; the cell that changed most.
+    let (before, after) = (analysis.disk(1).expect("frame 1"), analysis.disk(2).expect("frame 2"));
+    let delta = |i: usize, j: usize| after.get(i, j) - before.get(i, j);
+    let ((x, y), (d, a)) = cell_pixel(n, largest_pair(n, delta));
+    let b = (a + d) % n;
+    goto_view(client, base, &format!("#/samples/{}?step=2", entry.id)).await;
+    shows_sample(client, &entry.sample.name).await;
+    until(client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
+    images_loaded(client, "#browse-result .step-pictures img").await;
+    let signed = "#browse-result .step-pictures figure:nth-child(4)";
+    point_at(client, &format!("{signed} img"), (x, y), false).await;
+    let (text, value) = readout_of(client, signed, n, (d, a)).await;
+    assert!((value - delta(a, b)).abs() <= 1e-5 * delta(a, b).abs().max(1e-3), "{text}: the analysis has Δ = {}", delta(a, b));
+    assert!(text.contains("start") && text.contains("end"), "a diff's readout gives its start and end values: {text}");
+    // The cell is outlined: ink on its outer arc's middle.
+    let layout = close::render::disk::Layout::of(480, 480);
+    let l = (n / 2) as f64;
+    let theta = std::f64::consts::PI * (2 * a + d + 1) as f64 / n as f64;
+    assert!(inked(client, &format!("{signed} canvas.cell-mark"), layout.pixel((l - d as f64 + 1.0) / l, theta)).await, "the cell is not outlined");
+    // Its two edges are marked on the border plot, on the start and end borders, and nowhere else.
+    let plot = close::render::readout::PlotTransform::of_borders(&analysis, 480).expect("the plot's map");
+    let mid = |border: &[close::border::Point], e: usize| {
+        let (p, q) = (border[e], border[(e + 1) % n]);
+        (plot.x[0] * (p.x + q.x) / 2.0 + plot.x[1], plot.y[0] * (p.y + q.y) / 2.0 + plot.y[1])
+    };
+    for border in [analysis.start_border(), analysis.end_border()] {
+        for e in [a, b] {
+            assert!(inked(client, "#browse-result canvas.edge-mark", mid(border, e)).await, "edge {e} is not marked at {:?}", mid(border, e));
+        }
+    }
+    assert!(!inked(client, "#browse-result canvas.edge-mark", (2.0, 2.0)).await, "the plot's corner is marked");
+    // The arrow keys move the cell: left turns anticlockwise (edge a + 1), down goes inwards.
+    js(client, &format!("document.querySelector({:?}).focus()", format!("{signed} .zoom"))).await;
+    let keys = client.active_element().await.expect("the focused picture");
+    keys.send_keys("\u{E012}").await.expect("arrow left");
+    let (_, value) = readout_of(client, signed, n, (d, (a + 1) % n)).await;
+    let want = delta((a + 1) % n, (a + 1 + d) % n);
+    assert!((value - want).abs() <= 1e-5 * want.abs().max(1e-3), "after ArrowLeft: {value}, the analysis has {want}");
+    keys.send_keys("\u{E015}").await.expect("arrow down");
+    readout_of(client, signed, n, ((d + 1).min(n / 2), (a + 1) % n)).await;
+    keys.send_keys("\u{E013}").await.expect("arrow up");
+    readout_of(client, signed, n, (d, (a + 1) % n)).await;
+    screenshot(client, shots, "1400-11-disk-readout.png").await;
+    violations.extend(axe_violations(client, axe).await.into_iter().map(|v| format!("disk readout: {v}")));
+    // A tap on the start disk reads its value; it does not open the full-resolution view.
+    let start_fig = "#browse-result .step-pictures figure:nth-child(1)";
+    let ((x, y), (d1, a1)) = cell_pixel(n, largest_pair(n, |i, j| before.get(i, j)));
+    point_at(client, &format!("{start_fig} img"), (x, y), true).await;
+    let (text, value) = readout_of(client, start_fig, n, (d1, a1)).await;
+    let want = before.get(a1, (a1 + d1) % n);
+    assert!((value - want).abs() <= 1e-5 * want.abs().max(1e-3) && !text.contains("start"), "{text}: the analysis has {want}");
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    assert_eq!(js(client, "return document.getElementById('lightbox').open").await, json!(false), "a tap on a cell opened the lightbox");
+
+    // Interpolate: the disk of the state drawn, its cells' edges marked on the cloth.
+    route(client, &format!("#/interpolate?cloth=sample:{}&step=1&t=1.000", entry.id)).await;
+    until(client, "the cloth", &format!("document.getElementById('interp-sample').value === 'sample:{}' && window.closeApp.interpolate.state().tau === 1", entry.id)).await;
+    disk_picture(client).await;
+    // The disk is of the state drawn with its layers stacked (draw.js `stacked`), as sent to the server.
+    let script = "const done = arguments[0]; import('/assets/draw.js').then(d => { const s = window.closeApp.interpolate.state(); done(d.stacked(s.border, s.folds)); })";
+    let drawn: Vec<[f64; 3]> = serde_json::from_value(client.execute_async(script, vec![]).await.expect("the state")).expect("the drawn border");
+    let flat: Vec<[f64; 3]> = analysis.start_border().iter().map(close::border::to_xyz).collect();
+    let state = close::disk::of_state(drawn, Some(flat), &close::budget::Deadline::default()).expect("the state's disk");
+    let ((x, y), (d, a)) = cell_pixel(n, largest_pair(n, |i, j| state.get(i, j)));
+    point_at(client, "#interp-disk", (x, y), false).await;
+    let (_, value) = readout_of(client, ".interp-disk", n, (d, a)).await;
+    let want = state.get(a, (a + d) % n);
+    assert!((value - want).abs() <= 1e-5 * want.abs().max(1e-3), "the state's disk has {want}, the readout {value}");
+    let cell = js(client, "return window.closeApp.interpolate.state().cell").await;
+    assert_eq!((cell["i"].as_u64(), cell["j"].as_u64()), (Some(a as u64), Some(((a + d) % n) as u64)));
+    let marked = js(client, "const c = document.getElementById('interp-canvas'), d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; let k = 0; \
+                             for (let p = 0; p < d.length; p += 4) if (Math.abs(d[p] - 0xd8) < 8 && Math.abs(d[p + 1] - 0x1b) < 8 && Math.abs(d[p + 2] - 0x60) < 8) k++; return k").await;
+    assert!(marked.as_u64().unwrap_or(0) > 20, "edge i is not marked on the cloth ({marked} px)");
+
+    // Compare's scrubber: the predicted frame k is the analysis's prediction for step k.
+    js(client, "window.diskBodies = []; window.realFetch = window.fetch; window.fetch = (u, o) => { \
+                if (String(u).endsWith('/api/disk') && o && o.body) window.diskBodies.push(JSON.parse(o.body)); return window.realFetch(u, o); }").await;
+    // The earlier comparison's panels go first: the ones waited for are this one's.
+    js(client, "document.getElementById('compare-result').replaceChildren()").await;
+    route(client, &format!("#/compare/{0}@1/{0}", entry.id)).await;
+    until(client, "the scrubber", "document.querySelectorAll('#compare-result .scrubber img').length === 3 && document.querySelector('#compare-result .scrubber input')").await;
+    js(client, "const s = document.querySelector('#compare-result .scrubber input'); s.value = 2; s.dispatchEvent(new Event('input'))").await;
+    until(client, "step 2 in the scrubber", "document.querySelector('#compare-result .scrubber figcaption:last-of-type') && [...document.querySelectorAll('#compare-result .scrubber figcaption')].some(f => f.textContent.startsWith('predicted frame 2'))").await;
+    let bodies = js(client, "return window.diskBodies.map(b => b.border)").await;
+    js(client, "window.fetch = window.realFetch").await;
+    let sent: Vec<Vec<[f64; 3]>> = serde_json::from_value(bodies).expect("borders sent");
+    for step in &analysis.steps {
+        assert!(sent.iter().any(|b| b == &step.predicted), "the predicted frame {} drawn is not the analysis's", step.to_frame);
+    }
+
+    // Plan: the unfold arrows (a corner put back along the cloth's own edge) bow off it.
+    route(client, &format!("#/plan?cloth=sample:{}&goal=0.174533,2.617994", entry.id)).await;
+    until(client, "the linked goal", &format!("document.getElementById('plan-sample').value === 'sample:{}' && document.getElementById('plan-now').textContent.includes('now')", entry.id)).await;
+    client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
+    until(client, "a plan", "document.getElementById('plan-case').textContent.includes('unfold first')").await;
+    // At each arrow's middle, within two pixels, its colour (#2f855a); its middle off the straight chord.
+    let arrows = js(client, "return [...document.querySelectorAll('#plan-list canvas[data-arrows]')].flatMap(c => JSON.parse(c.dataset.arrows).map(a => { \
+                             const p = c.getContext('2d').getImageData(Math.round(a.mid[0]) - 2, Math.round(a.mid[1]) - 2, 5, 5).data; let green = false; \
+                             for (let k = 0; k < p.length; k += 4) green ||= Math.abs(p[k] - 47) + Math.abs(p[k + 1] - 133) + Math.abs(p[k + 2] - 90) < 30; \
+                             const chord = [(a.from[0] + a.to[0]) / 2, (a.from[1] + a.to[1]) / 2]; \
+                             return { off: Math.hypot(a.mid[0] - chord[0], a.mid[1] - chord[1]), green, at: a.mid }; }))").await;
+    let arrows = arrows.as_array().cloned().unwrap_or_default();
+    assert!(arrows.len() >= 2, "{arrows:?}");
+    assert!(arrows.iter().all(|a| a["off"].as_f64().is_some_and(|o| o >= 13.9) && a["green"] == json!(true)), "arrows on the edges: {arrows:?}");
+
+    // A phone: the readout by tap, under the picture.
+    client.set_window_size(420, 900).await.expect("phone size");
+    until(client, "a narrow window", "window.innerWidth <= 420").await;
+    route(client, &format!("#/samples/{}?step=2", entry.id)).await;
+    shows_sample(client, &entry.sample.name).await;
+    until(client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
+    images_loaded(client, "#browse-result .step-pictures img").await;
+    let ((x, y), (d, a)) = cell_pixel(n, largest_pair(n, delta));
+    point_at(client, &format!("{signed} img"), (x, y), true).await;
+    readout_of(client, signed, n, (d, a)).await;
+    assert_no_overflow(client, "browse readout").await;
+    screenshot(client, shots, "420-06-disk-readout.png").await;
+    violations.extend(axe_violations(client, axe).await.into_iter().map(|v| format!("disk readout 420: {v}")));
+    client.set_window_size(1400, 1000).await.expect("wide again");
+    until(client, "a wide window", "window.innerWidth > 1000").await;
+    violations
 }

@@ -650,3 +650,37 @@ async fn every_picture_is_also_an_svg_of_the_same_drawing() {
     let bad = get(&app, &format!("/api/images/sample:{}/close.png?format=gif", entry.id)).await;
     assert!(bad.error(StatusCode::BAD_REQUEST).contains("format"), "{}", String::from_utf8_lossy(&bad.body));
 }
+
+#[tokio::test]
+async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
+    let app = test_app();
+    let entry = dataset::Dataset::builtin().get("napkin__half_then_half").expect("a built-in second fold").clone();
+    let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+    let close_to = |got: &Value, want: &[f64]| {
+        let got: Vec<f64> = serde_json::from_value(got.clone()).expect("numbers");
+        got.len() == want.len() && got.iter().zip(want).all(|(a, b)| (a - b).abs() <= 1e-6 * b.abs().max(1e-3))
+    };
+    // Step 2 compares analysed frames 1 and 2; the whole span, the first and the last.
+    for (step, (from, to)) in [("&step=2", (1, 2)), ("", (0, 2))] {
+        let r = get(&app, &format!("/api/readout/sample:{}?size=300{step}", entry.id)).await.json();
+        assert_eq!((r["n"].as_u64(), r["from_frame"].as_u64(), r["to_frame"].as_u64()), (Some(analysis.n as u64), Some(from as u64), Some(to as u64)));
+        assert!(close_to(&r["start"], analysis.disk(from).unwrap().values()) && close_to(&r["end"], analysis.disk(to).unwrap().values()), "step {step:?}");
+        let layout = close::render::disk::Layout::of(300, 300);
+        assert_eq!(r["disk"], json!({ "cx": layout.cx, "cy": layout.cy, "radius": layout.radius }));
+        assert!(r["borders"]["y"][0].as_f64().is_some_and(|a| a < 0.0), "pixels grow downwards: {}", r["borders"]);
+    }
+    let error = get(&app, &format!("/api/readout/sample:{}?step=3", entry.id)).await.error(StatusCode::BAD_REQUEST);
+    assert!(error.contains("step 3"), "{error}");
+    assert!(get(&app, "/api/readout/0123abcd").await.error(StatusCode::NOT_FOUND).contains("analyse the sample again"));
+    assert!(get(&app, &format!("/api/readout/sample:{}?colour=red", entry.id)).await.error(StatusCode::BAD_REQUEST).contains("colour"));
+
+    // One state's cells: the end frame against the start is the analysis's end disk.
+    let frames = &entry.sample.frames;
+    let cells = post_json(&app, "/api/disk/cells", &json!({ "border": frames[frames.len() - 1], "reference": frames[0], "size": 200 })).await.json();
+    assert!(close_to(&cells["values"], analysis.disk(analysis.frames.len() - 1).unwrap().values()));
+    assert_eq!(cells["disk"]["cx"].as_f64(), Some(close::render::disk::Layout::of(200, 200).cx));
+    let many: Vec<[f64; 3]> = (0..1500).map(|k| (k as f64 * std::f64::consts::TAU / 1500.0).sin_cos()).map(|(s, c)| [c, s, 0.0]).collect();
+    assert!(post_json(&app, "/api/disk/cells", &json!({ "border": many })).await.error(StatusCode::PAYLOAD_TOO_LARGE).contains("disk values"));
+    assert!(post_json(&app, "/api/disk/cells", &json!({ "border": [[0, 0, 0], [1, 0, 0], [0, 1, 0]] })).await.error(StatusCode::UNPROCESSABLE_ENTITY).contains("too few"));
+    assert_healthy(&app).await;
+}

@@ -52,6 +52,10 @@ pub struct Step {
     /// The start border with the folds found up to this step applied, against this
     /// step's true end frame.
     pub metrics: Metrics,
+    /// That border itself, the state this step predicts for its end frame (input
+    /// coordinates, border order): the last step's is `predicted_end`. A frame scrubber
+    /// shows it beside the observed frame.
+    pub predicted: Vec<[f64; 3]>,
 }
 
 /// Everything `close analyze` reports.
@@ -215,7 +219,7 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
             Some(line)
         });
         let metrics = Metrics::measure(norm, &predicted, frame);
-        steps.push(Step { from_frame: first + k - 1, to_frame: first + k, detection, line, metrics });
+        steps.push(Step { from_frame: first + k - 1, to_frame: first + k, detection, line, metrics, predicted: predicted.iter().map(to_xyz).collect() });
         previous = Some((after_border, after));
     }
     Ok((steps, predicted))
@@ -244,6 +248,24 @@ mod tests {
         // Only the analysed frames count.
         let range = FrameRange { start: Some(1), end: Some(2) };
         assert!(analyze_with(&square_frames(3), Options { budget, frames: range, ..Options::default() }).is_ok());
+    }
+
+    #[test]
+    fn each_step_carries_the_border_it_predicts() {
+        // A square of 40 vertices, its right half folded onto the left, then left alone.
+        let square: Vec<[f64; 3]> = (0..40).map(|k| {
+            let t = (k % 10) as f64 / 10.0;
+            let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10];
+            [x, y, 0.0]
+        }).collect();
+        let folded: Vec<[f64; 3]> = square.iter().map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] }).collect();
+        let analysis = analyze(&crate::border::prepare(vec![square.clone(), folded.clone(), folded]).unwrap(), FrameRange::default()).unwrap();
+        assert_eq!(analysis.steps.iter().map(|s| s.detection.fold.is_some()).collect::<Vec<_>>(), [true, false]);
+        // Step 1 folds the start; step 2 finds nothing and predicts the same state.
+        let moved = |p: &[[f64; 3]]| p.iter().zip(&square).map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1])).fold(0.0, f64::max);
+        assert!(moved(&analysis.steps[0].predicted) > 0.3);
+        assert_eq!(analysis.steps[0].predicted, analysis.steps[1].predicted);
+        assert_eq!(analysis.steps[1].predicted, analysis.predicted_end);
     }
 
     #[test]

@@ -83,7 +83,7 @@ fn bounds(traces: &[Trace]) -> ((f64, f64), (f64, f64)) {
 }
 
 /// Maps data (x, y) to pixels (y down) in the plotting area.
-struct Mapping {
+pub(crate) struct Mapping {
     x: (f64, f64),
     y: (f64, f64),
     px: (f64, f64),
@@ -91,6 +91,13 @@ struct Mapping {
 }
 
 impl Mapping {
+    /// The affine map of each axis, pixel = a·value + b, as ([a, b] for x, [a, b] for y).
+    pub(crate) fn affine(&self) -> ([f64; 2], [f64; 2]) {
+        let ax = (self.px.1 - self.px.0) / (self.x.1 - self.x.0);
+        let ay = -(self.py.1 - self.py.0) / (self.y.1 - self.y.0);
+        ([ax, self.px.0 - ax * self.x.0], [ay, self.py.1 - ay * self.y.0])
+    }
+
     fn pixel(&self, p: &[f64; 3]) -> (f64, f64) {
         let fx = (p[0] - self.x.0) / (self.x.1 - self.x.0);
         let fy = (p[1] - self.y.0) / (self.y.1 - self.y.0);
@@ -98,8 +105,8 @@ impl Mapping {
     }
 }
 
-/// Draw the border plot of `analysis`.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
+/// Draw the border plot of `analysis`; gives how it mapped data to pixels.
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<Mapping> {
     let unit = canvas.unit();
     let traces = traces(analysis, unit);
     let (x, y) = bounds(&traces);
@@ -140,7 +147,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<()> {
     };
     let (w, h) = (canvas.width as f64, canvas.height as f64);
     canvas.text(&note, (w - 0.5 * label, h - 0.6 * label), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
-    Ok(())
+    Ok(mapping)
 }
 
 /// A mini drawing for a list of samples: the start border thin grey, the end border thick

@@ -23,6 +23,7 @@ pub mod circle;
 pub mod colour;
 pub mod disk;
 pub mod raster;
+pub mod readout;
 mod sector_map;
 pub mod svg;
 
@@ -130,7 +131,9 @@ pub fn render_step(analysis: &Analysis, picture: Picture, step: Option<usize>, w
             return Err(Error::InvalidArgument(format!("the {} picture shows the whole analysis: it takes no step", picture.name())));
         }
         Picture::Close => circle::draw(&mut canvas, analysis, truth)?,
-        Picture::Borders => borders::draw(&mut canvas, analysis)?,
+        Picture::Borders => {
+            borders::draw(&mut canvas, analysis)?;
+        }
         Picture::Thumbnail => borders::draw_thumbnail(&mut canvas, analysis),
         _ => {
             let span = StepSpan::of(analysis, step)?;

@@ -12,7 +12,7 @@ const JS: &str = "text/javascript; charset=utf-8";
 
 /// (file name, content type, content) of every file under `web/` but `index.html`: the
 /// stylesheet, the favicon and the ES modules (no build step: the browser loads them as they are).
-const FILES: [(&str, &str, &str); 16] = [
+const FILES: [(&str, &str, &str); 17] = [
     ("app.css", CSS, include_str!("../../../../web/app.css")),
     ("favicon.svg", "image/svg+xml", include_str!("../../../../web/favicon.svg")),
     ("app.js", JS, include_str!("../../../../web/app.js")),
@@ -23,6 +23,7 @@ const FILES: [(&str, &str, &str); 16] = [
     ("circle.js", JS, include_str!("../../../../web/circle.js")),
     ("draw.js", JS, include_str!("../../../../web/draw.js")),
     ("result.js", JS, include_str!("../../../../web/result.js")),
+    ("readout.js", JS, include_str!("../../../../web/readout.js")),
     ("view-browse.js", JS, include_str!("../../../../web/view-browse.js")),
     ("view-upload.js", JS, include_str!("../../../../web/view-upload.js")),
     ("view-interpolate.js", JS, include_str!("../../../../web/view-interpolate.js")),

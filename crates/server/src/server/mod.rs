@@ -4,6 +4,8 @@
 //! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
 //! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
+//! `POST /api/disk/cells` and `GET /api/readout/{key}` (a disk's values and where the
+//! pictures draw them, for reading values off them: [`crate::render::readout`]),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
 //! 5xx) with `{"error": "..."}`. Analyses, renders and large answers run on CPU workers
@@ -388,6 +390,8 @@ pub fn app(state: AppState) -> Router {
         .route("/api/images/{key}/{file}", get(routes::image))
         .route("/api/interpolate", post(routes::interpolate).layer(small_bodies))
         .route("/api/disk", post(routes::disk).layer(small_bodies))
+        .route("/api/disk/cells", post(routes::disk_cells).layer(small_bodies))
+        .route("/api/readout/{key}", get(routes::readout))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))

@@ -480,6 +480,16 @@ fn picture_size(asked: Option<u32>) -> u32 {
     asked.unwrap_or(DEFAULT_SIZE).clamp(MIN_SIZE, MAX_SIZE)
 }
 
+/// What an image or readout URL's key draws from: a cached analysis or drawing, or a
+/// listed sample's (analysed again).
+async fn drawing_by_key(state: &AppState, key: &str) -> Result<Arc<Drawing>, ApiError> {
+    match (state.drawing(key), key.strip_prefix(SAMPLE_KEY)) {
+        (Some(hit), _) => Ok(hit),
+        (None, Some(id)) => Ok(sample_analysis(state, id).await?.drawing.clone()),
+        (None, None) => Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
+    }
+}
+
 pub async fn image(
     State(state): State<AppState>,
     AppPath((key, file)): AppPath<(String, String)>,
@@ -489,11 +499,7 @@ pub async fn image(
         let names: Vec<&str> = Picture::ALL.iter().map(|p| p.name()).collect();
         ApiError::NotFound(format!("no picture {file:?}: expected one of {}.png", names.join(".png, ")))
     })?;
-    let drawing = match (state.drawing(&key), key.strip_prefix(SAMPLE_KEY)) {
-        (Some(hit), _) => hit,
-        (None, Some(id)) => sample_analysis(&state, id).await?.drawing.clone(),
-        (None, None) => return Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
-    };
+    let drawing = drawing_by_key(&state, &key).await?;
     let (size, step, format) = (picture_size(query.size), query.step, query.format);
     let file = state
         .cached_bytes(format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()), cells(&drawing.analysis), move |_| {
@@ -502,6 +508,31 @@ pub async fn image(
         .await?;
     // The key names the content, so the picture never changes.
     Ok(([(header::CONTENT_TYPE, format.content_type()), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], file).into_response())
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReadoutQuery {
+    size: Option<u32>,
+    step: Option<usize>,
+}
+
+/// `GET /api/readout/{key}?step=&size=`: what reading values off the disk pictures of that
+/// step (and marking edges on the border plot) takes, for pictures of that size
+/// ([`crate::render::readout`]).
+pub async fn readout(
+    State(state): State<AppState>,
+    AppPath(key): AppPath<String>,
+    AppQuery(query): AppQuery<ReadoutQuery>,
+) -> Result<JsonBytes, ApiError> {
+    let drawing = drawing_by_key(&state, &key).await?;
+    let (size, step) = (picture_size(query.size), query.step);
+    let answer = state
+        .cached_bytes(format!("{key}/readout/{size}/{step:?}"), cells(&drawing.analysis), move |_| {
+            Ok(to_json(&crate::render::readout::readout(&drawing.analysis, step, size)?)?.to_vec())
+        })
+        .await?;
+    Ok(JsonBytes(answer))
 }
 
 fn default_steps() -> usize {
@@ -619,6 +650,23 @@ pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskReque
         })
         .await?;
     Ok(DiskPicture::from_bytes(cached).into_response())
+}
+
+/// `POST /api/disk/cells`: the values of the disk `POST /api/disk` draws for the same
+/// request, and where its disk lies on a picture of that size (the `scale` is not needed).
+pub async fn disk_cells(State(state): State<AppState>, AppJson(req): AppJson<DiskRequest>) -> Result<JsonBytes, ApiError> {
+    let size = picture_size(req.size);
+    let reference = req.reference.as_deref().map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat()).unwrap_or_default();
+    let key = content_key(&[b"disk cells", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
+    let n = req.border.len() as u64;
+    let answer = state
+        .cached_bytes(key, n * n, move |deadline| {
+            crate::render::readout::within_limit(1, req.border.len())?;
+            let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
+            Ok(to_json(&crate::render::readout::DiskCells::of(&disk, size)?)?.to_vec())
+        })
+        .await?;
+    Ok(JsonBytes(answer))
 }
 
 #[derive(Debug, Deserialize)]
