@@ -831,7 +831,6 @@ async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str
         // The three whole-analysis pictures, as shown.
         let rect = js(client, "const e = document.querySelector('#browse-result .images.whole'); e.scrollIntoView(); const r = e.getBoundingClientRect(); \
                                return { x: r.left + window.scrollX, y: r.top + window.scrollY, width: r.width, height: r.height, scale: 1 }").await;
-        until(client, "every picture loaded", "[...document.images].every(i => !i.getAttribute('src') || i.complete)").await;
         let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": rect }))).await.expect("screenshot");
         let png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
         std::fs::write(shots.join(format!("{width}-11-mesh-circle-borders.png")), png).expect("write screenshot");
