@@ -830,7 +830,7 @@ async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str
         assert!(inked.as_f64().unwrap_or(0.0) > 0.1, "{width} px: the mesh picture is nearly blank ({inked})");
         // The three whole-analysis pictures, as shown.
         let rect = js(client, "const e = document.querySelector('#browse-result .images.whole'); e.scrollIntoView(); const r = e.getBoundingClientRect(); \
-                               return { x: r.left + window.scrollX, y: r.top + window.scrollY, width: r.width, height: r.height, scale: 1 }").await;
+                               const m = 16; return { x: Math.max(0, r.left + window.scrollX - m), y: Math.max(0, r.top + window.scrollY - m), width: r.width + 2 * m, height: r.height + 2 * m, scale: 1 }").await;
         let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": rect }))).await.expect("screenshot");
         let png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
         std::fs::write(shots.join(format!("{width}-11-mesh-circle-borders.png")), png).expect("write screenshot");

@@ -178,14 +178,17 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     let (w, h) = (canvas.width as f64, canvas.height as f64);
     let mut entries: Vec<Entry> = traces.iter().map(|t| Entry { colour: t.colour, width: t.width, dashed: false, text: t.name.to_string() }).collect();
     entries.extend(marks.iter().map(|m| Entry { colour: m.colour, width: fold_width(unit, m.truth), dashed: m.truth, text: m.name.clone() }));
-    let metrics = match &analysis.metrics {
-        Some(m) => format!("RMSE {:.3} · Fréchet {:.3} (normalised) · ● vertex 0", m.rmse, m.frechet),
-        None => "● vertex 0".to_string(),
+    // The metrics and the vertex-0 key: one line where it fits, else two.
+    let notes = match &analysis.metrics {
+        Some(m) => vec![format!("RMSE {:.3} · Fréchet {:.3} (normalised)", m.rmse, m.frechet), "● vertex 0".to_string()],
+        None => vec!["● vertex 0".to_string()],
     };
+    let joined = notes.join(" · ");
+    let notes = if text_width(&joined, note) <= w - label { vec![joined] } else { notes };
     let legend = Legend::lay_out(&entries, note, (0.5 * label, w - 0.5 * label));
     // The bottom margin holds the legend rows and the metrics line, outside the data.
     let row = 1.5 * note;
-    let bottom = row * (legend.rows as f64 + 1.0) + 0.6 * note;
+    let bottom = row * (legend.rows + notes.len()) as f64 + 0.6 * note;
     let mapping = canvas.draw(|area| {
         let body = area.margin(top as i32, bottom as i32, (0.6 * label) as i32, (1.2 * label) as i32);
         let builder = || {
@@ -219,7 +222,10 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     }
     let first_row = h - bottom + 0.5 * row;
     legend.draw(canvas, &entries, note, first_row, row);
-    canvas.text(&metrics, (w - 0.5 * label, h - 0.5 * row - 0.3 * note), note, MUTED_TEXT, (HPos::Right, VPos::Center));
+    for (k, text) in notes.iter().enumerate() {
+        let y = first_row + (legend.rows + k) as f64 * row;
+        canvas.text(text, (w - 0.5 * label, y), note, MUTED_TEXT, (HPos::Right, VPos::Center));
+    }
     Ok(())
 }
 

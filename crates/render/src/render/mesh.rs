@@ -6,7 +6,8 @@
 //! and one height scale, shown by the colour bar. Each face (a polygon, cut into a fan of
 //! triangles) is filled pixel by pixel: a pixel takes the height z interpolated
 //! (barycentrically) in each triangle over it and keeps the highest, so a folded layer hides
-//! what lies under it, as seen from above. The border loop (the analysis's border: mesh
+//! what lies under it, as seen from above; faces drawn large enough to tell apart show their
+//! edges a shade darker. The border loop (the analysis's border: mesh
 //! vertex indices, found on frame 0 and followed by vertex) is drawn over each frame with
 //! a white halo, vertex 0 marked.
 //!
@@ -199,12 +200,33 @@ fn lay_out(panels: &[(usize, &[[f64; 3]])], (left, top, right, bottom): (f64, f6
         .collect()
 }
 
-/// Fill the faces of one frame: each pixel the colour of the highest height over it.
+/// Faces drawn at least this many pixels across (the root of their mean area) show their
+/// edges; smaller ones would be all edge.
+const EDGES_FROM: f64 = 8.0;
+
+/// An edge pixel's colour: its face's, darkened by this factor.
+const EDGE_SHADE: f64 = 0.8;
+
+/// The colour of a face's edge over a face of `colour`.
+fn edge_colour(colour: [u8; 3]) -> [u8; 3] {
+    colour.map(|c| (c as f64 * EDGE_SHADE).round() as u8)
+}
+
+/// Fill the faces of one frame: each pixel the colour of the highest height over it, and,
+/// when the faces are large enough to tell apart, their edges (the polygons', not those of
+/// the fans they are cut into) a shade darker.
 fn fill(canvas: &mut Canvas, faces: &[Vec<usize>], points: &[[f64; 3]], place: &Place, heights: (f64, f64)) {
     let (w, h) = (canvas.width as usize, canvas.height as usize);
-    let mut top = vec![f64::NEG_INFINITY; w * h];
-    let triangles = faces.iter().flat_map(|f| (1..f.len().saturating_sub(1)).map(move |k| [f[0], f[k], f[k + 1]]));
-    for triangle in triangles {
+    // The highest height over each pixel, and whether the pixel is on its face's edge.
+    let mut top = vec![(f64::NEG_INFINITY, false); w * h];
+    let (mut across, mut drawn) = (0.0, 0usize);
+    // Each triangle of a face's fan, with which of its sides are the face's: the side
+    // opposite corner 0 always, the others at the ends of the fan.
+    let triangles = faces.iter().flat_map(|f| {
+        let last = f.len().saturating_sub(1);
+        (1..last).map(move |k| ([f[0], f[k], f[k + 1]], [true, k + 1 == last, k == 1]))
+    });
+    for (triangle, outer) in triangles {
         let Some(corners) = triangle.iter().map(|&v| points.get(v)).collect::<Option<Vec<_>>>() else { continue };
         let p: Vec<(f64, f64)> = corners.iter().map(|c| place.pixel(c)).collect();
         let z = [corners[0][2], corners[1][2], corners[2][2]];
@@ -212,6 +234,11 @@ fn fill(canvas: &mut Canvas, faces: &[Vec<usize>], points: &[[f64; 3]], place: &
         if !area.is_finite() || area.abs() < 1e-12 {
             continue;
         }
+        across += area.abs().sqrt();
+        drawn += 1;
+        // The triangle's height over the side opposite each corner, in pixels.
+        let side = |a: (f64, f64), b: (f64, f64)| (b.0 - a.0).hypot(b.1 - a.1).max(1e-12);
+        let heights_over = [area.abs() / side(p[1], p[2]), area.abs() / side(p[2], p[0]), area.abs() / side(p[0], p[1])];
         let x0 = p.iter().map(|q| q.0).fold(f64::INFINITY, f64::min).floor().max(0.0) as usize;
         let x1 = (p.iter().map(|q| q.0).fold(f64::NEG_INFINITY, f64::max).ceil().max(0.0) as usize).min(w);
         let y0 = p.iter().map(|q| q.1).fold(f64::INFINITY, f64::min).floor().max(0.0) as usize;
@@ -220,21 +247,25 @@ fn fill(canvas: &mut Canvas, faces: &[Vec<usize>], points: &[[f64; 3]], place: &
             for x in x0..x1 {
                 let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
                 // Barycentric weights of the pixel centre; inside when all are ≥ 0.
-                let edge = |a: (f64, f64), b: (f64, f64)| ((b.0 - a.0) * (py - a.1) - (px - a.0) * (b.1 - a.1)) / area;
-                let weights = [edge(p[1], p[2]), edge(p[2], p[0]), edge(p[0], p[1])];
+                let weight = |a: (f64, f64), b: (f64, f64)| ((b.0 - a.0) * (py - a.1) - (px - a.0) * (b.1 - a.1)) / area;
+                let weights = [weight(p[1], p[2]), weight(p[2], p[0]), weight(p[0], p[1])];
                 if weights.iter().all(|&l| l >= -1e-9) {
                     let at = weights[0] * z[0] + weights[1] * z[1] + weights[2] * z[2];
                     let k = y * w + x;
-                    if at > top[k] {
-                        top[k] = at;
+                    if at > top[k].0 {
+                        // Within 0.4 px of one of the face's own sides (a line about a pixel wide).
+                        let edge = (0..3).any(|i| outer[i] && weights[i] * heights_over[i] < 0.4);
+                        top[k] = (at, edge);
                     }
                 }
             }
         }
     }
-    for (k, &z) in top.iter().enumerate() {
+    let edges = drawn > 0 && across / drawn as f64 >= EDGES_FROM;
+    for (k, &(z, edge)) in top.iter().enumerate() {
         if z > f64::NEG_INFINITY {
             let colour = height_colour(height_t(z, heights));
+            let colour = if edge && edges { edge_colour(colour) } else { colour };
             canvas.pixel_mut((k % w) as u32, (k / w) as u32).copy_from_slice(&colour);
         }
     }
@@ -299,18 +330,32 @@ mod tests {
         let layout = Layout::of(size, size, &view);
         assert_eq!(layout.places.len(), 2, "start and end frames");
         // The start frame lies flat at the lowest height: inside its border (a napkin or a
-        // towel: convex, so the border's centroid is inside) the pixels are that height's colour.
-        let n = analysis.border_indices.len() as f64;
-        let centroid = analysis.border_indices.iter().fold([0.0; 3], |a, &v| [a[0] + view.start[v][0] / n, a[1] + view.start[v][1] / n, 0.0]);
+        // towel: a rectangle), the pixels are that height's colour, or a shade darker on the
+        // edges of its faces, drawn at this size.
         let (lo, hi) = view.heights();
         assert!(hi > lo, "the folded mesh has no height");
         assert!(view.start.iter().all(|p| p[2] == lo), "the start frame is flat");
-        assert_eq!(colour_at(layout.places[0].pixel(&centroid)), height_colour(0.0));
+        let ((x0, x1), (y0, y1)) = xy_box(view.start.iter());
+        let (a, b) = (layout.places[0].pixel(&[x0, y1, 0.0]), layout.places[0].pixel(&[x1, y0, 0.0]));
+        let (face, edge) = (height_colour(0.0), edge_colour(height_colour(0.0)));
+        let (mut faces, mut edges) = (0, 0);
+        let inset = 0.1 * (b.0 - a.0).min(b.1 - a.1);
+        for y in (a.1 + inset) as u32..(b.1 - inset) as u32 {
+            for x in (a.0 + inset) as u32..(b.0 - inset) as u32 {
+                match colour_at((x as f64, y as f64)) {
+                    c if c == face => faces += 1,
+                    c if c == edge => edges += 1,
+                    c => panic!("pixel ({x}, {y}) inside the start frame is {c:?}"),
+                }
+            }
+        }
+        assert!(faces > 2 * edges && edges > 0, "{faces} face pixels, {edges} edge pixels");
         // The end frame shows the folded layer, high, in the scale's top colours.
         let near = |a: &[u8], b: [u8; 3]| a.iter().zip(b).all(|(&x, y)| x.abs_diff(y) <= 6);
         assert!(rgb.chunks(3).filter(|p| near(p, height_colour(1.0))).count() > 100, "no folded layer drawn");
-        assert!(rgb.chunks(3).filter(|p| near(p, height_colour(0.0))).count() > (size * size / 10) as usize, "little cloth drawn");
+        assert!(rgb.chunks(3).filter(|p| near(p, height_colour(0.0))).count() > (size * size / 20) as usize, "little cloth drawn");
         // The border loop is drawn in ink over both frames, through the border's vertices.
+        let n = analysis.border_indices.len() as f64;
         for (place, frame) in layout.places.iter().zip([&view.start, &view.end]) {
             let on_loop = analysis.border_indices.iter().filter(|&&v| near(&colour_at(place.pixel(&frame[v])), INK)).count();
             assert!(on_loop as f64 > 0.9 * n, "{on_loop} of {n} border vertices in ink");
