@@ -65,6 +65,7 @@ const PICTURES = [
 const WHOLE = [
   ["borders", "Borders: start, end, predicted"],
   ["close", "CloSE fold circle"],
+  ["mesh", "Mesh from above, by height, with its border loop"],
 ];
 
 /** A file name made of `parts` (letters, digits, "_", "-" and "." kept). */
@@ -286,7 +287,9 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   const stem = fileName(result.id || displayName || result.name);
   const cells = cellReader(result);
   images.append(stepPictures(result, stem, cells, options));
-  images.append(el("div", { className: "images whole" }, ...WHOLE.map(([name, caption]) => figure(result.key, name, caption, null, stem, name === "borders" ? cells.plot : null))));
+  // The mesh picture is listed for mesh samples alone.
+  const whole = WHOLE.filter(([name]) => name !== "mesh" || (result.images && result.images.mesh));
+  images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem, name === "borders" ? cells.plot : null))));
   const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
   images.append(el("p", { className: "small" }, jsonLink), codePanel(result, displayName));

@@ -796,6 +796,8 @@ async fn the_app_works_in_a_real_browser() {
     assert!(error.as_str().unwrap_or_default().contains("could not be loaded"), "{error}");
     screenshot(&client, &shots, "1400-08-samples-failed.png").await;
 
+    mesh_picture_shows_and_pictures_are_legible(&client, &base, &shots).await;
+
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);
     assert!(violations.is_empty(), "axe-core found serious or critical violations:\n{}", violations.join("\n"));
@@ -877,7 +879,8 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     let theta = std::f64::consts::PI * (2 * a + d + 1) as f64 / n as f64;
     assert!(inked(client, &format!("{signed} canvas.cell-mark"), layout.pixel((l - d as f64 + 1.0) / l, theta)).await, "the cell is not outlined");
     // Its two edges are marked on the border plot, on the start and end borders, and nowhere else.
-    let plot = close::render::readout::PlotTransform::of_borders(&analysis, 480).expect("the plot's map");
+    let truth = entry.sample.truth.as_ref().map(|t| t.folds.clone()).unwrap_or_default();
+    let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, 480).expect("the plot's map");
     let mid = |border: &[close::border::Point], e: usize| {
         let (p, q) = (border[e], border[(e + 1) % n]);
         (plot.x[0] * (p.x + q.x) / 2.0 + plot.x[1], plot.y[0] * (p.y + q.y) / 2.0 + plot.y[1])
@@ -978,4 +981,40 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     client.set_window_size(1400, 1000).await.expect("wide again");
     until(client, "a wide window", "window.innerWidth > 1000").await;
     violations
+}
+
+/// A mesh sample shows its mesh picture (the mesh from above under its border loop), and
+/// every picture of a result is shown at least `SHOWN_WIDTH` CSS px wide, the width its text
+/// is sized for (at least 12 CSS px there), at 1400 and at 420 px; the whole-analysis
+/// pictures (borders, fold circle, mesh) are captured at both widths.
+async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str, shots: &Path) {
+    use base64::Engine as _;
+    let dataset = close::dataset::Dataset::builtin();
+    let mesh = &dataset.entries().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample").id;
+    for (width, height) in [(1400, 1000), (420, 900)] {
+        client.set_window_size(width, height).await.expect("window size");
+        until(client, "the window size", &format!("window.innerWidth <= {width}")).await;
+        goto_view(client, base, &format!("#/samples/{mesh}")).await;
+        until(client, "the mesh picture", "document.querySelector('#browse-result .images.whole img[data-picture=mesh]') !== null").await;
+        let whole = images_loaded(client, "#browse-result .images.whole img").await;
+        assert_eq!(whole, 3, "{width} px: borders, fold circle and mesh");
+        let shown: Vec<(String, f64)> = serde_json::from_value(js(client, "return [...document.querySelectorAll('#browse-result figure img')].map(i => [i.dataset.picture, i.getBoundingClientRect().width])").await).expect("widths");
+        assert!(shown.len() >= 7, "{width} px: {shown:?}");
+        for (picture, css) in &shown {
+            assert!(*css >= close::render::SHOWN_WIDTH, "{width} px: {picture} shown {css} CSS px wide, under the {} its text is sized for", close::render::SHOWN_WIDTH);
+        }
+        // The mesh picture is drawn: mostly not paper (its PNG, decoded in the page).
+        let inked = js(client, "const i = document.querySelector('#browse-result img[data-picture=mesh]'); const c = document.createElement('canvas'); \
+                                c.width = i.naturalWidth; c.height = i.naturalHeight; const g = c.getContext('2d'); g.drawImage(i, 0, 0); \
+                                const d = g.getImageData(0, 0, c.width, c.height).data; let n = 0; \
+                                for (let k = 0; k < d.length; k += 4) if (d[k] + d[k + 1] + d[k + 2] < 600) n++; return n / (c.width * c.height)").await;
+        assert!(inked.as_f64().unwrap_or(0.0) > 0.1, "{width} px: the mesh picture is nearly blank ({inked})");
+        // The three whole-analysis pictures, as shown.
+        let rect = js(client, "const e = document.querySelector('#browse-result .images.whole'); e.scrollIntoView(); const r = e.getBoundingClientRect(); \
+                               const m = 16; return { x: Math.max(0, r.left + window.scrollX - m), y: Math.max(0, r.top + window.scrollY - m), width: r.width + 2 * m, height: r.height + 2 * m, scale: 1 }").await;
+        let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": rect }))).await.expect("screenshot");
+        let png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
+        std::fs::write(shots.join(format!("{width}-11-mesh-circle-borders.png")), png).expect("write screenshot");
+    }
+    client.set_window_size(1400, 1000).await.expect("wide again");
 }

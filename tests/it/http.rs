@@ -599,7 +599,10 @@ async fn dataset_samples_are_rows_analyses_pictures_and_plans_like_built_in_ones
     // The truth is drawn beside the found folds, with the angle errors (item 12).
     let circle = get(&app, &format!("/api/images/sample:{id}/close.png?format=svg")).await;
     let circle = String::from_utf8_lossy(&circle.body);
-    assert!(circle.contains(">true fold 1 (○)") && circle.contains(">true fold 2 (○)") && circle.contains("° off"), "{}", &circle[circle.len().saturating_sub(3000)..]);
+    assert!(circle.matches(" · ○ ").count() == 2 && circle.matches("° off").count() == 2, "{}", &circle[circle.len().saturating_sub(3000)..]);
+    let borders = get(&app, &format!("/api/images/sample:{id}/borders.png?format=svg")).await;
+    let borders = String::from_utf8_lossy(&borders.body);
+    assert!(borders.contains(">true fold 1 (") && borders.contains(">true fold 2 (") && borders.matches("° off").count() == 2, "{}", &borders[borders.len().saturating_sub(3000)..]);
     // Planned by its id.
     let plan = post_json(&app, "/api/plan", &json!({ "sample": id, "goal": [0.5, 3.5] })).await;
     assert_eq!(plan.status, StatusCode::OK, "{}", String::from_utf8_lossy(&plan.body));

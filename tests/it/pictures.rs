@@ -1,7 +1,8 @@
 //! The picture routes the web app relies on: per-step disk pictures
 //! (`/api/images/{key}/{picture}.png?step=k`) and a disk colour scale kept through an
 //! animation (`POST /api/disk` with `scale`, answered in `x-disk-scale`); and the fold
-//! curves drawn on a step's diff end at the fold points the step reports.
+//! curves drawn on a step's diff end at the fold points the step reports; a mesh sample's
+//! mesh picture; `POST /api/disk?format=svg`.
 
 use axum::body::{to_bytes, Body};
 use axum::http::{header, Method, Request, StatusCode};
@@ -12,10 +13,125 @@ use tower::ServiceExt;
 use close::server::{app, AppState};
 
 async fn send(app: &Router, request: Request<Body>) -> (StatusCode, Option<String>, Vec<u8>) {
+    let (status, _, scale, body) = send_typed(app, request).await;
+    (status, scale, body)
+}
+
+/// The answer's status, content type, `x-disk-scale` header and body.
+async fn send_typed(app: &Router, request: Request<Body>) -> (StatusCode, String, Option<String>, Vec<u8>) {
     let response = app.clone().oneshot(request).await.expect("the router never fails");
     let status = response.status();
-    let scale = response.headers().get("x-disk-scale").and_then(|v| v.to_str().ok()).map(str::to_string);
-    (status, scale, to_bytes(response.into_body(), usize::MAX).await.expect("a body").to_vec())
+    let header = |name: &str| response.headers().get(name).and_then(|v| v.to_str().ok()).map(str::to_string);
+    let (kind, scale) = (header("content-type").unwrap_or_default(), header("x-disk-scale"));
+    (status, kind, scale, to_bytes(response.into_body(), usize::MAX).await.expect("a body").to_vec())
+}
+
+/// Whether `text` is well-formed XML as far as an SVG picture needs: one root element,
+/// every tag closed in order, attribute values quoted, no bare `<` or `&` in text.
+fn well_formed(text: &str) -> Result<(), String> {
+    let mut open: Vec<&str> = Vec::new();
+    let mut rest = text.trim();
+    let mut roots = 0;
+    while let Some(start) = rest.find('<') {
+        let between = &rest[..start];
+        if between.contains('<') || between.replace("&amp;", "").replace("&lt;", "").replace("&gt;", "").replace("&quot;", "").contains('&') {
+            return Err(format!("bare markup in text {between:?}"));
+        }
+        let end = rest[start..].find('>').ok_or("an unclosed tag")? + start;
+        let tag = &rest[start + 1..end];
+        if tag.matches('"').count() % 2 != 0 {
+            return Err(format!("unbalanced quotes in <{tag}>"));
+        }
+        if let Some(name) = tag.strip_prefix('/') {
+            match open.pop() {
+                Some(top) if top == name => {}
+                other => return Err(format!("</{name}> closes {other:?}")),
+            }
+        } else {
+            if open.is_empty() {
+                roots += 1;
+            }
+            let name = tag.split_whitespace().next().unwrap_or_default().trim_end_matches('/');
+            if !tag.ends_with('/') {
+                open.push(name);
+            }
+        }
+        rest = &rest[end + 1..];
+    }
+    match (open.is_empty(), roots, rest.trim().is_empty()) {
+        (true, 1, true) => Ok(()),
+        _ => Err(format!("{} elements left open, {roots} roots", open.len())),
+    }
+}
+
+#[test]
+fn the_xml_check_finds_broken_documents() {
+    assert_eq!(well_formed(r#"<svg a="1"><text x="2">a &amp; b</text><image/></svg>"#), Ok(()));
+    for bad in ["<svg><text></svg>", r#"<svg a="1><x/></svg>"#, "<svg>a & b</svg>", "<svg/><svg/>", "<svg>"] {
+        assert!(well_formed(bad).is_err(), "{bad}");
+    }
+}
+
+/// The id of the first built-in mesh sample in the list.
+async fn a_mesh_sample(app: &Router) -> String {
+    let (_, body) = get(app, "/api/samples").await;
+    let rows: Value = serde_json::from_slice(&body).expect("the sample list");
+    let rows = rows.as_array().cloned().or_else(|| rows["samples"].as_array().cloned()).expect("rows");
+    rows.iter().find(|r| r["category"] == "mesh").and_then(|r| r["id"].as_str()).expect("a mesh sample").to_string()
+}
+
+#[tokio::test]
+async fn a_mesh_sample_shows_its_mesh_as_png_and_svg() {
+    let app = app(AppState::new());
+    let id = a_mesh_sample(&app).await;
+    let (status, body) = get(&app, &format!("/api/samples/{id}")).await;
+    assert_eq!(status, StatusCode::OK);
+    let analysis: Value = serde_json::from_slice(&body).expect("the analysis");
+    let url = analysis["images"]["mesh"].as_str().unwrap_or_else(|| panic!("{id} lists no mesh picture: {}", analysis["images"])).to_string();
+    let (status, kind, _, png) = send_typed(&app, Request::get(&url).body(Body::empty()).expect("request")).await;
+    assert_eq!((status, kind.as_str()), (StatusCode::OK, "image/png"));
+    assert!(is_png(&png));
+    let (status, kind, _, svg) = send_typed(&app, Request::get(format!("{url}&format=svg")).body(Body::empty()).expect("request")).await;
+    assert_eq!((status, kind.as_str()), (StatusCode::OK, "image/svg+xml"));
+    let svg = String::from_utf8(svg).expect("UTF-8");
+    well_formed(&svg).unwrap_or_else(|e| panic!("{e}"));
+    // The border loop is a vector line; the filled faces the pixels under it.
+    assert!(svg.contains("<polyline") && svg.contains("data:image/png;base64,") && svg.contains("height z"));
+
+    // A border sample has no mesh to show: its analysis lists none, and asking says why.
+    let (_, body) = get(&app, "/api/samples/napkin__half_then_half").await;
+    let border: Value = serde_json::from_slice(&body).expect("the analysis");
+    assert!(border["images"].get("mesh").is_none(), "{}", border["images"]);
+    assert!(border["images"].get("borders").is_some());
+    let (status, body) = get(&app, "/api/images/sample:napkin__half_then_half/mesh.png").await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(String::from_utf8_lossy(&body).contains("mesh samples only"), "{}", String::from_utf8_lossy(&body));
+}
+
+#[tokio::test]
+async fn a_disk_answers_svg_when_asked() {
+    let app = app(AppState::new());
+    let square = square();
+    let disk = |format: &str| {
+        Request::builder()
+            .method(Method::POST)
+            .uri(format!("/api/disk{format}"))
+            .header(header::CONTENT_TYPE, "application/json")
+            .body(Body::from(json!({ "border": square, "size": 200 }).to_string()))
+            .expect("request")
+    };
+    let (status, kind, png_scale, png) = send_typed(&app, disk("")).await;
+    assert_eq!((status, kind.as_str()), (StatusCode::OK, "image/png"));
+    assert!(is_png(&png));
+    let (status, kind, svg_scale, svg) = send_typed(&app, disk("?format=svg")).await;
+    assert_eq!((status, kind.as_str()), (StatusCode::OK, "image/svg+xml"));
+    // The same drawing: the same scale, and the text is text.
+    assert_eq!(png_scale, svg_scale);
+    let svg = String::from_utf8(svg).expect("UTF-8");
+    well_formed(&svg).unwrap_or_else(|e| panic!("{e}"));
+    assert!(svg.contains("<text") && svg.contains("dGLI disk"), "{}", &svg[..svg.len().min(300)]);
+    let (status, _, _, body) = send_typed(&app, disk("?format=gif")).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST, "{}", String::from_utf8_lossy(&body));
 }
 
 async fn get(app: &Router, uri: &str) -> (StatusCode, Vec<u8>) {
@@ -61,17 +177,22 @@ async fn a_second_fold_has_pictures_per_step() {
     assert!(status == StatusCode::OK && is_png(&body));
 }
 
-#[tokio::test]
-async fn a_disk_keeps_the_scale_it_is_given() {
-    let app = app(AppState::new());
-    let square: Vec<[f64; 3]> = (0..16)
+/// A unit square border of 16 vertices.
+fn square() -> Vec<[f64; 3]> {
+    (0..16)
         .map(|k| {
             let (side, t) = (k / 4, (k % 4) as f64 / 4.0);
             let c = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
             let (a, b) = (c[side], c[(side + 1) % 4]);
             [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0]
         })
-        .collect();
+        .collect()
+}
+
+#[tokio::test]
+async fn a_disk_keeps_the_scale_it_is_given() {
+    let app = app(AppState::new());
+    let square = square();
     let (status, scale, own) = post_disk(&app, &json!({ "border": square, "size": 100 })).await;
     assert_eq!(status, StatusCode::OK);
     let scale = scale.expect("the x-disk-scale header");

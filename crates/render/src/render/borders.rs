@@ -5,6 +5,10 @@
 //! with a thin white halo, so where a folded layer lies over the rest of the cloth it is
 //! seen crossing on top. The true end is drawn wide and the prediction thin over it: where
 //! they agree, the prediction runs inside the end line. Vertex 0 is marked on each border.
+//! Each fold found is drawn as its line across the cloth (in the state it was made on: the
+//! start with the folds before it applied), in its fold's colour; where the sample's true
+//! folds are known, each is drawn dashed beside it, and the legend gives the found fold's
+//! angle errors |f1 − t1|, |f2 − t2| (on the circle).
 //!
 //! ```
 //! use close_render::render::borders::equal_aspect;
@@ -16,9 +20,14 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::{label_size, line_width, plot, text_style, Canvas, INK, MUTED, PAPER};
+use super::raster::text_width;
+use super::{fold_colour, label_size, line_width, note_size, plot, text_style, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
 use crate::analysis::Analysis;
+use crate::angle;
+use crate::border::Point;
 use crate::error::Result;
+use crate::fold::reflect::{apply_fold_line, fold_line};
+use crate::fold::Line;
 
 /// One border to draw: vertices (x, y, z), colour, line width in pixels, legend name.
 struct Trace {
@@ -26,6 +35,65 @@ struct Trace {
     colour: [u8; 3],
     width: f64,
     name: &'static str,
+}
+
+/// A fold line to draw: its two ends (input XY), whether it is a true fold (dashed), its
+/// colour and legend text.
+struct FoldMark {
+    ends: [[f64; 2]; 2],
+    truth: bool,
+    colour: [u8; 3],
+    name: String,
+}
+
+/// The segment of `line` across `points`: from the least to the greatest projection of a
+/// point on the line's direction.
+fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
+    let [px, py] = line.point;
+    let [dx, dy] = line.direction;
+    let t = points.iter().map(|p| (p.x - px) * dx + (p.y - py) * dy);
+    let (lo, hi) = t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    [[px + lo * dx, py + lo * dy], [px + hi * dx, py + hi * dy]]
+}
+
+/// The line of each fold of `folds` across the cloth it folds: fold k on `start` with folds
+/// 0…k−1 applied, along `lines[k]` when given (the found folds' lines), else through its two
+/// fold points; `None` for a fold whose points coincide and has no line.
+fn fold_segments(start: &[Point], folds: &[[f64; 2]], lines: &[Option<Line>]) -> Vec<Option<[[f64; 2]; 2]>> {
+    let mut state = start.to_vec();
+    folds
+        .iter()
+        .enumerate()
+        .map(|(k, &fold)| {
+            let line = lines.get(k).copied().flatten().or_else(|| fold_line(&state, fold, None))?;
+            let segment = across(&state, &line);
+            state = apply_fold_line(&state, fold, &line);
+            Some(segment)
+        })
+        .collect()
+}
+
+/// The found folds' lines, and the true folds' beside them with the found fold's angle errors.
+fn fold_marks(analysis: &Analysis, truth: &[[f64; 2]]) -> Vec<FoldMark> {
+    let numbered = |what: &str, k: usize, count: usize| if count > 1 { format!("{what} {}", k + 1) } else { what.to_string() };
+    let found = fold_segments(analysis.start_border(), &analysis.folds, &analysis.fold_lines());
+    let true_lines = fold_segments(analysis.start_border(), truth, &[]);
+    let mut marks = Vec::new();
+    for (k, segment) in found.into_iter().enumerate() {
+        if let Some(ends) = segment {
+            marks.push(FoldMark { ends, truth: false, colour: fold_colour(k), name: numbered("fold", k, analysis.folds.len()) });
+        }
+    }
+    for (k, (segment, t)) in true_lines.into_iter().zip(truth).enumerate() {
+        let error = analysis.folds.get(k).map_or_else(
+            || "not found".to_string(),
+            |f| format!("{:.1}°, {:.1}° off", angle::distance(f[0], t[0]).to_degrees(), angle::distance(f[1], t[1]).to_degrees()),
+        );
+        if let Some(ends) = segment {
+            marks.push(FoldMark { ends, truth: true, colour: fold_colour(k), name: format!("{} ({error})", numbered("true fold", k, truth.len())) });
+        }
+    }
+    marks
 }
 
 /// Grow the x or y range about its centre so one data unit spans as many pixels on both
@@ -105,19 +173,35 @@ impl Mapping {
     }
 }
 
-/// Draw the border plot of `analysis`; gives how it mapped data to pixels.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<Mapping> {
+/// Draw the border plot of `analysis`, with the `truth` folds (when known) beside the found
+/// ones; gives how it mapped data to pixels.
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]]) -> Result<Mapping> {
     let unit = canvas.unit();
     let traces = traces(analysis, unit);
+    let marks = fold_marks(analysis, truth);
     let (x, y) = bounds(&traces);
     let label = label_size(unit);
+    let note = note_size(unit);
     let top = canvas.title_band();
+    let (w, h) = (canvas.width as f64, canvas.height as f64);
+    let mut entries: Vec<Entry> = traces.iter().map(|t| Entry { colour: t.colour, width: t.width, dashed: false, text: t.name.to_string() }).collect();
+    entries.extend(marks.iter().map(|m| Entry { colour: m.colour, width: fold_width(unit, m.truth), dashed: m.truth, text: m.name.clone() }));
+    // The metrics and the vertex-0 key: one line where it fits, else two.
+    let notes = match &analysis.metrics {
+        Some(m) => vec![format!("RMSE {:.3} · Fréchet {:.3} (normalised)", m.rmse, m.frechet), "● vertex 0".to_string()],
+        None => vec!["● vertex 0".to_string()],
+    };
+    let joined = notes.join(" · ");
+    let notes = if text_width(&joined, note) <= w - label { vec![joined] } else { notes };
+    let legend = Legend::lay_out(&entries, note, (0.5 * label, w - 0.5 * label));
+    // The bottom margin holds the legend rows and the metrics line, outside the data.
+    let row = 1.5 * note;
+    let bottom = row * (legend.rows + notes.len()) as f64 + 0.6 * note;
     let mapping = canvas.draw(|area| {
-        // The bottom margin holds the legend and the note, outside the data.
-        let body = area.margin(top as i32, (3.2 * label) as i32, (0.6 * label) as i32, (1.2 * label) as i32);
+        let body = area.margin(top as i32, bottom as i32, (0.6 * label) as i32, (1.2 * label) as i32);
         let builder = || {
             let mut b = ChartBuilder::on(&body);
-            b.x_label_area_size((2.0 * label) as u32).y_label_area_size((3.6 * label) as u32);
+            b.x_label_area_size((1.9 * note) as u32).y_label_area_size((3.4 * note) as u32);
             b
         };
         // The plot's pixel size is known only once built: build once to measure, then for real.
@@ -129,9 +213,9 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<Mapping> 
             .light_line_style(RGBColor(242, 242, 242))
             .bold_line_style(RGBColor(226, 226, 226))
             .axis_style(plot(MUTED))
-            .label_style(text_style(0.85 * label, INK))
-            .x_labels(6)
-            .y_labels(6)
+            .label_style(text_style(note, INK))
+            .x_labels(5)
+            .y_labels(5)
             .draw()?;
         let (px, py) = chart.plotting_area().get_pixel_range();
         Ok(Mapping { x, y, px: (px.start as f64, px.end as f64), py: (py.start as f64, py.end as f64) })
@@ -140,14 +224,90 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis) -> Result<Mapping> 
     for trace in &traces {
         draw_trace(canvas, trace, &mapping);
     }
-    draw_legend(canvas, &traces, (mapping.px.0, canvas.height as f64 - 2.1 * label));
-    let note = match &analysis.metrics {
-        Some(m) => format!("RMSE {:.3} · Fréchet {:.3} (normalised)   ● vertex 0", m.rmse, m.frechet),
-        None => "● vertex 0".to_string(),
-    };
-    let (w, h) = (canvas.width as f64, canvas.height as f64);
-    canvas.text(&note, (w - 0.5 * label, h - 0.6 * label), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
+    for mark in &marks {
+        let ends = mark.ends.map(|[x, y]| mapping.pixel(&[x, y, 0.0]));
+        draw_line(canvas, ends, fold_width(unit, mark.truth), mark.colour, mark.truth);
+    }
+    let first_row = h - bottom + 0.5 * row;
+    legend.draw(canvas, &entries, note, first_row, row);
+    for (k, text) in notes.iter().enumerate() {
+        let y = first_row + (legend.rows + k) as f64 * row;
+        canvas.text(text, (w - 0.5 * label, y), note, MUTED_TEXT, (HPos::Right, VPos::Center));
+    }
     Ok(mapping)
+}
+
+/// Line width of a fold line: the found one solid and wide, a true one dashed and thinner,
+/// so where the two agree the true one's dashes run inside the found one.
+fn fold_width(unit: f64, truth: bool) -> f64 {
+    line_width(unit, if truth { 0.004 } else { 0.009 })
+}
+
+/// A line from `ends[0]` to `ends[1]` (pixels): solid with a white halo, or dashed (dashes
+/// and gaps of four widths) in `colour` darkened, without a halo, so a line under it shows
+/// between the dashes.
+fn draw_line(canvas: &mut Canvas, [a, b]: [(f64, f64); 2], width: f64, colour: [u8; 3], dashed: bool) {
+    if dashed {
+        let length = (b.0 - a.0).hypot(b.1 - a.1).max(1e-9);
+        let period = 8.0 * width.max(1.5);
+        let at = |t: f64| (a.0 + (b.0 - a.0) * t.min(length) / length, a.1 + (b.1 - a.1) * t.min(length) / length);
+        let dark = colour.map(|c| (c as f64 * 0.55).round() as u8);
+        for t in (0..(length / period).ceil() as usize).map(|k| k as f64 * period) {
+            canvas.stroke(&[at(t), at(t + period / 2.0)], width, dark);
+        }
+    } else {
+        canvas.stroke(&[a, b], width + 3.0, PAPER);
+        canvas.stroke(&[a, b], width, colour);
+    }
+}
+
+/// One legend entry: a line swatch (solid or dashed) and its text.
+struct Entry {
+    colour: [u8; 3],
+    width: f64,
+    dashed: bool,
+    text: String,
+}
+
+/// Where each legend entry goes: entries flow left to right and wrap to a new row at the
+/// right edge.
+struct Legend {
+    /// (row, left x) of each entry.
+    places: Vec<(usize, f64)>,
+    rows: usize,
+}
+
+impl Legend {
+    /// Swatch length in text sizes.
+    const SWATCH: f64 = 2.2;
+
+    /// Lay `entries` out in text of `size` between `left` and `right` (pixels).
+    fn lay_out(entries: &[Entry], size: f64, (left, right): (f64, f64)) -> Legend {
+        let mut places = Vec::with_capacity(entries.len());
+        let (mut row, mut x) = (0, left);
+        for entry in entries {
+            let wide = Self::SWATCH * size + entry.width.max(2.0) + 0.4 * size + text_width(&entry.text, size);
+            if x > left && x + wide > right {
+                (row, x) = (row + 1, left);
+            }
+            places.push((row, x));
+            x += wide + 1.2 * size;
+        }
+        let rows = places.last().map_or(0, |&(r, _)| r + 1);
+        Legend { places, rows }
+    }
+
+    /// Draw the entries, the first row's centre at `top`, rows `row` apart.
+    fn draw(&self, canvas: &mut Canvas, entries: &[Entry], size: f64, top: f64, row: f64) {
+        for (entry, &(r, x)) in entries.iter().zip(&self.places) {
+            let y = top + r as f64 * row;
+            // A wide line's round caps reach half its width past its ends.
+            let cap = entry.width.max(2.0) / 2.0;
+            draw_line(canvas, [(x + cap, y), (x + cap + Self::SWATCH * size, y)], entry.width.max(2.0), entry.colour, entry.dashed);
+            let text_x = x + Self::SWATCH * size + 2.0 * cap + 0.4 * size;
+            canvas.text(&entry.text, (text_x, y), size, INK, (HPos::Left, VPos::Center));
+        }
+    }
 }
 
 /// A mini drawing for a list of samples: the start border thin grey, the end border thick
@@ -211,21 +371,6 @@ fn runs(n: usize, keep: impl Fn(usize) -> bool) -> Vec<Vec<usize>> {
         .collect()
 }
 
-/// The legend in one row under the plot, starting at `start` (left end, vertical centre).
-fn draw_legend(canvas: &mut Canvas, traces: &[Trace], start: (f64, f64)) {
-    let size = 0.85 * label_size(canvas.unit());
-    let swatch = 2.2 * size;
-    let (mut x, y) = start;
-    for trace in traces {
-        // A wide line's round caps reach half its width past its ends.
-        let cap = trace.width.max(2.0) / 2.0;
-        canvas.stroke(&[(x + cap, y), (x + cap + swatch, y)], trace.width.max(2.0), trace.colour);
-        x += swatch + 2.0 * cap + 0.4 * size;
-        canvas.text(trace.name, (x, y), size, INK, (HPos::Left, VPos::Center));
-        x += super::raster::text_width(trace.name, size) + 1.2 * size;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -244,6 +389,36 @@ mod tests {
         assert_eq!(runs(4, |_| true), vec![vec![0, 1, 2, 3, 4]]);
         assert_eq!(runs(4, |k| k % 2 == 0), vec![vec![0, 1], vec![2, 3]]);
         assert!(runs(4, |_| false).is_empty());
+    }
+
+    #[test]
+    fn true_folds_are_drawn_beside_the_found_ones_with_their_errors() {
+        let entry = crate::dataset::Dataset::builtin().get("napkin__half_then_half").unwrap().clone();
+        let analysis = crate::analyze(&entry.sample.border_frames().unwrap(), crate::FrameRange::default()).unwrap();
+        let truth = entry.sample.truth.as_ref().unwrap().folds.clone();
+        assert_eq!((analysis.folds.len(), truth.len()), (2, 2));
+        let marks = fold_marks(&analysis, &truth);
+        let (found, true_ones): (Vec<&FoldMark>, Vec<&FoldMark>) = marks.iter().partition(|m| !m.truth);
+        assert_eq!((found.len(), true_ones.len()), (2, 2));
+        let size = bounds(&traces(&analysis, 480.0)).0;
+        let size = size.1 - size.0;
+        for (k, (f, t)) in found.iter().zip(&true_ones).enumerate() {
+            let off = |e: usize| crate::angle::distance(analysis.folds[k][e], truth[k][e]).to_degrees();
+            let errors = format!("{:.1}°, {:.1}° off", off(0), off(1));
+            assert!(t.name.contains(&errors), "{} lacks {errors}", t.name);
+            assert_eq!(f.colour, t.colour, "fold {k} and its truth share a colour");
+            // Found right, so each true line runs where the found one does (either way round).
+            let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+            let apart = (d(f.ends[0], t.ends[0]) + d(f.ends[1], t.ends[1])).min(d(f.ends[0], t.ends[1]) + d(f.ends[1], t.ends[0]));
+            assert!(apart < 0.1 * size, "fold {k}: the true line is {apart} away");
+        }
+        let picture = |truth: &[[f64; 2]]| {
+            let known = super::super::Known { truth, mesh: None };
+            super::super::render_step(&analysis, super::super::Picture::Borders, None, 480, 480, super::super::Format::Png, known).unwrap()
+        };
+        let (with, without) = (picture(&truth), picture(&[]));
+        assert_ne!(with, without, "the truth draws nothing");
+        super::super::tests::preview("borders_truth.png", &with);
     }
 
     #[test]

@@ -20,7 +20,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::raster::text_width;
-use super::{endpoint_name, fold_colour, label_size, line_width, outward, plot, Canvas, INK, MUTED, PAPER};
+use super::{endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
 use crate::analysis::Analysis;
 use crate::angle;
 use crate::error::Result;
@@ -35,33 +35,28 @@ pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
     (0..=last).map(|k| f1 + span * k as f64 / last as f64).collect()
 }
 
-/// The lines of text under the circle: corners, one line per fold (and per true fold, with
-/// the found fold's angle errors), the label sentence.
+/// The lines of text under the circle, one per fold: its values and, where the truth is
+/// known, the found fold's angle errors against the true one (drawn as ○); a true fold not
+/// found gets its own line. Each line is wrapped to `width` (the corners and folds are named
+/// on the circle; the label sentence is the page's).
 fn caption(analysis: &Analysis, truth: &[[f64; 2]], size: f64, width: f64) -> Vec<(String, [u8; 3])> {
-    let corners = match analysis.corners.len() {
-        0 => "no corners".to_string(),
-        1 => "1 corner".to_string(),
-        c => format!("{c} corners"),
-    };
-    let mut lines = vec![(corners, INK)];
+    let mut lines = Vec::new();
     let count = analysis.folds.len();
     for (k, f) in analysis.folds.iter().enumerate() {
         let names = [endpoint_name(k, 0, count), endpoint_name(k, 1, count)];
-        lines.push((format!("{} = {:.2} rad, {} = {:.2} rad", names[0], f[0], names[1], f[1]), fold_colour(k)));
+        let error = truth.get(k).map_or_else(String::new, |t| {
+            format!(" · ○ {:.1}°, {:.1}° off", angle::distance(f[0], t[0]).to_degrees(), angle::distance(f[1], t[1]).to_degrees())
+        });
+        lines.push((format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f[0], names[1], f[1]), fold_colour(k)));
     }
     if count == 0 {
-        lines.push(("no fold detected".into(), MUTED));
+        lines.push(("no fold detected".into(), MUTED_TEXT));
     }
-    for (k, t) in truth.iter().enumerate() {
-        let error = analysis.folds.get(k).map_or_else(
-            || "not found".to_string(),
-            |f| format!("found {:.1}°, {:.1}° off", angle::distance(f[0], t[0]).to_degrees(), angle::distance(f[1], t[1]).to_degrees()),
-        );
-        let name = if truth.len() > 1 { format!("true fold {}", k + 1) } else { "true fold".into() };
-        lines.push((format!("{name} (○) = {:.2}, {:.2} rad: {error}", t[0], t[1]), MUTED));
+    for (k, t) in truth.iter().enumerate().skip(count) {
+        lines.push((format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t[0], t[1]), fold_colour(k)));
     }
-    lines.extend(wrap(&analysis.label.text, |line| text_width(line, size) <= width).into_iter().map(|l| (l, INK)));
-    lines
+    let fits = |line: &str| text_width(line, size) <= width;
+    lines.into_iter().flat_map(|(text, colour)| wrap(&text, fits).into_iter().map(move |l| (l, colour))).collect()
 }
 
 /// Greedy word wrap: each line as long as `fits` allows (a longer word gets its own line).
@@ -80,6 +75,7 @@ fn wrap(text: &str, fits: impl Fn(&str) -> bool) -> Vec<String> {
 }
 
 /// Where the circle sits: centre and radius in pixels.
+#[derive(Debug, Clone, Copy)]
 struct Frame {
     cx: f64,
     cy: f64,
@@ -93,32 +89,158 @@ impl Frame {
     }
 }
 
+/// A label that names a point of the circle: its text, colour and the angle of its point.
+#[derive(Debug, Clone)]
+struct Label {
+    text: String,
+    colour: [u8; 3],
+    theta: f64,
+}
+
+/// A label placed: its box [x0, y0, x1, y1] in pixels, and whether it left its own angle
+/// or ring (then a leader line joins it to its point).
+#[derive(Debug, Clone)]
+struct Placed {
+    label: Label,
+    bounds: [f64; 4],
+    moved: bool,
+}
+
+/// Everything the fold circle draws, and where.
+struct Layout {
+    frame: Frame,
+    /// Font size of the labels round the circle.
+    size: f64,
+    /// Font size of the caption.
+    note: f64,
+    /// Radius (pixels) of the ring the labels start on, just outside the markers.
+    ring: f64,
+    labels: Vec<Placed>,
+    /// Caption lines, their colour and baseline centre y.
+    caption: Vec<(String, [u8; 3], f64)>,
+}
+
+/// The box of a label of `width`×`height` pixels centred on the ray at angle `theta` from
+/// the centre of `frame`, just beyond the tangent to the circle of radius `rho` pixels there
+/// (so wholly outside that circle).
+fn label_box(frame: &Frame, rho: f64, theta: f64, (width, height): (f64, f64)) -> [f64; 4] {
+    let (c, s) = (theta.cos(), theta.sin());
+    // The box's half extent along the ray: the box lies beyond the tangent at `rho`.
+    let reach = (c.abs() * width + s.abs() * height) / 2.0;
+    let (x, y) = (frame.cx + (rho + reach) * c, frame.cy - (rho + reach) * s);
+    [x - width / 2.0, y - height / 2.0, x + width / 2.0, y + height / 2.0]
+}
+
+/// Place `labels` (most important first) outside the circle: each at the free place
+/// nearest its own (on the first ring at its angle; else nudged along the circle or out to
+/// a further ring, the least displacement first); a place must keep off the boxes placed
+/// before it and inside `bounds` [x0, y0, x1, y1]. With no free place, it takes the least
+/// crowded one.
+fn place_labels(labels: Vec<Label>, frame: &Frame, ring: f64, size: f64, bounds: [f64; 4]) -> Vec<Placed> {
+    let gap = 0.25 * size;
+    let height = 0.8 * size;
+    // Nudges (ring r, angle step k) by the distance they move a label, nearest first.
+    let (along, out) = (0.4 * size, 1.2 * height);
+    let mut nudges: Vec<(usize, i32)> = (0..4).flat_map(|r| (-24..=24).map(move |k| (r, k))).collect();
+    nudges.sort_by(|a, b| (a.0 as f64 * out).hypot(a.1 as f64 * along).total_cmp(&(b.0 as f64 * out).hypot(b.1 as f64 * along)));
+    let mut placed: Vec<Placed> = Vec::new();
+    for label in labels {
+        let dims = (text_width(&label.text, size), height);
+        let mut best: Option<(f64, [f64; 4], bool)> = None;
+        for &(r, k) in &nudges {
+            let rho = ring + r as f64 * out;
+            let b = label_box(frame, rho, label.theta + k as f64 * along / rho.max(1.0), dims);
+            let inside = b[0] >= bounds[0] && b[1] >= bounds[1] && b[2] <= bounds[2] && b[3] <= bounds[3];
+            if !inside {
+                continue;
+            }
+            let crowding: f64 = placed.iter().map(|p| overlap_area(&p.bounds, &b, gap)).sum();
+            let moved = (r, k) != (0, 0);
+            if crowding == 0.0 {
+                best = Some((0.0, b, moved));
+                break;
+            }
+            if best.is_none_or(|(c, _, _)| crowding < c) {
+                best = Some((crowding, b, moved));
+            }
+        }
+        let (_, bounds_of, moved) = best.unwrap_or((0.0, label_box(frame, ring, label.theta, dims), false));
+        placed.push(Placed { label, bounds: bounds_of, moved });
+    }
+    placed
+}
+
+/// Area two boxes share once each is grown by `gap` on every side (0 when apart).
+fn overlap_area(a: &[f64; 4], b: &[f64; 4], gap: f64) -> f64 {
+    let w = (a[2].min(b[2]) - a[0].max(b[0]) + 2.0 * gap).max(0.0);
+    let h = (a[3].min(b[3]) - a[1].max(b[1]) + 2.0 * gap).max(0.0);
+    w * h
+}
+
+impl Layout {
+    /// The fold circle of `analysis` with `truth` on a `width`×`height` canvas: the title,
+    /// the caption at the bottom, the circle as large as the rest allows with a margin for
+    /// the labels, which are placed round it without overlapping.
+    fn of(width: u32, height: u32, analysis: &Analysis, truth: &[[f64; 2]]) -> Layout {
+        let (w, h) = (width as f64, height as f64);
+        let unit = w.min(h);
+        let size = label_size(unit);
+        let line_height = 1.35 * note_size(unit);
+        let lines = caption(analysis, truth, note_size(unit), w - size);
+        let top = 1.8 * title_size(unit);
+        let text_top = h - line_height * lines.len() as f64 - 0.3 * size;
+        let labels = labels(analysis);
+        let widest = labels.iter().map(|l| text_width(&l.text, size)).fold(0.0, f64::max);
+        let marker = (unit * 0.022).max(4.0);
+        // Room for a ring of labels and a half above and below, a label and a nudge on the sides.
+        let (pad_x, pad_y) = (marker + 0.4 * size + widest + 0.3 * size, marker + 0.4 * size + 1.5 * 1.2 * 0.8 * size);
+        let radius = ((w - 2.0 * pad_x) / 2.0).min((text_top - top - 2.0 * pad_y) / 2.0).max(4.0);
+        let frame = Frame { cx: w / 2.0, cy: top + pad_y + radius + ((text_top - top - 2.0 * pad_y) / 2.0 - radius).max(0.0), radius };
+        let ring = radius + marker + 0.3 * size;
+        let placed = place_labels(labels, &frame, ring, size, [0.0, top, w, text_top]);
+        let caption = lines.into_iter().enumerate().map(|(k, (text, colour))| (text, colour, text_top + line_height * (k as f64 + 0.5))).collect();
+        Layout { frame, size, note: note_size(unit), ring, labels: placed, caption }
+    }
+}
+
+/// The labels round the circle, most important first: the fold endpoints' names, the
+/// corner numbers (at most [`NUMBERED_CORNERS`] corners), then "0 rad" where angles start.
+fn labels(analysis: &Analysis) -> Vec<Label> {
+    let count = analysis.folds.len();
+    let folds = analysis.folds.iter().enumerate().flat_map(|(k, fold)| {
+        fold.iter().enumerate().map(move |(e, &f)| Label { text: endpoint_name(k, e, count), colour: fold_colour(k), theta: f })
+    });
+    let numbered = analysis.corners.len() <= NUMBERED_CORNERS;
+    let corners = analysis.corners.iter().enumerate().filter(|_| numbered).map(|(k, &theta)| Label { text: (k + 1).to_string(), colour: INK, theta });
+    folds.chain(corners).chain([Label { text: "0 rad".into(), colour: MUTED_TEXT, theta: 0.0 }]).collect()
+}
+
 /// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
 /// markers joined by a thin chord beside the found ones.
 pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]]) -> Result<()> {
     let unit = canvas.unit();
-    let (w, h) = (canvas.width as f64, canvas.height as f64);
-    let label = label_size(unit);
-    let lines = caption(analysis, truth, label, w - label);
-    let line_height = 1.35 * label;
-    let top = canvas.title_band();
-    let text_top = h - line_height * lines.len() as f64 - 0.4 * label;
-    // Room outside the circle for corner numbers and fold names.
-    let pad = 4.4 * label;
-    let radius = ((w - 2.0 * pad) / 2.0).min((text_top - top - 2.0 * pad) / 2.0).max(4.0);
-    let frame = Frame { cx: w / 2.0, cy: top + pad + radius, radius };
+    let layout = Layout::of(canvas.width, canvas.height, analysis, truth);
+    let frame = layout.frame;
     shade_folded_sides(canvas, analysis, &frame)?;
     canvas.title("CloSE fold circle");
-    canvas.ring((frame.cx, frame.cy), radius, line_width(unit, 0.004), INK);
-    let tick = 0.4 * label / radius;
-    canvas.stroke(&[frame.at(1.0, 0.0), frame.at(1.0 - tick, 0.0)], line_width(unit, 0.003), INK);
-    canvas.text("0", frame.at(1.0 - 1.5 * tick, 0.0), 0.8 * label, MUTED, (HPos::Right, VPos::Center));
-    let mut taken = draw_corners(canvas, &analysis.corners, &frame);
+    canvas.ring((frame.cx, frame.cy), frame.radius, line_width(unit, 0.004), INK);
+    // The tick where angles start, outwards.
+    canvas.stroke(&[frame.at(1.0, 0.0), (frame.cx + layout.ring, frame.cy)], line_width(unit, 0.003), INK);
+    draw_corners(canvas, &analysis.corners, &frame);
     draw_truth(canvas, truth, &frame);
-    draw_folds(canvas, analysis, &frame, &mut taken);
-    for (k, (text, colour)) in lines.iter().enumerate() {
-        let y = text_top + line_height * (k as f64 + 0.5);
-        canvas.text(text, (0.5 * label, y), label, *colour, (HPos::Left, VPos::Center));
+    draw_folds(canvas, analysis, &frame);
+    for placed in &layout.labels {
+        let [x0, y0, x1, y1] = placed.bounds;
+        let centre = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+        if placed.moved {
+            // A leader from just outside the point's marker to the nearest point of the label.
+            let from = frame.at(layout.ring / frame.radius, placed.label.theta);
+            canvas.stroke(&[from, (from.0.clamp(x0, x1), from.1.clamp(y0, y1))], 1.0, MUTED);
+        }
+        canvas.text(&placed.label.text, centre, layout.size, placed.label.colour, (HPos::Center, VPos::Center));
+    }
+    for (text, colour, y) in &layout.caption {
+        canvas.text(text, (0.5 * layout.size, *y), layout.note, *colour, (HPos::Left, VPos::Center));
     }
     Ok(())
 }
@@ -140,45 +262,13 @@ fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -
     })
 }
 
-/// The pixel box [x0, y0, x1, y1] of `text` of `size` at `at` anchored `outward(theta)`.
-fn text_box(text: &str, at: (f64, f64), size: f64, theta: f64) -> [f64; 4] {
-    let (w, h) = (text_width(text, size), 0.8 * size);
-    let (hp, vp) = outward(theta);
-    let x0 = match hp {
-        HPos::Left => at.0,
-        HPos::Center => at.0 - w / 2.0,
-        HPos::Right => at.0 - w,
-    };
-    let y0 = match vp {
-        VPos::Top => at.1,
-        VPos::Center => at.1 - h / 2.0,
-        VPos::Bottom => at.1 - h,
-    };
-    [x0, y0, x0 + w, y0 + h]
-}
-
-/// True when two boxes overlap (with a small gap).
-fn overlaps(a: &[f64; 4], b: &[f64; 4], gap: f64) -> bool {
-    a[0] < b[2] + gap && b[0] < a[2] + gap && a[1] < b[3] + gap && b[1] < a[3] + gap
-}
-
-/// Corner dots, numbered 1… outside the circle when there are at most [`NUMBERED_CORNERS`];
-/// gives the boxes the numbers take.
-fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) -> Vec<[f64; 4]> {
-    let unit = canvas.unit();
-    let dot = (unit * 0.012).max(2.0);
-    let size = label_size(unit);
-    let mut taken = Vec::new();
-    for (k, &theta) in corners.iter().enumerate() {
+/// Corner dots on the circle.
+fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) {
+    let dot = (canvas.unit() * 0.012).max(2.0);
+    for &theta in corners {
         canvas.disc(frame.at(1.0, theta), dot + 1.5, PAPER);
         canvas.disc(frame.at(1.0, theta), dot, INK);
-        if corners.len() <= NUMBERED_CORNERS {
-            let (at, text) = (frame.at(1.0 + 1.8 * dot / frame.radius, theta), (k + 1).to_string());
-            canvas.text(&text, at, size, INK, outward(theta));
-            taken.push(text_box(&text, at, size, theta));
-        }
     }
-    taken
 }
 
 /// Each true fold: its chord thin, its two points as hollow rings in its fold's colour.
@@ -195,12 +285,9 @@ fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
 }
 
 /// Each fold: its arcs (the folded side: one, or several for a multi-arc fold), the chord of
-/// each (the fold line) and the named endpoints of the pair that spans them, each name moved
-/// outwards until it clears the corner numbers and the names before it.
-fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame, taken: &mut Vec<[f64; 4]>) {
+/// each (the fold line) and its two endpoints.
+fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
     let unit = canvas.unit();
-    let count = analysis.folds.len();
-    let size = label_size(unit);
     let marker = (unit * 0.016).max(3.0);
     for (k, (&fold, arcs)) in analysis.folds.iter().zip(analysis.fold_arcs()).enumerate() {
         let colour = fold_colour(k);
@@ -209,20 +296,9 @@ fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame, taken: &m
             canvas.stroke(&arc, line_width(unit, 0.014), colour);
             canvas.stroke(&[frame.at(1.0, a), frame.at(1.0, b)], line_width(unit, 0.005), colour);
         }
-        for (e, &f) in fold.iter().enumerate() {
+        for &f in &fold {
             canvas.disc(frame.at(1.0, f), marker + 1.5, PAPER);
             canvas.disc(frame.at(1.0, f), marker, colour);
-            let name = endpoint_name(k, e, count);
-            let place = |step: f64| {
-                let at = frame.at(1.0 + (1.0 + 1.1 * step) * size / frame.radius, f);
-                (at, text_box(&name, at, size, f))
-            };
-            let (at, bounds) = (0..4)
-                .map(|step| place(step as f64))
-                .find(|(_, b)| !taken.iter().any(|t| overlaps(t, b, 0.15 * size)))
-                .unwrap_or_else(|| place(3.0));
-            canvas.text(&name, at, size, colour, outward(f));
-            taken.push(bounds);
         }
     }
 }
@@ -242,13 +318,52 @@ mod tests {
     #[test]
     fn boxes_overlap_only_when_they_meet() {
         let a = [0.0, 0.0, 10.0, 10.0];
-        assert!(overlaps(&a, &[5.0, 5.0, 15.0, 15.0], 0.0));
-        assert!(!overlaps(&a, &[11.0, 0.0, 20.0, 10.0], 0.5));
-        assert!(overlaps(&a, &[10.2, 0.0, 20.0, 10.0], 0.5));
-        // A label anchored right of a point on the right of the circle starts at the point.
-        let b = text_box("12", (100.0, 50.0), 10.0, 0.0);
-        assert_eq!(b[0], 100.0);
-        assert!(b[2] > 100.0 && b[1] < 50.0 && b[3] > 50.0);
+        assert!(overlap_area(&a, &[5.0, 5.0, 15.0, 15.0], 0.0) > 0.0);
+        assert_eq!(overlap_area(&a, &[11.0, 0.0, 20.0, 10.0], 0.5), 0.0);
+        assert!(overlap_area(&a, &[10.2, 0.0, 20.0, 10.0], 0.5) > 0.0);
+        // A label right of the circle starts past the tangent; one above ends under nothing.
+        let frame = Frame { cx: 100.0, cy: 100.0, radius: 50.0 };
+        let right = label_box(&frame, 60.0, 0.0, (20.0, 8.0));
+        assert!((right[0] - 160.0).abs() < 1e-9 && (right[1] - 96.0).abs() < 1e-9);
+        let up = label_box(&frame, 60.0, std::f64::consts::FRAC_PI_2, (20.0, 8.0));
+        assert!((up[3] - 40.0).abs() < 1e-9);
+    }
+
+    /// The analysis of a built-in sample and its true folds.
+    fn builtin(id: &str) -> (Analysis, Vec<[f64; 2]>) {
+        let entry = crate::dataset::Dataset::builtin().get(id).unwrap().clone();
+        let analysis = crate::analyze(&entry.sample.border_frames().unwrap(), crate::FrameRange::default()).unwrap();
+        (analysis, entry.sample.truth.map(|t| t.folds).unwrap_or_default())
+    }
+
+    #[test]
+    fn labels_keep_apart_off_the_circle_and_inside_the_picture() {
+        for (id, size) in [("tshirt__half_then_sleeve", 480), ("tshirt__half_then_sleeve", 1400), ("napkin__diagonal", 480), ("trousers__legs_up_then_half", 320)] {
+            let (analysis, truth) = builtin(id);
+            let layout = Layout::of(size, size, &analysis, &truth);
+            let known = super::super::Known { truth: &truth, mesh: None };
+            let png = super::super::render_step(&analysis, super::super::Picture::Close, None, size, size, super::super::Format::Png, known).unwrap();
+            super::super::tests::preview(&format!("circle_{id}_{size}.png"), &png);
+            let labels = &layout.labels;
+            assert!(labels.len() > analysis.corners.len().min(NUMBERED_CORNERS), "{id}: every corner is named");
+            for (k, a) in labels.iter().enumerate() {
+                let [x0, y0, x1, y1] = a.bounds;
+                assert!(x0 >= 0.0 && y0 >= 0.0 && x1 <= size as f64 && y1 <= size as f64, "{id}: {:?} leaves the picture", a.label.text);
+                // Wholly outside the circle and its markers.
+                let (dx, dy) = (((x0 + x1) / 2.0 - layout.frame.cx).abs(), ((y0 + y1) / 2.0 - layout.frame.cy).abs());
+                let nearest = ((dx - (x1 - x0) / 2.0).max(0.0)).hypot((dy - (y1 - y0) / 2.0).max(0.0));
+                assert!(nearest >= layout.ring - 1e-9, "{id}: {:?} is on the circle", a.label.text);
+                for b in &labels[k + 1..] {
+                    assert_eq!(overlap_area(&a.bounds, &b.bounds, 0.0), 0.0, "{id} at {size}: {:?} and {:?} overlap", a.label.text, b.label.text);
+                }
+            }
+            // The caption starts under the lowest label.
+            let lowest = labels.iter().map(|p| p.bounds[3]).fold(0.0, f64::max);
+            let first = layout.caption.first().map_or(f64::INFINITY, |c| c.2 - 0.5 * layout.note);
+            assert!(lowest <= first, "{id}: labels run into the caption");
+            // The circle has most of the picture.
+            assert!(layout.frame.radius >= 0.2 * size as f64, "{id} at {size}: radius {}", layout.frame.radius);
+        }
     }
 
     #[test]

@@ -84,6 +84,15 @@ const ORANGES: [[u8; 3]; 6] = [[255, 255, 255], [254, 224, 182], [253, 184, 99],
 /// ColorBrewer YlGnBu, white to dark.
 const SEQUENTIAL: [[u8; 3]; 6] = [[255, 255, 255], [237, 248, 177], [127, 205, 187], [44, 127, 184], [37, 52, 148], [8, 29, 88]];
 
+/// Viridis, dark purple to yellow: every colour differs from the paper, and its lightness
+/// grows steadily, so heights read in order in grey too.
+const HEIGHT: [[u8; 3]; 6] = [[68, 1, 84], [65, 68, 135], [42, 120, 142], [34, 168, 132], [122, 209, 81], [253, 231, 37]];
+
+/// The colour of height t ∈ [0, 1] (low to high) in the mesh picture.
+pub fn height_colour(t: f64) -> [u8; 3] {
+    interpolate(&HEIGHT, t)
+}
+
 impl Ramp {
     /// The colour at t.
     pub fn colour(self, t: f64) -> [u8; 3] {

@@ -37,7 +37,7 @@ use super::colour::{Ramp, Scale};
 use super::raster::Recording;
 pub use super::sector_map::sector_at;
 use super::sector_map::SectorMap;
-use super::{endpoint_name, fold_colour, label_size, line_width, outward, title_size, Canvas, INK, MUTED, PAPER};
+use super::{endpoint_name, fold_colour, label_size, line_width, note_size, outward, title_size, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
 use crate::cache::Lru;
 use crate::disk::Disk;
 use crate::fold::Curve;
@@ -194,13 +194,13 @@ fn paint_bar(canvas: &mut Canvas, ramp: Ramp, (lo, hi): (f64, f64), layout: &Lay
 
 /// Rim outline and angle marks 0, π/2, π, 3π/2.
 fn draw_frame(canvas: &mut Canvas, layout: &Layout) {
-    let size = label_size(canvas.unit()) * 0.85;
+    let size = note_size(canvas.unit());
     canvas.ring((layout.cx, layout.cy), layout.radius, 1.0, MUTED);
     let gap = 0.3 * size / layout.radius;
     for (k, name) in ["0", "π/2", "π", "3π/2"].iter().enumerate() {
         let theta = k as f64 * PI / 2.0;
         canvas.stroke(&[layout.pixel(1.0, theta), layout.pixel(1.0 + gap, theta)], 1.0, MUTED);
-        canvas.text(name, layout.pixel(1.0 + 2.0 * gap, theta), size, MUTED, outward(theta));
+        canvas.text(name, layout.pixel(1.0 + 2.0 * gap, theta), size, MUTED_TEXT, outward(theta));
     }
 }
 
@@ -231,19 +231,19 @@ fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi):
 /// Under the colour bar: the transform that maps a value to a colour (tanh, so the ticks
 /// are not evenly spaced), its scale s, and the vertex count.
 fn draw_bar_notes(canvas: &mut Canvas, layout: &Layout, scale: &Scale, n: usize) {
-    let size = 0.85 * label_size(canvas.unit());
+    let size = note_size(canvas.unit());
     let [left, _, _, bottom] = layout.bar.map(|v| v as f64);
     let lines = ["colour =".to_string(), "tanh(v/s)".to_string(), format!("s = {}", format_value(scale.s)), format!("N = {n}")];
     for (k, line) in lines.iter().enumerate() {
         let y = bottom + (1.6 + 1.4 * k as f64) * size;
-        canvas.text(line, (left - 0.3 * size, y), size, if k < 2 { INK } else { MUTED }, (HPos::Left, VPos::Center));
+        canvas.text(line, (left - 0.3 * size, y), size, if k < 2 { INK } else { MUTED_TEXT }, (HPos::Left, VPos::Center));
     }
 }
 
 /// A ruler under the disk, from the rim to the centre, naming the rings by the cyclic
 /// distance d of their edge pairs (d = 1 at the rim, d = L at the centre).
 fn draw_ring_ruler(canvas: &mut Canvas, layout: &Layout, layers: usize) {
-    let size = 0.85 * label_size(canvas.unit());
+    let size = note_size(canvas.unit());
     let l = layers.max(1);
     let y = layout.cy + layout.radius + 1.6 * label_size(canvas.unit()) + 0.4 * size;
     let x_of = |d: usize| layout.cx - layout.radius * (l - d) as f64 / l as f64 - 0.5 * layout.radius / l as f64;
@@ -261,7 +261,7 @@ fn draw_ring_ruler(canvas: &mut Canvas, layout: &Layout, layers: usize) {
         canvas.stroke(&[(x, y - 0.3 * size), (x, y + 0.3 * size)], 1.0, MUTED);
         canvas.text(&d.to_string(), (x, y + 0.5 * size), size, INK, (HPos::Center, VPos::Top));
     }
-    canvas.text("← ring: pair distance d", (layout.cx + 0.4 * size, y), size, MUTED, (HPos::Left, VPos::Center));
+    canvas.text("← ring: pair distance", (layout.cx + 0.4 * size, y), size, MUTED_TEXT, (HPos::Left, VPos::Center));
 }
 
 /// A value with about three significant digits.
@@ -305,7 +305,7 @@ fn draw_marks(canvas: &mut Canvas, layout: &Layout, marks: &Marks, layers: usize
     if let Some(note) = &marks.note {
         // The top-left corner, outside the disk.
         let y = layout.cy - layout.radius + 0.2 * size;
-        canvas.text(note, (0.5 * size, y), 0.85 * size, MUTED, (HPos::Left, VPos::Center));
+        canvas.text(note, (0.5 * size, y), note_size(unit), MUTED_TEXT, (HPos::Left, VPos::Center));
     }
 }
 

@@ -4,11 +4,14 @@
 //! - [`disk`]: a dGLI disk as the paper draws it (annular sectors, diverging map), and the
 //!   diff disks with the fitted fold curves over them;
 //! - [`circle`]: the CloSE fold circle (corners and folds on the unit circle);
-//! - [`borders`]: start, end and predicted end borders in XY.
+//! - [`borders`]: start, end and predicted end borders in XY, with the fold lines;
+//! - [`mesh`]: a mesh sample's cloth from above, coloured by height, under its border loop.
 //!
 //! Text uses DejaVu Sans embedded in the binary (no system fonts), registered with plotters
 //! once before any drawing. Sizes are clamped to [[`MIN_SIZE`], [`MAX_SIZE`]] pixels and
-//! every length and font scales with the picture, so 480 px and 1200 px read the same.
+//! every length and font scales with the picture, so 480 px and 1200 px read the same; text
+//! is sized for the narrowest width a picture is shown at ([`note_size`]) and darkened to AA
+//! contrast on the paper ([`readable`]).
 //!
 //! ```
 //! use close_render::render::{disk_png, Picture};
@@ -22,6 +25,7 @@ pub mod borders;
 pub mod circle;
 pub mod colour;
 pub mod disk;
+pub mod mesh;
 pub mod raster;
 pub mod readout;
 mod sector_map;
@@ -51,10 +55,14 @@ pub enum Picture {
     Borders,
     /// A small drawing of the borders alone, for lists.
     Thumbnail,
+    /// A mesh sample's cloth from above with its border loop ([`mesh`]): listed only for
+    /// mesh samples.
+    Mesh,
 }
 
 impl Picture {
-    /// The pictures an analysis lists (its `images`); [`Picture::Thumbnail`] is for lists.
+    /// The pictures every analysis lists (its `images`); [`Picture::Thumbnail`] is for
+    /// lists, and [`Picture::Mesh`] is listed for mesh samples alone.
     pub const ALL: [Picture; 6] =
         [Picture::DiskStart, Picture::DiskEnd, Picture::Diff, Picture::SignedDiff, Picture::Close, Picture::Borders];
 
@@ -68,12 +76,13 @@ impl Picture {
             Picture::Close => "close",
             Picture::Borders => "borders",
             Picture::Thumbnail => "thumbnail",
+            Picture::Mesh => "mesh",
         }
     }
 
     /// The picture of that name, if any.
     pub fn from_name(s: &str) -> Option<Picture> {
-        Picture::ALL.into_iter().chain([Picture::Thumbnail]).find(|p| p.name() == s)
+        Picture::ALL.into_iter().chain([Picture::Thumbnail, Picture::Mesh]).find(|p| p.name() == s)
     }
 }
 
@@ -116,25 +125,39 @@ pub fn render_png(analysis: &Analysis, picture: Picture, width: u32, height: u32
 /// and its diffs, with the fold curves fitted on that step. The start and end disks of a
 /// picture pair share one colour scale, so a colour means one value in both panels.
 pub fn render_step_png(analysis: &Analysis, picture: Picture, step: Option<usize>, width: u32, height: u32) -> Result<Vec<u8>> {
-    render_step(analysis, picture, step, width, height, Format::Png, &[])
+    render_step(analysis, picture, step, width, height, Format::Png, Known::default())
 }
 
-/// [`render_step_png`] written as `format`: the same drawing as a PNG or an SVG; `truth`,
-/// the sample's known folds (may be empty), drawn beside the found ones on the fold circle.
-pub fn render_step(analysis: &Analysis, picture: Picture, step: Option<usize>, width: u32, height: u32, format: Format, truth: &[[f64; 2]]) -> Result<Vec<u8>> {
+/// What is known of a sample beyond its analysis, for the pictures that draw it.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Known<'a> {
+    /// The sample's true folds (may be empty), drawn beside the found ones on the fold
+    /// circle and the borders.
+    pub truth: &'a [[f64; 2]],
+    /// A mesh sample's mesh, which [`Picture::Mesh`] draws.
+    pub mesh: Option<&'a mesh::MeshView>,
+}
+
+/// [`render_step_png`] written as `format`: the same drawing as a PNG or an SVG, with what
+/// is `known` of the sample.
+pub fn render_step(analysis: &Analysis, picture: Picture, step: Option<usize>, width: u32, height: u32, format: Format, known: Known) -> Result<Vec<u8>> {
     let mut canvas = Canvas::new(width, height)?;
     if format == Format::Svg {
         canvas.vector = Some(svg::Vector::default());
     }
     match picture {
-        Picture::Close | Picture::Borders | Picture::Thumbnail if step.is_some() => {
+        Picture::Close | Picture::Borders | Picture::Thumbnail | Picture::Mesh if step.is_some() => {
             return Err(Error::InvalidArgument(format!("the {} picture shows the whole analysis: it takes no step", picture.name())));
         }
-        Picture::Close => circle::draw(&mut canvas, analysis, truth)?,
+        Picture::Close => circle::draw(&mut canvas, analysis, known.truth)?,
         Picture::Borders => {
-            borders::draw(&mut canvas, analysis)?;
+            borders::draw(&mut canvas, analysis, known.truth)?;
         }
         Picture::Thumbnail => borders::draw_thumbnail(&mut canvas, analysis),
+        Picture::Mesh => match known.mesh {
+            Some(view) => mesh::draw(&mut canvas, analysis, view)?,
+            None => return Err(Error::InvalidArgument("the mesh picture is drawn for mesh samples only: this sample gives borders".into())),
+        },
         _ => {
             let span = StepSpan::of(analysis, step)?;
             let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
@@ -225,10 +248,18 @@ pub fn disk_png(disk: &crate::disk::Disk, title: &str, width: u32, height: u32) 
 /// Draw a dGLI disk alone with a colour `scale` (its own when `None`, as [`disk_png`]);
 /// gives the PNG and the scale used, so a caller can keep one scale through an animation.
 pub fn disk_png_scaled(disk: &crate::disk::Disk, title: &str, scale: Option<Scale>, width: u32, height: u32) -> Result<(Vec<u8>, Scale)> {
+    disk_scaled(disk, title, scale, width, height, Format::Png)
+}
+
+/// [`disk_png_scaled`] written as `format`: the same drawing as a PNG or an SVG.
+pub fn disk_scaled(disk: &crate::disk::Disk, title: &str, scale: Option<Scale>, width: u32, height: u32, format: Format) -> Result<(Vec<u8>, Scale)> {
     let mut canvas = Canvas::new(width, height)?;
+    if format == Format::Svg {
+        canvas.vector = Some(svg::Vector::default());
+    }
     let scale = scale.unwrap_or_else(|| Scale::of(disk.values()));
     disk::draw(&mut canvas, disk, title, Ramp::Diverging, &scale, None)?;
-    Ok((canvas.png()?, scale))
+    Ok((canvas.encode()?, scale))
 }
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVuSans-LICENSE.txt`).
@@ -335,8 +366,10 @@ fn plot([r, g, b]: [u8; 3]) -> RGBColor {
 
 /// Ink for text and outlines.
 const INK: [u8; 3] = [40, 40, 40];
-/// Secondary text and guides.
+/// Guides (rims, axes, ticks): lines, never text.
 const MUTED: [u8; 3] = [130, 130, 130];
+/// Secondary text: 6.4:1 on the paper (WCAG AA asks 4.5:1).
+const MUTED_TEXT: [u8; 3] = [86, 96, 113];
 /// Background, and halos that keep lines readable over colour.
 const PAPER: [u8; 3] = [255, 255, 255];
 
@@ -378,14 +411,61 @@ impl Canvas {
     }
 }
 
-/// Font size of titles.
-fn title_size(unit: f64) -> f64 {
-    (unit * 0.045).max(9.0)
+/// The narrowest a picture is shown, in CSS px per its shorter side: the web app's figures
+/// are a grid column at least 22 rem wide (a rem is at least 14 px), less padding — about
+/// 330 px at a 420 px viewport, more when wider; the lightbox shows more still.
+pub const SHOWN_WIDTH: f64 = 320.0;
+/// The smallest text, in CSS px, when the picture is shown [`SHOWN_WIDTH`] wide (12 px is
+/// the floor a reader asks for; the half pixel is rounding's margin).
+pub const MIN_TEXT_CSS: f64 = 12.5;
+
+/// Font size, in picture pixels, of the smallest text (ticks, notes, legends): text
+/// scales with the picture, so shown `SHOWN_WIDTH` CSS px wide (or wider) it is at least
+/// `MIN_TEXT_CSS` CSS px; a picture smaller than that is shown at its own size, where
+/// the same floor holds in pixels.
+pub fn note_size(unit: f64) -> f64 {
+    MIN_TEXT_CSS * (unit / SHOWN_WIDTH).max(1.0)
 }
 
-/// Font size of labels.
-fn label_size(unit: f64) -> f64 {
-    (unit * 0.032).max(7.0)
+/// Font size of labels (corner numbers, fold names, colour-bar values).
+pub fn label_size(unit: f64) -> f64 {
+    1.1 * note_size(unit)
+}
+
+/// Font size of titles.
+pub fn title_size(unit: f64) -> f64 {
+    1.25 * note_size(unit)
+}
+
+/// WCAG relative luminance of an sRGB colour.
+fn luminance(colour: [u8; 3]) -> f64 {
+    let linear = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.040_45 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+    };
+    let [r, g, b] = colour.map(linear);
+    0.2126 * r + 0.7152 * g + 0.0722 * b
+}
+
+/// WCAG contrast ratio of two colours (1 to 21).
+pub fn contrast(a: [u8; 3], b: [u8; 3]) -> f64 {
+    let (la, lb) = (luminance(a), luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}
+
+/// Text contrast WCAG AA asks of normal text.
+pub const TEXT_CONTRAST: f64 = 4.5;
+
+/// `colour` for text on the paper: itself when it contrasts [`TEXT_CONTRAST`]:1 or more,
+/// else darkened (each channel scaled by the same factor, so the hue stays) until it does.
+pub fn readable(colour: [u8; 3]) -> [u8; 3] {
+    let mut out = colour;
+    let mut k = 1.0;
+    while contrast(out, PAPER) < TEXT_CONTRAST && k > 0.0 {
+        k -= 0.02;
+        out = colour.map(|c| (c as f64 * k).round() as u8);
+    }
+    out
 }
 
 /// Line width for `fraction` of the unit, at least one pixel.
@@ -446,7 +526,7 @@ pub(crate) mod tests {
 
     #[test]
     fn picture_names_round_trip() {
-        for p in Picture::ALL {
+        for p in Picture::ALL.into_iter().chain([Picture::Thumbnail, Picture::Mesh]) {
             assert_eq!(Picture::from_name(p.name()), Some(p));
             assert_eq!(serde_json::to_string(&p).unwrap(), format!("\"{}\"", p.name()));
         }
@@ -521,6 +601,65 @@ pub(crate) mod tests {
             compared += 1;
         }
         assert!(compared > 0, "no cell kept its value");
+    }
+
+    #[test]
+    fn text_sizes_follow_the_shown_width() {
+        for unit in [64.0, 200.0, SHOWN_WIDTH, 480.0, 1400.0, 2048.0] {
+            // Shown 320 CSS px wide (the narrowest figure), 336 (a 420 px window), 400
+            // (the lightbox at 420 px), 800 (the lightbox at 1400 px).
+            for shown in [SHOWN_WIDTH, 336.0, 400.0, 800.0] {
+                let css = note_size(unit) * shown / unit;
+                assert!(css >= 12.0, "{unit} px shown at {shown} CSS px: text {css} CSS px");
+            }
+            assert!(label_size(unit) >= note_size(unit) && title_size(unit) >= label_size(unit));
+        }
+    }
+
+    #[test]
+    fn readable_colours_reach_aa_contrast() {
+        assert!((contrast([0, 0, 0], PAPER) - 21.0).abs() < 1e-9);
+        assert!(contrast(MUTED_TEXT, PAPER) >= TEXT_CONTRAST);
+        // The old light grey did not.
+        assert!(contrast(MUTED, PAPER) < TEXT_CONTRAST);
+        for colour in FOLD_COLOURS.into_iter().chain([MUTED, [255, 255, 0], PAPER]) {
+            let text = readable(colour);
+            assert!(contrast(text, PAPER) >= TEXT_CONTRAST, "{colour:?} → {text:?}");
+        }
+        // A colour dark enough is kept.
+        assert_eq!(readable(INK), INK);
+    }
+
+    /// Every `name="…"` attribute value of the `<text>` elements of an SVG.
+    fn text_attributes<'a>(svg: &'a str, name: &str) -> Vec<&'a str> {
+        let key = format!(" {name}=\"");
+        svg.split("<text").skip(1).filter_map(|t| t.split_once(&key).and_then(|(_, rest)| rest.split_once('"')).map(|(v, _)| v)).collect()
+    }
+
+    #[test]
+    fn every_text_drawn_is_large_enough_and_dark_enough() {
+        let entry = crate::dataset::Dataset::builtin().entries().iter().find(|e| e.sample.mesh.is_some()).unwrap().clone();
+        let mesh_analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+        let view = mesh::MeshView::of(entry.sample.mesh.as_ref().unwrap(), &mesh_analysis).unwrap();
+        let truth = entry.sample.truth.as_ref().unwrap().folds.clone();
+        let known = Known { truth: &truth, mesh: Some(&view) };
+        for size in [420, 480, 1400] {
+            let mut texts = 0;
+            for picture in Picture::ALL.into_iter().chain([Picture::Mesh]) {
+                let svg = String::from_utf8(render_step(&mesh_analysis, picture, None, size, size, Format::Svg, known).unwrap()).unwrap();
+                for px in text_attributes(&svg, "font-size") {
+                    let px: f64 = px.parse().unwrap();
+                    assert!(px >= note_size(size as f64) - 0.01, "{picture:?} at {size}: text of {px} px");
+                    texts += 1;
+                }
+                for fill in text_attributes(&svg, "fill") {
+                    let rgb: Vec<u8> = (0..3).map(|k| u8::from_str_radix(&fill[1 + 2 * k..3 + 2 * k], 16).unwrap()).collect();
+                    let ratio = contrast([rgb[0], rgb[1], rgb[2]], PAPER);
+                    assert!(ratio >= TEXT_CONTRAST, "{picture:?}: text in {fill} has contrast {ratio:.2}");
+                }
+            }
+            assert!(texts > 30, "only {texts} texts");
+        }
     }
 
     #[test]

@@ -162,9 +162,11 @@ impl Canvas {
     }
 
     /// `text` of `size` pixels anchored at `at` by (`h`, `v`); `VPos::Center` centres the
-    /// capital height, which is what looks centred.
+    /// capital height, which is what looks centred. Text lies on the paper: `colour` is
+    /// darkened as far as AA contrast needs ([`super::readable`]).
     pub(crate) fn text(&mut self, text: &str, at: (f64, f64), size: f64, colour: [u8; 3], (h, v): (HPos, VPos)) {
         let Some(font) = font() else { return };
+        let colour = super::readable(colour);
         let scaled = font.as_scaled(PxScale::from(size as f32));
         let (glyphs, width) = layout(font, text, size);
         let (ascent, descent) = (scaled.ascent() as f64, scaled.descent() as f64);

@@ -63,10 +63,11 @@ pub struct PlotTransform {
 }
 
 impl PlotTransform {
-    /// The map of the border plot of `analysis` drawn `size`×`size` (clamped as pictures are).
-    pub fn of_borders(analysis: &Analysis, size: u32) -> Result<PlotTransform> {
+    /// The map of the border plot of `analysis` drawn `size`×`size` (clamped as pictures are),
+    /// with the `truth` folds it draws (they take legend rows, so they move the plot).
+    pub fn of_borders(analysis: &Analysis, truth: &[[f64; 2]], size: u32) -> Result<PlotTransform> {
         let mut canvas = Canvas::new(size, size)?;
-        let (x, y) = borders::draw(&mut canvas, analysis)?.affine();
+        let (x, y) = borders::draw(&mut canvas, analysis, truth)?.affine();
         Ok(PlotTransform { x, y })
     }
 }
@@ -91,8 +92,9 @@ pub struct Readout {
 }
 
 /// The readout of the disk pictures of `analysis` for `step` (1-based; `None`: the whole
-/// analysis, as [`super::render_step`] takes it) drawn `size`×`size`.
-pub fn readout(analysis: &Analysis, step: Option<usize>, size: u32) -> Result<Readout> {
+/// analysis, as [`super::render_step`] takes it) drawn `size`×`size`, its border plot
+/// drawn with the `truth` folds.
+pub fn readout(analysis: &Analysis, truth: &[[f64; 2]], step: Option<usize>, size: u32) -> Result<Readout> {
     let span = StepSpan::of(analysis, step)?;
     within_limit(2, analysis.n)?;
     let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
@@ -103,7 +105,7 @@ pub fn readout(analysis: &Analysis, step: Option<usize>, size: u32) -> Result<Re
         from_frame: analysis.start_frame + span.from,
         to_frame: analysis.start_frame + span.to,
         disk: DiskGeometry::of(size),
-        borders: PlotTransform::of_borders(analysis, size)?,
+        borders: PlotTransform::of_borders(analysis, truth, size)?,
         start: single(&start),
         end: single(&end),
     })
@@ -145,7 +147,7 @@ mod tests {
     fn the_values_are_the_step_disks_and_each_cell_is_where_the_picture_paints_it() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
         let size = 400;
-        let readout = readout(&analysis, Some(1), size).unwrap();
+        let readout = readout(&analysis, &[], Some(1), size).unwrap();
         let (start, end) = (analysis.disk(0).unwrap(), analysis.disk(1).unwrap());
         assert_eq!((readout.n, readout.from_frame, readout.to_frame), (32, 0, 1));
         let close = |a: &[f32], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(&x, &y)| (x as f64 - y).abs() <= 1e-6 * y.abs().max(1e-3));
@@ -177,7 +179,7 @@ mod tests {
     fn the_border_transform_puts_vertex_0_on_its_mark() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
         let size = 360;
-        let t = PlotTransform::of_borders(&analysis, size).unwrap();
+        let t = PlotTransform::of_borders(&analysis, &[], size).unwrap();
         let (_, _, rgb) = decode(&render_png(&analysis, Picture::Borders, size, size).unwrap());
         let p = analysis.start_border()[0];
         let (x, y) = (t.x[0] * p.x + t.x[1], t.y[0] * p.y + t.y[1]);
@@ -197,6 +199,6 @@ mod tests {
     #[test]
     fn a_step_that_does_not_exist_is_refused() {
         let analysis = folded_square(4, [0.0, PI]);
-        assert!(matches!(readout(&analysis, Some(2), 200), Err(Error::InvalidArgument(_))));
+        assert!(matches!(readout(&analysis, &[], Some(2), 200), Err(Error::InvalidArgument(_))));
     }
 }

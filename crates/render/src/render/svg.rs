@@ -11,7 +11,7 @@
 //! ```
 //! use close_render::render::{render_step, Format, Picture};
 //! # let analysis = close_render::analyze(&close_render::border::prepare(vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]; 2]).unwrap(), Default::default()).unwrap();
-//! let svg = String::from_utf8(render_step(&analysis, Picture::Close, None, 300, 300, Format::Svg, &[]).unwrap()).unwrap();
+//! let svg = String::from_utf8(render_step(&analysis, Picture::Close, None, 300, 300, Format::Svg, Default::default()).unwrap()).unwrap();
 //! assert!(svg.starts_with("<svg") && svg.contains("<text"));
 //! ```
 

@@ -3,7 +3,7 @@
 //! Routes: `GET /` (the app in `web/`, embedded), `GET /healthz`, `POST /api/analyze`,
 //! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
 //! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
-//! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state),
+//! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state; `?format=svg`: SVG),
 //! `POST /api/disk/cells` and `GET /api/readout/{key}` (a disk's values and where the
 //! pictures draw them, for reading values off them: [`crate::render::readout`]),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the

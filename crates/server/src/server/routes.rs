@@ -21,7 +21,8 @@ use crate::budget::{Budget, Deadline};
 use crate::error::{Error, Result};
 use crate::formats::{json::parse_sample, read_files, Sample, Truth};
 use crate::render::colour::Scale;
-use crate::render::{disk_png_scaled, render_step, Format, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
+use crate::render::mesh::MeshView;
+use crate::render::{disk_scaled, render_step, Format, Known, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
 
 /// Thumbnail size in the sample list.
 const THUMBNAIL_SIZE: u32 = 160;
@@ -35,14 +36,16 @@ pub struct Drawing {
     pub analysis: Analysis,
     /// The sample's known folds (empty when it carries none), drawn beside the found ones.
     pub truth: Vec<[f64; 2]>,
+    /// A mesh sample's mesh at the analysed frames, for its mesh picture.
+    pub mesh: Option<MeshView>,
     /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
     pub bytes: usize,
 }
 
 impl Drawing {
-    fn new(analysis: Analysis, truth: Vec<[f64; 2]>) -> Drawing {
-        let bytes = Self::weigh(&analysis, &truth);
-        Drawing { analysis, truth, bytes }
+    fn new(analysis: Analysis, truth: Vec<[f64; 2]>, mesh: Option<MeshView>) -> Drawing {
+        let bytes = Self::weigh(&analysis, &truth) + mesh.as_ref().map_or(0, MeshView::bytes);
+        Drawing { analysis, truth, mesh, bytes }
     }
 
     /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
@@ -148,6 +151,8 @@ pub(super) struct Loaded {
     truth: Option<Truth>,
     /// A listed sample, whose answer includes the sample.
     listed: Option<Listed>,
+    /// A mesh sample's mesh at the frames the range asks (the analysis's by default).
+    mesh: Option<MeshView>,
 }
 
 impl Loaded {
@@ -169,6 +174,7 @@ impl Loaded {
             source: source.to_string(),
             truth: sample.truth.clone(),
             listed,
+            mesh: sample.mesh.as_ref().and_then(|m| MeshView::new(m, (range.start.unwrap_or(0), range.end.unwrap_or(m.frames.len().saturating_sub(1))))),
         })
     }
 
@@ -183,7 +189,10 @@ impl Loaded {
         let options = Options { frames: self.range, budget: state.config().budget, deadline: deadline.clone(), ..Options::default() };
         let analysis = analyze_with(&self.border, options)?;
         let key = self.key;
-        let images = Picture::ALL.iter().map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()))).collect();
+        // The view of other frames than the analysis's is no view of it.
+        let mesh = self.mesh.filter(|m| m.frames == (analysis.start_frame, analysis.end_frame));
+        let listed_pictures = Picture::ALL.into_iter().chain(mesh.is_some().then_some(Picture::Mesh));
+        let images = listed_pictures.map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()))).collect();
         let listed = match &self.listed {
             Some(Listed::Builtin(id)) => state.entry(id).map(|entry| ListedFields {
                 id: &entry.id,
@@ -207,7 +216,7 @@ impl Loaded {
             listed,
         })?;
         let truth = self.truth.map(|t| t.folds).unwrap_or_default();
-        Ok(Analyzed { key, drawing: Arc::new(Drawing::new(analysis, truth)), response })
+        Ok(Analyzed { key, drawing: Arc::new(Drawing::new(analysis, truth, mesh)), response })
     }
 }
 
@@ -503,7 +512,8 @@ pub async fn image(
     let (size, step, format) = (picture_size(query.size), query.step, query.format);
     let file = state
         .cached_bytes(format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()), cells(&drawing.analysis), move |_| {
-            Ok(render_step(&drawing.analysis, picture, step, size, size, format, &drawing.truth)?)
+            let known = Known { truth: &drawing.truth, mesh: drawing.mesh.as_ref() };
+            Ok(render_step(&drawing.analysis, picture, step, size, size, format, known)?)
         })
         .await?;
     // The key names the content, so the picture never changes.
@@ -529,7 +539,7 @@ pub async fn readout(
     let (size, step) = (picture_size(query.size), query.step);
     let answer = state
         .cached_bytes(format!("{key}/readout/{size}/{step:?}"), cells(&drawing.analysis), move |_| {
-            Ok(to_json(&crate::render::readout::readout(&drawing.analysis, step, size)?)?.to_vec())
+            Ok(to_json(&crate::render::readout::readout(&drawing.analysis, &drawing.truth, step, size)?)?.to_vec())
         })
         .await?;
     Ok(JsonBytes(answer))
@@ -587,33 +597,42 @@ pub struct DiskRequest {
     scale: Option<Scale>,
 }
 
-/// A disk picture as the file cache keeps it: the PNG and the colour scale (s, max) it used.
+/// `POST /api/disk?format=svg`: the disk as SVG, as any picture URL takes it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiskQuery {
+    #[serde(default)]
+    format: Format,
+}
+
+/// A disk picture as the file cache keeps it: the file (PNG or SVG) and the colour scale
+/// (s, max) it used.
 struct DiskPicture {
     scale: [f64; 2],
-    png: Bytes,
+    file: Bytes,
 }
 
 impl DiskPicture {
     /// Bytes of the scale ahead of the PNG in the cache.
     const HEAD: usize = 16;
 
-    /// The cache's bytes: the scale's two floats (little-endian), then the PNG.
+    /// The cache's bytes: the scale's two floats (little-endian), then the file.
     fn into_bytes(self) -> Vec<u8> {
-        self.scale.iter().flat_map(|v| v.to_le_bytes()).chain(self.png).collect()
+        self.scale.iter().flat_map(|v| v.to_le_bytes()).chain(self.file).collect()
     }
 
     /// The picture from its cache bytes ([`DiskPicture::into_bytes`]).
     fn from_bytes(cached: Bytes) -> DiskPicture {
         let head = Self::HEAD.min(cached.len());
         let float = |k: usize| cached.get(8 * k..8 * k + 8).and_then(|b| b.try_into().ok()).map_or(0.0, f64::from_le_bytes);
-        DiskPicture { scale: [float(0), float(1)], png: cached.slice(head..) }
+        DiskPicture { scale: [float(0), float(1)], file: cached.slice(head..) }
     }
 
-    /// The answer of `POST /api/disk`: the PNG, and in the header `x-disk-scale` the colour
-    /// scale it used ("s max"), which a later request can send back as `scale`.
-    fn into_response(self) -> Response {
+    /// The answer of `POST /api/disk`: the file as `format`, and in the header `x-disk-scale`
+    /// the colour scale it used ("s max"), which a later request can send back as `scale`.
+    fn into_response(self, format: Format) -> Response {
         let scale = format!("{} {}", self.scale[0], self.scale[1]);
-        ([(header::CONTENT_TYPE, "image/png".to_string()), (header::CACHE_CONTROL, "no-store".to_string()), (DISK_SCALE, scale)], self.png).into_response()
+        ([(header::CONTENT_TYPE, format.content_type().to_string()), (header::CACHE_CONTROL, "no-store".to_string()), (DISK_SCALE, scale)], self.file).into_response()
     }
 }
 
@@ -624,7 +643,8 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
     points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
 }
 
-pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskRequest>) -> Result<Response, ApiError> {
+pub async fn disk(State(state): State<AppState>, AppQuery(query): AppQuery<DiskQuery>, AppJson(req): AppJson<DiskRequest>) -> Result<Response, ApiError> {
+    let format = query.format;
     let size = picture_size(req.size);
     // Checked before the cache, which keys "with a reference" apart from "without": a
     // reference too short for a border is refused even when the border alone is cached.
@@ -640,16 +660,16 @@ pub async fn disk(State(state): State<AppState>, AppJson(req): AppJson<DiskReque
         None => None,
     };
     let scale_bytes: Vec<u8> = scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
-    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes(), &scale_bytes]);
+    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes(), &scale_bytes, format.content_type().as_bytes()]);
     let n = req.border.len() as u64;
     let cached = state
         .cached_bytes(key, n * n, move |deadline| {
             let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
-            let (png, used) = disk_png_scaled(&disk, "dGLI disk · current state", scale, size, size)?;
-            Ok(DiskPicture { scale: [used.s, used.max], png: png.into() }.into_bytes())
+            let (file, used) = disk_scaled(&disk, "dGLI disk · current state", scale, size, size, format)?;
+            Ok(DiskPicture { scale: [used.s, used.max], file: file.into() }.into_bytes())
         })
         .await?;
-    Ok(DiskPicture::from_bytes(cached).into_response())
+    Ok(DiskPicture::from_bytes(cached).into_response(format))
 }
 
 /// `POST /api/disk/cells`: the values of the disk `POST /api/disk` draws for the same
