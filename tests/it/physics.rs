@@ -9,15 +9,15 @@ use close::{analyze, Analysis, FrameRange, Sample};
 use common::{error_in_edges, samples_in};
 
 /// Shape of a fixture, from its name, and the corners its outline has: a round towel none,
-/// a pentagon five, a napkin and a towel four, trousers seven, a T-shirt eleven (each a
-/// sharp turn of its outline).
+/// a pentagon five, a napkin and a towel four, trousers seven, a T-shirt ten (each a
+/// sharp turn of its outline; the bottom of its round neckline is a curve, not a corner).
 fn expected_corners(name: &str) -> usize {
     match name.split('_').next().unwrap_or_default() {
         "disk" => 0,
         "pentagon" => 5,
         "h1" | "q3" | "q5" | "r2" => 4,
         "trousers" => 7,
-        "tshirt" => 11,
+        "tshirt" => 10,
         other => panic!("unknown shape {other}"),
     }
 }

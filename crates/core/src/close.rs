@@ -11,6 +11,11 @@
 //!   straight or slanted side turns by nothing at that scale, a circle by 2π·2·WINDOW);
 //! - of the rim cells that pass both tests within one window, only the largest |value| is a
 //!   corner (one corner per bend, not one per staircase step);
+//! - and only when its bend turns by at least [`MIN_TURN`] at half that scale too
+//!   ([`CORE_WINDOW`], at a vertex within that reach): a corner concentrates its turn, so the
+//!   narrower chords still see all of it, while a smooth curve spreads it and they see about
+//!   half (a round neckline whose radius is a few windows turns past MIN_TURN at WINDOW, not
+//!   at CORE_WINDOW; two corners close together, a sleeve's end, keep each its own turn);
 //! - a polygon's own vertex is a corner too when it turns by at least [`MIN_VERTEX_TURN`]
 //!   between straight neighbours (the two vertices either side turn by less than
 //!   [`STRAIGHT_SHARE`] of it): a neckline of a few gentle polygon corners keeps them, a
@@ -54,6 +59,8 @@ pub const OUTLIER_Z: f64 = 7.0;
 pub const MIN_TURN: f64 = std::f64::consts::FRAC_PI_4;
 /// Share of the perimeter each chord of the turn test spans, on either side of a vertex.
 pub const WINDOW: f64 = 0.025;
+/// The narrower chords of the concentration test: half of [`WINDOW`].
+pub const CORE_WINDOW: f64 = WINDOW / 2.0;
 /// Least turn of an isolated polygon vertex, between straight neighbours, at a corner (20°).
 pub const MIN_VERTEX_TURN: f64 = std::f64::consts::PI / 9.0;
 /// The neighbours of an isolated polygon vertex turn, together, by less than this share of it.
@@ -95,9 +102,16 @@ pub fn corners(disk: &Disk, border: &[Point]) -> Corners {
     let n = disk.n();
     let threshold = corner_threshold(disk);
     let rim = |v: usize| disk.get((v + n - 1) % n, v).abs();
-    let reach = window_reach(border);
+    let reach = window_reach(border, WINDOW);
+    let core = window_reach(border, CORE_WINDOW);
     let passes = |v: usize| threshold > 0.0 && rim(v) > threshold;
     let candidate: Vec<bool> = (0..n).map(|v| passes(v) && turn(border, v, &reach).abs() >= MIN_TURN).collect();
+    // The bend at v is concentrated when a vertex within CORE_WINDOW of it turns by
+    // MIN_TURN at that scale too (the corner need not be the vertex of the largest rim cell).
+    let concentrated = |v: usize| {
+        let (back, forward) = core[v];
+        (0..=back).map(|k| (v + n - k % n) % n).chain((1..=forward).map(|k| (v + k) % n)).any(|u| turn(border, u, &core).abs() >= MIN_TURN)
+    };
     let single: Vec<(usize, usize)> = vec![(1, 1); n];
     let vertex_turn: Vec<f64> = (0..n).map(|v| turn(border, v, &single).abs()).collect();
     let isolated = |v: usize| {
@@ -111,20 +125,20 @@ pub fn corners(disk: &Disk, border: &[Point]) -> Corners {
             let (back, forward) = reach[v];
             let largest = (1..=back).map(|k| (v + n - k % n) % n).all(|u| !candidate[u] || rim(u) < rim(v))
                 && (1..=forward).map(|k| (v + k) % n).all(|u| !candidate[u] || rim(u) <= rim(v));
-            (candidate[v] && largest) || (passes(v) && isolated(v))
+            (candidate[v] && largest && concentrated(v)) || (passes(v) && isolated(v))
         })
         .collect();
     let angles = vertices.iter().map(|&v| param_to_angle(v as f64, n)).collect();
     Corners { vertices, angles, threshold }
 }
 
-/// For each vertex, how many edges back and forward one [`WINDOW`] of the perimeter reaches
-/// (at least one, less than half the border).
-fn window_reach(border: &[Point]) -> Vec<(usize, usize)> {
+/// For each vertex, how many edges back and forward a `window` share of the perimeter
+/// reaches (at least one, less than half the border).
+fn window_reach(border: &[Point], window: f64) -> Vec<(usize, usize)> {
     let n = border.len();
     let length = |k: usize| (border[(k + 1) % n].xy() - border[k % n].xy()).norm();
     let perimeter: f64 = (0..n).map(length).sum();
-    let span = WINDOW * perimeter;
+    let span = window * perimeter;
     let most = (n / 2).saturating_sub(1).max(1);
     let walk = |edges: &mut dyn Iterator<Item = usize>| {
         let mut run = 0.0;
@@ -249,5 +263,18 @@ mod tests {
         let (corners, truth, spurious) = shirt_corners(0.6);
         assert!(truth.iter().all(|&t| corners.iter().any(|&c| near(c, t, 0.075))), "{corners:?}");
         assert!(spurious.is_empty(), "corners in the neckline or along a side: {spurious:?}");
+    }
+
+    #[test]
+    fn a_tight_round_neckline_spreads_its_turn_and_has_no_corner() {
+        // Radius 0.4 (a fifth of the body's width): ~48° at WINDOW, past MIN_TURN, but only
+        // about half of it at CORE_WINDOW, where every corner of the shirt keeps all of its own.
+        let (border, _) = tshirt(0.4, 0.05);
+        let reach = window_reach(&border, WINDOW);
+        let widest = (0..border.len()).filter(|&v| border[v].x.abs() < 0.35 && (0.55..0.95).contains(&border[v].y)).map(|v| turn(&border, v, &reach).abs()).fold(0.0, f64::max);
+        assert!(widest >= MIN_TURN, "the neckline must turn past MIN_TURN at WINDOW for this test to mean anything: {}", widest.to_degrees());
+        let (corners, truth, spurious) = shirt_corners(0.4);
+        assert!(truth.iter().all(|&t| corners.iter().any(|&c| near(c, t, 0.075))), "{corners:?}");
+        assert!(spurious.is_empty(), "corners in the neckline: {spurious:?}");
     }
 }
