@@ -485,16 +485,35 @@ pub struct InterpolateRequest {
     /// `POST /api/disk` takes it); by default `border` itself.
     #[serde(default)]
     reference: Option<Vec<[f64; 3]>>,
-    from: [f64; 2],
-    to: [f64; 2],
+    /// Between two folds: `from` and `to`; or one fold turned over: its `arcs` (an analysis
+    /// step's `arcs`) about `line` (its `line`; by default the line through the first arc's
+    /// start and the last arc's end). See [`crate::interpolate::Motion`].
+    #[serde(default)]
+    from: Option<[f64; 2]>,
+    #[serde(default)]
+    to: Option<[f64; 2]>,
+    #[serde(default)]
+    arcs: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    line: Option<LineRequest>,
     #[serde(default = "default_steps")]
     steps: usize,
 }
 
+/// A fold line as an analysis reports it (`steps[k].line`): a point and a direction, XY.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineRequest {
+    point: [f64; 2],
+    direction: [f64; 2],
+}
+
 pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<JsonBytes, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
+    let line = req.line.map(|l| crate::interpolate::Line { point: l.point, direction: l.direction });
+    let motion = crate::interpolate::Motion::of(req.from, req.to, req.arcs, line)?;
     let answer = state
-        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, req.from, req.to, req.steps)?))
+        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, &motion, req.steps)?))
         .await?;
     Ok(JsonBytes(answer))
 }
