@@ -158,3 +158,33 @@ fn generated_stacked_legs_fold_as_two_arcs() {
         assert!(error < 0.01, "{case}: RMSE {error:.4}");
     }
 }
+
+/// Each step's fold, turned over by the interpolation along the line and arcs the analysis
+/// reports, starts on the state before it, never moves a vertex outside its arcs, and ends
+/// on the analysis's prediction: step by step from the start border to `predicted_end`.
+#[test]
+fn interpolation_turns_each_steps_arcs_onto_the_prediction() {
+    let mut multi_arc = 0;
+    for (sample, analysis) in analysed("physics-mujoco/border") {
+        let n = analysis.n;
+        let mut state = analysis.start_border().to_vec();
+        for (k, step) in analysis.steps.iter().enumerate().filter(|(_, s)| s.detection.fold.is_some()) {
+            let arcs = &step.detection.arcs;
+            multi_arc += usize::from(arcs.len() > 1);
+            let motion = close::interpolate::turn_arcs(&state, arcs, step.line, 11).unwrap();
+            let before: Vec<[f64; 3]> = state.iter().map(close::border::to_xyz).collect();
+            assert_eq!(motion.borders[0], before, "{} step {}: turn 0 is the state before", sample.name, k + 1);
+            let inside: Vec<usize> = arcs.iter().flat_map(|&a| close::fold::reflect::folded_vertices(n, a)).collect();
+            for (t, border) in motion.borders.iter().enumerate() {
+                for v in (0..n).filter(|v| !inside.contains(v)) {
+                    assert_eq!(border[v], before[v], "{} step {}, turn {t}: vertex {v} lies outside the arcs {arcs:?}", sample.name, k + 1);
+                }
+            }
+            state = motion.borders[10].iter().map(close::border::from_xyz).collect();
+        }
+        let worst = state.iter().zip(&analysis.predicted_end).map(|(p, q)| (p.x - q[0]).abs().max((p.y - q[1]).abs()).max((p.z - q[2]).abs())).fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{}: the last turn is {worst} off the prediction", sample.name);
+    }
+    // The fixtures' multi-arc second folds (trousers, shirt) are among them.
+    assert!(multi_arc >= 1, "no multi-arc step among the fixtures");
+}
