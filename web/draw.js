@@ -1,7 +1,7 @@
 // Canvas drawing shared by the Interpolate and Plan views: a viewport from border
 // coordinates to pixels, cloth layers, fold lines, arrows and corner numbers.
 
-import { TAU, applyFold, foldLine, foldedVertices, turnAbout } from "./fold.mjs";
+import { TAU, applyFold, arcsVertices, foldLine, turnAbout, turnArcs } from "./fold.mjs";
 
 /** Maps border points to a canvas, fitted to `bounds` {x0, x1, y0, y1} with `pad` pixels. */
 export function viewport(canvas, bounds, pad) {
@@ -77,21 +77,22 @@ function reflect(p, a, b) {
 
 /**
  * How a fold is made on `border`. A fold is [f1, f2], made along the line through its two
- * border points; or {fold, line, turn}, made along `line` (an analysis step's, for a fold
- * whose two points lie on top of each other) and turned the fraction `turn` of the way.
- * Gives its angles, two points a, b of its line, and where it takes a point p.
+ * border points; or {fold, line, turn, arcs}, made along `line` (an analysis step's, for a
+ * fold whose two points lie on top of each other or that turns several `arcs`, by default
+ * [fold]) and turned the fraction `turn` of the way. Gives its angles, the arcs it turns,
+ * two points a, b of its line, and where it takes a point p.
  */
 export function made(border, f) {
   if (Array.isArray(f)) {
     const [a, b] = foldLine(border, f);
-    return { fold: f, a, b, move: (p) => reflect(p, a, b) };
+    return { fold: f, arcs: [f], a, b, move: (p) => reflect(p, a, b) };
   }
   // a and b span the border along the line, so they also draw it across the cloth.
   const { point, direction } = f.line;
   const along = border.map((p) => (p[0] - point[0]) * direction[0] + (p[1] - point[1]) * direction[1]);
   const at = (t) => [point[0] + t * direction[0], point[1] + t * direction[1], 0];
   const [lo, hi] = [Math.min(...along), Math.max(...along)];
-  return { fold: f.fold, a: at(lo), b: at(hi > lo ? hi : lo + 1), move: (p) => turnAbout(p, f.line, f.turn ?? 1) };
+  return { fold: f.fold, arcs: f.arcs ?? [f.fold], a: at(lo), b: at(hi > lo ? hi : lo + 1), move: (p) => turnAbout(p, f.line, f.turn ?? 1) };
 }
 
 /** Whether fold `f` has begun: a fold along a line turned by nothing leaves the cloth as it lies. */
@@ -100,11 +101,8 @@ const begun = (f) => Array.isArray(f) || (f.turn ?? 1) > 0;
 /** The border after fold `f` (see `made`). */
 export function folded(border, f) {
   if (Array.isArray(f)) return applyFold(border, f);
-  if (!begun(f)) return border.map((p) => p.slice());
-  const { move } = made(border, f);
-  const out = border.map((p) => p.slice());
-  for (const v of foldedVertices(border.length, f.fold)) out[v] = move(border[v]);
-  return out;
+  // Only the arcs turn, as the analysis predicts (fold.mjs, checked against the server).
+  return turnArcs(border, f.arcs ?? [f.fold], f.line, f.turn ?? 1);
 }
 
 /** The border after `folds` (see `made`), in order. */
@@ -120,8 +118,8 @@ export function layers(flat, folds) {
   let stack = [{ points: flat, flips: 0 }];
   let border = flat;
   for (const f of folds.filter(begun)) {
-    const { fold, a, b, move } = made(border, f);
-    const moved = foldedVertices(border.length, fold);
+    const { arcs, a, b, move } = made(border, f);
+    const moved = arcsVertices(border.length, arcs);
     if (moved.length && Math.hypot(b[0] - a[0], b[1] - a[1]) > 0) {
       const centre = moved.reduce((s, v) => [s[0] + border[v][0], s[1] + border[v][1], 0], [0, 0, 0]).map((c) => c / moved.length);
       const sign = Math.sign(side(a, b, centre)) || 1;
@@ -259,7 +257,7 @@ export function stacked(flat, folds) {
   for (const f of folds.filter(begun)) {
     const top = Math.max(...border.map((p) => p[2]));
     const after = folded(border, f);
-    for (const v of foldedVertices(n, made(border, f).fold)) after[v][2] = 2 * top + 0.01 * radius - border[v][2];
+    for (const v of arcsVertices(n, made(border, f).arcs)) after[v][2] = 2 * top + 0.01 * radius - border[v][2];
     border = after;
   }
   return border;

@@ -1,10 +1,16 @@
-// Fold interpolation and reflection: the browser's copy of src/interpolate.rs and
-// src/fold/reflect.rs (same rules, same floating-point order; tests/http.rs checks parity).
+// Fold interpolation and reflection: the browser's copy of crates/core/src/interpolate.rs
+// and crates/core/src/fold/reflect.rs (same rules, same floating-point order;
+// tests/it/interpolate_parity.rs checks parity).
 //
 // A fold (f1, f2) folds the border arc walked anticlockwise from f1 to f2. Between two
 // folds each endpoint moves linearly; the span (f2 − f1 mod 2π) moves straight from its
 // start to its end value, never through 0 or 2π, and of the ways that do so the one with
 // the least travel |d1| + |d2| wins (ties: the shortest way for f1).
+//
+// A fold of several arcs (an analysis step's `arcs`), or one made along a line of its own
+// (`steps[k].line`), is turned over instead: every vertex inside one of its arcs turns about
+// the one line by the same angle π·turn, seen from above (`turnArcs`); turn 1 is the
+// reflection the analysis predicts, and vertices outside the arcs never move.
 
 export const TAU = 2 * Math.PI;
 // Rust's f64::MIN_POSITIVE (the smallest normal number).
@@ -122,4 +128,62 @@ export function turnAbout(p, line, turn = 1) {
   const [fx, fy] = [line.point[0] + t * ux, line.point[1] + t * uy];
   const c = Math.cos(Math.PI * turn);
   return [fx + c * (p[0] - fx), fy + c * (p[1] - fy), p[2]];
+}
+
+/**
+ * The XY line through a and b as {point, direction} (unit), as close_core's `Line::through`;
+ * null when they coincide.
+ */
+export function lineThrough(a, b) {
+  const dx = b[0] - a[0];
+  const dy = b[1] - a[1];
+  const len = Math.hypot(dx, dy);
+  const scale = 1 + Math.hypot(a[0], a[1], a[2]) + Math.hypot(b[0], b[1], b[2]);
+  return len > 1e-12 * scale ? { point: [a[0], a[1]], direction: [dx / len, dy / len] } : null;
+}
+
+/** p reflected across `line` ({point, direction}, unit) in XY, z kept: `Line::reflect`. */
+export function reflectLine(p, line) {
+  const [ux, uy] = line.direction;
+  const px = p[0] - line.point[0];
+  const py = p[1] - line.point[1];
+  const t = px * ux + py * uy;
+  return [line.point[0] + 2 * t * ux - px, line.point[1] + 2 * t * uy - py, p[2]];
+}
+
+/** Vertices strictly inside any of `arcs` (each [a, b], anticlockwise), increasing, each once. */
+export function arcsVertices(n, arcs) {
+  const inside = new Set(arcs.flatMap((arc) => foldedVertices(n, arc)));
+  return [...inside].sort((a, b) => a - b);
+}
+
+/**
+ * The line a turned fold uses: `line` made unit, or the line through the border points at
+ * the first arc's start and the last arc's end (null when those coincide).
+ */
+export function arcsLine(points, arcs, line = null) {
+  if (line) {
+    const len = Math.hypot(line.direction[0], line.direction[1]);
+    return { point: line.point.slice(), direction: [line.direction[0] / len, line.direction[1] / len] };
+  }
+  const [a, b] = foldLine(points, [arcs[0][0], arcs[arcs.length - 1][1]]);
+  return lineThrough(a, b);
+}
+
+/**
+ * `points` with `arcs` turned the fraction `turn` of a half turn about `line` (see
+ * `arcsLine`): 0 leaves them as given, 1 reflects them (the analysis's prediction).
+ */
+export function turnArcs(points, arcs, line = null, turn = 1) {
+  const out = points.map((p) => p.slice());
+  const about = arcsLine(points, arcs, line);
+  if (!about || turn <= 0) return out;
+  for (const v of arcsVertices(points.length, arcs)) out[v] = turn >= 1 ? reflectLine(points[v], about) : turnAbout(points[v], about, turn);
+  return out;
+}
+
+/** `steps` states of `turnArcs`, turns t/(steps−1) (both ends included): {turns, borders}. */
+export function turnPath(points, arcs, line, steps) {
+  const turns = Array.from({ length: steps }, (_, t) => t / (steps - 1));
+  return { turns, borders: turns.map((turn) => turnArcs(points, arcs, line, turn)) };
 }

@@ -5,7 +5,7 @@
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
-import { applyFold, foldAt, foldPath, wrap, TAU } from "./fold.mjs";
+import { applyFold, foldAt, foldPath, turnPath, wrap, TAU } from "./fold.mjs";
 import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
 import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, textSize, viewport } from "./draw.js";
 import { fmtFold } from "./format.js";
@@ -112,13 +112,15 @@ const anglesOf = (f) => (Array.isArray(f) ? f : f.fold);
 /**
  * Fold k of the analysis as the analysis made it, turned the fraction `turn` of the way:
  * along the line it reports when the step's two fold points lie on top of each other (a fold
- * through stacked layers, where the line through them would point anywhere), so the motion
- * ends on the predicted state; otherwise on the fold circle from (f1, f1) to (f1, f2).
+ * through stacked layers, where the line through them would point anywhere) or when it turns
+ * several arcs (a multi-arc fold: only they turn, all about that line), so the motion ends
+ * on the predicted state; otherwise on the fold circle from (f1, f1) to (f1, f2).
  */
 function sampleFold(k, turn = 1) {
   const f = view.result.folds[k];
   const step = (view.result.steps || []).filter((s) => s.fold)[k];
-  if (step?.synthesis?.direction && step.line) return { fold: f, line: step.line, turn };
+  const arcs = step?.arcs?.length > 1 ? step.arcs : [f];
+  if (step?.line && (step.synthesis?.direction || arcs.length > 1)) return { fold: f, arcs, line: step.line, turn };
   return turn >= 1 ? f : foldAt([f[0], f[0]], f, turn);
 }
 
@@ -375,17 +377,25 @@ async function checkServer() {
   // The sequence is checked one fold at a time on the state before it: here, the current one.
   const folds = foldsNow();
   const prior = view.mode === SEQUENCE ? folds.slice(0, -1) : view.prior;
+  const last = folds[folds.length - 1];
+  const base = foldAll(view.border, prior);
+  // A fold made along a line of its own turns its arcs about it; any other moves on the circle.
+  const turned = !Array.isArray(last) && last.line;
   const [from, to] = view.mode === SEQUENCE ? (() => {
     const f = view.result.folds[folds.length - 1];
     return [[f[0], f[0]], f];
   })() : [view.from, view.to];
-  const base = foldAll(view.border, prior);
+  const motion = turned ? { arcs: last.arcs, line: last.line } : { from, to };
+  const path = turned ? null : foldPath(from, to, steps);
+  const ours = turned ? turnPath(base, last.arcs, last.line, steps).borders : path.map((f) => applyFold(base, f));
   try {
-    const res = await api.interpolate({ border: base, reference: view.border, from, to, steps });
+    const res = await api.interpolate({ border: base, reference: view.border, ...motion, steps });
     let worst = 0;
-    foldPath(from, to, steps).forEach((f, k) => {
+    path?.forEach((f, k) => {
       worst = Math.max(worst, Math.abs(f[0] - res.folds[k][0]), Math.abs(f[1] - res.folds[k][1]));
-      applyFold(base, f).forEach((p, v) => {
+    });
+    ours.forEach((border, k) => {
+      border.forEach((p, v) => {
         for (let c = 0; c < 3; c++) worst = Math.max(worst, Math.abs(p[c] - res.borders[k][v][c]));
       });
     });

@@ -80,8 +80,18 @@ def dgli_disk(border: npt.ArrayLike, *, reference: Optional[npt.ArrayLike] = Non
 def disk_layout(n: int) -> Tuple[FloatArray, FloatArray]:
     """(radius, angle) of each pair of `dgli_disk`'s vector on the disk."""
 
-def interpolate(border: npt.ArrayLike, from_: Tuple[float, float], to: Tuple[float, float], steps: int, *, reference: Optional[npt.ArrayLike] = None) -> FloatArray:
-    """(steps, N, 3) borders of the folding motion from fold `from_` to fold `to`."""
+def interpolate(
+    border: npt.ArrayLike,
+    from_: Optional[Tuple[float, float]] = None,
+    to: Optional[Tuple[float, float]] = None,
+    steps: int = 60,
+    *,
+    reference: Optional[npt.ArrayLike] = None,
+    arcs: Optional[Sequence[Tuple[float, float]]] = None,
+    line: Optional[Dict[str, Tuple[float, float]]] = None,
+) -> FloatArray:
+    """(steps, N, 3) borders of the folding motion from fold `from_` to fold `to`, or of a
+    fold's `arcs` turned over about `line` (an analysis step's `arcs` and `line`)."""
 
 def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> Dict[str, Any]:
     """The `POST /api/plan` answer: how to reach the goal fold from the sample's state."""

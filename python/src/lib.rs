@@ -444,27 +444,43 @@ fn disk_layout(py: Python<'_>, n: usize) -> PyResult<(Floats<'_>, Floats<'_>)> {
     Ok((radius.into_pyarray(py), angle.into_pyarray(py)))
 }
 
-/// A folding motion between two folds (f1, f2) → (g1, g2) (radians, vertex k at 2πk/N): each
-/// endpoint moves along the border circle, and each of the `steps` intermediate folds is
-/// applied to `border` ((N, 3), the flat border, or a folded state with its flat `reference`).
-/// Returns a (steps, N, 3) array of borders, as `POST /api/interpolate` does.
+/// A folding motion (radians, vertex k at 2πk/N) on `border` ((N, 3), the flat border, or a
+/// folded state with its flat `reference`): between two folds `from_` (f1, f2) → `to`
+/// (g1, g2), each endpoint moving along the border circle; or one fold's `arcs` (an analysis
+/// step's `arcs`, [(a, b), ...]) turned over together about `line` (its `line`, a dict
+/// {"point": (x, y), "direction": (dx, dy)}; by default through the first arc's start and the
+/// last arc's end). Returns a (steps, N, 3) array of borders, as `POST /api/interpolate` does.
 #[pyfunction]
-#[pyo3(signature = (border, from_, to, steps, *, reference = None))]
+#[pyo3(signature = (border, from_ = None, to = None, steps = 60, *, reference = None, arcs = None, line = None))]
+#[allow(clippy::too_many_arguments)]
 fn interpolate<'py>(
     py: Python<'py>,
     border: &Bound<'py, PyAny>,
-    from_: (f64, f64),
-    to: (f64, f64),
+    from_: Option<(f64, f64)>,
+    to: Option<(f64, f64)>,
     steps: usize,
     reference: Option<&Bound<'py, PyAny>>,
+    arcs: Option<Vec<[f64; 2]>>,
+    line: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let border = points(border, "border")?;
     let reference = reference.map(|r| points(r, "reference")).transpose()?;
+    let pair = |p: (f64, f64)| [p.0, p.1];
+    let line = line.map(fold_line).transpose()?;
+    let motion = close::interpolate::Motion::of(from_.map(pair), to.map(pair), arcs, line).map_err(close_error)?;
     Budget::SERVER.interpolation(border.len(), steps).map_err(close_error)?;
-    let motion = py
-        .detach(|| close::interpolate::interpolate_border(border, reference, [from_.0, from_.1], [to.0, to.1], steps))
-        .map_err(close_error)?;
+    let motion = py.detach(|| close::interpolate::interpolate_border(border, reference, &motion, steps)).map_err(close_error)?;
     frames_array(py, &motion.borders)
+}
+
+/// A fold line given as an analysis reports it: {"point": (x, y), "direction": (dx, dy)}.
+fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<close::interpolate::Line> {
+    let pair = |key: &str| -> PyResult<[f64; 2]> {
+        line.get_item(key)
+            .and_then(|v| v.extract())
+            .map_err(|_| invalid(format!("line: expected a dict {{\"point\": (x, y), \"direction\": (dx, dy)}}, without a usable \"{key}\"")))
+    };
+    Ok(close::interpolate::Line { point: pair("point")?, direction: pair("direction")? })
 }
 
 /// How to reach the goal fold (g1, g2) (radians) from the state a sample ends in: the answer

@@ -374,13 +374,56 @@ async fn interpolation_moves_from_one_fold_to_the_other() {
     for (body, status, words) in [
         (json!({"border": border, "from": [0, 1], "to": [1, 2], "steps": 1}), StatusCode::BAD_REQUEST, "steps"),
         (json!({"border": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "from": [0, 1], "to": [1, 2]}), StatusCode::UNPROCESSABLE_ENTITY, "too few"),
-        (json!({"border": border, "from": [0, 1]}), StatusCode::UNPROCESSABLE_ENTITY, "to"),
+        (json!({"border": border, "from": [0, 1]}), StatusCode::BAD_REQUEST, "`to`"),
         (json!({"border": square(2000), "from": [0, 1], "to": [1, 2], "steps": 1000}), StatusCode::PAYLOAD_TOO_LARGE, "steps"),
     ] {
         let error = post_json(&app, "/api/interpolate", &body).await.error(status);
         assert!(error.contains(words), "{error:?} should name {words:?}");
     }
     assert!(post(&app, "/api/interpolate", "text/plain", "{}").await.error(StatusCode::UNSUPPORTED_MEDIA_TYPE).contains("application/json"));
+    assert_healthy(&app).await;
+}
+
+/// The other form of `/api/interpolate`: a fold's arcs (an analysis step's `arcs` and `line`)
+/// turned over, only they moving, ending on the reflection across the line.
+#[tokio::test]
+async fn interpolation_turns_a_folds_arcs_over() {
+    let app = test_app();
+    let border = square(4);
+    // Corners 1 and 3 of the square (vertices 4 and 12 of 16) turned over the diagonal.
+    let q = std::f64::consts::TAU / 16.0;
+    let arcs = [[3.0 * q, 5.0 * q], [11.0 * q, 13.0 * q]];
+    let line = json!({"point": [0.0, 0.0], "direction": [1.0, 1.0]});
+    let a = post_json(&app, "/api/interpolate", &json!({"border": border, "arcs": arcs, "line": line, "steps": 5})).await;
+    assert_eq!(a.status, StatusCode::OK, "{}", String::from_utf8_lossy(&a.body));
+    let v = a.json();
+    let borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(v["borders"].clone()).unwrap();
+    assert_eq!(borders.len(), 5);
+    assert_eq!(v["turns"], json!([0.0, 0.25, 0.5, 0.75, 1.0]));
+    assert_eq!(v["folds"], json!(vec![[3.0 * q, 13.0 * q]; 5]));
+    let direction: [f64; 2] = serde_json::from_value(v["line"]["direction"].clone()).unwrap();
+    assert!(direction.iter().all(|d| (d - std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-15), "made unit: {direction:?}");
+    assert_eq!(borders[0], border);
+    for (k, p) in border.iter().enumerate() {
+        let end = borders[4][k];
+        if k == 4 || k == 12 {
+            assert!((end[0] - p[1]).abs() < 1e-12 && (end[1] - p[0]).abs() < 1e-12, "vertex {k} mirrored: {end:?}");
+        } else {
+            assert!(borders.iter().all(|b| b[k] == *p), "vertex {k} outside the arcs moved");
+        }
+    }
+    for (body, words) in [
+        (json!({"border": border, "arcs": arcs, "from": [0, 1], "to": [1, 2]}), "not both"),
+        (json!({"border": border, "from": [0, 1], "to": [1, 2], "line": line}), "give `arcs`"),
+        (json!({"border": border}), "give the folds"),
+        (json!({"border": border, "arcs": []}), "at least one arc"),
+        (json!({"border": border, "arcs": arcs, "line": {"point": [0, 0], "direction": [0, 0]}}), "no length"),
+    ] {
+        let error = post_json(&app, "/api/interpolate", &body).await.error(StatusCode::BAD_REQUEST);
+        assert!(error.contains(words), "{error:?} should name {words:?}");
+    }
+    let error = post_json(&app, "/api/interpolate", &json!({"border": border, "arcs": arcs, "line": {"point": [0, 0]}})).await.error(StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(error.contains("direction"), "{error:?}");
     assert_healthy(&app).await;
 }
 

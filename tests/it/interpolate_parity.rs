@@ -1,34 +1,62 @@
 //! The browser's fold interpolation (`web/fold.mjs`, run in node) agrees with the Rust one
-//! (`close::interpolate`) to 1e-9, folds and folded borders, on edge and random cases.
+//! (`close::interpolate`) to 1e-9, folds and folded borders, on edge and random cases: folds
+//! moving on the fold circle, and folds whose arcs turn over about one line (multi-arc folds
+//! of an analysis, and random arcs and lines).
 
 use std::f64::consts::{PI, TAU};
 use std::io::Write;
 use std::process::{Command, Stdio};
 
 use close::border::Point;
-use close::interpolate::interpolate;
+use close::interpolate::{interpolate, turn_arcs, Line};
 use close::rng::SplitMix64;
+use close::{analyze, FrameRange};
 use serde_json::{json, Value};
+
+use crate::common::samples_in;
 
 /// node reads the cases on stdin, runs the module's functions, prints the answers.
 const SCRIPT: &str = r#"
-const { foldPath, applyFold } = await import(process.argv[1]);
+const { foldPath, applyFold, turnPath } = await import(process.argv[1]);
 let input = "";
 for await (const chunk of process.stdin) input += chunk;
-const { border, cases } = JSON.parse(input);
+const { border, cases, turns } = JSON.parse(input);
 const out = cases.map(([from, to, steps]) => {
   const folds = foldPath(from, to, steps);
   return { folds, borders: folds.map((f) => applyFold(border, f)) };
 });
-process.stdout.write(JSON.stringify(out));
+const turned = turns.map(({ border, arcs, line, steps }) => turnPath(border, arcs, line, steps));
+process.stdout.write(JSON.stringify({ out, turned }));
 "#;
+
+/// Runs [`SCRIPT`] on `input` in node.
+fn node(input: &Value) -> Value {
+    if Command::new("node").arg("--version").output().is_err() {
+        panic!("node is not installed: the JS/Rust parity test needs it (apt-get install nodejs)");
+    }
+    let module = format!("file://{}/web/fold.mjs", env!("CARGO_MANIFEST_DIR"));
+    let mut child = Command::new("node")
+        .args(["--input-type=module", "-e", SCRIPT, &module])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn node");
+    child.stdin.take().expect("stdin").write_all(input.to_string().as_bytes()).expect("write cases");
+    let output = child.wait_with_output().expect("node runs");
+    assert!(output.status.success(), "node failed: {}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout).expect("node prints JSON")
+}
+
+/// The largest coordinate difference between two lists of borders.
+fn worst(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter().zip(b).flat_map(|(p, q)| p.iter().zip(q)).flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]).abs())).fold(0.0, f64::max)
+}
 
 #[test]
 #[ignore = "needs node (apt-get install nodejs); run with `cargo test -- --ignored`"]
 fn browser_and_server_interpolate_alike() {
-    if Command::new("node").arg("--version").output().is_err() {
-        panic!("node is not installed: the JS/Rust parity test needs it (apt-get install nodejs)");
-    }
     // An irregular 13-gon (x, y, z), so reflections of every edge are exercised.
     let border: Vec<[f64; 3]> =
         (0..13).map(|k| k as f64 * TAU / 13.0).map(|a| [(1.0 + 0.3 * (3.0 * a).sin()) * a.cos(), (1.0 + 0.2 * (2.0 * a).cos()) * a.sin(), 0.1 * a]).collect();
@@ -46,20 +74,8 @@ fn browser_and_server_interpolate_alike() {
         let mut angle = || rng.uniform() * 8.0 - 1.0;
         ([angle(), angle()], [angle(), angle()], 2 + (rng.uniform() * 30.0) as usize)
     }));
-    let input = json!({ "border": border, "cases": cases.iter().map(|(f, t, s)| json!([f, t, s])).collect::<Vec<_>>() });
-
-    let module = format!("file://{}/web/fold.mjs", env!("CARGO_MANIFEST_DIR"));
-    let mut child = Command::new("node")
-        .args(["--input-type=module", "-e", SCRIPT, &module])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn node");
-    child.stdin.take().expect("stdin").write_all(input.to_string().as_bytes()).expect("write cases");
-    let output = child.wait_with_output().expect("node runs");
-    assert!(output.status.success(), "node failed: {}", String::from_utf8_lossy(&output.stderr));
-    let js: Vec<Value> = serde_json::from_slice(&output.stdout).expect("node prints JSON");
+    let input = json!({ "border": border, "cases": cases.iter().map(|(f, t, s)| json!([f, t, s])).collect::<Vec<_>>(), "turns": [] });
+    let js: Vec<Value> = serde_json::from_value(node(&input)["out"].clone()).expect("a list");
     assert_eq!(js.len(), cases.len());
 
     let points: Vec<Point> = border.iter().map(|&p| Point::from(p)).collect();
@@ -71,9 +87,50 @@ fn browser_and_server_interpolate_alike() {
         for (k, (a, b)) in rust.folds.iter().zip(&js_folds).enumerate() {
             assert!((a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9, "{from:?} → {to:?} step {k}: rust {a:?}, js {b:?}");
         }
-        for (k, (a, b)) in rust.borders.iter().zip(&js_borders).enumerate() {
-            let worst = a.iter().zip(b).flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]).abs())).fold(0.0, f64::max);
-            assert!(worst < 1e-9, "{from:?} → {to:?} step {k}: borders differ by {worst}");
+        let worst = worst(&rust.borders, &js_borders);
+        assert!(worst < 1e-9, "{from:?} → {to:?}: borders differ by {worst}");
+    }
+}
+
+/// A turned fold: the arcs and lines of every folded step of the MuJoCo second folds (the
+/// trousers' and the shirt's multi-arc ones among them) on the state before it, and random
+/// arcs about random lines (or the default line through the span) on an irregular 13-gon.
+#[test]
+#[ignore = "needs node (apt-get install nodejs); run with `cargo test -- --ignored`"]
+fn browser_and_server_turn_arcs_alike() {
+    let mut turns: Vec<(Vec<Point>, Vec<[f64; 2]>, Option<Line>, usize)> = Vec::new();
+    for sample in samples_in("physics-mujoco/border") {
+        let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+        let mut state = analysis.start_border().to_vec();
+        for step in analysis.steps.iter().filter(|s| s.detection.fold.is_some()) {
+            turns.push((state.clone(), step.detection.arcs.clone(), step.line, 9));
+            state = close::fold::reflect::apply_arcs(&state, &step.detection.arcs, &step.line.expect("a fold has a line"));
         }
+    }
+    assert!(turns.iter().any(|(_, arcs, _, _)| arcs.len() > 1), "a multi-arc fold among the cases");
+    let gon: Vec<Point> = (0..13).map(|k| k as f64 * TAU / 13.0).map(|a| Point::new((1.0 + 0.3 * (3.0 * a).sin()) * a.cos(), (1.0 + 0.2 * (2.0 * a).cos()) * a.sin(), 0.1 * a)).collect();
+    let mut rng = SplitMix64::new(7);
+    for case in 0..100 {
+        let mut cuts: Vec<f64> = (0..2 + 2 * (case % 3)).map(|_| rng.uniform() * TAU).collect();
+        cuts.sort_by(f64::total_cmp);
+        let arcs: Vec<[f64; 2]> = cuts.chunks(2).map(|c| [c[0], c[1]]).collect();
+        let phi = rng.uniform() * PI;
+        let line = (case % 4 != 0).then(|| Line { point: [rng.uniform() - 0.5, rng.uniform() - 0.5], direction: [phi.cos(), phi.sin()] });
+        turns.push((gon.clone(), arcs, line, 2 + (rng.uniform() * 20.0) as usize));
+    }
+    let rust: Vec<_> = turns.iter().map(|(border, arcs, line, steps)| turn_arcs(border, arcs, *line, *steps).expect("a valid turn")).collect();
+    let xyz = |b: &[Point]| b.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>();
+    let input = json!({
+        "border": [],
+        "cases": [],
+        "turns": turns.iter().map(|(border, arcs, line, steps)| json!({"border": xyz(border), "arcs": arcs, "line": line, "steps": steps})).collect::<Vec<_>>(),
+    });
+    let js = node(&input)["turned"].clone();
+    for (k, (rust, js)) in rust.iter().zip(js.as_array().expect("a list")).enumerate() {
+        let js_turns: Vec<f64> = serde_json::from_value(js["turns"].clone()).expect("turns");
+        let js_borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(js["borders"].clone()).expect("borders");
+        assert_eq!(Some(js_turns), rust.turns, "case {k}");
+        let worst = worst(&rust.borders, &js_borders);
+        assert!(worst < 1e-9, "case {k} ({:?}): borders differ by {worst}", turns[k].1);
     }
 }

@@ -1,15 +1,30 @@
-//! Interpolation between two folds: a continuous folding motion (the paper's fold interpolation on the fold circle).
+//! Interpolation of folds: a continuous folding motion, either between two folds on the
+//! fold circle (the paper's fold interpolation) or one fold's arcs turned over about its line.
 //!
-//! A fold (f1, f2) folds the border arc walked anticlockwise from f1 to f2; its span is
-//! s = (f2 − f1) mod 2π. Going from (f1, f2) to (g1, g2), endpoint k moves linearly by
-//! d_k, with d1 ≡ g1 − f1 and d2 ≡ g2 − f2 (mod 2π). The folded arc must never jump, so the
-//! span moves straight from s_from to s_to without passing 0 or 2π: d2 − d1 = s_to − s_from.
-//! Of the d1 = shortest(g1 − f1) + 2πm (m ∈ {0, −1, 1}, in that order on ties) the one with
-//! the least travel |d1| + |d2| wins: both endpoints take the shorter way round unless that
-//! would make them cross, and then the one whose long way is cheaper goes the other way.
-//! Fold t of `steps` (t = 0 … steps−1) is (f1 + τ·d1, f2 + τ·d2) mod 2π, τ = t/(steps−1);
-//! the first and last folds are `from` and `to` exactly. `web/fold.mjs` implements the same
-//! rules for the browser (a test checks parity).
+//! **Between two folds.** A fold (f1, f2) folds the border arc walked anticlockwise from f1
+//! to f2; its span is s = (f2 − f1) mod 2π. Going from (f1, f2) to (g1, g2), endpoint k
+//! moves linearly by d_k, with d1 ≡ g1 − f1 and d2 ≡ g2 − f2 (mod 2π). The folded arc must
+//! never jump, so the span moves straight from s_from to s_to without passing 0 or 2π:
+//! d2 − d1 = s_to − s_from. Of the d1 = shortest(g1 − f1) + 2πm (m ∈ {0, −1, 1}, in that
+//! order on ties) the one with the least travel |d1| + |d2| wins: both endpoints take the
+//! shorter way round unless that would make them cross, and then the one whose long way is
+//! cheaper goes the other way. Fold t of `steps` (t = 0 … steps−1) is (f1 + τ·d1, f2 + τ·d2)
+//! mod 2π, τ = t/(steps−1); the first and last folds are `from` and `to` exactly.
+//!
+//! **A fold turned over** ([`Motion::Turn`]). A fold of several arcs (a multi-arc fold,
+//! `steps[k].arcs` of an analysis) or one made along a line of its own (`steps[k].line`,
+//! when its two fold points lie on top of each other) has no path on the fold circle that
+//! keeps its line: growing each arc from its first point would fold each about a line of
+//! its own. It is turned instead: every vertex strictly inside one of the arcs turns about
+//! the one fold line by the angle π·τ, the same angle for every arc at every step, and is
+//! drawn from above (x, y of the rotated point, z kept, as the reflection keeps it). With
+//! f the foot of p on the line, p(τ) = f + cos(πτ)·(p − f): τ = 0 is the border as given
+//! and τ = 1 the reflection across the line, exactly the analysis's prediction
+//! ([`apply_arcs`]). Vertices outside the arcs never move. Without a line the fold is
+//! made along the line through the border points at the first arc's start and the last
+//! arc's end, as the analysis makes it ([`fold_line`]).
+//!
+//! `web/fold.mjs` implements the same rules for the browser (a test checks parity).
 //!
 //! A border given by a user goes through [`interpolate_border`]: it is validated and
 //! oriented by [`crate::border::prepare`], exactly as an analysis's start frame, so a border
@@ -25,21 +40,59 @@
 //! assert!((path[1][0] - PI / 4.0).abs() < 1e-12 && (path[1][1] - 1.25 * PI).abs() < 1e-12);
 //! ```
 
+use std::f64::consts::PI;
+
 use serde::Serialize;
 
 use crate::angle::{wrap_pi, wrap_tau, TAU};
 use crate::border::{prepare, to_xyz};
 use crate::border::{Point, MAX_VERTICES, MIN_VERTICES};
 use crate::error::{Error, Result};
-use crate::fold::reflect::apply_fold;
+use crate::fold::reflect::{apply_arcs, apply_fold, fold_line, folded_vertices};
+pub use crate::fold::synth::Line;
 
 /// Fewest and most folds an interpolation may have (both ends included).
 pub const STEPS: std::ops::RangeInclusive<usize> = 2..=1000;
 
+/// What moves: a fold sliding along the fold circle, or one fold's arcs turned over.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Motion {
+    /// From fold `from` to fold `to`, each state the flat border reflected across one fold.
+    Between { from: [f64; 2], to: [f64; 2] },
+    /// The `arcs` (angles, each [a, b] folded anticlockwise from a to b) turned over
+    /// together about `line`, or about the line through the first arc's start and the last
+    /// arc's end when `None`.
+    Turn { arcs: Vec<[f64; 2]>, line: Option<Line> },
+}
+
+impl Motion {
+    /// The motion a request names: `from` and `to`, or `arcs` with an optional `line`.
+    pub fn of(from: Option<[f64; 2]>, to: Option<[f64; 2]>, arcs: Option<Vec<[f64; 2]>>, line: Option<Line>) -> Result<Motion> {
+        let bad = |what: &str| Err(Error::InvalidArgument(what.into()));
+        match (from, to, arcs) {
+            (Some(from), Some(to), None) if line.is_none() => Ok(Motion::Between { from, to }),
+            (Some(_), Some(_), None) => bad("a line turns arcs over: give `arcs` with it, not `from` and `to`"),
+            (None, None, Some(arcs)) => Ok(Motion::Turn { arcs, line }),
+            (None, None, None) => bad("give the folds `from` and `to`, or the `arcs` of a fold to turn over"),
+            (Some(_), None, None) | (None, Some(_), None) => bad("`from` and `to` go together: give both"),
+            (_, _, Some(_)) => bad("give either `from` and `to`, or `arcs`, not both"),
+        }
+    }
+}
+
 /// The folds of a motion and the border folded by each.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Interpolation {
+    /// Each state's fold: the fold on the circle, or for a turned fold the pair that spans
+    /// its arcs (the first arc's start, the last arc's end), the same in every state.
     pub folds: Vec<[f64; 2]>,
+    /// For a turned fold, how far each state is turned (0 as given, 1 folded over), as a
+    /// fraction of a half turn.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turns: Option<Vec<f64>>,
+    /// For a turned fold, the line its arcs turn about (XY: a point and a unit direction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<Line>,
     /// Each fold's border, vertices in border order.
     pub borders: Vec<Vec<[f64; 3]>>,
     /// For each border vertex, its index in the input (0…N−1 for an anticlockwise border
@@ -72,15 +125,39 @@ pub fn fold_path(from: [f64; 2], to: [f64; 2], steps: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The border folded along each fold of [`fold_path`]; `border` is taken as given (an
-/// anticlockwise border, e.g. an analysis's start border), checked for size and finite
-/// coordinates only: see [`interpolate_border`] for a user's input.
-pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
+/// `p` turned about the XY `line` (unit direction) by the fraction `turn` of a half turn,
+/// seen from above: f + cos(π·turn)·(p − f), f the foot of p on the line, z kept.
+pub fn turn_about(p: &Point, line: &Line, turn: f64) -> Point {
+    let [ux, uy] = line.direction;
+    let t = (p.x - line.point[0]) * ux + (p.y - line.point[1]) * uy;
+    let (fx, fy) = (line.point[0] + t * ux, line.point[1] + t * uy);
+    let c = (PI * turn).cos();
+    Point::new(fx + c * (p.x - fx), fy + c * (p.y - fy), p.z)
+}
+
+/// The line a turned fold uses: `line` checked (finite, a direction of non-zero length, made
+/// unit), or the line through the border points at the first arc's start and the last
+/// arc's end.
+fn turn_line(border: &[Point], arcs: &[[f64; 2]], line: Option<Line>) -> Result<Line> {
+    let Some(line) = line else {
+        let span = [arcs[0][0], arcs[arcs.len() - 1][1]];
+        return fold_line(border, span, None)
+            .ok_or_else(|| Error::InvalidArgument("the fold's two points lie on top of each other: give the `line` to turn about".into()));
+    };
+    if let Some(bad) = line.point.iter().chain(&line.direction).find(|c| !c.is_finite()) {
+        return Err(Error::InvalidArgument(format!("the line's point and direction must be finite numbers, got {bad}")));
+    }
+    let length = line.direction[0].hypot(line.direction[1]);
+    if length == 0.0 || !length.is_finite() {
+        return Err(Error::InvalidArgument("the line's direction has no length".into()));
+    }
+    Ok(Line { point: line.point, direction: [line.direction[0] / length, line.direction[1] / length] })
+}
+
+/// The checks every motion makes of its border and step count.
+fn check(border: &[Point], steps: usize) -> Result<()> {
     if !STEPS.contains(&steps) {
         return Err(Error::InvalidArgument(format!("steps must be in {}..={}, got {steps}", STEPS.start(), STEPS.end())));
-    }
-    if let Some(bad) = from.iter().chain(&to).find(|a| !a.is_finite()) {
-        return Err(Error::InvalidArgument(format!("fold angles must be finite numbers, got {bad}")));
     }
     if border.len() < MIN_VERTICES {
         return Err(Error::TooFewVertices { got: border.len(), min: MIN_VERTICES });
@@ -91,27 +168,96 @@ pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize)
     if let Some(v) = border.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
         return Err(Error::NonFinite { frame: 0, vertex: v });
     }
-    let folds = fold_path(from, to, steps);
-    let borders = folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
-    Ok(Interpolation { folds, borders, border_indices: (0..border.len()).collect() })
+    Ok(())
 }
 
-/// [`interpolate`] a user's border, validated by [`prepare`] as an analysis validates its
-/// frames: `border` is the state to fold and `reference` the flat border whose orientation
-/// applies (an analysis's start frame; by default `border` itself, which must then be a
-/// valid start frame). A border already folded overlaps itself, so its own area and
-/// orientation are no guide: send the flat one as `reference`.
+/// Angles must be finite; `what` names them in the error.
+fn finite_angles<'a>(angles: impl IntoIterator<Item = &'a f64>, what: &str) -> Result<()> {
+    match angles.into_iter().find(|a| !a.is_finite()) {
+        Some(bad) => Err(Error::InvalidArgument(format!("{what} must be finite numbers, got {bad}"))),
+        None => Ok(()),
+    }
+}
+
+/// The border folded along each fold of [`fold_path`]; `border` is taken as given (an
+/// anticlockwise border, e.g. an analysis's start border), checked for size and finite
+/// coordinates only: see [`interpolate_border`] for a user's input.
+pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
+    check(border, steps)?;
+    finite_angles(from.iter().chain(&to), "fold angles")?;
+    let folds = fold_path(from, to, steps);
+    let borders = folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
+    Ok(Interpolation { folds, turns: None, line: None, borders, border_indices: (0..border.len()).collect() })
+}
+
+/// `steps` states of the fold that turns `arcs` of `border` over about `line` (see the
+/// module doc): turn t/(steps−1) each, the first `border` itself and the last
+/// [`apply_arcs`] exactly. `border` is taken as [`interpolate`] takes it.
+pub fn turn_arcs(border: &[Point], arcs: &[[f64; 2]], line: Option<Line>, steps: usize) -> Result<Interpolation> {
+    check(border, steps)?;
+    if arcs.is_empty() {
+        return Err(Error::InvalidArgument("a fold to turn over needs at least one arc".into()));
+    }
+    // An arc holds at least one vertex strictly inside: more arcs than vertices is no fold.
+    if arcs.len() > border.len() {
+        return Err(Error::InvalidArgument(format!("{} arcs on a border of {} vertices", arcs.len(), border.len())));
+    }
+    finite_angles(arcs.iter().flatten(), "arc angles")?;
+    let line = turn_line(border, arcs, line)?;
+    let mut moved: Vec<usize> = arcs.iter().flat_map(|&arc| folded_vertices(border.len(), arc)).collect();
+    moved.sort_unstable();
+    moved.dedup();
+    let last = (steps - 1) as f64;
+    let turns: Vec<f64> = (0..steps).map(|t| t as f64 / last).collect();
+    let borders = turns
+        .iter()
+        .map(|&turn| {
+            // The ends exactly: the border as given, and the analysis's reflection.
+            if turn >= 1.0 {
+                return apply_arcs(border, arcs, &line).iter().map(to_xyz).collect();
+            }
+            let mut state = border.to_vec();
+            if turn > 0.0 {
+                for &v in &moved {
+                    state[v] = turn_about(&border[v], &line, turn);
+                }
+            }
+            state.iter().map(to_xyz).collect()
+        })
+        .collect();
+    let span = [wrap_tau(arcs[0][0]), wrap_tau(arcs[arcs.len() - 1][1])];
+    Ok(Interpolation { folds: vec![span; steps], turns: Some(turns), line: Some(line), borders, border_indices: (0..border.len()).collect() })
+}
+
+/// [`interpolate`] or [`turn_arcs`], as `motion` says, on `border` as given.
+pub fn interpolate_motion(border: &[Point], motion: &Motion, steps: usize) -> Result<Interpolation> {
+    match motion {
+        Motion::Between { from, to } => interpolate(border, *from, *to, steps),
+        Motion::Turn { arcs, line } => turn_arcs(border, arcs, *line, steps),
+    }
+}
+
+/// [`interpolate_motion`] on a user's border, validated by [`prepare`] as an analysis
+/// validates its frames: `border` is the state to fold and `reference` the flat border whose
+/// orientation applies (an analysis's start frame; by default `border` itself, which must
+/// then be a valid start frame). A border already folded overlaps itself, so its own area
+/// and orientation are no guide: send the flat one as `reference`.
 ///
 /// ```
-/// use close_core::interpolate::interpolate_border;
+/// use close_core::interpolate::{interpolate_border, Motion};
 /// let square = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
-/// assert_eq!(interpolate_border(square.clone(), None, [0.0, 3.1], [0.5, 3.6], 5).unwrap().borders.len(), 5);
+/// let between = Motion::Between { from: [0.0, 3.1], to: [0.5, 3.6] };
+/// assert_eq!(interpolate_border(square.clone(), None, &between, 5).unwrap().borders.len(), 5);
 /// let line = vec![[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [2.0, 2.0, 0.0], [3.0, 3.0, 0.0]];
-/// assert!(interpolate_border(line.clone(), None, [0.0, 3.1], [0.5, 3.6], 5).is_err());
+/// assert!(interpolate_border(line.clone(), None, &between, 5).is_err());
 /// // A state with no area of its own is fine against a flat reference.
-/// assert!(interpolate_border(line, Some(square), [0.0, 3.1], [0.5, 3.6], 5).is_ok());
+/// assert!(interpolate_border(line, Some(square.clone()), &between, 5).is_ok());
+/// // Vertex 1 turned over about the diagonal through vertices 0 and 2: on vertex 3 at the end.
+/// let turn = Motion::Turn { arcs: vec![[0.0, std::f64::consts::PI]], line: None };
+/// let motion = interpolate_border(square, None, &turn, 3).unwrap();
+/// assert!((motion.borders[2][1][0] - 0.0).abs() < 1e-12 && (motion.borders[2][1][1] - 1.0).abs() < 1e-12);
 /// ```
-pub fn interpolate_border(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
+pub fn interpolate_border(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, motion: &Motion, steps: usize) -> Result<Interpolation> {
     let frames = match reference {
         Some(reference) => vec![reference, border],
         None => vec![border],
@@ -119,7 +265,7 @@ pub fn interpolate_border(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>
     let prepared = prepare(frames)?;
     // prepare gives one frame per frame given: the state is the last.
     let state = prepared.frames.last().map_or(&[][..], Vec::as_slice);
-    let motion = interpolate(state, from, to, steps)?;
+    let motion = interpolate_motion(state, motion, steps)?;
     Ok(Interpolation { border_indices: prepared.border_indices, ..motion })
 }
 
@@ -137,6 +283,115 @@ mod tests {
                 Point::new(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1), 0.0)
             })
             .collect()
+    }
+
+    fn between() -> Motion {
+        Motion::Between { from: [0.0, 1.0], to: [1.0, 2.0] }
+    }
+
+    /// Two legs joined at the top, anticlockwise from the left leg's outer hem corner, a
+    /// vertex every 0.1: the line y = 0 crosses the border 4 times, once per leg side. The
+    /// two arcs below it (border parameters) are the hems.
+    fn two_legs() -> (Vec<Point>, Vec<[f64; 2]>) {
+        let corners: [(f64, f64); 7] = [(-1.0, -1.0), (-0.4, -1.0), (0.0, 0.5), (0.4, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let mut points = Vec::new();
+        for (k, a) in corners.iter().enumerate() {
+            let b = corners[(k + 1) % corners.len()];
+            let pieces = ((b.0 - a.0).hypot(b.1 - a.1) / 0.1).round() as usize;
+            points.extend((0..pieces).map(|i| {
+                let t = i as f64 / pieces as f64;
+                Point::new(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1), 0.01)
+            }));
+        }
+        // The parameter where the side from vertex k to k + 1 crosses y = 0.
+        let n = points.len();
+        let crossings: Vec<f64> = (0..n)
+            .filter_map(|k| {
+                let (a, b) = (points[k], points[(k + 1) % n]);
+                ((a.y < 0.0) != (b.y < 0.0)).then(|| k as f64 + a.y / (a.y - b.y))
+            })
+            .collect();
+        assert_eq!(crossings.len(), 4);
+        let angle = |s: f64| s * TAU / n as f64;
+        // Below the line: from the last crossing (the right outer side) round through
+        // vertex 0 to the first, and between the second and the third (the inner sides).
+        let arcs = vec![[angle(crossings[3]), angle(crossings[0])], [angle(crossings[1]), angle(crossings[2])]];
+        (points, arcs)
+    }
+
+    #[test]
+    fn a_turned_fold_turns_only_its_arcs_by_one_angle() {
+        let (legs, arcs) = two_legs();
+        let line = Line { point: [0.0, 0.0], direction: [1.0, 0.0] };
+        let steps = 9;
+        let motion = turn_arcs(&legs, &arcs, Some(line), steps).unwrap();
+        let below: Vec<bool> = legs.iter().map(|p| p.y < 0.0).collect();
+        assert!(below.iter().filter(|&&b| b).count() > 10);
+        // The ends exactly: the border as given, and the analysis's reflection.
+        assert_eq!(motion.borders[0], legs.iter().map(to_xyz).collect::<Vec<_>>());
+        assert_eq!(motion.borders[steps - 1], apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>());
+        assert_eq!(motion.turns.as_deref(), Some(&[0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0][..]));
+        assert_eq!(motion.folds, vec![[arcs[0][0], arcs[1][1]]; steps]);
+        for (t, state) in motion.borders.iter().enumerate() {
+            let c = (PI * t as f64 / 8.0).cos();
+            for (v, (p, q)) in legs.iter().zip(state).enumerate() {
+                if below[v] {
+                    // Both hems, the same angle: x and z kept, y scaled by cos(πτ).
+                    assert!((q[0] - p.x).abs() < 1e-12 && (q[1] - c * p.y).abs() < 1e-12 && q[2] == p.z, "step {t}, vertex {v}: {q:?}");
+                } else {
+                    // The crotch between the hems and everything above the line stay.
+                    assert_eq!(*q, to_xyz(p), "step {t}, vertex {v}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_turned_fold_without_a_line_folds_along_its_span() {
+        let (legs, arcs) = two_legs();
+        let motion = turn_arcs(&legs, &arcs, None, 3).unwrap();
+        let line = fold_line(&legs, [arcs[0][0], arcs[1][1]], None).unwrap();
+        assert_eq!(motion.line, Some(line));
+        assert_eq!(motion.borders[2], apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>());
+        // A given line is made unit.
+        let long = turn_arcs(&legs, &arcs, Some(Line { point: [0.0, 0.0], direction: [3.0, 0.0] }), 3).unwrap();
+        assert_eq!(long.line.map(|l| l.direction), Some([1.0, 0.0]));
+    }
+
+    #[test]
+    fn bad_turns_are_named() {
+        let (legs, arcs) = two_legs();
+        let flat = Line { point: [0.0, 0.0], direction: [0.0, 0.0] };
+        assert!(turn_arcs(&legs, &arcs, Some(flat), 3).unwrap_err().to_string().contains("no length"));
+        let nan = Line { point: [f64::NAN, 0.0], direction: [1.0, 0.0] };
+        assert!(turn_arcs(&legs, &arcs, Some(nan), 3).unwrap_err().to_string().contains("finite"));
+        assert!(turn_arcs(&legs, &[], None, 3).unwrap_err().to_string().contains("at least one arc"));
+        assert!(turn_arcs(&legs, &[[0.0, f64::INFINITY]], None, 3).unwrap_err().to_string().contains("arc angles"));
+        assert!(turn_arcs(&legs, &vec![[0.0, 1.0]; legs.len() + 1], None, 3).unwrap_err().to_string().contains("arcs on a border"));
+        assert!(turn_arcs(&legs, &arcs, None, 1).unwrap_err().to_string().contains("steps"));
+        // Two fold points on top of each other give no line: the error asks for one.
+        let mut stacked = legs.clone();
+        let n = legs.len();
+        stacked[n / 2] = stacked[0];
+        let q = TAU / n as f64;
+        assert!(turn_arcs(&stacked, &[[0.0, (n / 2) as f64 * q]], None, 3).unwrap_err().to_string().contains("`line`"));
+    }
+
+    #[test]
+    fn a_motion_is_one_of_the_two_forms() {
+        let line = Some(Line { point: [0.0, 0.0], direction: [1.0, 0.0] });
+        assert_eq!(Motion::of(Some([0.0, 1.0]), Some([1.0, 2.0]), None, None), Ok(between()));
+        assert_eq!(Motion::of(None, None, Some(vec![[0.0, 1.0]]), line), Ok(Motion::Turn { arcs: vec![[0.0, 1.0]], line }));
+        for (from, to, arcs, line, says) in [
+            (None, None, None, None, "give the folds"),
+            (Some([0.0, 1.0]), None, None, None, "go together"),
+            (None, Some([0.0, 1.0]), None, None, "go together"),
+            (Some([0.0, 1.0]), Some([1.0, 2.0]), Some(vec![[0.0, 1.0]]), None, "not both"),
+            (Some([0.0, 1.0]), None, Some(vec![[0.0, 1.0]]), None, "not both"),
+            (Some([0.0, 1.0]), Some([1.0, 2.0]), None, line, "give `arcs`"),
+        ] {
+            assert!(Motion::of(from, to, arcs, line).unwrap_err().to_string().contains(says), "{says}");
+        }
     }
 
     /// Pairs of folds covering wraps through 0, crossing cases, tiny and huge spans.
@@ -232,26 +487,26 @@ mod tests {
     #[test]
     fn a_users_border_is_validated_as_an_analysis_validates_it() {
         let raw: Vec<[f64; 3]> = square(2).iter().map(to_xyz).collect();
-        let ok = interpolate_border(raw.clone(), None, [0.0, 1.0], [1.0, 2.0], 5).unwrap();
+        let ok = interpolate_border(raw.clone(), None, &between(), 5).unwrap();
         assert_eq!(ok.border_indices, (0..8).collect::<Vec<_>>());
         for bad in [raw[..3].to_vec(), vec![[1.0, 2.0, 0.0]; 8], (0..8).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect()] {
-            let ours = interpolate_border(bad.clone(), None, [0.0, 1.0], [1.0, 2.0], 5).unwrap_err();
+            let ours = interpolate_border(bad.clone(), None, &between(), 5).unwrap_err();
             assert_eq!(ours, prepare(vec![bad]).unwrap_err(), "the same refusal as the analysis");
         }
         // A clockwise border is walked anticlockwise, vertex 0 first, as the analysis does.
         let mut cw = raw.clone();
         cw[1..].reverse();
-        let reversed = interpolate_border(cw, None, [0.0, 1.0], [1.0, 2.0], 5).unwrap();
+        let reversed = interpolate_border(cw, None, &between(), 5).unwrap();
         assert_eq!(reversed.border_indices, [0, 7, 6, 5, 4, 3, 2, 1]);
         assert_eq!(reversed.borders, ok.borders);
         // A square folded in half has no area of its own: against the flat one, it folds on,
         // in its own vertex order; against a reference of another vertex count, it is refused.
         let half: Vec<[f64; 3]> = apply_fold(&square(2), [PI / 4.0, 1.25 * PI]).iter().map(to_xyz).collect();
-        assert!(interpolate_border(half.clone(), None, [0.0, 1.0], [1.0, 2.0], 5).is_err());
-        let on = interpolate_border(half.clone(), Some(raw.clone()), [0.0, 1.0], [1.0, 2.0], 5).unwrap();
+        assert!(interpolate_border(half.clone(), None, &between(), 5).is_err());
+        let on = interpolate_border(half.clone(), Some(raw.clone()), &between(), 5).unwrap();
         assert_eq!(on.border_indices, (0..8).collect::<Vec<_>>());
         let half_points: Vec<Point> = half.iter().map(crate::border::from_xyz).collect();
         assert_eq!(on.borders, interpolate(&half_points, [0.0, 1.0], [1.0, 2.0], 5).unwrap().borders);
-        assert!(matches!(interpolate_border(half, Some(raw[..6].to_vec()), [0.0, 1.0], [1.0, 2.0], 5), Err(Error::FrameSizeMismatch { .. })));
+        assert!(matches!(interpolate_border(half, Some(raw[..6].to_vec()), &between(), 5), Err(Error::FrameSizeMismatch { .. })));
     }
 }

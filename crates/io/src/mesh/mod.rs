@@ -9,8 +9,15 @@
 //!   whose loops enclose little of what is seen from above): the paper's method
 //!   ([`silhouette`]).
 //!
-//! The border starts at its lowest-numbered mesh vertex, so it does not depend on how the
-//! mesh lists its faces; [`crate::border::prepare`] orients it anticlockwise afterwards.
+//! However it was found, the border is then walked anticlockwise (seen from +z on frame 0)
+//! from its **lowest vertex**: the one with the least y on frame 0, of those within
+//! [`LEVEL`] of the least y (a level bottom edge, up to noise), the one with the least x;
+//! the bottom-left corner of a napkin. It is a rule of the cloth's shape, not of how the
+//! mesh numbers its vertices or lists its faces, and the rule the border forms of the
+//! simulated sets and the built-in dataset's outlines follow (anticlockwise from the
+//! bottom-left corner), so a mesh and its border form give the same border in the same
+//! order, and the same folds. (A round cloth has no such corner: its lowest point is where
+//! it starts.)
 //!
 //! ```
 //! use close_io::mesh::{border_of, BorderMethod, MeshFrames};
@@ -40,6 +47,10 @@ pub const MAX_MESH_FACES: usize = 4_000_000;
 pub const MAX_FACE_CORNERS: usize = 16_000_000;
 /// A boundary loop is the outline when its XY area is at least this part of the silhouette.
 pub const ENCLOSES: f64 = 0.8;
+/// Vertices this close to the lowest y, as a share of the border's extent (its largest
+/// distance from its centroid, the SPEC normalisation's radius), lie at the same height for
+/// [`start_lowest`]: simulated cloth keeps a level edge level only to ~10⁻⁵ of its size.
+pub const LEVEL: f64 = 1e-4;
 
 /// A triangle (or polygon) mesh followed through frames by vertex index. Serialised as
 /// Sample JSON's `"mesh"`; read back through [`crate::formats::json`], whose lists are
@@ -171,8 +182,32 @@ fn loop_length(vertices: &[[f64; 3]], cycle: &[usize]) -> f64 {
     (0..cycle.len()).map(|k| (p(k + 1) - p(k)).norm()).sum()
 }
 
-/// Find the border of a validated mesh on frame 0 (see the module doc for the choice).
+/// The border loop `indices` (mesh vertices, in walking order) walked anticlockwise in XY
+/// from its lowest vertex on `vertices` (frame 0; see the module doc).
+pub fn start_lowest(mut indices: Vec<usize>, vertices: &[[f64; 3]]) -> Vec<usize> {
+    let points: Vec<Point> = indices.iter().map(|&k| Point::from(vertices[k])).collect();
+    let n = points.len() as f64;
+    let centre = points.iter().fold([0.0, 0.0], |c, p| [c[0] + p.x / n, c[1] + p.y / n]);
+    let extent = points.iter().map(|p| (p.x - centre[0]).hypot(p.y - centre[1])).fold(0.0, f64::max);
+    let bottom = points.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+    let level = |k: &usize| points[*k].y <= bottom + LEVEL * extent;
+    let lowest = (0..points.len()).filter(level).min_by(|&a, &b| points[a].x.total_cmp(&points[b].x)).unwrap_or(0);
+    indices.rotate_left(lowest);
+    if signed_area_xy(&points) < 0.0 {
+        indices[1..].reverse();
+    }
+    indices
+}
+
+/// Find the border of a validated mesh on frame 0 (see the module doc for the choice), walked
+/// by [`start_lowest`].
 pub fn border_of(mesh: &MeshFrames) -> Result<MeshBorder> {
+    let found = find_border(mesh)?;
+    Ok(MeshBorder { indices: start_lowest(found.indices, &mesh.frames[0]), ..found })
+}
+
+/// The border loop as its method finds it (its start and direction are those of the search).
+fn find_border(mesh: &MeshFrames) -> Result<MeshBorder> {
     validate(mesh)?;
     let vertices = &mesh.frames[0];
     if !mesh.border_edges.is_empty() {
@@ -192,12 +227,10 @@ pub fn border_of(mesh: &MeshFrames) -> Result<MeshBorder> {
             return Ok(MeshBorder { indices: outline, method: BorderMethod::BoundaryLoop });
         }
     }
-    let mut indices = seen.border(vertices, silhouette::EPSILON)?;
+    let indices = seen.border(vertices, silhouette::EPSILON)?;
     if indices.len() < crate::border::MIN_VERTICES {
         return Err(MeshError::SilhouetteTooSmall { vertices: indices.len() }.into());
     }
-    let lowest = indices.iter().enumerate().min_by_key(|&(_, &v)| v).map_or(0, |(k, _)| k);
-    indices.rotate_left(lowest);
     Ok(MeshBorder { indices, method: BorderMethod::Silhouette })
 }
 
@@ -232,6 +265,49 @@ mod tests {
         let mut m = square_grid(2);
         m.frames[0][4][2] = f64::NAN;
         assert_eq!(validate(&m), Err(Error::NonFinite { frame: 0, vertex: 4 }));
+    }
+
+    /// The border's positions on frame 0, in walking order.
+    fn walked(mesh: &MeshFrames) -> Vec<[f64; 3]> {
+        border_of(mesh).unwrap().indices.iter().map(|&k| mesh.frames[0][k]).collect()
+    }
+
+    #[test]
+    fn the_border_starts_at_its_lowest_vertex_however_the_mesh_is_numbered() {
+        let grid = square_grid(3);
+        let expected = walked(&grid);
+        assert_eq!(expected[..3], [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]]);
+        // Renumber the vertices (a fixed shuffle), list the faces backwards, each one clockwise.
+        let n = grid.frames[0].len();
+        let new_id: Vec<usize> = (0..n).map(|k| (7 * k + 5) % n).collect();
+        let mut frame = vec![[0.0; 3]; n];
+        for (k, p) in grid.frames[0].iter().enumerate() {
+            frame[new_id[k]] = *p;
+        }
+        let faces = grid.faces.iter().rev().map(|f| f.iter().rev().map(|&k| new_id[k]).collect()).collect();
+        assert_eq!(walked(&MeshFrames::new(faces, vec![frame])), expected);
+        // Given border edges, walked clockwise from the top-right corner, give it too.
+        let mut ring = grid.clone();
+        let id = |i: usize, j: usize| j * 4 + i;
+        let outline = [id(3, 3), id(3, 2), id(3, 1), id(3, 0), id(2, 0), id(1, 0), id(0, 0), id(0, 1), id(0, 2), id(0, 3), id(1, 3), id(2, 3)];
+        ring.border_edges = (0..12).map(|k| [outline[k], outline[(k + 1) % 12]]).collect();
+        assert_eq!(walked(&ring), expected);
+    }
+
+    #[test]
+    fn a_bottom_edge_level_up_to_noise_starts_at_its_left_end() {
+        // The bottom row a little uneven (10⁻⁶ of the size): still its left corner first.
+        let mut grid = square_grid(3);
+        for (i, dy) in [(0, 2e-6), (1, -1e-6), (2, 0.0), (3, -2e-6)] {
+            grid.frames[0][i][1] += dy;
+        }
+        assert_eq!(walked(&grid)[0], grid.frames[0][0]);
+        // Tilted for real (a tenth of a cell over the width), the lowest end wins.
+        let mut tilted = square_grid(3);
+        for v in tilted.frames[0].iter_mut() {
+            v[1] += 0.1 * (3.0 - v[0]) / 3.0;
+        }
+        assert_eq!(walked(&tilted)[0], tilted.frames[0][3]);
     }
 
     #[test]

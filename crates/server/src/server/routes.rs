@@ -557,8 +557,17 @@ pub struct InterpolateRequest {
     /// `POST /api/disk` takes it); by default `border` itself.
     #[serde(default)]
     reference: Option<Vec<[f64; 3]>>,
-    from: [f64; 2],
-    to: [f64; 2],
+    /// Between two folds: `from` and `to`; or one fold turned over: its `arcs` (an analysis
+    /// step's `arcs`) about `line` (its `line`; by default the line through the first arc's
+    /// start and the last arc's end). See [`crate::interpolate::Motion`].
+    #[serde(default)]
+    from: Option<[f64; 2]>,
+    #[serde(default)]
+    to: Option<[f64; 2]>,
+    #[serde(default)]
+    arcs: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    line: Option<LineRequest>,
     #[serde(default = "default_steps")]
     steps: usize,
 }
@@ -567,13 +576,23 @@ pub struct InterpolateRequest {
 /// and its JSON, three floats of at most 24 characters with their brackets and commas (80).
 const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
 
+/// A fold line as an analysis reports it (`steps[k].line`): a point and a direction, XY.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineRequest {
+    point: [f64; 2],
+    direction: [f64; 2],
+}
+
 pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<Response, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
+    let line = req.line.map(|l| crate::interpolate::Line { point: l.point, direction: l.direction });
+    let motion = crate::interpolate::Motion::of(req.from, req.to, req.arcs, line)?;
     // The answer's size is known now: reserved before it is built, not found after.
     let points = req.border.len().saturating_mul(req.steps.saturating_add(1));
     let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
     let answer = state
-        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, req.from, req.to, req.steps)?))
+        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, &motion, req.steps)?))
         .await?;
     let mut response = JsonBytes(answer).into_response();
     response.extensions_mut().insert(reserved);
