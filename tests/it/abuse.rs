@@ -591,6 +591,41 @@ async fn a_trickled_body_is_cut_at_the_minimum_rate() {
     assert_eq!(server.healthz().await, 200, "served right after");
 }
 
+// Issue 18 item 10: connections trickling bodies take every slot. While the server is that
+// crowded a body's grace is `CROWDED_GRACE`, not the header time-out, and both that and the
+// request time-out are here 300 s, far past `HANG`: only the crowded grace can free a slot,
+// so a new client is answered once a trickle is cut (408, the rate's message).
+async fn trickling_connections_do_not_keep_new_clients_out() {
+    let long = Duration::from_secs(300);
+    let state = AppState::with_config(Config { header_timeout: long, timeout: long, max_connections: 4, ..Config::default() });
+    let server = Server::start_with(state.clone()).await;
+    let trickles: Vec<_> = (0..4).map(|_| tokio::spawn(trickle_a_body(server.addr))).collect();
+    let t = Instant::now();
+    while state.open_connections() < 4 {
+        assert!(t.elapsed() < HANG, "the trickling connections were never all accepted");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    let mut probe = TcpStream::connect(server.addr).await.expect("connect");
+    probe.write_all(format!("GET /healthz HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n", server.addr).as_bytes()).await.expect("send");
+    let mut answer = Vec::new();
+    tokio::time::timeout(HANG, probe.read_to_end(&mut answer)).await.expect("a new client waited as long as a hang").expect("read");
+    assert!(answer.starts_with(b"HTTP/1.1 200"), "{}", String::from_utf8_lossy(&answer));
+    // Once a slot is free the server is no longer crowded: the other trickles may keep
+    // their long grace, so only the first one cut is awaited.
+    while !trickles.iter().any(|t| t.is_finished()) {
+        assert!(t.elapsed() < HANG, "no trickle was cut, yet a slot was freed");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    for trickle in trickles {
+        if trickle.is_finished() {
+            let (text, took) = trickle.await.expect("a trickle");
+            assert!(text.starts_with("HTTP/1.1 408") && text.contains("slower than"), "after {took:?}: {text:.300}");
+        } else {
+            trickle.abort();
+        }
+    }
+}
+
 // Issue 11 item 6: a cap on connections; the silent ones go within the header time-out,
 // and the server answers again.
 async fn connections_are_capped_and_freed() {
@@ -944,5 +979,10 @@ mod cases {
     #[test]
     fn a_trickled_body_is_cut_at_the_minimum_rate() {
         super::run(super::a_trickled_body_is_cut_at_the_minimum_rate());
+    }
+
+    #[test]
+    fn trickling_connections_do_not_keep_new_clients_out() {
+        super::run(super::trickling_connections_do_not_keep_new_clients_out());
     }
 }

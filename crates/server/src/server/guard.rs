@@ -23,10 +23,12 @@
 //!   written or its connection dropped (at the write time-out of [`super::socket`] when its
 //!   client does not read), and an answer whose size is known beforehand (an
 //!   interpolation's) is reserved before it is built.
-//! - **Body rate**: a body must keep arriving. After a grace of the header time-out, it must
-//!   have come at [`MIN_BODY_RATE`] bytes a second on average, or the read fails (408) and
-//!   the connection, its budget share and its worker are freed: a client trickling a body
-//!   cannot hold them for the whole request time-out.
+//! - **Body rate**: a body must keep arriving. After a grace of the header time-out (of
+//!   [`CROWDED_GRACE`] while nearly every connection slot is taken), it must have come at
+//!   [`MIN_BODY_RATE`] bytes a second on average, or the read fails (408) and the
+//!   connection, its budget share and its worker are freed: a client trickling a body
+//!   cannot hold them for the whole request time-out, and trickling connections cannot keep
+//!   new clients out.
 //!
 //! ```
 //! use close_server::server::guard::host_name;
@@ -363,20 +365,67 @@ impl Drop for Held {
 /// upload may take about an hour, and a trickle of a byte now and then is cut.
 pub const MIN_BODY_RATE: u64 = 16 * 1024;
 
-/// A request body that fails once it falls behind [`MIN_BODY_RATE`]: by `grace` after it
-/// started plus the time its bytes so far were due at that rate.
+/// The grace of a body while the server is crowded ([`BodyRate::crowded`]): trickled bodies
+/// that hold the connection slots are then cut within a second or two, so new clients (a
+/// `/healthz`, a normal analysis) get in instead of waiting out the header time-out.
+pub const CROWDED_GRACE: Duration = Duration::from_secs(1);
+
+/// What the body rate is checked against: the grace of a body, and the connection slots
+/// whose crowding shortens it.
+#[derive(Clone)]
+pub struct BodyRate {
+    /// The grace while the server is not crowded (the header time-out).
+    pub grace: Duration,
+    /// The connection slots ([`super::Config::max_connections`] permits; a connection holds one).
+    pub connections: Arc<Semaphore>,
+    pub max_connections: usize,
+}
+
+impl BodyRate {
+    /// Fewer than an eighth of the connection slots are free.
+    fn crowded(&self) -> bool {
+        self.connections.available_permits().saturating_mul(8) < self.max_connections
+    }
+
+    /// The grace that applies now.
+    fn grace(&self) -> Duration {
+        if self.crowded() {
+            CROWDED_GRACE.min(self.grace)
+        } else {
+            self.grace
+        }
+    }
+}
+
+/// A request body that fails once it falls behind [`MIN_BODY_RATE`]: by the grace after it
+/// started plus the time its bytes so far were due at that rate. The grace is the one that
+/// applies when the body is checked, and a body behind is checked at least every
+/// [`CROWDED_GRACE`], so crowding that comes later shortens it too.
 struct MinRate {
     inner: axum::body::Body,
-    due: Pin<Box<tokio::time::Sleep>>,
+    check: Pin<Box<tokio::time::Sleep>>,
     started: tokio::time::Instant,
-    grace: Duration,
+    rate: BodyRate,
     received: u64,
 }
 
 impl MinRate {
-    fn new(inner: axum::body::Body, grace: Duration) -> MinRate {
+    fn new(inner: axum::body::Body, rate: BodyRate) -> MinRate {
         let started = tokio::time::Instant::now();
-        MinRate { inner, due: Box::pin(tokio::time::sleep_until(started + grace)), started, grace, received: 0 }
+        let mut body = MinRate { inner, check: Box::pin(tokio::time::sleep_until(started)), started, rate, received: 0 };
+        let first = body.next_check(started);
+        body.check.as_mut().reset(first);
+        body
+    }
+
+    /// When the body must have arrived so far, with the grace that applies now.
+    fn due(&self) -> tokio::time::Instant {
+        self.started + self.rate.grace() + Duration::from_secs_f64(self.received as f64 / MIN_BODY_RATE as f64)
+    }
+
+    /// When to check next, from `now`: at the due time, or sooner to notice crowding.
+    fn next_check(&self, now: tokio::time::Instant) -> tokio::time::Instant {
+        self.due().min(now + CROWDED_GRACE)
     }
 }
 
@@ -389,12 +438,21 @@ impl hyper::body::Body for MinRate {
         match Pin::new(&mut this.inner).poll_frame(cx) {
             Poll::Ready(Some(Ok(frame))) => {
                 this.received += frame.data_ref().map_or(0, |d| d.len() as u64);
-                let owed = Duration::from_secs_f64(this.received as f64 / MIN_BODY_RATE as f64);
-                let due = this.started + this.grace + owed;
-                this.due.as_mut().reset(due);
+                let next = this.next_check(tokio::time::Instant::now());
+                this.check.as_mut().reset(next);
                 Poll::Ready(Some(Ok(frame)))
             }
-            Poll::Pending if this.due.as_mut().poll(cx).is_ready() => Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow)))),
+            Poll::Pending => loop {
+                if this.check.as_mut().poll(cx).is_pending() {
+                    return Poll::Pending;
+                }
+                let now = tokio::time::Instant::now();
+                if now >= this.due() {
+                    return Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow))));
+                }
+                let next = this.next_check(now);
+                this.check.as_mut().reset(next);
+            },
             other => other,
         }
     }
@@ -413,10 +471,9 @@ impl hyper::body::Body for MinRate {
 #[error("the request body arrives slower than {MIN_BODY_RATE} bytes a second")]
 pub struct BodyTooSlow;
 
-/// Middleware: read every request body through [`MinRate`], with the header time-out as
-/// its grace.
-pub async fn body_rate(State(grace): State<Duration>, request: Request, next: Next) -> Response {
-    let request = request.map(|body| axum::body::Body::new(MinRate::new(body, grace)));
+/// Middleware: read every request body through [`MinRate`].
+pub async fn body_rate(State(rate): State<BodyRate>, request: Request, next: Next) -> Response {
+    let request = request.map(|body| axum::body::Body::new(MinRate::new(body, rate)));
     next.run(request).await
 }
 

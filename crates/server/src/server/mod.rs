@@ -154,6 +154,9 @@ struct Inner {
     sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
     /// The user's datasets, listed at start.
     catalog: Arc<crate::catalog::Catalog>,
+    /// Connection slots: [`Config::max_connections`] permits, one held by each open
+    /// connection ([`serve_with`]); their crowding shortens a body's grace ([`guard::BodyRate`]).
+    connections: Arc<Semaphore>,
 }
 
 /// What every request shares: the configuration, the dataset, the caches and the worker
@@ -213,6 +216,7 @@ impl AppState {
             sample_list: OnceLock::new(),
             memory: Arc::new(UploadBudget::new(config.upload_budget, config.body_limit, config.json_body_limit)),
             catalog: Arc::new(crate::catalog::Catalog::open(&config.datasets)),
+            connections: Arc::new(Semaphore::new(config.max_connections.max(1))),
             config,
         }))
     }
@@ -254,6 +258,11 @@ impl AppState {
     /// Workers of this server, light and heavy.
     pub fn workers(&self) -> usize {
         self.0.light.count() + self.0.heavy.count()
+    }
+
+    /// Connections open now (each holds a connection slot).
+    pub fn open_connections(&self) -> usize {
+        self.config().max_connections.max(1) - self.0.connections.available_permits()
     }
 
     /// CPU jobs that stopped at their deadline (a time-out, a request gone away) so far.
@@ -378,6 +387,7 @@ pub fn app(state: AppState) -> Router {
     let config = state.config().clone();
     let doors = Arc::new(Doors { hosts: config.allowed_hosts.clone(), origins: config.cors_origins.clone() });
     let uploads = state.0.memory.clone();
+    let body_rate = guard::BodyRate { grace: config.header_timeout, connections: state.0.connections.clone(), max_connections: config.max_connections.max(1) };
     let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
         .route("/", get(assets::index))
@@ -404,7 +414,7 @@ pub fn app(state: AppState) -> Router {
                 .layer(axum::middleware::from_fn_with_state(doors, guard::doors))
                 .layer(TimeoutLayer::with_status_code(StatusCode::REQUEST_TIMEOUT, config.timeout))
                 .layer(axum::middleware::from_fn_with_state(uploads, guard::upload_budget))
-                .layer(axum::middleware::from_fn_with_state(config.header_timeout, guard::body_rate))
+                .layer(axum::middleware::from_fn_with_state(body_rate, guard::body_rate))
                 .layer(RequestBodyLimitLayer::new(config.body_limit)),
         )
         .with_state(state)
@@ -432,8 +442,8 @@ pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
 /// it cannot read get the JSON error body too ([`socket`]).
 pub async fn serve_with(listener: TcpListener, state: AppState, shutdown: impl Future<Output = ()>) -> std::io::Result<()> {
     let config = state.config().clone();
+    let slots = state.0.connections.clone();
     let app = app(state);
-    let slots = Arc::new(Semaphore::new(config.max_connections.max(1)));
     let mut http = hyper::server::conn::http1::Builder::new();
     http.timer(TokioTimer::new())
         .header_read_timeout(config.header_timeout)
