@@ -32,7 +32,7 @@ export function doubts(step) {
   const out = [];
   const { cut, orientation, metrics, synthesis } = step;
   if (!step.fold) {
-    if (metrics && metrics.rmse > WEAK.rmse) out.push(`changed, but no fold found (the observed frame is ${metrics.rmse.toFixed(3)} RMSE from the unchanged one, > ${WEAK.rmse})`);
+    if (metrics && shapeError(metrics) > WEAK.rmse) out.push(`changed, but no fold found (the observed frame is ${shapeError(metrics).toFixed(3)} RMSE from the unchanged one once moved onto it, > ${WEAK.rmse})`);
     return out;
   }
   if (synthesis && !orientation && synthesis.unfolded_mismatch > 0) {
@@ -46,8 +46,17 @@ export function doubts(step) {
     if (orientation.tie_break) out.push("orientation decided by the tie-break");
     else if (margin < WEAK.flipMargin) out.push(`orientation scores close (margin ${margin.toFixed(2)} < ${WEAK.flipMargin})`);
   }
-  if (metrics && metrics.rmse > WEAK.rmse) out.push(`prediction ${metrics.rmse.toFixed(3)} RMSE from the frame observed after the step (> ${WEAK.rmse})`);
+  if (metrics && shapeError(metrics) > WEAK.rmse) out.push(`prediction ${shapeError(metrics).toFixed(3)} RMSE from the frame observed after the step, once moved onto it (> ${WEAK.rmse})`);
   return out;
+}
+
+/**
+ * The error a step's disks can answer for: the RMSE once the prediction is moved rigidly
+ * onto the observed frame (`aligned_rmse`). CloSE does not change when the whole cloth
+ * slides across the table, so a slide is no evidence against the fold.
+ */
+function shapeError(metrics) {
+  return metrics.aligned_rmse ?? metrics.rmse;
 }
 
 /** Relative gap between the two orientation flip scores (0: a tie, 1: one side only). */
@@ -255,6 +264,7 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   if (result.metrics) {
     row(metrics, "RMSE (XY, normalised)", result.metrics.rmse.toFixed(4));
     row(metrics, "Fréchet (XY, normalised)", result.metrics.frechet.toFixed(4));
+    row(metrics, "RMSE once moved rigidly onto the end (what the disks can see)", result.metrics.aligned_rmse.toFixed(4));
   } else {
     row(metrics, "—", "one frame: nothing to compare");
   }
@@ -268,7 +278,7 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
     if (!s.fold) parts.push("no fold");
     if (s.cut) parts.push(`cut residual ${s.cut.residual.toFixed(3)}`, `same/cross ${s.cut.same_to_cross.toFixed(2)}`);
     if (s.orientation) parts.push(`flip scores ${s.orientation.flip_forward.toFixed(2)} / ${s.orientation.flip_backward.toFixed(2)}${s.orientation.tie_break ? " (tie-break)" : ""}`);
-    if (s.metrics) parts.push(`RMSE ${s.metrics.rmse.toFixed(3)}`);
+    if (s.metrics) parts.push(`RMSE ${s.metrics.rmse.toFixed(3)} (aligned ${shapeError(s.metrics).toFixed(3)})`);
     const why = doubts(s);
     const tr = row(evidence, name, parts.join(" · ") || "—");
     if (why.length) {

@@ -303,7 +303,8 @@ impl PyAnalysis {
         points_array(py, &points)
     }
 
-    /// {"rmse", "frechet"} of `predicted_end` against the end frame (XY, normalised units), or None.
+    /// {"rmse", "frechet", "aligned_rmse"} of `predicted_end` against the end frame (XY, normalised
+    /// units; `aligned_rmse` once `predicted_end` is moved rigidly onto the end), or None.
     #[getter]
     fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
         let metrics = self.field("metrics");

@@ -140,3 +140,31 @@ fn a_fold_across_exactly_straight_sides_stays_within_its_edge() {
         assert!(angle_diff(*found, truth) <= 0.5 * edge + 1e-9, "{:?}", a.folds);
     }
 }
+
+/// The folded cloth then slid and turned on the table as a whole: the disks, and so the fold,
+/// cannot tell, the RMSE grows by the slide, and the aligned RMSE (the error once the
+/// prediction is moved rigidly onto the end) stays what it was.
+#[test]
+fn a_slide_after_the_fold_costs_rmse_but_not_aligned_rmse() {
+    let frames = folded_napkin();
+    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+    let slid = vec![frames[0].clone(), frames[1].iter().map(|p| [c * p[0] - s * p[1] + 4.0, s * p[0] + c * p[1] + 1.0, p[2]]).collect()];
+    let (still, moved) = (run(frames), run(slid));
+    assert_eq!(still.folds, moved.folds);
+    let (a, b) = (still.metrics.unwrap(), moved.metrics.unwrap());
+    assert!(b.rmse > a.rmse + 1.0, "{a:?} vs {b:?}");
+    assert!((a.aligned_rmse - b.aligned_rmse).abs() < 1e-9, "{a:?} vs {b:?}");
+    assert!(a.aligned_rmse <= a.rmse);
+}
+
+/// A cloth only moved, not folded, is in the state it was: no fold, and no "changed" note.
+#[test]
+fn a_cloth_only_moved_is_not_said_to_have_changed() {
+    let start = napkin(19);
+    let (c, s) = (1.1f64.cos(), 1.1f64.sin());
+    let moved: Vec<[f64; 3]> = start.iter().map(|p| [c * p[0] - s * p[1] - 3.0, s * p[0] + c * p[1] + 2.0, p[2]]).collect();
+    let a = run(vec![start, moved]);
+    assert!(a.folds.is_empty(), "{:?}", a.folds);
+    assert!(a.metrics.unwrap().rmse > 1.0);
+    assert!(!a.label.text.contains("changed"), "{}", a.label.text);
+}

@@ -46,6 +46,10 @@ fn every_second_fold_is_found_near_its_floor() {
         let f = floor(&sample.name);
         // Measured (2026-12-02): 1.28–1.53 × the floor, the shirt below it.
         assert!(m.rmse <= 1.6 * f, "{}: RMSE {:.4} against a floor of {f}", sample.name, m.rmse);
+        // This cloth slides across the table as it folds (its unfolded part moved rigidly by up
+        // to 0.11 on the skirt), which the disks cannot see; once the prediction is moved
+        // rigidly onto the end, every sequence is below its floor (measured 0.34–0.93 ×).
+        assert!(m.aligned_rmse <= f, "{}: aligned RMSE {:.4} against a floor of {f}", sample.name, m.aligned_rmse);
         rmse.push(m.rmse);
         floors.push(f);
         // A fold of several arcs is reported as its arcs, and its fold spans them.

@@ -189,17 +189,19 @@ fn folds(name: &str) -> String {
     out
 }
 
-/// Each sample's fold count and the RMSE and Fréchet of its last step, of a snapshot.
+/// Each sample's fold count and the RMSE, Fréchet and aligned RMSE of its last step, of a
+/// snapshot.
 fn steps(name: &str) -> String {
     let r = report(name);
-    let mut out = String::from("| sample | folds found / expected | RMSE (last step) | Fréchet (last step) |\n|---|---|---|---|\n");
+    let mut out = String::from("| sample | folds found / expected | RMSE (last step) | Fréchet (last step) | aligned RMSE (last step) |\n|---|---|---|---|---|\n");
+    let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.4}"));
     for s in &r.samples {
         let last = s.steps.last();
-        let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.4}"));
-        out += &format!("| `{}` | {} / {} | {} | {} |\n", s.name, s.folds, s.expected_folds, cell(last.map(|t| t.rmse)), cell(last.map(|t| t.frechet)));
+        let [rmse, frechet, aligned] = [last.map(|t| t.rmse), last.map(|t| t.frechet), last.and_then(|t| t.aligned_rmse)].map(cell);
+        out += &format!("| `{}` | {} / {} | {rmse} | {frechet} | {aligned} |\n", s.name, s.folds, s.expected_folds);
     }
-    let last = |f: fn(&close::eval::StepResult) -> f64| stat_of(&r.samples.iter().collect::<Vec<_>>(), |s| s.steps.last().map(f));
-    out += &format!("| mean | | {} | {} |", mean(last(|t| t.rmse)), mean(last(|t| t.frechet)));
+    let last = |f: fn(&close::eval::StepResult) -> Option<f64>| stat_of(&r.samples.iter().collect::<Vec<_>>(), |s| s.steps.last().and_then(f));
+    out += &format!("| mean | | {} | {} | {} |", mean(last(|t| Some(t.rmse))), mean(last(|t| Some(t.frechet))), mean(last(|t| t.aligned_rmse)));
     out
 }
 

@@ -177,7 +177,8 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let n = sample.len();
     let arcs: Vec<&[[f64; 2]]> = steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.detection.arcs.as_slice()).collect();
     let mut label = label_arcs(n, &found.vertices, &folds, &arcs);
-    let changed: Vec<usize> = steps.iter().enumerate().filter(|(_, s)| s.detection.fold.is_none() && s.metrics.rmse > CHANGED_RMSE).map(|(k, _)| k + 1).collect();
+    // A cloth only moved across the table is in the same state: the aligned error decides.
+    let changed: Vec<usize> = steps.iter().enumerate().filter(|(_, s)| s.detection.fold.is_none() && s.metrics.aligned_rmse > CHANGED_RMSE).map(|(k, _)| k + 1).collect();
     label.changed_without_fold(&changed);
     Ok(Analysis {
         n,

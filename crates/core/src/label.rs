@@ -162,8 +162,9 @@ pub fn label_arcs(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]], arcs:
     Label { text, corners: corner_vertices.len(), circular, folds: fold_labels }
 }
 
-/// Prediction error (RMSE of the normalised XY border) past which a step without a fold
-/// changed the cloth beyond noise: the built-in samples' exact folds stay under 0.073 (the
+/// Prediction error (RMSE of the normalised XY border, once moved rigidly onto the observed
+/// one: [`crate::metrics::aligned_rmse_xy`]) past which a step without a fold changed the
+/// cloth beyond noise: the built-in samples' exact folds stay under 0.073 (the
 /// web app's low-confidence limit is the same 0.1).
 pub const CHANGED_RMSE: f64 = 0.1;
 

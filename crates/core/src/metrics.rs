@@ -1,16 +1,27 @@
-//! How far a predicted border is from the true one: RMSE and discrete Fréchet distance.
+//! How far a predicted border is from the true one: RMSE, discrete Fréchet distance, and
+//! the RMSE left after the best rigid motion.
 //!
-//! Both are measured on the XY (zenithal) projection after the normalisation of the
+//! All are measured on the XY (zenithal) projection after the normalisation of the
 //! START border (centroid to origin, farthest vertex at distance 1), so they read in
 //! unit-circle units whatever the cloth's size.
 //!
+//! The dGLI, and so CloSE, does not change when the whole cloth is moved, so no prediction
+//! read from the disks can know that the cloth slid across the table while it was folded.
+//! [`aligned_rmse_xy`] separates that part of the error: it is the RMSE once the prediction
+//! is rotated and translated in XY onto the truth as well as it can be (the 2D Kabsch
+//! problem, solved in closed form: centre both, rotate by atan2(Σ p×q, Σ p·q)).
+//!
 //! ```
 //! use close_core::border::Point;
-//! use close_core::metrics::{frechet_xy, rmse_xy};
+//! use close_core::metrics::{aligned_rmse_xy, frechet_xy, rmse_xy};
 //! let a = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0)];
 //! let b = [Point::new(0.0, 0.0, 5.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0)];
 //! assert_eq!(rmse_xy(&a, &b), 0.0); // z does not count
 //! assert_eq!(frechet_xy(&a, &b), 0.0);
+//! // The same triangle slid along x: an RMSE of 0.5, none of it seen by the disks.
+//! let slid: Vec<Point> = a.iter().map(|p| Point::new(p.x + 0.5, p.y, p.z)).collect();
+//! assert!((rmse_xy(&a, &slid) - 0.5).abs() < 1e-12);
+//! assert!(aligned_rmse_xy(&a, &slid) < 1e-12);
 //! ```
 
 use serde::Serialize;
@@ -22,6 +33,9 @@ use crate::border::{Normalisation, Point};
 pub struct Metrics {
     pub rmse: f64,
     pub frechet: f64,
+    /// The RMSE once the prediction is moved rigidly onto the truth ([`aligned_rmse_xy`]):
+    /// the part of `rmse` that the representation can see.
+    pub aligned_rmse: f64,
 }
 
 impl Metrics {
@@ -29,7 +43,7 @@ impl Metrics {
     pub fn measure(norm: &Normalisation, predicted: &[Point], truth: &[Point]) -> Metrics {
         let p = norm.apply_all(predicted);
         let t = norm.apply_all(truth);
-        Metrics { rmse: rmse_xy(&p, &t), frechet: frechet_xy(&p, &t) }
+        Metrics { rmse: rmse_xy(&p, &t), frechet: frechet_xy(&p, &t), aligned_rmse: aligned_rmse_xy(&p, &t) }
     }
 }
 
@@ -43,6 +57,31 @@ fn dist2_xy(a: &Point, b: &Point) -> f64 {
 pub fn rmse_xy(a: &[Point], b: &[Point]) -> f64 {
     let n = a.len().min(b.len()).max(1);
     (a.iter().zip(b).map(|(p, q)| dist2_xy(p, q)).sum::<f64>() / n as f64).sqrt()
+}
+
+/// RMSE in XY of `a` against `b` after the rotation and translation of `a` that bring it
+/// closest to `b` (a mirror image is not a rigid motion: it stays apart). At most
+/// [`rmse_xy`], since not moving is one of the motions.
+pub fn aligned_rmse_xy(a: &[Point], b: &[Point]) -> f64 {
+    let n = a.len().min(b.len());
+    if n == 0 {
+        return 0.0;
+    }
+    let (a, b) = (&a[..n], &b[..n]);
+    let centroid = |s: &[Point]| s.iter().fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
+    let ((ax, ay), (bx, by)) = (centroid(a), centroid(b));
+    let (ax, ay, bx, by) = (ax / n as f64, ay / n as f64, bx / n as f64, by / n as f64);
+    let (dot, cross) = a.iter().zip(b).fold((0.0, 0.0), |(dot, cross), (p, q)| {
+        let (px, py, qx, qy) = (p.x - ax, p.y - ay, q.x - bx, q.y - by);
+        (dot + px * qx + py * qy, cross + px * qy - py * qx)
+    });
+    let theta = cross.atan2(dot);
+    let (sin, cos) = theta.sin_cos();
+    let moved: Vec<Point> = a.iter().map(|p| {
+        let (px, py) = (p.x - ax, p.y - ay);
+        Point::new(bx + cos * px - sin * py, by + sin * px + cos * py, p.z)
+    }).collect();
+    rmse_xy(&moved, b)
 }
 
 /// Discrete Fréchet distance in XY between two closed vertex sequences, both walked from
@@ -81,6 +120,23 @@ mod tests {
         let b: Vec<Point> = a.iter().map(|p| Point::new(p.x, 0.5, 0.0)).collect();
         assert!((frechet_xy(&a, &b) - 0.5).abs() < 1e-12);
         assert!((rmse_xy(&a, &b) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn aligned_rmse_ignores_a_rigid_motion_but_not_a_change_of_shape() {
+        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 1.5]].iter().map(|&[x, y]| Point::new(x, y, 0.0)).collect();
+        let (sin, cos) = 0.7_f64.sin_cos();
+        let moved: Vec<Point> = square.iter().map(|p| Point::new(3.0 + cos * p.x - sin * p.y, -2.0 + sin * p.x + cos * p.y, 0.0)).collect();
+        assert!(rmse_xy(&square, &moved) > 1.0);
+        assert!(aligned_rmse_xy(&square, &moved) < 1e-12);
+        // A mirror image is no rigid motion of the plane: the roof vertex cannot be matched.
+        let mirrored: Vec<Point> = square.iter().map(|p| Point::new(p.x, 1.5 - p.y, 0.0)).collect();
+        assert!(aligned_rmse_xy(&square, &mirrored) > 0.3);
+        // One vertex off by 0.5 against four that agree: the motion cannot hide it all.
+        let mut bent = square.clone();
+        bent[4].x += 0.5;
+        let (aligned, raw) = (aligned_rmse_xy(&square, &bent), rmse_xy(&square, &bent));
+        assert!(aligned <= raw && aligned > 0.1, "aligned {aligned}, raw {raw}");
     }
 
     #[test]

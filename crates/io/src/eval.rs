@@ -33,6 +33,12 @@ pub struct SampleResult {
     pub expected_folds: usize,
     pub rmse: Option<f64>,
     pub frechet: Option<f64>,
+    /// The RMSE once the prediction is moved rigidly onto the truth
+    /// ([`crate::metrics::aligned_rmse_xy`]): what is left when the cloth's slide across
+    /// the table, which the disks cannot see, is taken out. Absent from rows scored before
+    /// it was measured.
+    #[serde(default)]
+    pub aligned_rmse: Option<f64>,
     /// Angular error of f1 and f2 against the true first fold, radians.
     pub angle_error: Option<[f64; 2]>,
     pub error: Option<String>,
@@ -49,6 +55,9 @@ pub struct StepResult {
     pub fold_found: bool,
     pub rmse: f64,
     pub frechet: f64,
+    /// As [`SampleResult::aligned_rmse`].
+    #[serde(default)]
+    pub aligned_rmse: Option<f64>,
     /// Against the step's true fold, when known.
     pub angle_error: Option<[f64; 2]>,
 }
@@ -72,6 +81,7 @@ impl SampleResult {
             expected_folds: 0,
             rmse: None,
             frechet: None,
+            aligned_rmse: None,
             angle_error: None,
             error: None,
             dropped: None,
@@ -105,6 +115,9 @@ pub struct Summary {
     pub count: usize,
     pub rmse: Option<Stat>,
     pub frechet: Option<Stat>,
+    /// As [`SampleResult::aligned_rmse`].
+    #[serde(default)]
+    pub aligned_rmse: Option<Stat>,
     /// Samples whose fold count differs from what they should have.
     pub fold_count_misses: usize,
     pub errors: usize,
@@ -125,6 +138,8 @@ pub struct FoldSummary {
     pub found: usize,
     pub rmse: Option<Stat>,
     pub frechet: Option<Stat>,
+    #[serde(default)]
+    pub aligned_rmse: Option<Stat>,
     pub f1_error: Option<Stat>,
     pub f2_error: Option<Stat>,
 }
@@ -171,6 +186,7 @@ pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) 
             result.folds = a.folds.len();
             result.rmse = a.metrics.map(|m| m.rmse);
             result.frechet = a.metrics.map(|m| m.frechet);
+            result.aligned_rmse = a.metrics.map(|m| m.aligned_rmse);
             let error = |found: &[f64; 2], truth: &[f64; 2]| [angle::distance(found[0], truth[0]), angle::distance(found[1], truth[1])];
             if let (Some(found), Some(truth)) = (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first())) {
                 result.angle_error = Some(error(found, truth));
@@ -183,6 +199,7 @@ pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) 
                     fold_found: step.detection.fold.is_some(),
                     rmse: step.metrics.rmse,
                     frechet: step.metrics.frechet,
+                    aligned_rmse: Some(step.metrics.aligned_rmse),
                     angle_error: step.detection.fold.zip(truth_folds.as_ref().and_then(|t| t.get(k))).map(|(f, t)| error(&f, t)),
                 })
                 .collect();
@@ -220,7 +237,14 @@ pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> 
                     folds: usize::from(found),
                     rmse: Some(step.metrics.rmse),
                     frechet: Some(step.metrics.frechet),
-                    steps: vec![StepResult { fold_found: found, rmse: step.metrics.rmse, frechet: step.metrics.frechet, angle_error: None }],
+                    aligned_rmse: Some(step.metrics.aligned_rmse),
+                    steps: vec![StepResult {
+                        fold_found: found,
+                        rmse: step.metrics.rmse,
+                        frechet: step.metrics.frechet,
+                        aligned_rmse: Some(step.metrics.aligned_rmse),
+                        angle_error: None,
+                    }],
                     ..row(k + 1)
                 }
             })
@@ -269,6 +293,7 @@ fn by_fold(results: &[&SampleResult]) -> Vec<FoldSummary> {
                 found: steps.iter().filter(|s| s.fold_found).count(),
                 rmse: stat_of(&steps, |s| Some(s.rmse)),
                 frechet: stat_of(&steps, |s| Some(s.frechet)),
+                aligned_rmse: stat_of(&steps, |s| s.aligned_rmse),
                 f1_error: stat_of(&steps, |s| s.angle_error.map(|a| a[0])),
                 f2_error: stat_of(&steps, |s| s.angle_error.map(|a| a[1])),
             }
@@ -285,6 +310,7 @@ fn summarise(category: &str, all: &[&SampleResult]) -> Summary {
         count: results.len(),
         rmse: pick(&|r| r.rmse),
         frechet: pick(&|r| r.frechet),
+        aligned_rmse: pick(&|r| r.aligned_rmse),
         fold_count_misses: results.iter().filter(|r| r.error.is_none() && r.folds != r.expected_folds).count(),
         errors: results.iter().filter(|r| r.error.is_some()).count(),
         dropped: all.len() - results.len(),
@@ -308,13 +334,13 @@ pub fn report(samples: Vec<SampleResult>) -> Report {
 impl Report {
     /// The table as aligned text.
     pub fn table(&self) -> String {
-        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "misses", "errors", "dropped", "f1 err°", "f2 err°"].map(String::from));
+        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "aligned", "misses", "errors", "dropped", "f1 err°", "f2 err°"].map(String::from));
         for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
             let counts = [s.errors, s.dropped].map(|c| c.to_string());
-            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.f1_error, s.f2_error], s.fold_count_misses, counts));
+            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.aligned_rmse, s.f1_error, s.f2_error], s.fold_count_misses, counts));
             for f in &s.by_fold {
                 let label = format!("  fold {}", f.fold);
-                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.f1_error, f.f2_error], f.count - f.found, [String::new(), String::new()]));
+                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.aligned_rmse, f.f1_error, f.f2_error], f.count - f.found, [String::new(), String::new()]));
             }
         }
         out
@@ -322,13 +348,14 @@ impl Report {
 }
 
 /// One aligned line of the table.
-fn row(cells: [String; 11]) -> String {
-    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10] = cells;
-    format!("{c0:<20} {c1:>5} {c2:>9} {c3:>9} {c4:>9} {c5:>9} {c6:>7} {c7:>6} {c8:>7} {c9:>9} {c10:>9}\n")
+fn row(cells: [String; 12]) -> String {
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11] = cells;
+    format!("{c0:<20} {c1:>5} {c2:>9} {c3:>9} {c4:>9} {c5:>9} {c6:>9} {c7:>7} {c8:>6} {c9:>7} {c10:>9} {c11:>9}\n")
 }
 
-/// A row from statistics: RMSE and Fréchet with their variances, angle errors in degrees.
-fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 4], misses: usize, [errors, dropped]: [String; 2]) -> String {
+/// A row from statistics: RMSE and Fréchet with their variances, the aligned RMSE, angle
+/// errors in degrees.
+fn stats_row(label: &str, count: usize, [rmse, frechet, aligned, f1, f2]: [Option<Stat>; 5], misses: usize, [errors, dropped]: [String; 2]) -> String {
     let mean = |s: Option<Stat>, scale: f64| s.map_or("-".to_string(), |s| format!("{:.4}", s.mean * scale));
     let var = |s: Option<Stat>| s.map_or("-".to_string(), |s| format!("{:.5}", s.var));
     let degrees = 180.0 / PI;
@@ -339,6 +366,7 @@ fn stats_row(label: &str, count: usize, [rmse, frechet, f1, f2]: [Option<Stat>; 
         var(rmse),
         mean(frechet, 1.0),
         var(frechet),
+        mean(aligned, 1.0),
         misses.to_string(),
         errors,
         dropped,

@@ -188,7 +188,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     entries.extend(marks.iter().map(|m| Entry { colour: m.colour, width: fold_width(unit, m.truth), dashed: m.truth, text: m.name.clone() }));
     // The metrics and the vertex-0 key: one line where it fits, else two.
     let notes = match &analysis.metrics {
-        Some(m) => vec![format!("RMSE {:.3} · Fréchet {:.3} (normalised)", m.rmse, m.frechet), "● vertex 0".to_string()],
+        Some(m) => vec![format!("RMSE {:.3} · Fréchet {:.3} · aligned {:.3} (normalised)", m.rmse, m.frechet, m.aligned_rmse), "● vertex 0".to_string()],
         None => vec!["● vertex 0".to_string()],
     };
     let joined = notes.join(" · ");
