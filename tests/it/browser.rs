@@ -468,20 +468,23 @@ async fn the_app_works_in_a_real_browser() {
     let facts = text(&client, "document.querySelector('#upload-result .close-table').innerText").await;
     assert!(facts.contains("true fold 1"), "the upload's truth is not shown: {facts}");
     assert!(text(&client, "document.querySelector('#upload-result .result-meta').textContent").await.starts_with("your upload"));
-    // A change with no fold is flagged (item 13): the flat napkin moved by a third of its
-    // side has the same disks (no fold) but is far from the start frame.
-    let mut shrunk = entry.sample.clone();
-    let start = shrunk.frames[0].clone();
-    shrunk.frames[1] = start.iter().map(|p| [p[0] + side / 3.0, p[1], p[2]]).collect();
-    choose_files(&client, &[write(&scratch, "shrunk-napkin.json", &serde_json::to_vec(&shrunk).expect("sample JSON"))]).await;
-    until(&client, "the shrunk upload", "document.querySelector('#upload-result .result-name')?.textContent === 'shrunk-napkin.json'").await;
+    // A change with no fold is flagged (item 13): the napkin crumpled on the table (each
+    // vertex moved at random, a quarter of the side at most) has no fold, and no rigid
+    // motion brings it back onto the start frame (a napkin only moved would be unchanged).
+    let mut crumpled = entry.sample.clone();
+    let start = crumpled.frames[0].clone();
+    let mut rng = close::rng::SplitMix64::new(11);
+    let mut noise = |scale: f64| (rng.uniform() - 0.5) * scale * side;
+    crumpled.frames[1] = start.iter().map(|p| [p[0] + noise(0.5), p[1] + noise(0.5), p[2] + noise(0.05)]).collect();
+    choose_files(&client, &[write(&scratch, "crumpled-napkin.json", &serde_json::to_vec(&crumpled).expect("sample JSON"))]).await;
+    until(&client, "the crumpled upload", "document.querySelector('#upload-result .result-name')?.textContent === 'crumpled-napkin.json'").await;
     let label = text(&client, "document.querySelector('#upload-result .result-label').textContent").await;
     let verdict = text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
     assert!(label.contains("changed, but no fold found") && verdict.contains("changed, but no fold found"), "{label} / {verdict}");
     // A failed upload leaves no old name in the title.
     choose_files(&client, &[write(&scratch, "broken.json", b"{")]).await;
     until(&client, "the failed upload", "!document.getElementById('error').hidden").await;
-    assert!(!text(&client, "document.title").await.contains("shrunk-napkin"), "the title names the previous upload");
+    assert!(!text(&client, "document.title").await.contains("crumpled-napkin"), "the title names the previous upload");
     // Mismatched frames name their files.
     let frames = entry.sample.frames.clone();
     let short = write(&scratch, "b-end.txt", text_frame(&frames[1][..frames[1].len() - 3]).as_bytes());
