@@ -44,17 +44,20 @@ fn every_second_fold_is_found_near_its_floor() {
         assert_eq!(analysis.folds.len(), 2, "{}: {:?}", sample.name, analysis.folds);
         let m = analysis.metrics.unwrap();
         let f = floor(&sample.name);
-        // Measured (2026-12-02): 1.28–1.53 × the floor, the shirt below it.
+        // Measured (2026-12-02): 1.28–1.47 × the floor, the shirt below it.
         assert!(m.rmse <= 1.6 * f, "{}: RMSE {:.4} against a floor of {f}", sample.name, m.rmse);
         // This cloth slides across the table as it folds (its unfolded part moved rigidly by up
         // to 0.11 on the skirt), which the disks cannot see; once the prediction is moved
-        // rigidly onto the end, every sequence is below its floor (measured 0.34–0.93 ×).
+        // rigidly onto the end, every sequence is below its floor (measured 0.33–0.93 ×).
         assert!(m.aligned_rmse <= f, "{}: aligned RMSE {:.4} against a floor of {f}", sample.name, m.aligned_rmse);
         rmse.push(m.rmse);
         floors.push(f);
         // A fold of several arcs is reported as its arcs, and its fold spans them.
         let step = &analysis.steps[1].detection;
         if multi_arc(&sample.name) {
+            // The target for a fold of several arcs (measured: shirt 0.95 ×, trousers
+            // 1.47 ×).
+            assert!(m.rmse <= 1.5 * f, "{}: RMSE {:.4} against a floor of {f}", sample.name, m.rmse);
             assert!(step.arcs.len() >= 2, "{}: arcs {:?}", sample.name, step.arcs);
             let text = &analysis.label.folds[1].text;
             assert!(text.contains("multi-arc fold") && text.contains(&format!("crosses the border {} times", 2 * step.arcs.len())), "{}: {text}", sample.name);
@@ -66,7 +69,7 @@ fn every_second_fold_is_found_near_its_floor() {
         assert_eq!([step.arcs[0][0], step.arcs[step.arcs.len() - 1][1]], fold, "{}", sample.name);
     }
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    // Measured 0.0714 against a mean floor of 0.0541 (1.32 ×).
+    // Measured 0.0716 against a mean floor of 0.0541 (1.32 ×).
     assert!(mean(&rmse) <= 1.4 * mean(&floors), "mean RMSE {:.4}, mean floor {:.4}", mean(&rmse), mean(&floors));
 }
 

@@ -12,10 +12,10 @@ use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_arcs, fold_line};
+use crate::fold::reflect::{apply_arcs, fold_line, folded_vertices};
 use crate::fold::{detect, FoldDetection, FoldMethod, Line};
 use crate::label::{label_arcs, Label, CHANGED_RMSE};
-use crate::metrics::Metrics;
+use crate::metrics::{Metrics, RigidMotion};
 
 /// Which frames to analyse (defaults: first and last).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -47,7 +47,9 @@ pub struct Step {
     /// The line this step's fold was applied along in `predicted_end` (input coordinates,
     /// XY: a point and a unit direction): through the border points at f1 and f2 of the
     /// predicted state, or, when those coincide, through their midpoint in the direction the
-    /// disks gave. `None` without a fold.
+    /// disks gave on the observed frame, turned by the rigid motion that best brings that
+    /// frame onto the predicted state (a cloth may turn on the table between folds, which
+    /// no disk sees). `None` without a fold.
     pub line: Option<Line>,
     /// The start border with the folds found up to this step applied, against this
     /// step's true end frame.
@@ -206,6 +208,9 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
 /// from the state before it, and the start border with the folds found applied.
 fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, start: (&[Point], &Disk), options: &Options) -> Result<(Vec<Step>, Vec<Point>)> {
     let mut predicted = frames[0].clone();
+    // The vertices no fold found so far has moved: where the predicted state and the observed
+    // one differ only by how the cloth lies on the table.
+    let mut unmoved = vec![true; predicted.len()];
     let mut steps = Vec::with_capacity(frames.len() - 1);
     let mut previous: Option<(Vec<Point>, Disk)> = None;
     for (k, frame) in frames.iter().enumerate().skip(1) {
@@ -215,8 +220,17 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
         let detection = detect(before_border, before, &after, options.method);
         options.deadline.check()?;
         let line = detection.fold.and_then(|fold| {
-            let line = fold_line(&predicted, fold, detection.synthesis.as_ref().and_then(|s| s.direction))?;
+            let direction = detection.synthesis.as_ref().and_then(|s| s.direction);
+            // A direction read on the observed frame turns with the predicted state, which may
+            // lie rotated from it (a cloth that slid as it folded).
+            let direction = direction.map(|d| placement(before_border, &norm.apply_all(&predicted), &unmoved).rotate(d));
+            let line = fold_line(&predicted, fold, direction)?;
             predicted = apply_arcs(&predicted, &detection.arcs, &line);
+            for &arc in &detection.arcs {
+                for v in folded_vertices(predicted.len(), arc) {
+                    unmoved[v] = false;
+                }
+            }
             Some(line)
         });
         let metrics = Metrics::measure(norm, &predicted, frame);
@@ -224,6 +238,19 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
         previous = Some((after_border, after));
     }
     Ok((steps, predicted))
+}
+
+/// The rigid motion that brings the `observed` state onto the `predicted` one, fitted on the
+/// vertices no fold has moved (on them the two differ only by a slide across the table;
+/// on the flaps, also by the folds' own errors), or on all when fewer than three are left.
+fn placement(observed: &[Point], predicted: &[Point], unmoved: &[bool]) -> RigidMotion {
+    let (observed_base, predicted_base): (Vec<Point>, Vec<Point>) =
+        observed.iter().zip(predicted).zip(unmoved).filter(|(_, &keep)| keep).map(|(pair, _)| pair).unzip();
+    if observed_base.len() < 3 {
+        RigidMotion::fit_xy(observed, predicted)
+    } else {
+        RigidMotion::fit_xy(&observed_base, &predicted_base)
+    }
 }
 
 #[cfg(test)]

@@ -63,25 +63,54 @@ pub fn rmse_xy(a: &[Point], b: &[Point]) -> f64 {
 /// closest to `b` (a mirror image is not a rigid motion: it stays apart). At most
 /// [`rmse_xy`], since not moving is one of the motions.
 pub fn aligned_rmse_xy(a: &[Point], b: &[Point]) -> f64 {
-    let n = a.len().min(b.len());
-    if n == 0 {
-        return 0.0;
-    }
-    let (a, b) = (&a[..n], &b[..n]);
-    let centroid = |s: &[Point]| s.iter().fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
-    let ((ax, ay), (bx, by)) = (centroid(a), centroid(b));
-    let (ax, ay, bx, by) = (ax / n as f64, ay / n as f64, bx / n as f64, by / n as f64);
-    let (dot, cross) = a.iter().zip(b).fold((0.0, 0.0), |(dot, cross), (p, q)| {
-        let (px, py, qx, qy) = (p.x - ax, p.y - ay, q.x - bx, q.y - by);
-        (dot + px * qx + py * qy, cross + px * qy - py * qx)
-    });
-    let theta = cross.atan2(dot);
-    let (sin, cos) = theta.sin_cos();
-    let moved: Vec<Point> = a.iter().map(|p| {
-        let (px, py) = (p.x - ax, p.y - ay);
-        Point::new(bx + cos * px - sin * py, by + sin * px + cos * py, p.z)
-    }).collect();
+    let motion = RigidMotion::fit_xy(a, b);
+    let moved: Vec<Point> = a.iter().map(|p| motion.apply(p)).collect();
     rmse_xy(&moved, b)
+}
+
+/// A rotation about the vertical followed by a translation, in XY (z kept).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidMotion {
+    /// Anticlockwise rotation, radians.
+    pub angle: f64,
+    /// The rotation is about this point, which then moves to `to`.
+    from: [f64; 2],
+    to: [f64; 2],
+}
+
+impl RigidMotion {
+    /// The motion that brings `a` closest to `b`, vertex by vertex, in the least-squares
+    /// sense (2D Kabsch: centre both, rotate by atan2(Σ p×q, Σ p·q)); the identity when
+    /// either is empty.
+    pub fn fit_xy(a: &[Point], b: &[Point]) -> RigidMotion {
+        let n = a.len().min(b.len());
+        if n == 0 {
+            return RigidMotion { angle: 0.0, from: [0.0; 2], to: [0.0; 2] };
+        }
+        let (a, b) = (&a[..n], &b[..n]);
+        let centroid = |s: &[Point]| {
+            let (x, y) = s.iter().fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
+            [x / n as f64, y / n as f64]
+        };
+        let (from, to) = (centroid(a), centroid(b));
+        let (dot, cross) = a.iter().zip(b).fold((0.0, 0.0), |(dot, cross), (p, q)| {
+            let (px, py, qx, qy) = (p.x - from[0], p.y - from[1], q.x - to[0], q.y - to[1]);
+            (dot + px * qx + py * qy, cross + px * qy - py * qx)
+        });
+        RigidMotion { angle: cross.atan2(dot), from, to }
+    }
+
+    /// `v` (an XY direction) turned by the motion's rotation.
+    pub fn rotate(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        let (sin, cos) = self.angle.sin_cos();
+        [cos * x - sin * y, sin * x + cos * y]
+    }
+
+    /// `p` moved.
+    pub fn apply(&self, p: &Point) -> Point {
+        let [x, y] = self.rotate([p.x - self.from[0], p.y - self.from[1]]);
+        Point::new(self.to[0] + x, self.to[1] + y, p.z)
+    }
 }
 
 /// Discrete Fréchet distance in XY between two closed vertex sequences, both walked from
