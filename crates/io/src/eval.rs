@@ -138,6 +138,7 @@ pub struct FoldSummary {
     pub found: usize,
     pub rmse: Option<Stat>,
     pub frechet: Option<Stat>,
+    /// As [`SampleResult::aligned_rmse`].
     #[serde(default)]
     pub aligned_rmse: Option<Stat>,
     pub f1_error: Option<Stat>,
