@@ -20,7 +20,11 @@ fn napkin(n: usize) -> Vec<Point> {
         .map(|k| {
             let t = (k % per_side) as f64 / per_side as f64;
             let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
-            Point::new(x - 0.5 + 1e-5 * (7.0 * k as f64).sin(), y - 0.5 + 1e-5 * (3.0 * k as f64).cos(), 0.0)
+            Point::new(
+                x - 0.5 + 1e-5 * (7.0 * k as f64).sin(),
+                y - 0.5 + 1e-5 * (3.0 * k as f64).cos(),
+                0.0,
+            )
         })
         .collect()
 }
@@ -30,7 +34,10 @@ fn folded_frames(n: usize) -> Vec<Vec<[f64; 3]>> {
     let fold = [2.0 * PI * 0.07, 2.0 * PI * 0.59];
     let end = apply_fold(&start, fold);
     let lift = |p: &Point, s: &Point| [p.x, p.y, if p == s { p.z } else { p.z + 0.01 }];
-    vec![start.iter().map(|p| lift(p, p)).collect(), end.iter().zip(&start).map(|(p, s)| lift(p, s)).collect()]
+    vec![
+        start.iter().map(|p| lift(p, p)).collect(),
+        end.iter().zip(&start).map(|(p, s)| lift(p, s)).collect(),
+    ]
 }
 
 #[divan::bench(args = [76, 300, 1000])]

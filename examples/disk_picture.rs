@@ -28,7 +28,8 @@ fn load_body() -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let number = |k: usize, default: u32| args.get(k).map_or(default, |a| a.parse().expect("a number"));
+    let number =
+        |k: usize, default: u32| args.get(k).map_or(default, |a| a.parse().expect("a number"));
     let (repeats, size) = (number(0, 200), number(1, DEFAULT_SIZE));
     let (border, reference) = load_body();
     let disk = close::disk::of_state(border, Some(reference), &Deadline::default()).unwrap();
@@ -38,8 +39,22 @@ fn main() {
     }
     let start = Instant::now();
     for _ in 0..repeats {
-        std::hint::black_box(disk_png_scaled(std::hint::black_box(&disk), "dGLI disk · current state", None, size, size).unwrap());
+        std::hint::black_box(
+            disk_png_scaled(
+                std::hint::black_box(&disk),
+                "dGLI disk · current state",
+                None,
+                size,
+                size,
+            )
+            .unwrap(),
+        );
     }
     let per = start.elapsed().as_secs_f64() / repeats as f64;
-    println!("N = {}, {size}×{size} px, {} bytes: {:.3} ms per picture ({repeats} pictures)", disk.n(), png.len(), per * 1e3);
+    println!(
+        "N = {}, {size}×{size} px, {} bytes: {:.3} ms per picture ({repeats} pictures)",
+        disk.n(),
+        png.len(),
+        per * 1e3
+    );
 }

@@ -7,8 +7,9 @@
 //! - [`close_render`]: the pictures and Rerun recordings;
 //! - [`close_server`]: the web app.
 //!
-//! Each crate re-exports the ones below it, so every module is reachable here under one name:
-//! `close::fold`, `close::formats`, `close::render`, `close::server`.
+//! This facade re-exports their modules by name, so every module is reachable here under one
+//! name: `close::fold` (close-core), `close::formats` (close-io), `close::render` (the
+//! close-render crate), `close::server` (the close-server crate).
 //!
 //! ```
 //! use close::{analyze, FrameRange, Sample};
@@ -23,4 +24,15 @@
 //! # Ok::<(), close::Error>(())
 //! ```
 
-pub use close_server::*;
+pub use close_core::{
+    analysis, analyze, analyze_with, angle, border, budget, close, disk, error, fold, gli,
+    interpolate, label, metrics, plan, rng, Analysis, Error, FoldMethod, FrameRange, Options,
+    Result,
+};
+#[cfg(feature = "vrfolding")]
+pub use close_io::vrfolding;
+pub use close_io::{batch, cache, catalog, dataset, eval, formats, mesh, Sample};
+pub use close_render as render;
+#[cfg(feature = "rerun")]
+pub use close_render::record;
+pub use close_server as server;

@@ -13,7 +13,11 @@ use close::formats::{read_files, Sample};
 use close::{analyze, analyze_with, eval, FoldMethod, FrameRange, Options};
 
 #[derive(Parser)]
-#[command(name = "close", version, about = "CloSE cloth-state representation: analyse folds, evaluate, serve the web app")]
+#[command(
+    name = "close",
+    version,
+    about = "CloSE cloth-state representation: analyse folds, evaluate, serve the web app"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -81,7 +85,13 @@ enum Command {
         #[arg(required = true)]
         files: Vec<PathBuf>,
         /// The goal fold as two angles in radians, e.g. `--goal 0.5,3.6`.
-        #[arg(long, required = true, value_delimiter = ',', num_args = 1, allow_hyphen_values = true)]
+        #[arg(
+            long,
+            required = true,
+            value_delimiter = ',',
+            num_args = 1,
+            allow_hyphen_values = true
+        )]
         goal: Vec<f64>,
         /// Print the plan as JSON instead of text.
         #[arg(long)]
@@ -145,13 +155,18 @@ struct ServeFlags {
 
 impl ServeFlags {
     fn config(self) -> close::server::Config {
-        let mut config = close::server::Config { allowed_hosts: self.allow_host, cors_origins: self.cors, ..Default::default() };
+        let mut config = close::server::Config {
+            allowed_hosts: self.allow_host,
+            cors_origins: self.cors,
+            ..Default::default()
+        };
         let secs = std::time::Duration::from_secs;
         config.timeout = self.timeout.map_or(config.timeout, secs);
         config.header_timeout = self.header_timeout.map_or(config.header_timeout, secs);
         config.max_connections = self.max_connections.unwrap_or(config.max_connections);
         config.budget.max_cells = self.max_cells.unwrap_or(config.budget.max_cells);
-        config.upload_budget = self.upload_budget.map_or(config.upload_budget, |mib| mib.saturating_mul(1 << 20));
+        config.upload_budget =
+            self.upload_budget.map_or(config.upload_budget, |mib| mib.saturating_mul(1 << 20));
         config
     }
 }
@@ -235,7 +250,10 @@ fn read(path: &Path) -> CliResult<(String, Vec<u8>)> {
 fn write_file(path: &Path, bytes: &[u8], force: bool) -> CliResult {
     static TEMPS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     if !force && std::fs::symlink_metadata(path).is_ok() {
-        return Err(CliError::Usage(format!("{} already exists: give --force to replace it", path.display())));
+        return Err(CliError::Usage(format!(
+            "{} already exists: give --force to replace it",
+            path.display()
+        )));
     }
     let name = path.file_name().map_or("out".into(), |n| n.to_string_lossy().to_string());
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
@@ -259,11 +277,20 @@ fn load_sample(paths: &[PathBuf]) -> CliResult<Sample> {
     Ok(read_files(&files)?)
 }
 
-fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Options, disks: bool) -> CliResult {
+fn run_analyze(
+    files: &[PathBuf],
+    video: Option<&str>,
+    fold: usize,
+    options: Options,
+    disks: bool,
+) -> CliResult {
     let (sample, mesh_indices, video) = match video {
         Some(id) => store_fold(files, id, fold)?,
         None if files.len() == 1 && files[0].join(".zgroup").is_file() => {
-            return Err(CliError::Usage(format!("{} is a Zarr store: choose a video with --video ID (and --fold 1|2)", files[0].display())));
+            return Err(CliError::Usage(format!(
+                "{} is a Zarr store: choose a video with --video ID (and --fold 1|2)",
+                files[0].display()
+            )));
         }
         None => (load_sample(files)?, None, None),
     };
@@ -273,8 +300,14 @@ fn run_analyze(files: &[PathBuf], video: Option<&str>, fold: usize, options: Opt
         // The border was gathered from the mesh: report mesh vertex ids.
         analysis.border_indices = analysis.border_indices.iter().map(|&k| mesh[k]).collect();
     }
-    let disk = |k: usize| disks.then(|| analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default());
-    let out = AnalyzeOutput { analysis: &analysis, video, disk_start: disk(0), disk_end: disk(analysis.frames.len().saturating_sub(1)) };
+    let disk =
+        |k: usize| disks.then(|| analysis.disk(k).map(|d| d.values().to_vec()).unwrap_or_default());
+    let out = AnalyzeOutput {
+        analysis: &analysis,
+        video,
+        disk_start: disk(0),
+        disk_end: disk(analysis.frames.len().saturating_sub(1)),
+    };
     emit(&serde_json::to_string(&out)?)?;
     Ok(())
 }
@@ -301,22 +334,33 @@ struct VideoFold {
     category: String,
     fold: usize,
     #[cfg(feature = "vrfolding")]
-    actions: Vec<close::vrfolding::cut::Action>,
+    actions: Vec<close::vrfolding::bifold::Action>,
 }
 
 /// Fold `fold` of video `id` of the store at `files[0]`: the border sample, the mesh vertex of
 /// each border vertex, and what to add to the output (video, fold, actions).
 #[cfg(feature = "vrfolding")]
-fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
+fn store_fold(
+    files: &[PathBuf],
+    id: &str,
+    fold: usize,
+) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
     let [path] = files else {
-        return Err(CliError::Usage("--video takes one VR-Folding store (or category folder)".into()));
+        return Err(CliError::Usage(
+            "--video takes one VR-Folding store (or category folder)".into(),
+        ));
     };
     let store = close::vrfolding::Store::open(path)?;
     let (videos, _) = store.videos()?;
     let video = videos
         .iter()
         .find(|v| v.id == id || format!("{}/{}", v.category, v.id) == id)
-        .ok_or_else(|| CliError::Usage(format!("no video {id:?} in {} (videos are named by video_id, or Category/video_id)", path.display())))?;
+        .ok_or_else(|| {
+            CliError::Usage(format!(
+                "no video {id:?} in {} (videos are named by video_id, or Category/video_id)",
+                path.display()
+            ))
+        })?;
     let folds = store.folds(video)?;
     let sample = folds.sample(video, fold).ok_or_else(|| {
         CliError::Usage(if fold <= folds.broken.len() {
@@ -325,12 +369,21 @@ fn store_fold(files: &[PathBuf], id: &str, fold: usize) -> CliResult<(Sample, Op
             format!("video {id} has {} fold action(s), not {fold}", folds.actions.len())
         })
     })?;
-    let extra = VideoFold { video: video.id.clone(), category: video.category.clone(), fold, actions: folds.actions };
+    let extra = VideoFold {
+        video: video.id.clone(),
+        category: video.category.clone(),
+        fold,
+        actions: folds.actions,
+    };
     Ok((sample, Some(folds.border_indices), Some(extra)))
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn store_fold(_: &[PathBuf], _: &str, _: usize) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
+fn store_fold(
+    _: &[PathBuf],
+    _: &str,
+    _: usize,
+) -> CliResult<(Sample, Option<Vec<usize>>, Option<VideoFold>)> {
     Err(CliError::Usage(NO_VRFOLDING.into()))
 }
 
@@ -340,7 +393,7 @@ use close::batch::NO_VRFOLDING;
 /// One unit of evaluation work (one progress-bar tick).
 enum Work<'a> {
     Unit(close::batch::Unit),
-    Builtin(&'a close::dataset::Entry),
+    Builtin(&'a close::dataset::BuiltinSample),
 }
 
 impl Work<'_> {
@@ -361,8 +414,15 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
     if work.is_empty() {
         return Err(CliError::Usage("no Sample JSON file or VR-Folding video found".into()));
     }
-    let bar = if std::io::stderr().is_terminal() { ProgressBar::new(work.len() as u64) } else { ProgressBar::hidden() };
-    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} samples/videos {elapsed} eta {eta}").expect("valid template"));
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(work.len() as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} samples/videos {elapsed} eta {eta}")
+            .expect("valid template"),
+    );
     let results: Vec<eval::SampleResult> = work
         .par_iter()
         .flat_map_iter(|w| {
@@ -390,7 +450,10 @@ fn run_dataset(out: &Path, from: &[PathBuf], force: bool) -> CliResult {
     std::fs::create_dir_all(out).map_err(file_error(out))?;
     let held = std::fs::read_dir(out).map_err(file_error(out))?.next().is_some();
     if held && !force {
-        return Err(CliError::Usage(format!("{} is not empty: give --force to write into it", out.display())));
+        return Err(CliError::Usage(format!(
+            "{} is not empty: give --force to write into it",
+            out.display()
+        )));
     }
     let write = |name: &str, sample: &Sample| {
         let path = out.join(format!("{}.json", name.replace(['/', '\\'], "_")));
@@ -410,15 +473,23 @@ fn run_dataset(out: &Path, from: &[PathBuf], force: bool) -> CliResult {
 /// Every usable fold of every video of the stores as Sample JSON (`<Category>_<video>_fold<k>`,
 /// category `<Category>/fold<k>`); broken folds and unreadable videos are reported and skipped.
 #[cfg(feature = "vrfolding")]
-fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> CliResult + Sync)) -> CliResult {
+fn export_stores(
+    from: &[PathBuf],
+    write: &(dyn Fn(&str, &Sample) -> CliResult + Sync),
+) -> CliResult {
     let (work, rest) = close::batch::store_units(from)?;
     if let Some(p) = rest.first() {
-        return Err(CliError::Usage(format!("{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)", p.display())));
+        return Err(CliError::Usage(format!(
+            "{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)",
+            p.display()
+        )));
     }
     let counts = work
         .par_iter()
         .map(|w| {
-            let close::batch::Unit::Video(store, video) = w else { return Ok::<_, CliError>([0, 0, 0]) };
+            let close::batch::Unit::Video(store, video) = w else {
+                return Ok::<_, CliError>([0, 0, 0]);
+            };
             match store.folds(video) {
                 Ok(folds) => {
                     for k in 1..=folds.usable() {
@@ -435,7 +506,13 @@ fn export_stores(from: &[PathBuf], write: &(dyn Fn(&str, &Sample) -> CliResult +
             }
         })
         .try_reduce(|| [0, 0, 0], |a, b| Ok([a[0] + b[0], a[1] + b[1], a[2] + b[2]]))?;
-    eprintln!("wrote {} folds of {} videos ({} dropped: broken mesh; {} videos unreadable)", counts[0], work.len(), counts[1], counts[2]);
+    eprintln!(
+        "wrote {} folds of {} videos ({} dropped: broken mesh; {} videos unreadable)",
+        counts[0],
+        work.len(),
+        counts[1],
+        counts[2]
+    );
     Ok(())
 }
 
@@ -448,7 +525,10 @@ fn export_stores(_: &[PathBuf], _: &(dyn Fn(&str, &Sample) -> CliResult + Sync))
 /// vertices are reported as input indices.
 fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     let &[g1, g2] = goal else {
-        return Err(CliError::Usage(format!("--goal takes two angles f1,f2 (got {} values)", goal.len())));
+        return Err(CliError::Usage(format!(
+            "--goal takes two angles f1,f2 (got {} values)",
+            goal.len()
+        )));
     };
     let sample = load_sample(files)?;
     let frames = sample.border_frames()?;
@@ -459,7 +539,14 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     }
     let mut text = plan.case.as_str().to_string();
     for (k, step) in plan.steps.iter().enumerate() {
-        text += &format!("\n{}. {} ({:.4}, {:.4}), corners {:?}", k + 1, step.action.as_str(), step.fold[0], step.fold[1], step.corners);
+        text += &format!(
+            "\n{}. {} ({:.4}, {:.4}), corners {:?}",
+            k + 1,
+            step.action.as_str(),
+            step.fold[0],
+            step.fold[1],
+            step.corners
+        );
         for p in &step.picks {
             let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
             text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
@@ -475,7 +562,12 @@ fn run_record(files: &[PathBuf], out: &Path, force: bool) -> CliResult {
     let analysis = analyze(&frames, FrameRange::default())?;
     let rrd = close::record::record(&analysis, &frames)?;
     write_file(out, &rrd, force)?;
-    eprintln!("wrote {} ({} bytes); open it with `rerun {}`", out.display(), rrd.len(), out.display());
+    eprintln!(
+        "wrote {} ({} bytes); open it with `rerun {}`",
+        out.display(),
+        rrd.len(),
+        out.display()
+    );
     Ok(())
 }
 
@@ -490,15 +582,23 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
         Some(Command::Analyze { files, video, fold, start, end, json: _, disks, method }) => {
-            let options = Options { frames: FrameRange { start, end }, method: method.into(), ..Options::default() };
+            let options = Options {
+                frames: FrameRange { start, end },
+                method: method.into(),
+                ..Options::default()
+            };
             run_analyze(&files, video.as_deref(), usize::from(fold), options, disks)
         }
-        Some(Command::Eval { paths, builtin, json, method }) => run_eval(&paths, builtin, json, method.into()),
+        Some(Command::Eval { paths, builtin, json, method }) => {
+            run_eval(&paths, builtin, json, method.into())
+        }
         Some(Command::Dataset { out, from, force }) => run_dataset(&out, &from, force),
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out, force }) => run_record(&files, &out, force),
-        Some(Command::Serve { addr, datasets, limits }) => serve(&addr, close::server::Config { datasets, ..limits.config() }),
+        Some(Command::Serve { addr, datasets, limits }) => {
+            serve(&addr, close::server::Config { datasets, ..limits.config() })
+        }
         None => serve(DEFAULT_ADDR, close::server::Config::default()),
     };
     match outcome {

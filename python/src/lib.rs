@@ -4,18 +4,18 @@
 //! and the server), nothing is computed here. What this file does is convert — numpy arrays
 //! in and out, the library's JSON objects as Python dicts (through `json.loads`, so
 //! `Analysis.to_dict()` is exactly what `close analyze --json` prints) — map errors
-//! (`close::Error` → `close.CloseError` with the CLI's message; a missing file →
+//! (`close_core::Error` → `close.CloseError` with the CLI's message; a missing file →
 //! `FileNotFoundError`), apply the server's input limits ([`Budget::SERVER`]; the readers'
-//! and [`close::border::prepare`]'s own limits hold everywhere), and release the GIL
+//! and [`close_core::border::prepare`]'s own limits hold everywhere), and release the GIL
 //! around the work. A Rust panic unwinds into `pyo3_runtime.PanicException` (the release
 //! profile keeps `panic = "unwind"`).
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use close::budget::Budget;
-use close::formats::{MAX_FILE_BYTES, Sample};
-use close::{Analysis, FoldMethod, FrameRange, Options};
+use close_core::budget::Budget;
+use close_core::{Analysis, FoldMethod, FrameRange, Options};
+use close_io::formats::{Sample, MAX_FILE_BYTES};
 use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArrayDyn};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
@@ -33,22 +33,26 @@ pyo3::create_exception!(
 );
 
 /// The library's error as `close.CloseError`, with the CLI's message.
-fn close_error(e: close::Error) -> PyErr {
+fn close_error(e: close_core::Error) -> PyErr {
     CloseError::new_err(e.to_string())
 }
 
 fn invalid(message: String) -> PyErr {
-    close_error(close::Error::InvalidArgument(message))
+    close_error(close_core::Error::InvalidArgument(message))
 }
 
 /// A JSON value of the library as the Python object `json.loads` makes of it.
 fn to_python<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(value).map_err(|e| invalid(format!("could not write JSON: {e}")))?;
+    let text =
+        serde_json::to_string(value).map_err(|e| invalid(format!("could not write JSON: {e}")))?;
     py.import("json")?.call_method1("loads", (text,))
 }
 
 /// A Python object (a dict of a truth, …) as JSON, through `json.dumps`.
-fn from_python<T: serde::de::DeserializeOwned>(value: &Bound<'_, PyAny>, what: &str) -> PyResult<T> {
+fn from_python<T: serde::de::DeserializeOwned>(
+    value: &Bound<'_, PyAny>,
+    what: &str,
+) -> PyResult<T> {
     let text: String = value.py().import("json")?.call_method1("dumps", (value,))?.extract()?;
     serde_json::from_str(&text).map_err(|e| invalid(format!("{what}: {e}")))
 }
@@ -58,14 +62,18 @@ fn method(name: &str) -> PyResult<FoldMethod> {
     if name == "default" {
         return Ok(FoldMethod::default());
     }
-    serde_json::from_value(Value::String(name.into())).map_err(|_| invalid(format!("unknown method {name:?}: expected \"default\", \"cut\" or \"paper\"")))
+    serde_json::from_value(Value::String(name.into())).map_err(|_| {
+        invalid(format!("unknown method {name:?}: expected \"default\", \"cut\" or \"paper\""))
+    })
 }
 
 /// A numpy float64 array of anything array-like.
 fn float_array<'py>(obj: &Bound<'py, PyAny>) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
     let numpy = obj.py().import("numpy")?;
     let kwargs = [("dtype", numpy.getattr("float64")?)].into_py_dict(obj.py())?;
-    let array = numpy.call_method("asarray", (obj,), Some(&kwargs)).map_err(|e| invalid(format!("not an array of numbers: {e}")))?;
+    let array = numpy
+        .call_method("asarray", (obj,), Some(&kwargs))
+        .map_err(|e| invalid(format!("not an array of numbers: {e}")))?;
     array.extract()
 }
 
@@ -75,7 +83,9 @@ fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 3]>> {
     let view = array.as_array();
     match view.shape() {
         [_, 3] => Ok(view.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect()),
-        shape => Err(invalid(format!("{what}: expected an (N, 3) array of x, y, z, got shape {shape:?}"))),
+        shape => Err(invalid(format!(
+            "{what}: expected an (N, 3) array of x, y, z, got shape {shape:?}"
+        ))),
     }
 }
 
@@ -83,24 +93,41 @@ fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 3]>> {
 /// may differ in N: the library names the frame that does).
 fn frames(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<[f64; 3]>>> {
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-        return obj.try_iter()?.enumerate().map(|(k, frame)| points(&frame?, &format!("frame {k}"))).collect();
+        return obj
+            .try_iter()?
+            .enumerate()
+            .map(|(k, frame)| points(&frame?, &format!("frame {k}")))
+            .collect();
     }
     let array = float_array(obj)?;
     let view = array.as_array();
     match view.shape() {
-        [_, _, 3] => Ok(view.outer_iter().map(|f| f.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect()).collect()),
-        shape => Err(invalid(format!("frames: expected an (F, N, 3) array or a list of (N, 3) arrays, got shape {shape:?}"))),
+        [_, _, 3] => Ok(view
+            .outer_iter()
+            .map(|f| f.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect())
+            .collect()),
+        shape => Err(invalid(format!(
+            "frames: expected an (F, N, 3) array or a list of (N, 3) arrays, got shape {shape:?}"
+        ))),
     }
 }
 
 /// An (F, N, 3) array of frames (N = 0 when there is no frame).
-fn frames_array<'py>(py: Python<'py>, frames: &[Vec<[f64; 3]>]) -> PyResult<Bound<'py, PyArray3<f64>>> {
+fn frames_array<'py>(
+    py: Python<'py>,
+    frames: &[Vec<[f64; 3]>],
+) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let n = frames.first().map_or(0, Vec::len);
     if let Some(k) = frames.iter().position(|f| f.len() != n) {
-        return Err(close_error(close::Error::FrameSizeMismatch { frame: k, expected: n, got: frames[k].len() }));
+        return Err(close_error(close_core::Error::FrameSizeMismatch {
+            frame: k,
+            expected: n,
+            got: frames[k].len(),
+        }));
     }
     let flat: Vec<f64> = frames.iter().flatten().flatten().copied().collect();
-    let array = Array3::from_shape_vec((frames.len(), n, 3), flat).map_err(|e| invalid(format!("frames: {e}")))?;
+    let array = Array3::from_shape_vec((frames.len(), n, 3), flat)
+        .map_err(|e| invalid(format!("frames: {e}")))?;
     Ok(array.into_pyarray(py))
 }
 
@@ -116,15 +143,28 @@ fn points_array<'py>(py: Python<'py>, points: &[[f64; 3]]) -> Bound<'py, PyArray
 fn read(path: &PathBuf) -> PyResult<(String, Vec<u8>)> {
     let name = path.display().to_string();
     let io = |e: std::io::Error| match e.kind() {
-        std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err((e.raw_os_error().unwrap_or(2), e.to_string(), name.clone())),
+        std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err((
+            e.raw_os_error().unwrap_or(2),
+            e.to_string(),
+            name.clone(),
+        )),
         _ => PyOSError::new_err((e.raw_os_error().unwrap_or(0), e.to_string(), name.clone())),
     };
     let size = std::fs::metadata(path).map_err(io)?.len();
     if size > MAX_FILE_BYTES as u64 {
-        return Err(close_error(close::Error::TooLarge { what: "bytes of file", got: Some(size), limit: MAX_FILE_BYTES as u64 }.in_file(&name)));
+        return Err(close_error(
+            close_core::Error::TooLarge {
+                what: "bytes of file",
+                got: Some(size),
+                limit: MAX_FILE_BYTES as u64,
+            }
+            .in_file(&name),
+        ));
     }
-    if close::vrfolding::is_store(path) {
-        return Err(invalid(format!("{name} is a VR-Folding Zarr store: open it with close.vrfolding.open")));
+    if close_io::vrfolding::is_store(path) {
+        return Err(invalid(format!(
+            "{name} is a VR-Folding Zarr store: open it with close.vrfolding.open"
+        )));
     }
     Ok((name.clone(), std::fs::read(path).map_err(io)?))
 }
@@ -144,7 +184,7 @@ struct PySample {
 
 impl PySample {
     fn state(&self) -> (String, String) {
-        (close::formats::json::to_json(&self.sample), self.meta.to_string())
+        (close_io::formats::json::to_json(&self.sample), self.meta.to_string())
     }
 }
 
@@ -152,7 +192,12 @@ impl PySample {
 impl PySample {
     #[new]
     #[pyo3(signature = (frames, *, name = String::new(), category = String::new(), truth = None))]
-    fn new(frames: &Bound<'_, PyAny>, name: String, category: String, truth: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+    fn new(
+        frames: &Bound<'_, PyAny>,
+        name: String,
+        category: String,
+        truth: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
         let mut sample = Sample::from_frames(name, category, crate::frames(frames)?);
         sample.truth = truth.map(|t| from_python(t, "truth")).transpose()?;
         Ok(PySample { sample: Arc::new(sample), meta: Value::Object(Default::default()) })
@@ -202,7 +247,7 @@ impl PySample {
 
     /// The sample as Sample JSON (the file format `close analyze` reads).
     fn to_json(&self) -> String {
-        close::formats::json::to_json(&self.sample)
+        close_io::formats::json::to_json(&self.sample)
     }
 
     fn __repr__(&self) -> String {
@@ -210,7 +255,10 @@ impl PySample {
             Some(mesh) => (mesh.frames.len(), mesh.frames.first().map_or(0, Vec::len)),
             None => (self.sample.frames.len(), self.sample.frames.first().map_or(0, Vec::len)),
         };
-        format!("Sample(name={:?}, category={:?}, frames={frames}, vertices={n})", self.sample.name, self.sample.category)
+        format!(
+            "Sample(name={:?}, category={:?}, frames={frames}, vertices={n})",
+            self.sample.name, self.sample.category
+        )
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
@@ -219,8 +267,12 @@ impl PySample {
 
     /// Rebuild a pickled sample from its Sample JSON and meta JSON.
     #[classmethod]
-    fn _from_state(_cls: &Bound<'_, pyo3::types::PyType>, json: &str, meta: &str) -> PyResult<Self> {
-        let sample = close::formats::json::parse_sample(json.as_bytes()).map_err(close_error)?;
+    fn _from_state(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        json: &str,
+        meta: &str,
+    ) -> PyResult<Self> {
+        let sample = close_io::formats::json::parse_sample(json.as_bytes()).map_err(close_error)?;
         let meta = serde_json::from_str(meta).map_err(|e| invalid(format!("sample meta: {e}")))?;
         Ok(PySample { sample: Arc::new(sample), meta })
     }
@@ -247,8 +299,10 @@ struct PyAnalysis {
 }
 
 impl PyAnalysis {
-    fn of(analysis: Analysis) -> Result<Self, close::Error> {
-        let value = serde_json::to_value(&analysis).map_err(|e| close::Error::InvalidArgument(format!("could not write JSON: {e}")))?;
+    fn of(analysis: Analysis) -> Result<Self, close_core::Error> {
+        let value = serde_json::to_value(&analysis).map_err(|e| {
+            close_core::Error::InvalidArgument(format!("could not write JSON: {e}"))
+        })?;
         Ok(PyAnalysis { value, analysis: Some(Arc::new(analysis)) })
     }
 
@@ -279,7 +333,11 @@ impl PyAnalysis {
     #[getter]
     fn folds(&self) -> Vec<(f64, f64)> {
         let pairs = self.field("folds").as_array().cloned().unwrap_or_default();
-        pairs.iter().map(Self::floats).filter_map(|f| (f.len() == 2).then(|| (f[0], f[1]))).collect()
+        pairs
+            .iter()
+            .map(Self::floats)
+            .filter_map(|f| (f.len() == 2).then(|| (f[0], f[1])))
+            .collect()
     }
 
     /// The CloSE value, {"corners": [...], "folds": [[f1, f2], ...]}.
@@ -299,7 +357,8 @@ impl PyAnalysis {
     #[getter]
     fn predicted_end<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let rows = self.field("predicted_end").as_array().cloned().unwrap_or_default();
-        let points: Vec<[f64; 3]> = rows.iter().map(Self::floats).filter_map(|p| p.try_into().ok()).collect();
+        let points: Vec<[f64; 3]> =
+            rows.iter().map(Self::floats).filter_map(|p| p.try_into().ok()).collect();
         points_array(py, &points)
     }
 
@@ -332,7 +391,13 @@ impl PyAnalysis {
     }
 
     fn __repr__(&self) -> String {
-        format!("Analysis(n={}, corners={}, folds={:?}, label={:?})", self.n(), self.corners().len(), self.folds(), self.label())
+        format!(
+            "Analysis(n={}, corners={}, folds={:?}, label={:?})",
+            self.n(),
+            self.corners().len(),
+            self.folds(),
+            self.label()
+        )
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
@@ -342,29 +407,37 @@ impl PyAnalysis {
     /// Rebuild a pickled analysis from its JSON.
     #[classmethod]
     fn _from_state(_cls: &Bound<'_, pyo3::types::PyType>, json: &str) -> PyResult<Self> {
-        let value = serde_json::from_str(json).map_err(|e| invalid(format!("analysis JSON: {e}")))?;
+        let value =
+            serde_json::from_str(json).map_err(|e| invalid(format!("analysis JSON: {e}")))?;
         Ok(PyAnalysis { value, analysis: None })
     }
 }
 
 /// The library's pipeline on a sample, under the budget of `options` (run with the GIL
 /// released).
-fn analysis_of(sample: &Sample, options: &Options) -> Result<Analysis, close::Error> {
+fn analysis_of(sample: &Sample, options: &Options) -> Result<Analysis, close_core::Error> {
     // As the server does: every frame of a border sample analysed is refused over the cell
     // budget before its border is prepared (a copy of every frame).
-    if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), options.frames) {
+    if let (Some(first), FrameRange { start: None, end: None }) =
+        (sample.frames.first(), options.frames)
+    {
         options.budget.analysis(sample.frames.len(), first.len())?;
     }
-    close::analyze_with(&sample.border_frames()?, options.clone())
+    close_core::analyze_with(&sample.border_frames()?, options.clone())
 }
 
 /// What `close.analyze` does with the GIL released.
-fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close::Error> {
+fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close_core::Error> {
     PyAnalysis::of(analysis_of(sample, options)?)
 }
 
 fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyResult<Options> {
-    Ok(Options { frames: FrameRange { start, end }, method: method(method_name)?, budget: Budget::SERVER, ..Options::default() })
+    Ok(Options {
+        frames: FrameRange { start, end },
+        method: method(method_name)?,
+        budget: Budget::SERVER,
+        ..Options::default()
+    })
 }
 
 /// Analyse frames `start` → `end` (default: first → last) of a sample, one fold per step
@@ -380,7 +453,13 @@ fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyRes
 /// inputs over the server's limits (frames × N² dGLI cells).
 #[pyfunction]
 #[pyo3(signature = (frames, *, method = "default", start = None, end = None))]
-fn analyze(py: Python<'_>, frames: &Bound<'_, PyAny>, method: &str, start: Option<usize>, end: Option<usize>) -> PyResult<PyAnalysis> {
+fn analyze(
+    py: Python<'_>,
+    frames: &Bound<'_, PyAny>,
+    method: &str,
+    start: Option<usize>,
+    end: Option<usize>,
+) -> PyResult<PyAnalysis> {
     let options = options(method, start, end)?;
     let sample = sample_of(frames)?;
     py.detach(|| analyze_sample(&sample, &options)).map_err(close_error)
@@ -391,7 +470,10 @@ fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
     if threads == Some(0) {
         return Err(invalid("threads must be at least 1".into()));
     }
-    rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| invalid(format!("could not start threads: {e}")))
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| invalid(format!("could not start threads: {e}")))
 }
 
 /// `close.analyze` of every item (frames or `close.Sample`), on `threads` native threads
@@ -399,12 +481,23 @@ fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
 /// The first item that fails raises `close.CloseError` naming its index.
 #[pyfunction]
 #[pyo3(signature = (items, *, threads = None, method = "default"))]
-fn analyze_many(py: Python<'_>, items: &Bound<'_, PyAny>, threads: Option<usize>, method: &str) -> PyResult<Vec<PyAnalysis>> {
+fn analyze_many(
+    py: Python<'_>,
+    items: &Bound<'_, PyAny>,
+    threads: Option<usize>,
+    method: &str,
+) -> PyResult<Vec<PyAnalysis>> {
     let options = options(method, None, None)?;
     let samples = items.try_iter()?.map(|item| sample_of(&item?)).collect::<PyResult<Vec<_>>>()?;
     let pool = pool(threads)?;
-    let results: Vec<_> = py.detach(|| pool.install(|| samples.par_iter().map(|s| analyze_sample(s, &options)).collect()));
-    results.into_iter().enumerate().map(|(k, r)| r.map_err(|e| CloseError::new_err(format!("item {k}: {e}")))).collect()
+    let results: Vec<_> = py.detach(|| {
+        pool.install(|| samples.par_iter().map(|s| analyze_sample(s, &options)).collect())
+    });
+    results
+        .into_iter()
+        .enumerate()
+        .map(|(k, r)| r.map_err(|e| CloseError::new_err(format!("item {k}: {e}"))))
+        .collect()
 }
 
 /// Read a sample from files, as `close analyze FILE...` does: one Sample JSON or MATLAB .mat
@@ -414,7 +507,7 @@ fn analyze_many(py: Python<'_>, items: &Bound<'_, PyAny>, threads: Option<usize>
 #[pyo3(signature = (*paths))]
 fn load(paths: Vec<PathBuf>) -> PyResult<PySample> {
     let files = paths.iter().map(read).collect::<PyResult<Vec<_>>>()?;
-    let sample = close::formats::read_files(&files).map_err(close_error)?;
+    let sample = close_io::formats::read_files(&files).map_err(close_error)?;
     Ok(PySample { sample: Arc::new(sample), meta: Value::Object(Default::default()) })
 }
 
@@ -425,11 +518,17 @@ fn load(paths: Vec<PathBuf>) -> PyResult<PySample> {
 /// `close.disk_layout(N)` gives each pair's place on the disk.
 #[pyfunction]
 #[pyo3(signature = (border, *, reference = None))]
-fn dgli_disk<'py>(py: Python<'py>, border: &Bound<'py, PyAny>, reference: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+fn dgli_disk<'py>(
+    py: Python<'py>,
+    border: &Bound<'py, PyAny>,
+    reference: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let border = points(border, "border")?;
     let reference = reference.map(|r| points(r, "reference")).transpose()?;
     Budget::SERVER.analysis(1, border.len()).map_err(close_error)?;
-    let disk = py.detach(|| close::disk::of_state(border, reference, &Default::default())).map_err(close_error)?;
+    let disk = py
+        .detach(|| close_core::disk::of_state(border, reference, &Default::default()))
+        .map_err(close_error)?;
     Ok(disk.values().to_vec().into_pyarray(py))
 }
 
@@ -438,10 +537,17 @@ fn dgli_disk<'py>(py: Python<'py>, border: &Bound<'py, PyAny>, reference: Option
 /// two (N(N−1)/2,) arrays in the same order. For `matplotlib`'s polar axes.
 #[pyfunction]
 fn disk_layout(py: Python<'_>, n: usize) -> PyResult<(Floats<'_>, Floats<'_>)> {
-    if !(close::border::MIN_VERTICES..=close::border::MAX_VERTICES).contains(&n) {
-        return Err(invalid(format!("a disk has {} to {} edges, not {n}", close::border::MIN_VERTICES, close::border::MAX_VERTICES)));
+    if !(close_core::border::MIN_VERTICES..=close_core::border::MAX_VERTICES).contains(&n) {
+        return Err(invalid(format!(
+            "a disk has {} to {} edges, not {n}",
+            close_core::border::MIN_VERTICES,
+            close_core::border::MAX_VERTICES
+        )));
     }
-    let (radius, angle): (Vec<f64>, Vec<f64>) = (0..n).flat_map(|i| (i + 1..n).map(move |j| close::disk::position(n, i, j))).map(|p| (p.radius, p.angle)).unzip();
+    let (radius, angle): (Vec<f64>, Vec<f64>) = (0..n)
+        .flat_map(|i| (i + 1..n).map(move |j| close_core::disk::position(n, i, j)))
+        .map(|p| (p.radius, p.angle))
+        .unzip();
     Ok((radius.into_pyarray(py), angle.into_pyarray(py)))
 }
 
@@ -468,20 +574,23 @@ fn interpolate<'py>(
     let reference = reference.map(|r| points(r, "reference")).transpose()?;
     let pair = |p: (f64, f64)| [p.0, p.1];
     let line = line.map(fold_line).transpose()?;
-    let motion = close::interpolate::Motion::of(from_.map(pair), to.map(pair), arcs, line).map_err(close_error)?;
+    let motion = close_core::interpolate::Motion::of(from_.map(pair), to.map(pair), arcs, line)
+        .map_err(close_error)?;
     Budget::SERVER.interpolation(border.len(), steps).map_err(close_error)?;
-    let motion = py.detach(|| close::interpolate::interpolate_border(border, reference, &motion, steps)).map_err(close_error)?;
+    let motion = py
+        .detach(|| close_core::interpolate::interpolate_border(border, reference, &motion, steps))
+        .map_err(close_error)?;
     frames_array(py, &motion.borders)
 }
 
 /// A fold line given as an analysis reports it: {"point": (x, y), "direction": (dx, dy)}.
-fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<close::interpolate::Line> {
+fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<close_core::interpolate::Line> {
     let pair = |key: &str| -> PyResult<[f64; 2]> {
         line.get_item(key)
             .and_then(|v| v.extract())
             .map_err(|_| invalid(format!("line: expected a dict {{\"point\": (x, y), \"direction\": (dx, dy)}}, without a usable \"{key}\"")))
     };
-    Ok(close::interpolate::Line { point: pair("point")?, direction: pair("direction")? })
+    Ok(close_core::interpolate::Line { point: pair("point")?, direction: pair("direction")? })
 }
 
 /// How to reach the goal fold (g1, g2) (radians) from the state a sample ends in: the answer
@@ -489,35 +598,56 @@ fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<close::interpolate::Line> {
 /// Takes a `close.Sample` (or frames: analysed first → last) or a `close.Analysis` made in
 /// this process.
 #[pyfunction]
-fn plan<'py>(py: Python<'py>, sample_or_analysis: &Bound<'py, PyAny>, goal: (f64, f64)) -> PyResult<Bound<'py, PyAny>> {
+fn plan<'py>(
+    py: Python<'py>,
+    sample_or_analysis: &Bound<'py, PyAny>,
+    goal: (f64, f64),
+) -> PyResult<Bound<'py, PyAny>> {
     let goal = [goal.0, goal.1];
     let analysis = match sample_or_analysis.cast::<PyAnalysis>() {
-        Ok(a) => a.get().analysis.clone().ok_or_else(|| invalid("this Analysis was unpickled: plan from its Sample instead".into()))?,
+        Ok(a) => a.get().analysis.clone().ok_or_else(|| {
+            invalid("this Analysis was unpickled: plan from its Sample instead".into())
+        })?,
         Err(_) => {
             let sample = sample_of(sample_or_analysis)?;
             let options = options("default", None, None)?;
             py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)?
         }
     };
-    let answer = close::plan::answer(&analysis, goal).map_err(close_error)?;
+    let answer = close_core::plan::answer(&analysis, goal).map_err(close_error)?;
     to_python(py, &answer)
 }
 
 /// The paths of `close.evaluate`, each of which must exist.
 fn existing(paths: Vec<PathBuf>) -> PyResult<Vec<PathBuf>> {
     match paths.iter().find(|p| !p.exists()) {
-        Some(p) => Err(PyFileNotFoundError::new_err((2, "No such file or directory", p.display().to_string()))),
+        Some(p) => Err(PyFileNotFoundError::new_err((
+            2,
+            "No such file or directory",
+            p.display().to_string(),
+        ))),
         None => Ok(paths),
     }
 }
 
 /// The evaluation rows of units `indices` of `paths` (all when None).
-fn unit_rows(paths: &[PathBuf], indices: Option<&[usize]>, method: FoldMethod) -> Result<Vec<close::eval::SampleResult>, close::Error> {
-    let units = close::batch::units(paths)?;
-    let chosen: Vec<&close::batch::Unit> = match indices {
+fn unit_rows(
+    paths: &[PathBuf],
+    indices: Option<&[usize]>,
+    method: FoldMethod,
+) -> Result<Vec<close_io::eval::SampleResult>, close_core::Error> {
+    let units = close_io::batch::units(paths)?;
+    let chosen: Vec<&close_io::batch::Unit> = match indices {
         Some(indices) => indices
             .iter()
-            .map(|&k| units.get(k).ok_or_else(|| close::Error::InvalidArgument(format!("unit {k} does not exist ({} found)", units.len()))))
+            .map(|&k| {
+                units.get(k).ok_or_else(|| {
+                    close_core::Error::InvalidArgument(format!(
+                        "unit {k} does not exist ({} found)",
+                        units.len()
+                    ))
+                })
+            })
             .collect::<Result<_, _>>()?,
         None => units.iter().collect(),
     };
@@ -529,41 +659,65 @@ fn unit_rows(paths: &[PathBuf], indices: Option<&[usize]>, method: FoldMethod) -
 #[pyfunction]
 fn _eval_units(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<usize> {
     let paths = existing(paths)?;
-    py.detach(|| close::batch::units(&paths).map(|u| u.len())).map_err(close_error)
+    py.detach(|| close_io::batch::units(&paths).map(|u| u.len())).map_err(close_error)
 }
 
 /// The rows of units `indices` of `paths` (all when None), each as JSON: one worker's share.
 #[pyfunction]
 #[pyo3(signature = (paths, indices = None, *, threads = None, method = "default"))]
-fn _eval_rows(py: Python<'_>, paths: Vec<PathBuf>, indices: Option<Vec<usize>>, threads: Option<usize>, method: &str) -> PyResult<Vec<String>> {
+fn _eval_rows(
+    py: Python<'_>,
+    paths: Vec<PathBuf>,
+    indices: Option<Vec<usize>>,
+    threads: Option<usize>,
+    method: &str,
+) -> PyResult<Vec<String>> {
     let paths = existing(paths)?;
     let method = self::method(method)?;
     let pool = pool(threads)?;
-    let rows = py.detach(|| pool.install(|| unit_rows(&paths, indices.as_deref(), method))).map_err(close_error)?;
+    let rows = py
+        .detach(|| pool.install(|| unit_rows(&paths, indices.as_deref(), method)))
+        .map_err(close_error)?;
     rows_json(&rows)
 }
 
 /// The rows of samples (or frames) `items`, each as JSON.
 #[pyfunction]
 #[pyo3(signature = (items, *, threads = None, method = "default"))]
-fn _eval_sample_rows(py: Python<'_>, items: &Bound<'_, PyAny>, threads: Option<usize>, method: &str) -> PyResult<Vec<String>> {
+fn _eval_sample_rows(
+    py: Python<'_>,
+    items: &Bound<'_, PyAny>,
+    threads: Option<usize>,
+    method: &str,
+) -> PyResult<Vec<String>> {
     let method = self::method(method)?;
     let samples = items.try_iter()?.map(|item| sample_of(&item?)).collect::<PyResult<Vec<_>>>()?;
     let pool = pool(threads)?;
-    let rows: Vec<close::eval::SampleResult> = py.detach(|| pool.install(|| samples.par_iter().map(|s| close::eval::evaluate_with(s, method)).collect()));
+    let rows: Vec<close_io::eval::SampleResult> = py.detach(|| {
+        pool.install(|| {
+            samples.par_iter().map(|s| close_io::eval::evaluate_with(s, method)).collect()
+        })
+    });
     rows_json(&rows)
 }
 
 /// Evaluation rows as JSON, to travel between processes.
-fn rows_json(rows: &[close::eval::SampleResult]) -> PyResult<Vec<String>> {
-    rows.iter().map(|r| serde_json::to_string(r).map_err(|e| invalid(format!("could not write JSON: {e}")))).collect()
+fn rows_json(rows: &[close_io::eval::SampleResult]) -> PyResult<Vec<String>> {
+    rows.iter()
+        .map(|r| {
+            serde_json::to_string(r).map_err(|e| invalid(format!("could not write JSON: {e}")))
+        })
+        .collect()
 }
 
 /// The `close eval --json` report of rows (JSON, in order).
 #[pyfunction]
 fn _eval_report<'py>(py: Python<'py>, rows: Vec<String>) -> PyResult<Bound<'py, PyAny>> {
-    let rows = rows.iter().map(|r| serde_json::from_str(r).map_err(|e| invalid(format!("evaluation row: {e}")))).collect::<PyResult<Vec<_>>>()?;
-    to_python(py, &close::eval::report(rows))
+    let rows = rows
+        .iter()
+        .map(|r| serde_json::from_str(r).map_err(|e| invalid(format!("evaluation row: {e}"))))
+        .collect::<PyResult<Vec<_>>>()?;
+    to_python(py, &close_io::eval::report(rows))
 }
 
 /// An open VR-Folding Zarr store (or one category of it): its usable fold actions as
@@ -585,11 +739,16 @@ impl PyStore {
     }
 
     fn __getitem__(&self, py: Python<'_>, k: usize) -> PyResult<Py<PySample>> {
-        self.actions.get(k).map(|s| s.clone_ref(py)).ok_or_else(|| pyo3::exceptions::PyIndexError::new_err(format!("action {k} of {}", self.actions.len())))
+        self.actions.get(k).map(|s| s.clone_ref(py)).ok_or_else(|| {
+            pyo3::exceptions::PyIndexError::new_err(format!("action {k} of {}", self.actions.len()))
+        })
     }
 
     fn __iter__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        PyList::new(py, self.actions.iter().map(|s| s.clone_ref(py)))?.into_any().try_iter().map(Bound::into_any)
+        PyList::new(py, self.actions.iter().map(|s| s.clone_ref(py)))?
+            .into_any()
+            .try_iter()
+            .map(Bound::into_any)
     }
 
     #[getter]
@@ -616,27 +775,29 @@ impl PyStore {
 #[pyfunction]
 fn vrfolding_open(py: Python<'_>, store: PathBuf) -> PyResult<PyStore> {
     let store = existing(vec![store])?.remove(0);
-    let (read, errors) = py.detach(|| -> Result<_, close::Error> {
-        let opened = close::vrfolding::Store::open(&store)?;
-        // Videos that cannot be read are errors of their own; the rest of the store is kept.
-        let (videos, unreadable) = opened.videos()?;
-        let folds: Vec<_> = videos.par_iter().map(|v| opened.folds(v)).collect();
-        let mut read = Vec::new();
-        let mut errors: Vec<String> = unreadable.iter().map(|e| e.to_string()).collect();
-        for (video, folds) in videos.iter().zip(folds) {
-            match folds {
-                Ok(folds) => read.push((video.clone(), folds)),
-                Err(e) => errors.push(e.to_string()),
+    let (read, errors) = py
+        .detach(|| -> Result<_, close_core::Error> {
+            let opened = close_io::vrfolding::Store::open(&store)?;
+            // Videos that cannot be read are errors of their own; the rest of the store is kept.
+            let (videos, unreadable) = opened.videos()?;
+            let folds: Vec<_> = videos.par_iter().map(|v| opened.folds(v)).collect();
+            let mut read = Vec::new();
+            let mut errors: Vec<String> = unreadable.iter().map(|e| e.to_string()).collect();
+            for (video, folds) in videos.iter().zip(folds) {
+                match folds {
+                    Ok(folds) => read.push((video.clone(), folds)),
+                    Err(e) => errors.push(e.to_string()),
+                }
             }
-        }
-        Ok((read, errors))
-    })
-    .map_err(close_error)?;
+            Ok((read, errors))
+        })
+        .map_err(close_error)?;
     let mut actions = Vec::new();
     for (video, folds) in &read {
         for k in 1..=folds.usable() {
             let Some(sample) = folds.sample(video, k) else { continue };
-            let meta = serde_json::json!({ "video_id": video.id, "category": video.category, "fold": k });
+            let meta =
+                serde_json::json!({ "video_id": video.id, "category": video.category, "fold": k });
             actions.push(Py::new(py, PySample { sample: Arc::new(sample), meta })?);
         }
     }

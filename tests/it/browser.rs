@@ -40,11 +40,16 @@ fn find_program(env: &str, names: &[&str]) -> Option<PathBuf> {
         return Some(PathBuf::from(p));
     }
     let path = std::env::var_os("PATH")?;
-    std::env::split_paths(&path).flat_map(|dir| names.iter().map(move |n| dir.join(n))).find(|p| p.is_file())
+    std::env::split_paths(&path)
+        .flat_map(|dir| names.iter().map(move |n| dir.join(n)))
+        .find(|p| p.is_file())
 }
 
 fn free_port() -> u16 {
-    std::net::TcpListener::bind("127.0.0.1:0").and_then(|l| l.local_addr()).map(|a| a.port()).expect("a free port")
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free port")
 }
 
 /// Poll `check` until it gives `Some`, or fail naming `what`.
@@ -70,7 +75,11 @@ async fn until(client: &Client, what: &str, expression: &str) -> Value {
 }
 
 async fn text(client: &Client, expression: &str) -> String {
-    js(client, &format!("return String({expression})")).await.as_str().unwrap_or_default().to_string()
+    js(client, &format!("return String({expression})"))
+        .await
+        .as_str()
+        .unwrap_or_default()
+        .to_string()
 }
 
 /// A Chrome DevTools command, sent through chromedriver.
@@ -78,7 +87,11 @@ async fn text(client: &Client, expression: &str) -> String {
 struct DevTools(&'static str, Value);
 
 impl fantoccini::wd::WebDriverCompatibleCommand for DevTools {
-    fn endpoint(&self, base: &url::Url, session: Option<&str>) -> Result<url::Url, url::ParseError> {
+    fn endpoint(
+        &self,
+        base: &url::Url,
+        session: Option<&str>,
+    ) -> Result<url::Url, url::ParseError> {
         base.join(&format!("session/{}/goog/cdp/execute", session.unwrap_or_default()))
     }
 
@@ -95,14 +108,24 @@ async fn screenshot(client: &Client, dir: &Path, name: &str) {
     use base64::Engine as _;
     // Lazy images far below the window would be captured blank.
     until(client, "every picture loaded", "[...document.images].every(i => (i.loading = 'eager', !i.getAttribute('src') || i.complete))").await;
-    let size = || js(client, "window.scrollTo(0, 0); return [window.innerWidth, document.documentElement.scrollHeight]");
+    let size = || {
+        js(client, "window.scrollTo(0, 0); return [window.innerWidth, document.documentElement.scrollHeight]")
+    };
     let mut page = size().await;
     // A picture that loads while the page is captured can make it taller: capture again.
     let mut png = Vec::new();
     for _ in 0..3 {
         let clip = json!({ "x": 0, "y": 0, "width": page[0], "height": page[1], "scale": 1 });
-        let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": clip }))).await.expect("screenshot");
-        png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
+        let shot = client
+            .issue_cmd(DevTools(
+                "Page.captureScreenshot",
+                json!({ "captureBeyondViewport": true, "clip": clip }),
+            ))
+            .await
+            .expect("screenshot");
+        png = base64::engine::general_purpose::STANDARD
+            .decode(shot["data"].as_str().unwrap_or_default())
+            .expect("a base64 PNG");
         let now = size().await;
         if now == page {
             break;
@@ -112,14 +135,19 @@ async fn screenshot(client: &Client, dir: &Path, name: &str) {
     std::fs::write(dir.join(name), &png).expect("write screenshot");
     // The PNG's height, from its header (one device pixel per CSS px).
     let shot = png.get(20..24).map_or(0, |h| u32::from_be_bytes(h.try_into().unwrap_or_default()));
-    assert!(u64::from(shot) >= page[1].as_u64().unwrap_or(u64::MAX), "{name}: the screenshot is {shot} px tall, the page {} px", page[1]);
+    assert!(
+        u64::from(shot) >= page[1].as_u64().unwrap_or(u64::MAX),
+        "{name}: the screenshot is {shot} px tall, the page {} px",
+        page[1]
+    );
 }
 
 /// Every image under `selector` has loaded with a real picture; gives how many.
 async fn images_loaded(client: &Client, selector: &str) -> usize {
     let script = format!("return [...document.querySelectorAll({selector:?})].map(i => i.complete ? i.naturalWidth : 0)");
     wait_for(&format!("images of {selector}"), async || {
-        let widths: Vec<u64> = serde_json::from_value(js(client, &script).await).unwrap_or_default();
+        let widths: Vec<u64> =
+            serde_json::from_value(js(client, &script).await).unwrap_or_default();
         (!widths.is_empty() && widths.iter().all(|&w| w > 0)).then_some(widths.len())
     })
     .await
@@ -175,13 +203,17 @@ async fn disk_picture(client: &Client) -> (String, String) {
                   c.getContext('2d').drawImage(img, 0, 0); const bar = document.createElement('canvas'); bar.width = Math.round(0.2 * w); bar.height = Math.round(0.6 * h); \
                   bar.getContext('2d').drawImage(c, w - bar.width, Math.round(0.15 * h), bar.width, bar.height, 0, 0, bar.width, bar.height); \
                   return [bar.toDataURL(), c.toDataURL()];";
-    let v = wait_for("the disk of the current state", async || Some(js(client, script).await).filter(|v| v.is_array())).await;
+    let v = wait_for("the disk of the current state", async || {
+        Some(js(client, script).await).filter(|v| v.is_array())
+    })
+    .await;
     (v[0].as_str().unwrap_or_default().to_string(), v[1].as_str().unwrap_or_default().to_string())
 }
 
 /// Nothing is wider than the window.
 async fn assert_no_overflow(client: &Client, view: &str) {
-    let widths = js(client, "return [document.documentElement.scrollWidth, window.innerWidth]").await;
+    let widths =
+        js(client, "return [document.documentElement.scrollWidth, window.innerWidth]").await;
     let (scroll, inner) = (widths[0].as_u64().unwrap_or(0), widths[1].as_u64().unwrap_or(0));
     assert!(scroll <= inner, "{view}: the page is {scroll} px wide in a {inner} px window");
 }
@@ -190,15 +222,27 @@ async fn assert_no_overflow(client: &Client, view: &str) {
 /// the folds `which` ("to", "from") before and after, once it moved.
 async fn arrow_on_handle(client: &Client, id: &str, which: &str) -> (Value, Value) {
     let before = js(client, &format!("return window.closeApp.interpolate.state().{which}")).await;
-    js(client, &format!("document.querySelector('#fold-circle .handle[data-id=\"{id}\"]').focus()")).await;
-    client.active_element().await.expect("the focused handle").send_keys(ARROW_RIGHT).await.expect("arrow key");
+    js(
+        client,
+        &format!("document.querySelector('#fold-circle .handle[data-id=\"{id}\"]').focus()"),
+    )
+    .await;
+    client
+        .active_element()
+        .await
+        .expect("the focused handle")
+        .send_keys(ARROW_RIGHT)
+        .await
+        .expect("arrow key");
     let after = until(client, "the handle to move", &format!("(s => JSON.stringify(s.{which}) !== {:?} && s.{which})(window.closeApp.interpolate.state())", before.to_string())).await;
     (before, after)
 }
 
 /// How far (degrees, anticlockwise) angle `k` turned from `before` to `after`.
 fn turned(before: &Value, after: &Value, k: usize) -> f64 {
-    (after[k].as_f64().unwrap_or(f64::NAN) - before[k].as_f64().unwrap_or(f64::NAN)).rem_euclid(std::f64::consts::TAU).to_degrees()
+    (after[k].as_f64().unwrap_or(f64::NAN) - before[k].as_f64().unwrap_or(f64::NAN))
+        .rem_euclid(std::f64::consts::TAU)
+        .to_degrees()
 }
 
 /// The handles of the fold circle `svg` that another handle covers (the element on top at
@@ -225,7 +269,13 @@ async fn small_plan_labels(client: &Client) -> Value {
 async fn choose_files(client: &Client, paths: &[PathBuf]) {
     js(client, "document.getElementById('upload-input').value = ''").await;
     let list: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-    client.find(Locator::Id("upload-input")).await.expect("file input").send_keys(&list.join("\n")).await.expect("choose files");
+    client
+        .find(Locator::Id("upload-input"))
+        .await
+        .expect("file input")
+        .send_keys(&list.join("\n"))
+        .await
+        .expect("choose files");
 }
 
 fn write(dir: &Path, name: &str, body: &[u8]) -> PathBuf {
@@ -251,7 +301,10 @@ async fn serve(router: axum::Router) -> String {
 #[ignore = "needs chromium and chromedriver (apt-get install chromium chromium-driver); run with `cargo test --test it browser:: -- --ignored`"]
 async fn the_app_works_in_a_real_browser() {
     let dataset = close::dataset::Dataset::builtin();
-    let (chromium, chromedriver) = (find_program("CLOSE_CHROMIUM", &["chromium", "chromium-browser"]), find_program("CLOSE_CHROMEDRIVER", &["chromedriver"]));
+    let (chromium, chromedriver) = (
+        find_program("CLOSE_CHROMIUM", &["chromium", "chromium-browser"]),
+        find_program("CLOSE_CHROMEDRIVER", &["chromedriver"]),
+    );
     let (Some(chromium), Some(chromedriver)) = (chromium, chromedriver) else {
         panic!(
             "the browser test needs chromium and chromedriver: apt-get install -y --no-install-recommends chromium chromium-driver \
@@ -261,7 +314,8 @@ async fn the_app_works_in_a_real_browser() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let shots = root.join("target/e2e-screenshots");
     std::fs::create_dir_all(&shots).expect("screenshot folder");
-    let axe = std::fs::read_to_string(root.join("tests/fixtures/axe/axe.min.js")).expect("the vendored axe-core");
+    let axe = std::fs::read_to_string(root.join("tests/fixtures/axe/axe.min.js"))
+        .expect("the vendored axe-core");
     let scratch = std::env::temp_dir().join(format!("close-e2e-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).expect("scratch folder");
 
@@ -288,7 +342,15 @@ async fn the_app_works_in_a_real_browser() {
     let many_body = json!({ "samples": many_list }).to_string();
     let many = serve(
         axum::Router::new()
-            .route("/api/samples", get(move || std::future::ready(([(axum::http::header::CONTENT_TYPE, "application/json")], many_body.clone()))))
+            .route(
+                "/api/samples",
+                get(move || {
+                    std::future::ready((
+                        [(axum::http::header::CONTENT_TYPE, "application/json")],
+                        many_body.clone(),
+                    ))
+                }),
+            )
             .fallback_service(app(state)),
     )
     .await;
@@ -297,13 +359,23 @@ async fn the_app_works_in_a_real_browser() {
     let own = scratch.join("own-dataset");
     std::fs::create_dir_all(&own).expect("dataset folder");
     for file in ["h1_half_left_onto_right_31x31.json", "q3_napkin_half_then_quarter_31x31.json"] {
-        std::fs::copy(root.join("tests/fixtures/physics").join(file), own.join(file)).expect("copy a fixture");
+        std::fs::copy(root.join("tests/fixtures/physics").join(file), own.join(file))
+            .expect("copy a fixture");
     }
-    let with_dataset = serve(app(AppState::with_config(close::server::Config { datasets: vec![own.clone()], ..Default::default() }))).await;
+    let with_dataset = serve(app(AppState::with_config(close::server::Config {
+        datasets: vec![own.clone()],
+        ..Default::default()
+    })))
+    .await;
 
     let port = free_port();
     let _driver = Driver(
-        Command::new(&chromedriver).arg(format!("--port={port}")).stdout(Stdio::null()).stderr(Stdio::null()).spawn().expect("start chromedriver"),
+        Command::new(&chromedriver)
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start chromedriver"),
     );
     let mut caps = serde_json::Map::new();
     caps.insert(
@@ -317,7 +389,11 @@ async fn the_app_works_in_a_real_browser() {
     );
     let webdriver = format!("http://127.0.0.1:{port}");
     let client = wait_for("chromedriver to start a session", async || {
-        ClientBuilder::new(hyper_util::client::legacy::connect::HttpConnector::new()).capabilities(caps.clone()).connect(&webdriver).await.ok()
+        ClientBuilder::new(hyper_util::client::legacy::connect::HttpConnector::new())
+            .capabilities(caps.clone())
+            .connect(&webdriver)
+            .await
+            .ok()
     })
     .await;
     client.set_window_size(1400, 1000).await.expect("window size");
@@ -326,15 +402,31 @@ async fn the_app_works_in_a_real_browser() {
     // ---- Browse: the bare URL opens the first sample under its own URL.
     goto_view(&client, &base, "").await;
     let first = &dataset.entries()[0];
-    until(&client, "the first sample's URL", &format!("location.hash === '#/samples/{}'", first.id)).await;
+    until(
+        &client,
+        "the first sample's URL",
+        &format!("location.hash === '#/samples/{}'", first.id),
+    )
+    .await;
     shows_sample(&client, &first.sample.name).await;
-    assert!(text(&client, "document.title").await.contains(&first.sample.name), "the title names the open sample");
+    assert!(
+        text(&client, "document.title").await.contains(&first.sample.name),
+        "the title names the open sample"
+    );
     // The favicon is declared and served (no 404 on load).
-    let favicon = until(&client, "the favicon", "document.querySelector('link[rel=icon]')?.href").await;
-    let status = client.execute_async("fetch(arguments[0]).then(r => arguments[1](r.status))", vec![favicon.clone()]).await.expect("fetch favicon");
+    let favicon =
+        until(&client, "the favicon", "document.querySelector('link[rel=icon]')?.href").await;
+    let status = client
+        .execute_async(
+            "fetch(arguments[0]).then(r => arguments[1](r.status))",
+            vec![favicon.clone()],
+        )
+        .await
+        .expect("fetch favicon");
     assert_eq!(status, json!(200), "favicon {favicon}");
     // Thumbnails are mini drawings that load.
-    images_loaded(&client, "#sample-list .category:first-of-type .sample-card:nth-child(-n+3) img").await;
+    images_loaded(&client, "#sample-list .category:first-of-type .sample-card:nth-child(-n+3) img")
+        .await;
     // Names are whole and wrap only after an underscore: no word of a name spans two lines.
     let split = js(&client, "return [...document.querySelectorAll('.sample-card .card-name')].flatMap(n => [...n.childNodes] \
                              .filter(t => t.nodeType === 3 && (r => (r.selectNodeContents(t), r.getClientRects().length > 1))(document.createRange())) \
@@ -343,23 +435,46 @@ async fn the_app_works_in_a_real_browser() {
 
     // A click on a card: its URL, its title, its pictures.
     let twice = dataset.get("napkin__half_then_half").expect("a second-fold sample");
-    client.find(Locator::Css(&format!(".sample-card[data-id={:?}]", twice.id))).await.expect("its card").click().await.expect("click");
+    client
+        .find(Locator::Css(&format!(".sample-card[data-id={:?}]", twice.id)))
+        .await
+        .expect("its card")
+        .click()
+        .await
+        .expect("click");
     shows_sample(&client, &twice.sample.name).await;
-    assert_eq!(client.current_url().await.expect("url").fragment(), Some(&*format!("/samples/{}", twice.id)));
+    assert_eq!(
+        client.current_url().await.expect("url").fragment(),
+        Some(&*format!("/samples/{}", twice.id))
+    );
     assert!(text(&client, "document.title").await.contains(&twice.sample.name));
     // Per-step pictures: step 1 first, step 2 on demand (frame 1's disks), the whole run.
     assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
     let steps = js(&client, "return [...document.querySelectorAll('#browse-result .segmented input')].map(i => i.nextElementSibling.textContent)").await;
     assert_eq!(steps.as_array().map(Vec::len), Some(3), "all frames, step 1, step 2: {steps}");
-    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"2\"]').click()").await;
+    js(
+        &client,
+        "document.querySelector('#browse-result .segmented input[data-step=\"2\"]').click()",
+    )
+    .await;
     until(&client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
     assert_eq!(images_loaded(&client, "#browse-result .step-pictures img").await, 4);
     // The evidence is shown, and this exact fold is not flagged.
-    let evidence = text(&client, "document.querySelector('#browse-result .evidence-table').innerText").await;
-    assert!(evidence.contains("same/cross") && evidence.contains("cut residual") && evidence.contains("flip scores"), "{evidence}");
-    assert!(js(&client, "return document.querySelector('#browse-result .confidence').hidden").await.as_bool().unwrap_or(false));
+    let evidence =
+        text(&client, "document.querySelector('#browse-result .evidence-table').innerText").await;
+    assert!(
+        evidence.contains("same/cross")
+            && evidence.contains("cut residual")
+            && evidence.contains("flip scores"),
+        "{evidence}"
+    );
+    assert!(js(&client, "return document.querySelector('#browse-result .confidence').hidden")
+        .await
+        .as_bool()
+        .unwrap_or(false));
     screenshot(&client, &shots, "1400-01-browse-second-fold.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("browse: {v}")));
+    violations
+        .extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("browse: {v}")));
 
     // Click to enlarge: the full-resolution picture in a dialog; Escape closes it.
     js(&client, "document.querySelector('#browse-result .step-pictures .zoom').click()").await;
@@ -370,14 +485,17 @@ async fn the_app_works_in_a_real_browser() {
                               const img = document.querySelector('#lightbox img'); return img.getBoundingClientRect().width / f.getBoundingClientRect().width").await;
     assert!(zoomed.as_f64().is_some_and(|z| z > 5.0), "the picture did not zoom: {zoomed}");
     screenshot(&client, &shots, "1400-02-full-resolution.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("lightbox: {v}")));
+    violations
+        .extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("lightbox: {v}")));
     client.active_element().await.expect("focus").send_keys("\u{E00C}").await.expect("Escape");
     until(&client, "the dialog to close", "!document.getElementById('lightbox').open").await;
 
     // A well-supported second fold is not flagged (the doubtful case is an upload below).
     route(&client, "#/samples/trousers__legs_up_then_half").await;
-    shows_sample(&client, &dataset.get("trousers__legs_up_then_half").expect("sample").sample.name).await;
-    let verdict = text(&client, "document.querySelector('#browse-result .confidence').textContent").await;
+    shows_sample(&client, &dataset.get("trousers__legs_up_then_half").expect("sample").sample.name)
+        .await;
+    let verdict =
+        text(&client, "document.querySelector('#browse-result .confidence').textContent").await;
     assert!(!verdict.contains("Low confidence"), "{verdict}");
 
     // Back and Forward move between samples.
@@ -401,8 +519,16 @@ async fn the_app_works_in_a_real_browser() {
     shows_sample(&client, &b_name).await;
     tokio::time::sleep(Duration::from_millis(2500)).await;
     js(&client, "window.fetch = window.realFetch").await;
-    assert_eq!(text(&client, "document.querySelector('#browse-result .result-name').textContent").await, b_name, "a late answer replaced the newer one");
-    let active = js(&client, "return [...document.querySelectorAll('.sample-card.active')].map(c => c.dataset.id)").await;
+    assert_eq!(
+        text(&client, "document.querySelector('#browse-result .result-name').textContent").await,
+        b_name,
+        "a late answer replaced the newer one"
+    );
+    let active = js(
+        &client,
+        "return [...document.querySelectorAll('.sample-card.active')].map(c => c.dataset.id)",
+    )
+    .await;
     assert_eq!(active, json!([b]));
 
     // Filter by name and category; collapse a category.
@@ -424,10 +550,16 @@ async fn the_app_works_in_a_real_browser() {
                  ? Promise.resolve(new Response('<html><body><h1>503 Service Unavailable</h1></body></html>', { status: 503, headers: { 'content-type': 'text/html' } })) \
                  : window.realFetch(url, o)").await;
     route(&client, "#/samples/napkin__diagonal").await;
-    let error = until(&client, "the 503 message", "document.getElementById('error').textContent").await;
+    let error =
+        until(&client, "the 503 message", "document.getElementById('error').textContent").await;
     let error = error.as_str().unwrap_or_default();
-    assert!(error.contains("503 Service Unavailable") && !error.contains('<'), "error shown: {error}");
-    assert!(text(&client, "document.getElementById('browse-result').textContent").await.contains("could not be shown"));
+    assert!(
+        error.contains("503 Service Unavailable") && !error.contains('<'),
+        "error shown: {error}"
+    );
+    assert!(text(&client, "document.getElementById('browse-result').textContent")
+        .await
+        .contains("could not be shown"));
     js(&client, "window.fetch = (url, o) => String(url).includes('/api/samples/napkin__corner') ? Promise.reject(new TypeError('Failed to fetch')) : window.realFetch(url, o)").await;
     route(&client, "#/samples/napkin__corner").await;
     let error = until(&client, "the network message", "document.getElementById('error').textContent.includes('Could not reach') && document.getElementById('error').textContent").await;
@@ -440,34 +572,55 @@ async fn the_app_works_in_a_real_browser() {
     let reachable = js(&client, "const i = document.getElementById('upload-input'); i.focus(); return getComputedStyle(i).display !== 'none' && document.activeElement === i").await;
     assert_eq!(reachable, json!(true), "the file input cannot be focused");
     let entry = dataset.get("napkin__half_vertical").expect("a folded sample");
-    let good = write(&scratch, "my-napkin.json", &serde_json::to_vec(&entry.sample).expect("sample JSON"));
+    let good =
+        write(&scratch, "my-napkin.json", &serde_json::to_vec(&entry.sample).expect("sample JSON"));
     choose_files(&client, &[good]).await;
-    until(&client, "the upload's result", "document.querySelector('#upload-result .result-name')?.textContent === 'my-napkin.json'").await;
+    until(
+        &client,
+        "the upload's result",
+        "document.querySelector('#upload-result .result-name')?.textContent === 'my-napkin.json'",
+    )
+    .await;
     assert_eq!(images_loaded(&client, "#upload-result img").await, 6);
     assert!(text(&client, "document.title").await.contains("my-napkin.json"));
     screenshot(&client, &shots, "1400-03-upload.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("upload: {v}")));
+    violations
+        .extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("upload: {v}")));
     // A doubtful fold says so: the same napkin, its folded flap then slid half a side away,
     // so no fold of the start explains the end frame.
     let mut slid = entry.sample.clone();
     let (start, end) = (slid.frames[0].clone(), slid.frames.last_mut().expect("an end frame"));
-    let side = start.iter().map(|p| p[0]).fold(f64::MIN, f64::max) - start.iter().map(|p| p[0]).fold(f64::MAX, f64::min);
+    let side = start.iter().map(|p| p[0]).fold(f64::MIN, f64::max)
+        - start.iter().map(|p| p[0]).fold(f64::MAX, f64::min);
     for (p, q) in end.iter_mut().zip(&start) {
         if (p[0] - q[0]).hypot(p[1] - q[1]) > 1e-9 {
             p[0] += 0.5 * side;
         }
     }
-    let doubtful = write(&scratch, "slid-napkin.json", &serde_json::to_vec(&slid).expect("sample JSON"));
+    let doubtful =
+        write(&scratch, "slid-napkin.json", &serde_json::to_vec(&slid).expect("sample JSON"));
     choose_files(&client, &[doubtful]).await;
-    until(&client, "the doubtful upload", "document.querySelector('#upload-result .result-name')?.textContent === 'slid-napkin.json'").await;
-    let verdict = text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
-    assert!(verdict.contains("Low confidence"), "a fold that does not explain the end frame is not flagged: {verdict}");
+    until(
+        &client,
+        "the doubtful upload",
+        "document.querySelector('#upload-result .result-name')?.textContent === 'slid-napkin.json'",
+    )
+    .await;
+    let verdict =
+        text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
+    assert!(
+        verdict.contains("Low confidence"),
+        "a fold that does not explain the end frame is not flagged: {verdict}"
+    );
     // An uploaded Sample JSON keeps its truth (issue 19, item 4).
     choose_files(&client, &[own.join("h1_half_left_onto_right_31x31.json")]).await;
     until(&client, "the upload with a truth", "document.querySelector('#upload-result .result-name')?.textContent === 'h1_half_left_onto_right_31x31.json'").await;
-    let facts = text(&client, "document.querySelector('#upload-result .close-table').innerText").await;
+    let facts =
+        text(&client, "document.querySelector('#upload-result .close-table').innerText").await;
     assert!(facts.contains("true fold 1"), "the upload's truth is not shown: {facts}");
-    assert!(text(&client, "document.querySelector('#upload-result .result-meta').textContent").await.starts_with("your upload"));
+    assert!(text(&client, "document.querySelector('#upload-result .result-meta').textContent")
+        .await
+        .starts_with("your upload"));
     // A change with no fold is flagged (item 13): the napkin crumpled on the table (each
     // vertex moved at random, a quarter of the side at most) has no fold, and no rigid
     // motion brings it back onto the start frame (a napkin only moved would be unchanged).
@@ -475,24 +628,51 @@ async fn the_app_works_in_a_real_browser() {
     let start = crumpled.frames[0].clone();
     let mut rng = close::rng::SplitMix64::new(11);
     let mut noise = |scale: f64| (rng.uniform() - 0.5) * scale * side;
-    crumpled.frames[1] = start.iter().map(|p| [p[0] + noise(0.5), p[1] + noise(0.5), p[2] + noise(0.05)]).collect();
-    choose_files(&client, &[write(&scratch, "crumpled-napkin.json", &serde_json::to_vec(&crumpled).expect("sample JSON"))]).await;
+    crumpled.frames[1] =
+        start.iter().map(|p| [p[0] + noise(0.5), p[1] + noise(0.5), p[2] + noise(0.05)]).collect();
+    choose_files(
+        &client,
+        &[write(
+            &scratch,
+            "crumpled-napkin.json",
+            &serde_json::to_vec(&crumpled).expect("sample JSON"),
+        )],
+    )
+    .await;
     until(&client, "the crumpled upload", "document.querySelector('#upload-result .result-name')?.textContent === 'crumpled-napkin.json'").await;
-    let label = text(&client, "document.querySelector('#upload-result .result-label').textContent").await;
-    let verdict = text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
-    assert!(label.contains("changed, but no fold found") && verdict.contains("changed, but no fold found"), "{label} / {verdict}");
+    let label =
+        text(&client, "document.querySelector('#upload-result .result-label').textContent").await;
+    let verdict =
+        text(&client, "document.querySelector('#upload-result .confidence').textContent").await;
+    assert!(
+        label.contains("changed, but no fold found")
+            && verdict.contains("changed, but no fold found"),
+        "{label} / {verdict}"
+    );
     // A failed upload leaves no old name in the title.
     choose_files(&client, &[write(&scratch, "broken.json", b"{")]).await;
     until(&client, "the failed upload", "!document.getElementById('error').hidden").await;
-    assert!(!text(&client, "document.title").await.contains("crumpled-napkin"), "the title names the previous upload");
+    assert!(
+        !text(&client, "document.title").await.contains("crumpled-napkin"),
+        "the title names the previous upload"
+    );
     // Mismatched frames name their files.
     let frames = entry.sample.frames.clone();
-    let short = write(&scratch, "b-end.txt", text_frame(&frames[1][..frames[1].len() - 3]).as_bytes());
+    let short =
+        write(&scratch, "b-end.txt", text_frame(&frames[1][..frames[1].len() - 3]).as_bytes());
     let long = write(&scratch, "a-start.txt", text_frame(&frames[0]).as_bytes());
     choose_files(&client, &[short, long]).await;
-    let error = until(&client, "the mismatch message", "(t => !t.includes('broken.json') && t)(document.getElementById('error').textContent)").await;
+    let error = until(
+        &client,
+        "the mismatch message",
+        "(t => !t.includes('broken.json') && t)(document.getElementById('error').textContent)",
+    )
+    .await;
     let error = error.as_str().unwrap_or_default();
-    assert!(error.contains("a-start.txt") && error.contains("b-end.txt"), "the files are not named: {error}");
+    assert!(
+        error.contains("a-start.txt") && error.contains("b-end.txt"),
+        "the files are not named: {error}"
+    );
     screenshot(&client, &shots, "1400-04-upload-error.png").await;
 
     // Upload → Interpolate: the upload, by its file name, with its fold.
@@ -514,16 +694,25 @@ async fn the_app_works_in_a_real_browser() {
     let ink = canvas_ink(&client, "interp-canvas").await;
     assert!(ink > 0.15, "the folded cloth is not filled: {ink:.3} of the canvas inked");
     screenshot(&client, &shots, "1400-05-interpolate.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate: {v}")));
+    violations.extend(
+        axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate: {v}")),
+    );
     assert_eq!(wrapped_box_names(&client).await, json!([]), "fold box names wrap");
 
     // The fold starts flat: both "from" handles at one angle, each still in sight and on top
     // at its own dot (none hidden under the other), and each moved by its own arrow keys.
     let from = js(&client, "return window.closeApp.interpolate.state().from").await;
     assert_eq!(from[0], from[1], "the fold does not start flat");
-    assert_eq!(covered_handles(&client, "fold-circle").await, json!([]), "handles hidden under others");
+    assert_eq!(
+        covered_handles(&client, "fold-circle").await,
+        json!([]),
+        "handles hidden under others"
+    );
     let (before, after) = arrow_on_handle(&client, "from:1", "from").await;
-    assert!((turned(&before, &after, 1) - 1.0).abs() < 1e-9 && after[0] == before[0], "the second 'from' handle: {before} → {after}");
+    assert!(
+        (turned(&before, &after, 1) - 1.0).abs() < 1e-9 && after[0] == before[0],
+        "the second 'from' handle: {before} → {after}"
+    );
 
     // The disk opens at full resolution in the motion's colour scale: the request for it is
     // the state shown, with the scale the small pictures use.
@@ -533,12 +722,29 @@ async fn the_app_works_in_a_real_browser() {
     disk_picture(&client).await;
     js(&client, "document.getElementById('interp-disk-zoom').click()").await;
     until(&client, "the disk at full resolution", "document.getElementById('lightbox').open && document.querySelector('#lightbox img').naturalWidth >= 1400").await;
-    let asked = js(&client, "window.fetch = window.realFetch; return window.diskAsked.filter(r => r.size >= 480)").await;
-    let (small, large) = (&asked[asked.as_array().map_or(0, |a| a.len().saturating_sub(2))], asked.as_array().and_then(|a| a.last()).unwrap_or(&Value::Null));
+    let asked = js(
+        &client,
+        "window.fetch = window.realFetch; return window.diskAsked.filter(r => r.size >= 480)",
+    )
+    .await;
+    let (small, large) = (
+        &asked[asked.as_array().map_or(0, |a| a.len().saturating_sub(2))],
+        asked.as_array().and_then(|a| a.last()).unwrap_or(&Value::Null),
+    );
     assert!(large["size"].as_u64() >= Some(1400) && small["size"] == json!(480), "{asked}");
-    assert!(large["scale"].is_object() && large["scale"] == small["scale"] && large["border"] == small["border"], "the enlarged disk is not the state shown in its scale: {small} / {large}");
+    assert!(
+        large["scale"].is_object()
+            && large["scale"] == small["scale"]
+            && large["border"] == small["border"],
+        "the enlarged disk is not the state shown in its scale: {small} / {large}"
+    );
     screenshot(&client, &shots, "1400-05b-interpolate-full-resolution.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate lightbox: {v}")));
+    violations.extend(
+        axe_violations(&client, &axe)
+            .await
+            .into_iter()
+            .map(|v| format!("interpolate lightbox: {v}")),
+    );
     client.active_element().await.expect("focus").send_keys("\u{E00C}").await.expect("Escape");
     until(&client, "the dialog to close", "!document.getElementById('lightbox').open").await;
     js(&client, "window.closeApp.interpolate.setTau(1)").await;
@@ -550,8 +756,13 @@ async fn the_app_works_in_a_real_browser() {
     assert!((moved - 1.0).abs() < 1e-9, "one arrow key moved the handle {moved}°");
     assert_eq!(after[1], before[1], "the other end moved");
     js(&client, "const i = document.getElementById('to-2'); i.value = 'abc'; i.dispatchEvent(new Event('change'))").await;
-    assert_eq!(js(&client, "return document.getElementById('to-2').getAttribute('aria-invalid')").await, json!("true"));
-    assert!(text(&client, "document.getElementById('fold-input-status').textContent").await.contains("not a number"));
+    assert_eq!(
+        js(&client, "return document.getElementById('to-2').getAttribute('aria-invalid')").await,
+        json!("true")
+    );
+    assert!(text(&client, "document.getElementById('fold-input-status').textContent")
+        .await
+        .contains("not a number"));
     js(&client, "const i = document.getElementById('to-2'); i.value = '200'; i.dispatchEvent(new Event('change'))").await;
     let exact = js(&client, "return window.closeApp.interpolate.state().to").await;
     assert_eq!(exact[0], after[0], "editing g₂ re-read g₁ from its rounded box");
@@ -564,7 +775,12 @@ async fn the_app_works_in_a_real_browser() {
     until(&client, "the step choice", "document.getElementById('interp-step').options.length === 4 && document.getElementById('interp-sample').value.endsWith('napkin__half_then_half')").await;
     js(&client, "const s = document.getElementById('interp-step'); s.value = 'all'; s.dispatchEvent(new Event('change'))").await;
     client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");
-    until(&client, "the sequence to end", "document.getElementById('interp-slider').value === '1000'").await;
+    until(
+        &client,
+        "the sequence to end",
+        "document.getElementById('interp-slider').value === '1000'",
+    )
+    .await;
     let readout = text(&client, "document.getElementById('interp-readout').textContent").await;
     assert!(readout.contains("fold 2 of 2"), "{readout}");
     let state = js(&client, "return window.closeApp.interpolate.state().folds.length").await;
@@ -572,35 +788,74 @@ async fn the_app_works_in_a_real_browser() {
     // The sequence ends on the analysis's predicted end: the second fold, through two
     // stacked layers, is made along the line the analysis reports, not through its two
     // (coinciding) fold points.
-    let drawn: Vec<[f64; 3]> = serde_json::from_value(js(&client, "return window.closeApp.interpolate.state().drawn").await).expect("the drawn border");
-    let predicted = close::analyze(&twice.sample.border_frames().expect("frames"), Default::default()).expect("analysis").predicted_end;
-    let off = drawn.iter().zip(&predicted).map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1])).fold(0.0, f64::max);
-    assert!(drawn.len() == predicted.len() && off < 1e-9, "the sequence ends {off} away from the predicted end");
+    let drawn: Vec<[f64; 3]> = serde_json::from_value(
+        js(&client, "return window.closeApp.interpolate.state().drawn").await,
+    )
+    .expect("the drawn border");
+    let predicted =
+        close::analyze(&twice.sample.border_frames().expect("frames"), Default::default())
+            .expect("analysis")
+            .predicted_end;
+    let off = drawn
+        .iter()
+        .zip(&predicted)
+        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
+        .fold(0.0, f64::max);
+    assert!(
+        drawn.len() == predicted.len() && off < 1e-9,
+        "the sequence ends {off} away from the predicted end"
+    );
     disk_picture(&client).await;
     screenshot(&client, &shots, "1400-06-interpolate-sequence.png").await;
     client.find(Locator::Id("check-server")).await.expect("check").click().await.expect("click");
-    until(&client, "the parity check", "document.getElementById('interp-check').textContent.includes('agree')").await;
+    until(
+        &client,
+        "the parity check",
+        "document.getElementById('interp-check').textContent.includes('agree')",
+    )
+    .await;
 
     // ---- Plan from the interpolation's goal; each step drawn and said.
     js(&client, "const s = document.getElementById('interp-step'); s.value = '1'; s.dispatchEvent(new Event('change'))").await;
     // An arrow key steps a degree from the exact angle (49.737…°), not from its rounding.
     let (before, after) = arrow_on_handle(&client, "to:0", "to").await;
     let moved = turned(&before, &after, 0);
-    assert!((moved - 1.0).abs() < 1e-9, "one arrow key moved the handle {moved}° from {}", before[0]);
+    assert!(
+        (moved - 1.0).abs() < 1e-9,
+        "one arrow key moved the handle {moved}° from {}",
+        before[0]
+    );
     client.find(Locator::Id("plan-goal")).await.expect("plan button").click().await.expect("click");
-    until(&client, "the plan view", "location.hash.startsWith('#/plan') && !document.getElementById('view-plan').hidden").await;
+    until(
+        &client,
+        "the plan view",
+        "location.hash.startsWith('#/plan') && !document.getElementById('view-plan').hidden",
+    )
+    .await;
     js(&client, "for (const [id, v] of [['goal-1', 10], ['goal-2', 150]]) { const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }").await;
     client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
-    until(&client, "a plan", "document.getElementById('plan-case').textContent.includes('unfold first')").await;
+    until(
+        &client,
+        "a plan",
+        "document.getElementById('plan-case').textContent.includes('unfold first')",
+    )
+    .await;
     let steps: Vec<String> = serde_json::from_value(js(&client, "return [...document.querySelectorAll('#plan-list .plan-step')].map(li => li.innerText)").await).unwrap_or_default();
     assert!(steps.first().is_some_and(|s| s.starts_with("Now")), "{steps:?}");
     assert_eq!(steps.iter().filter(|s| s.contains("· Unfold")).count(), 2, "{steps:?}");
     assert!(steps.last().is_some_and(|s| s.contains("· Fold") && s.contains("10.0°")), "{steps:?}");
-    assert!(steps.iter().skip(1).all(|s| s.contains("(x, y in the sample's units)")), "coordinates without units: {steps:?}");
+    assert!(
+        steps.iter().skip(1).all(|s| s.contains("(x, y in the sample's units)")),
+        "coordinates without units: {steps:?}"
+    );
     assert!(text(&client, "document.title").await.contains("half_then_half"));
     screenshot(&client, &shots, "1400-07-plan.png").await;
     assert_eq!(wrapped_box_names(&client).await, json!([]), "goal box names wrap");
-    assert_eq!(small_plan_labels(&client).await, json!([]), "plan pictures' corner labels below 11 CSS px");
+    assert_eq!(
+        small_plan_labels(&client).await,
+        json!([]),
+        "plan pictures' corner labels below 11 CSS px"
+    );
     // Corner labels keep off one another and off the dots: on a strip narrower than a label,
     // corners 1 and 2 (and 3 and 4) get their labels on either side.
     let overlaps = client
@@ -618,28 +873,57 @@ async fn the_app_works_in_a_real_browser() {
         .await
         .expect("label corners");
     assert_eq!(overlaps, json!([]), "corner labels overlap");
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("plan: {v}")));
+    violations
+        .extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("plan: {v}")));
     // The goal the cloth is already in: nothing to do.
     js(&client, "document.getElementById('plan-sample').value = 'upload:' + window.closeApp.store.get().uploads.find(u => u.name === 'my-napkin.json').key; document.getElementById('plan-sample').dispatchEvent(new Event('change'))").await;
-    until(&client, "the upload's state", "document.getElementById('plan-now').textContent.includes('my-napkin.json')").await;
+    until(
+        &client,
+        "the upload's state",
+        "document.getElementById('plan-now').textContent.includes('my-napkin.json')",
+    )
+    .await;
     js(&client, "for (const [id, v] of [['goal-1', 45], ['goal-2', 225]]) { const i = document.getElementById(id); i.value = v; i.dispatchEvent(new Event('change')); }").await;
     client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
-    until(&client, "already there", "document.getElementById('plan-case').textContent.includes('already folded')").await;
-    assert_eq!(js(&client, "return document.querySelectorAll('#plan-list .plan-step').length").await, json!(1), "only the current state is drawn");
+    until(
+        &client,
+        "already there",
+        "document.getElementById('plan-case').textContent.includes('already folded')",
+    )
+    .await;
+    assert_eq!(
+        js(&client, "return document.querySelectorAll('#plan-list .plan-step').length").await,
+        json!(1),
+        "only the current state is drawn"
+    );
     // The upload is listed by its file name.
-    let options = text(&client, "[...document.getElementById('plan-sample').options].map(o => o.textContent).join('|')").await;
+    let options = text(
+        &client,
+        "[...document.getElementById('plan-sample').options].map(o => o.textContent).join('|')",
+    )
+    .await;
     assert!(options.contains("upload · my-napkin.json"), "{options}");
 
     // The plan downloads as JSON (issue 19, item 9).
     let plan_json = client.execute_async("const a = document.getElementById('plan-json'); fetch(a.href).then(r => r.json()).then(j => arguments[0]([a.hidden, a.download, j.steps.length])).catch(e => arguments[0](String(e)))", vec![]).await.expect("plan JSON");
-    assert!(plan_json[0] == json!(false) && plan_json[1].as_str().is_some_and(|d| d.ends_with(".json")) && plan_json[2] == json!(0), "the plan shown (already there: no step) is the one downloaded: {plan_json}");
+    assert!(
+        plan_json[0] == json!(false)
+            && plan_json[1].as_str().is_some_and(|d| d.ends_with(".json"))
+            && plan_json[2] == json!(0),
+        "the plan shown (already there: no step) is the one downloaded: {plan_json}"
+    );
 
     // ---- Every picture downloads as PNG and SVG, the analysis as JSON; "use from code"
     // gives calls that return the same analysis (items 9 and 11).
     route(&client, &format!("#/samples/{}", twice.id)).await;
     shows_sample(&client, &twice.sample.name).await;
-    let fetched = |selector: &str| format!("const a = document.querySelector({selector:?}); fetch(a.href).then(r => r.text().then(t => arguments[0]([r.headers.get('content-type'), t.slice(0, 5), a.download]))).catch(e => arguments[0](String(e)))");
-    for (selector, kind, head) in [("#browse-result a.download[data-format=svg]", "image/svg+xml", "<svg "), ("#browse-result a.download[data-format=png]", "image/png", "\u{fffd}PNG\r")] {
+    let fetched = |selector: &str| {
+        format!("const a = document.querySelector({selector:?}); fetch(a.href).then(r => r.text().then(t => arguments[0]([r.headers.get('content-type'), t.slice(0, 5), a.download]))).catch(e => arguments[0](String(e)))")
+    };
+    for (selector, kind, head) in [
+        ("#browse-result a.download[data-format=svg]", "image/svg+xml", "<svg "),
+        ("#browse-result a.download[data-format=png]", "image/png", "\u{fffd}PNG\r"),
+    ] {
         let got = client.execute_async(&fetched(selector), vec![]).await.expect("a download");
         assert_eq!(got[0], json!(kind), "{selector}: {got}");
         assert!(got[2].as_str().is_some_and(|d| d.ends_with(&kind[6..9])), "{selector}: {got}");
@@ -648,24 +932,55 @@ async fn the_app_works_in_a_real_browser() {
         }
     }
     let links = js(&client, "return [...document.querySelectorAll('#browse-result figure')].map(f => f.querySelectorAll('a.download').length)").await;
-    assert!(links.as_array().is_some_and(|l| l.len() == 6 && l.iter().all(|n| n == 2)), "every picture has PNG and SVG links: {links}");
-    let label_shown = text(&client, "document.querySelector('#browse-result .result-label').textContent").await;
+    assert!(
+        links.as_array().is_some_and(|l| l.len() == 6 && l.iter().all(|n| n == 2)),
+        "every picture has PNG and SVG links: {links}"
+    );
+    let label_shown =
+        text(&client, "document.querySelector('#browse-result .result-label').textContent").await;
     let analysis = client.execute_async("fetch(document.querySelector('#browse-result a.download-analysis').href).then(r => r.json()).then(j => arguments[0](j.label.text))", vec![]).await.expect("analysis JSON");
     assert_eq!(analysis, json!(label_shown));
-    let curl = text(&client, "document.querySelector('#browse-result .use-code .code-curl').textContent").await;
+    let curl =
+        text(&client, "document.querySelector('#browse-result .use-code .code-curl').textContent")
+            .await;
     assert_eq!(curl, format!("curl -s {base}/api/samples/{}", twice.id));
-    let python = text(&client, "document.querySelector('#browse-result .use-code .code-python').textContent").await;
-    assert!(python.contains(&format!("requests.get(\"{base}/api/samples/{}\")", twice.id)), "{python}");
-    let called = client.execute_async(&format!("fetch({:?}).then(r => r.json()).then(j => arguments[0](j.label.text))", curl.trim_start_matches("curl -s ")), vec![]).await.expect("the call");
+    let python = text(
+        &client,
+        "document.querySelector('#browse-result .use-code .code-python').textContent",
+    )
+    .await;
+    assert!(
+        python.contains(&format!("requests.get(\"{base}/api/samples/{}\")", twice.id)),
+        "{python}"
+    );
+    let called = client
+        .execute_async(
+            &format!(
+                "fetch({:?}).then(r => r.json()).then(j => arguments[0](j.label.text))",
+                curl.trim_start_matches("curl -s ")
+            ),
+            vec![],
+        )
+        .await
+        .expect("the call");
     assert_eq!(called, json!(label_shown));
 
     // ---- State in the URL (item 10): the step, Interpolate's cloth, step, folds and t,
     // Plan's goal; a reload shows the same.
-    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"2\"]').click()").await;
+    js(
+        &client,
+        "document.querySelector('#browse-result .segmented input[data-step=\"2\"]').click()",
+    )
+    .await;
     until(&client, "the step in the URL", "location.hash.endsWith('?step=2')").await;
     client.refresh().await.expect("reload");
     shows_sample(&client, &twice.sample.name).await;
-    until(&client, "step 2 after the reload", "document.querySelector('#browse-result .segmented input:checked')?.dataset.step === '2'").await;
+    until(
+        &client,
+        "step 2 after the reload",
+        "document.querySelector('#browse-result .segmented input:checked')?.dataset.step === '2'",
+    )
+    .await;
     route(&client, "#/interpolate?cloth=sample:tshirt__sleeve_left&step=1&t=0.400").await;
     until(&client, "the linked cloth", "document.getElementById('interp-sample').value === 'sample:tshirt__sleeve_left' && Math.abs(window.closeApp.interpolate.state().tau - 0.4) < 1e-9").await;
     js(&client, "window.closeApp.interpolate.setTau(0.25)").await;
@@ -674,7 +989,11 @@ async fn the_app_works_in_a_real_browser() {
     client.refresh().await.expect("reload");
     until(&client, "the same state after a reload", "document.getElementById('interp-sample').value === 'sample:tshirt__sleeve_left' && Math.abs(window.closeApp.interpolate.state().tau - 0.25) < 1e-9").await;
     let again = js(&client, "return window.closeApp.interpolate.state().to").await;
-    let close_to = |a: &Value, b: &Value| (0..2).all(|k| (a[k].as_f64().unwrap_or(f64::NAN) - b[k].as_f64().unwrap_or(0.0)).abs() < 1e-5);
+    let close_to = |a: &Value, b: &Value| {
+        (0..2).all(|k| {
+            (a[k].as_f64().unwrap_or(f64::NAN) - b[k].as_f64().unwrap_or(0.0)).abs() < 1e-5
+        })
+    };
     assert!(close_to(&folds, &again), "{folds} → {again}");
     // Back from Interpolate to a sample: the title names the sample again.
     route(&client, &format!("#/samples/{}", twice.id)).await;
@@ -691,16 +1010,31 @@ async fn the_app_works_in_a_real_browser() {
 
     // ---- Compare (item 15): two states on one colour scale, and a frame scrubber.
     route(&client, &format!("#/compare/{0}@1/{0}", twice.id)).await;
-    until(&client, "the compared states", "document.querySelectorAll('#compare-result .compare-panels img').length === 5").await;
+    until(
+        &client,
+        "the compared states",
+        "document.querySelectorAll('#compare-result .compare-panels img').length === 5",
+    )
+    .await;
     images_loaded(&client, "#compare-result img").await;
     let scales = js(&client, "return [...document.querySelectorAll('#compare-result .compare-panels')].map(p => [...p.querySelectorAll('img')].map(i => i.dataset.scale))").await;
-    let shared = |k: usize| scales[k].as_array().is_some_and(|s| s.iter().all(|v| v == &s[0] && v.as_str().is_some_and(|t| !t.is_empty())));
+    let shared = |k: usize| {
+        scales[k].as_array().is_some_and(|s| {
+            s.iter().all(|v| v == &s[0] && v.as_str().is_some_and(|t| !t.is_empty()))
+        })
+    };
     assert!(shared(0) && shared(1), "the panels do not share one colour scale: {scales}");
     let captions = text(&client, "[...document.querySelectorAll('#compare-result figcaption')].map(f => f.textContent).join('|')").await;
-    assert!(captions.contains("after step 1 of 2") && captions.contains("after step 2 of 2") && captions.contains("predicted frame 1"), "{captions}");
+    assert!(
+        captions.contains("after step 1 of 2")
+            && captions.contains("after step 2 of 2")
+            && captions.contains("predicted frame 1"),
+        "{captions}"
+    );
     assert!(text(&client, "document.title").await.contains("Compare"));
     screenshot(&client, &shots, "1400-09-compare.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare: {v}")));
+    violations
+        .extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare: {v}")));
     violations.extend(disk_readout(&client, &base, &shots, &axe).await);
 
     // ---- The user's own dataset (items 1–3): listed with thumbnails and provenance, second
@@ -708,11 +1042,22 @@ async fn the_app_works_in_a_real_browser() {
     let q3 = "d0-q3_napkin_half_then_quarter_31x31";
     goto_view(&client, &with_dataset, &format!("#/samples/{q3}")).await;
     shows_sample(&client, "q3_napkin_half_then_quarter_31x31").await;
-    let meta = text(&client, "document.querySelector('#browse-result .result-meta').textContent").await;
-    assert!(meta.starts_with(&format!("dataset {}", own.display())) && meta.contains("napkin_second_fold"), "{meta}");
-    assert!(text(&client, "document.querySelector('#browse-result .close-table').innerText").await.contains("true fold 2"));
+    let meta =
+        text(&client, "document.querySelector('#browse-result .result-meta').textContent").await;
+    assert!(
+        meta.starts_with(&format!("dataset {}", own.display()))
+            && meta.contains("napkin_second_fold"),
+        "{meta}"
+    );
+    assert!(text(&client, "document.querySelector('#browse-result .close-table').innerText")
+        .await
+        .contains("true fold 2"));
     // The whole span of a sequence draws no curve and says so.
-    js(&client, "document.querySelector('#browse-result .segmented input[data-step=\"0\"]').click()").await;
+    js(
+        &client,
+        "document.querySelector('#browse-result .segmented input[data-step=\"0\"]').click()",
+    )
+    .await;
     until(&client, "the whole span's caption", "[...document.querySelectorAll('#browse-result figcaption')].some(f => f.textContent.startsWith('|diff| (the fold curves: see each step)'))").await;
     let card = until(&client, "the dataset card in its category", &format!("document.querySelector('.sample-card[data-id=\"{q3}\"]')?.closest('details').querySelector('summary').textContent")).await;
     assert!(card.as_str().unwrap_or_default().starts_with("napkin_second_fold"), "{card}");
@@ -725,13 +1070,28 @@ async fn the_app_works_in_a_real_browser() {
     assert_eq!(missing, json!([]), "requests for missing pictures");
     assert!(text(&client, "document.querySelector('.sample-card[data-source]:not([data-source=builtin]) .card-meta').textContent").await.contains("dataset own-dataset"));
     screenshot(&client, &shots, "1400-10-own-dataset.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("own dataset: {v}")));
+    violations.extend(
+        axe_violations(&client, &axe).await.into_iter().map(|v| format!("own dataset: {v}")),
+    );
     js(&client, "document.querySelector('#browse-result .plan-this').click()").await;
     until(&client, "the plan view", "location.hash.startsWith('#/plan') && document.getElementById('plan-sample').value === 'sample:d0-q3_napkin_half_then_quarter_31x31'").await;
-    until(&client, "its state", "document.getElementById('plan-now').textContent.includes('now')").await;
+    until(&client, "its state", "document.getElementById('plan-now').textContent.includes('now')")
+        .await;
     client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
-    until(&client, "a plan for the dataset sample", "/\\d+ steps? ·/.test(document.getElementById('plan-case').textContent)").await;
-    assert!(js(&client, "return document.getElementById('error').hidden").await.as_bool().unwrap_or(false), "{}", text(&client, "document.getElementById('error').textContent").await);
+    until(
+        &client,
+        "a plan for the dataset sample",
+        "/\\d+ steps? ·/.test(document.getElementById('plan-case').textContent)",
+    )
+    .await;
+    assert!(
+        js(&client, "return document.getElementById('error').hidden")
+            .await
+            .as_bool()
+            .unwrap_or(false),
+        "{}",
+        text(&client, "document.getElementById('error').textContent").await
+    );
     goto_view(&client, &base, &format!("#/samples/{}", twice.id)).await;
     shows_sample(&client, &twice.sample.name).await;
 
@@ -744,14 +1104,28 @@ async fn the_app_works_in_a_real_browser() {
     assert_eq!(order, json!(true), "the result is not above the list");
     assert_no_overflow(&client, "browse").await;
     screenshot(&client, &shots, "420-01-browse.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("browse 420: {v}")));
+    violations.extend(
+        axe_violations(&client, &axe).await.into_iter().map(|v| format!("browse 420: {v}")),
+    );
     // Tapping a card far down brings its result into view.
-    js(&client, "document.querySelector('.sample-card[data-id=\"towel__half_long\"]').scrollIntoView()").await;
-    client.find(Locator::Css(".sample-card[data-id=\"towel__half_long\"]")).await.expect("a card").click().await.expect("tap");
+    js(
+        &client,
+        "document.querySelector('.sample-card[data-id=\"towel__half_long\"]').scrollIntoView()",
+    )
+    .await;
+    client
+        .find(Locator::Css(".sample-card[data-id=\"towel__half_long\"]"))
+        .await
+        .expect("a card")
+        .click()
+        .await
+        .expect("tap");
     shows_sample(&client, &dataset.get("towel__half_long").expect("sample").sample.name).await;
     let top = until(&client, "the result in view", "(t => t > -50 && t < 300 && t + 1)(document.getElementById('browse-result').getBoundingClientRect().top)").await;
     assert!(top.as_f64().is_some(), "result at {top}");
-    for (hash, name) in [("#/upload", "upload"), ("#/interpolate", "interpolate"), ("#/plan", "plan")] {
+    for (hash, name) in
+        [("#/upload", "upload"), ("#/interpolate", "interpolate"), ("#/plan", "plan")]
+    {
         route(&client, hash).await;
         until(&client, name, &format!("!document.getElementById('view-{name}').hidden")).await;
         tokio::time::sleep(Duration::from_millis(500)).await;
@@ -760,31 +1134,68 @@ async fn the_app_works_in_a_real_browser() {
             disk_picture(&client).await;
             // The canvas is shrunk to the phone's width: its labels are sized for that.
             let shown = js(&client, "const c = document.getElementById('interp-canvas'); return parseFloat(c.getContext('2d').font) * c.getBoundingClientRect().width / c.width").await;
-            assert!(shown.as_f64().is_some_and(|px| px >= 11.0), "corner labels {shown} CSS px tall");
+            assert!(
+                shown.as_f64().is_some_and(|px| px >= 11.0),
+                "corner labels {shown} CSS px tall"
+            );
         }
         assert_eq!(wrapped_box_names(&client).await, json!([]), "{name} 420: fold box names wrap");
         if name == "plan" {
-            assert_eq!(small_plan_labels(&client).await, json!([]), "plan 420: corner labels below 11 CSS px");
+            assert_eq!(
+                small_plan_labels(&client).await,
+                json!([]),
+                "plan 420: corner labels below 11 CSS px"
+            );
         }
-        screenshot(&client, &shots, &format!("420-0{}-{name}.png", 2 + ["upload", "interpolate", "plan"].iter().position(|n| *n == name).unwrap_or(0))).await;
-        violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("{name} 420: {v}")));
+        screenshot(
+            &client,
+            &shots,
+            &format!(
+                "420-0{}-{name}.png",
+                2 + ["upload", "interpolate", "plan"].iter().position(|n| *n == name).unwrap_or(0)
+            ),
+        )
+        .await;
+        violations.extend(
+            axe_violations(&client, &axe).await.into_iter().map(|v| format!("{name} 420: {v}")),
+        );
     }
     let order = js(&client, "return document.querySelector('.plan-side').getBoundingClientRect().top < document.querySelector('.plan-main').getBoundingClientRect().top").await;
     assert_eq!(order, json!(true), "the plan's controls are below its results");
     route(&client, &format!("#/compare/{0}@1/{0}", twice.id)).await;
-    until(&client, "the compared states", "document.querySelectorAll('#compare-result .compare-panels img').length === 5").await;
+    until(
+        &client,
+        "the compared states",
+        "document.querySelectorAll('#compare-result .compare-panels img').length === 5",
+    )
+    .await;
     images_loaded(&client, "#compare-result img").await;
     assert_no_overflow(&client, "compare").await;
     screenshot(&client, &shots, "420-05-compare.png").await;
-    violations.extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare 420: {v}")));
+    violations.extend(
+        axe_violations(&client, &axe).await.into_iter().map(|v| format!("compare 420: {v}")),
+    );
 
     // ---- Five thousand samples: the list stays paged, the filter finds any of them.
     goto_view(&client, &many, "").await;
-    until(&client, "the long list", "document.getElementById('sample-count').textContent.startsWith('5000 of 5000')").await;
-    let cards = js(&client, "return document.querySelectorAll('.sample-card').length").await.as_u64().unwrap_or(0);
+    until(
+        &client,
+        "the long list",
+        "document.getElementById('sample-count').textContent.startsWith('5000 of 5000')",
+    )
+    .await;
+    let cards = js(&client, "return document.querySelectorAll('.sample-card').length")
+        .await
+        .as_u64()
+        .unwrap_or(0);
     assert!(cards > 0 && cards <= 3 * 24, "{cards} cards drawn for 5000 samples");
     js(&client, "document.querySelector('.category .more').click()").await;
-    until(&client, "more cards", &format!("document.querySelectorAll('.sample-card').length > {cards}")).await;
+    until(
+        &client,
+        "more cards",
+        &format!("document.querySelectorAll('.sample-card').length > {cards}"),
+    )
+    .await;
     js(&client, "const f = document.getElementById('sample-filter'); f.value = 'user 4321'; f.dispatchEvent(new Event('input'))").await;
     until(&client, "one match", "document.getElementById('sample-count').textContent.startsWith('1 of 5000') && document.querySelectorAll('.sample-card').length === 1").await;
 
@@ -793,9 +1204,17 @@ async fn the_app_works_in_a_real_browser() {
     goto_view(&client, &broken, "").await;
     let error = until(&client, "the list's error", "document.getElementById('sample-list').textContent.includes('could not be loaded') && document.getElementById('sample-list').textContent").await;
     let error = error.as_str().unwrap_or_default();
-    assert!(error.contains("503 Service Unavailable upstream down") && !error.contains("<h1>"), "{error}");
+    assert!(
+        error.contains("503 Service Unavailable upstream down") && !error.contains("<h1>"),
+        "{error}"
+    );
     route(&client, "#/interpolate").await;
-    let error = until(&client, "the message in Interpolate", "!document.getElementById('error').hidden && document.getElementById('error').textContent").await;
+    let error = until(
+        &client,
+        "the message in Interpolate",
+        "!document.getElementById('error').hidden && document.getElementById('error').textContent",
+    )
+    .await;
     assert!(error.as_str().unwrap_or_default().contains("could not be loaded"), "{error}");
     screenshot(&client, &shots, "1400-08-samples-failed.png").await;
 
@@ -803,17 +1222,25 @@ async fn the_app_works_in_a_real_browser() {
 
     client.close().await.expect("end the session");
     let _ = std::fs::remove_dir_all(&scratch);
-    assert!(violations.is_empty(), "axe-core found serious or critical violations:\n{}", violations.join("\n"));
+    assert!(
+        violations.is_empty(),
+        "axe-core found serious or critical violations:\n{}",
+        violations.join("\n")
+    );
 }
 
 /// The picture pixel (480 px picture) at the middle of disk cell (i, j), and the cell the
 /// server paints there: (ring d, first edge a), by its own rule (`sector_at`).
 fn cell_pixel(n: usize, (i, j): (usize, usize)) -> ((f64, f64), (usize, usize)) {
-    let layout = close::render::disk::Layout::of(480, 480);
+    let layout = close::render::disk_picture::Layout::of(480, 480);
     let cell = close::disk::position(n, i, j);
     let (x, y) = layout.pixel(cell.radius - 0.5 / (n / 2) as f64, cell.angle);
     let (dx, dy) = (x + 0.5 - layout.cx, layout.cy - (y + 0.5));
-    let painted = close::render::disk::sector_at(n, dx.hypot(dy) / layout.radius, dy.atan2(dx).rem_euclid(std::f64::consts::TAU));
+    let painted = close::render::disk_picture::sector_at(
+        n,
+        dx.hypot(dy) / layout.radius,
+        dy.atan2(dx).rem_euclid(std::f64::consts::TAU),
+    );
     ((x, y), painted)
 }
 
@@ -826,21 +1253,35 @@ fn largest_pair(n: usize, values: impl Fn(usize, usize) -> f64) -> (usize, usize
 /// Move the mouse (or tap, with `touch`) over picture pixel `at` of the 480 px picture
 /// `selector`, scrolled into the middle of the window first.
 async fn point_at(client: &Client, selector: &str, (x, y): (f64, f64), touch: bool) {
-    use fantoccini::actions::{InputSource, MouseActions, PointerAction, TouchActions, MOUSE_BUTTON_LEFT};
+    use fantoccini::actions::{
+        InputSource, MouseActions, PointerAction, TouchActions, MOUSE_BUTTON_LEFT,
+    };
     let rect = js(client, &format!("const i = document.querySelector({selector:?}); i.scrollIntoView({{ block: 'center' }}); const r = i.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]")).await;
     let f = |k: usize| rect[k].as_f64().unwrap_or(0.0);
-    let (cx, cy) = ((f(0) + (x + 0.5) * f(2) / 480.0).round(), (f(1) + (y + 0.5) * f(3) / 480.0).round());
+    let (cx, cy) =
+        ((f(0) + (x + 0.5) * f(2) / 480.0).round(), (f(1) + (y + 0.5) * f(3) / 480.0).round());
     let to = PointerAction::MoveTo { duration: None, x: cx, y: cy };
     if touch {
-        let tap = TouchActions::new("finger".into()).then(to).then(PointerAction::Down { button: MOUSE_BUTTON_LEFT }).then(PointerAction::Up { button: MOUSE_BUTTON_LEFT });
+        let tap = TouchActions::new("finger".into())
+            .then(to)
+            .then(PointerAction::Down { button: MOUSE_BUTTON_LEFT })
+            .then(PointerAction::Up { button: MOUSE_BUTTON_LEFT });
         client.perform_actions(tap).await.expect("tap");
     } else {
-        client.perform_actions(MouseActions::new("mouse".into()).then(to)).await.expect("move the mouse");
+        client
+            .perform_actions(MouseActions::new("mouse".into()).then(to))
+            .await
+            .expect("move the mouse");
     }
 }
 
 /// The readout under a disk picture once it names cell (a, a + d): its text and its value.
-async fn readout_of(client: &Client, figure: &str, n: usize, (d, a): (usize, usize)) -> (String, f64) {
+async fn readout_of(
+    client: &Client,
+    figure: &str,
+    n: usize,
+    (d, a): (usize, usize),
+) -> (String, f64) {
     let want = format!("edges i = {a}, j = {} · d = {d} ·", (a + d) % n);
     let got = until(client, &format!("the readout of {want}"), &format!("(o => o.textContent.startsWith({want:?}) && [o.textContent, Number(o.dataset.value)])(document.querySelector({:?}))", format!("{figure} .cell-readout"))).await;
     (got[0].as_str().unwrap_or_default().to_string(), got[1].as_f64().unwrap_or(f64::NAN))
@@ -859,8 +1300,13 @@ async fn inked(client: &Client, selector: &str, (x, y): (f64, f64)) -> bool {
 /// critical violations.
 async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> Vec<String> {
     let mut violations = Vec::new();
-    let entry = close::dataset::Dataset::builtin().get("napkin__half_then_half").expect("a second fold").clone();
-    let analysis = close::analyze(&entry.sample.border_frames().expect("frames"), Default::default()).expect("analysis");
+    let entry = close::dataset::Dataset::builtin()
+        .get("napkin__half_then_half")
+        .expect("a second fold")
+        .clone();
+    let analysis =
+        close::analyze(&entry.sample.border_frames().expect("frames"), Default::default())
+            .expect("analysis");
     let n = analysis.n;
     // Step 2: analysed frames 1 → 2; the cell that changed most.
     let (before, after) = (analysis.disk(1).expect("frame 1"), analysis.disk(2).expect("frame 2"));
@@ -874,48 +1320,83 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     let signed = "#browse-result .step-pictures figure:nth-child(4)";
     point_at(client, &format!("{signed} img"), (x, y), false).await;
     let (text, value) = readout_of(client, signed, n, (d, a)).await;
-    assert!((value - delta(a, b)).abs() <= 1e-5 * delta(a, b).abs().max(1e-3), "{text}: the analysis has Δ = {}", delta(a, b));
-    assert!(text.contains("start") && text.contains("end"), "a diff's readout gives its start and end values: {text}");
+    assert!(
+        (value - delta(a, b)).abs() <= 1e-5 * delta(a, b).abs().max(1e-3),
+        "{text}: the analysis has Δ = {}",
+        delta(a, b)
+    );
+    assert!(
+        text.contains("start") && text.contains("end"),
+        "a diff's readout gives its start and end values: {text}"
+    );
     // The cell is outlined: ink on its outer arc's middle.
-    let layout = close::render::disk::Layout::of(480, 480);
+    let layout = close::render::disk_picture::Layout::of(480, 480);
     let l = (n / 2) as f64;
     let theta = std::f64::consts::PI * (2 * a + d + 1) as f64 / n as f64;
-    assert!(inked(client, &format!("{signed} canvas.cell-mark"), layout.pixel((l - d as f64 + 1.0) / l, theta)).await, "the cell is not outlined");
+    assert!(
+        inked(
+            client,
+            &format!("{signed} canvas.cell-mark"),
+            layout.pixel((l - d as f64 + 1.0) / l, theta)
+        )
+        .await,
+        "the cell is not outlined"
+    );
     // Its two edges are marked on the border plot, on the start and end borders, and nowhere else.
     let truth = entry.sample.truth.as_ref().map(|t| t.folds.clone()).unwrap_or_default();
-    let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, 480).expect("the plot's map");
+    let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, 480)
+        .expect("the plot's map");
     let mid = |border: &[close::border::Point], e: usize| {
         let (p, q) = (border[e], border[(e + 1) % n]);
         (plot.x[0] * (p.x + q.x) / 2.0 + plot.x[1], plot.y[0] * (p.y + q.y) / 2.0 + plot.y[1])
     };
     for border in [analysis.start_border(), analysis.end_border()] {
         for e in [a, b] {
-            assert!(inked(client, "#browse-result canvas.edge-mark", mid(border, e)).await, "edge {e} is not marked at {:?}", mid(border, e));
+            assert!(
+                inked(client, "#browse-result canvas.edge-mark", mid(border, e)).await,
+                "edge {e} is not marked at {:?}",
+                mid(border, e)
+            );
         }
     }
-    assert!(!inked(client, "#browse-result canvas.edge-mark", (2.0, 2.0)).await, "the plot's corner is marked");
+    assert!(
+        !inked(client, "#browse-result canvas.edge-mark", (2.0, 2.0)).await,
+        "the plot's corner is marked"
+    );
     // The arrow keys move the cell: left turns anticlockwise (edge a + 1), down goes inwards.
     js(client, &format!("document.querySelector({:?}).focus()", format!("{signed} .zoom"))).await;
     let keys = client.active_element().await.expect("the focused picture");
     keys.send_keys("\u{E012}").await.expect("arrow left");
     let (_, value) = readout_of(client, signed, n, (d, (a + 1) % n)).await;
     let want = delta((a + 1) % n, (a + 1 + d) % n);
-    assert!((value - want).abs() <= 1e-5 * want.abs().max(1e-3), "after ArrowLeft: {value}, the analysis has {want}");
+    assert!(
+        (value - want).abs() <= 1e-5 * want.abs().max(1e-3),
+        "after ArrowLeft: {value}, the analysis has {want}"
+    );
     keys.send_keys("\u{E015}").await.expect("arrow down");
     readout_of(client, signed, n, ((d + 1).min(n / 2), (a + 1) % n)).await;
     keys.send_keys("\u{E013}").await.expect("arrow up");
     readout_of(client, signed, n, (d, (a + 1) % n)).await;
     screenshot(client, shots, "1400-11-disk-readout.png").await;
-    violations.extend(axe_violations(client, axe).await.into_iter().map(|v| format!("disk readout: {v}")));
+    violations.extend(
+        axe_violations(client, axe).await.into_iter().map(|v| format!("disk readout: {v}")),
+    );
     // A tap on the start disk reads its value; it does not open the full-resolution view.
     let start_fig = "#browse-result .step-pictures figure:nth-child(1)";
     let ((x, y), (d1, a1)) = cell_pixel(n, largest_pair(n, |i, j| before.get(i, j)));
     point_at(client, &format!("{start_fig} img"), (x, y), true).await;
     let (text, value) = readout_of(client, start_fig, n, (d1, a1)).await;
     let want = before.get(a1, (a1 + d1) % n);
-    assert!((value - want).abs() <= 1e-5 * want.abs().max(1e-3) && !text.contains("start"), "{text}: the analysis has {want}");
+    assert!(
+        (value - want).abs() <= 1e-5 * want.abs().max(1e-3) && !text.contains("start"),
+        "{text}: the analysis has {want}"
+    );
     tokio::time::sleep(Duration::from_millis(300)).await;
-    assert_eq!(js(client, "return document.getElementById('lightbox').open").await, json!(false), "a tap on a cell opened the lightbox");
+    assert_eq!(
+        js(client, "return document.getElementById('lightbox').open").await,
+        json!(false),
+        "a tap on a cell opened the lightbox"
+    );
 
     // Interpolate: the disk of the state drawn, its cells' edges marked on the cloth.
     route(client, &format!("#/interpolate?cloth=sample:{}&step=1&t=1.000", entry.id)).await;
@@ -923,16 +1404,25 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     disk_picture(client).await;
     // The disk is of the state drawn with its layers stacked (draw.js `stacked`), as sent to the server.
     let script = "const done = arguments[0]; import('/assets/draw.js').then(d => { const s = window.closeApp.interpolate.state(); done(d.stacked(s.border, s.folds)); })";
-    let drawn: Vec<[f64; 3]> = serde_json::from_value(client.execute_async(script, vec![]).await.expect("the state")).expect("the drawn border");
+    let drawn: Vec<[f64; 3]> =
+        serde_json::from_value(client.execute_async(script, vec![]).await.expect("the state"))
+            .expect("the drawn border");
     let flat: Vec<[f64; 3]> = analysis.start_border().iter().map(close::border::to_xyz).collect();
-    let state = close::disk::of_state(drawn, Some(flat), &close::budget::Deadline::default()).expect("the state's disk");
+    let state = close::disk::of_state(drawn, Some(flat), &close::budget::Deadline::default())
+        .expect("the state's disk");
     let ((x, y), (d, a)) = cell_pixel(n, largest_pair(n, |i, j| state.get(i, j)));
     point_at(client, "#interp-disk", (x, y), false).await;
     let (_, value) = readout_of(client, ".interp-disk", n, (d, a)).await;
     let want = state.get(a, (a + d) % n);
-    assert!((value - want).abs() <= 1e-5 * want.abs().max(1e-3), "the state's disk has {want}, the readout {value}");
+    assert!(
+        (value - want).abs() <= 1e-5 * want.abs().max(1e-3),
+        "the state's disk has {want}, the readout {value}"
+    );
     let cell = js(client, "return window.closeApp.interpolate.state().cell").await;
-    assert_eq!((cell["i"].as_u64(), cell["j"].as_u64()), (Some(a as u64), Some(((a + d) % n) as u64)));
+    assert_eq!(
+        (cell["i"].as_u64(), cell["j"].as_u64()),
+        (Some(a as u64), Some(((a + d) % n) as u64))
+    );
     let marked = js(client, "const c = document.getElementById('interp-canvas'), d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; let k = 0; \
                              for (let p = 0; p < d.length; p += 4) if (Math.abs(d[p] - 0xd8) < 8 && Math.abs(d[p + 1] - 0x1b) < 8 && Math.abs(d[p + 2] - 0x60) < 8) k++; return k").await;
     assert!(marked.as_u64().unwrap_or(0) > 20, "edge i is not marked on the cloth ({marked} px)");
@@ -950,14 +1440,23 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     js(client, "window.fetch = window.realFetch").await;
     let sent: Vec<Vec<[f64; 3]>> = serde_json::from_value(bodies).expect("borders sent");
     for step in &analysis.steps {
-        assert!(sent.iter().any(|b| b == &step.predicted), "the predicted frame {} drawn is not the analysis's", step.to_frame);
+        assert!(
+            sent.iter().any(|b| b == &step.predicted),
+            "the predicted frame {} drawn is not the analysis's",
+            step.to_frame
+        );
     }
 
     // Plan: the unfold arrows (a corner put back along the cloth's own edge) bow off it.
     route(client, &format!("#/plan?cloth=sample:{}&goal=0.174533,2.617994", entry.id)).await;
     until(client, "the linked goal", &format!("document.getElementById('plan-sample').value === 'sample:{}' && document.getElementById('plan-now').textContent.includes('now')", entry.id)).await;
     client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
-    until(client, "a plan", "document.getElementById('plan-case').textContent.includes('unfold first')").await;
+    until(
+        client,
+        "a plan",
+        "document.getElementById('plan-case').textContent.includes('unfold first')",
+    )
+    .await;
     // At each arrow's middle, within two pixels, its colour (#2f855a); its middle off the straight chord.
     let arrows = js(client, "return [...document.querySelectorAll('#plan-list canvas[data-arrows]')].flatMap(c => JSON.parse(c.dataset.arrows).map(a => { \
                              const p = c.getContext('2d').getImageData(Math.round(a.mid[0]) - 2, Math.round(a.mid[1]) - 2, 5, 5).data; let green = false; \
@@ -966,7 +1465,12 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
                              return { off: Math.hypot(a.mid[0] - chord[0], a.mid[1] - chord[1]), green, at: a.mid }; }))").await;
     let arrows = arrows.as_array().cloned().unwrap_or_default();
     assert!(arrows.len() >= 2, "{arrows:?}");
-    assert!(arrows.iter().all(|a| a["off"].as_f64().is_some_and(|o| o >= 13.9) && a["green"] == json!(true)), "arrows on the edges: {arrows:?}");
+    assert!(
+        arrows
+            .iter()
+            .all(|a| a["off"].as_f64().is_some_and(|o| o >= 13.9) && a["green"] == json!(true)),
+        "arrows on the edges: {arrows:?}"
+    );
 
     // A phone: the readout by tap, under the picture.
     client.set_window_size(420, 900).await.expect("phone size");
@@ -980,7 +1484,9 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     readout_of(client, signed, n, (d, a)).await;
     assert_no_overflow(client, "browse readout").await;
     screenshot(client, shots, "420-06-disk-readout.png").await;
-    violations.extend(axe_violations(client, axe).await.into_iter().map(|v| format!("disk readout 420: {v}")));
+    violations.extend(
+        axe_violations(client, axe).await.into_iter().map(|v| format!("disk readout 420: {v}")),
+    );
     client.set_window_size(1400, 1000).await.expect("wide again");
     until(client, "a wide window", "window.innerWidth > 1000").await;
     violations
@@ -993,7 +1499,12 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
 async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str, shots: &Path) {
     use base64::Engine as _;
     let dataset = close::dataset::Dataset::builtin();
-    let mesh = &dataset.entries().iter().find(|e| e.sample.mesh.is_some()).expect("a built-in mesh sample").id;
+    let mesh = &dataset
+        .entries()
+        .iter()
+        .find(|e| e.sample.mesh.is_some())
+        .expect("a built-in mesh sample")
+        .id;
     for (width, height) in [(1400, 1000), (420, 900)] {
         client.set_window_size(width, height).await.expect("window size");
         until(client, "the window size", &format!("window.innerWidth <= {width}")).await;
@@ -1004,20 +1515,36 @@ async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str
         let shown: Vec<(String, f64)> = serde_json::from_value(js(client, "return [...document.querySelectorAll('#browse-result figure img')].map(i => [i.dataset.picture, i.getBoundingClientRect().width])").await).expect("widths");
         assert!(shown.len() >= 7, "{width} px: {shown:?}");
         for (picture, css) in &shown {
-            assert!(*css >= close::render::SHOWN_WIDTH, "{width} px: {picture} shown {css} CSS px wide, under the {} its text is sized for", close::render::SHOWN_WIDTH);
+            assert!(
+                *css >= close::render::SHOWN_WIDTH,
+                "{width} px: {picture} shown {css} CSS px wide, under the {} its text is sized for",
+                close::render::SHOWN_WIDTH
+            );
         }
         // The mesh picture is drawn: mostly not paper (its PNG, decoded in the page).
         let inked = js(client, "const i = document.querySelector('#browse-result img[data-picture=mesh]'); const c = document.createElement('canvas'); \
                                 c.width = i.naturalWidth; c.height = i.naturalHeight; const g = c.getContext('2d'); g.drawImage(i, 0, 0); \
                                 const d = g.getImageData(0, 0, c.width, c.height).data; let n = 0; \
                                 for (let k = 0; k < d.length; k += 4) if (d[k] + d[k + 1] + d[k + 2] < 600) n++; return n / (c.width * c.height)").await;
-        assert!(inked.as_f64().unwrap_or(0.0) > 0.1, "{width} px: the mesh picture is nearly blank ({inked})");
+        assert!(
+            inked.as_f64().unwrap_or(0.0) > 0.1,
+            "{width} px: the mesh picture is nearly blank ({inked})"
+        );
         // The three whole-analysis pictures, as shown.
         let rect = js(client, "const e = document.querySelector('#browse-result .images.whole'); e.scrollIntoView(); const r = e.getBoundingClientRect(); \
                                const m = 16; return { x: Math.max(0, r.left + window.scrollX - m), y: Math.max(0, r.top + window.scrollY - m), width: r.width + 2 * m, height: r.height + 2 * m, scale: 1 }").await;
-        let shot = client.issue_cmd(DevTools("Page.captureScreenshot", json!({ "captureBeyondViewport": true, "clip": rect }))).await.expect("screenshot");
-        let png = base64::engine::general_purpose::STANDARD.decode(shot["data"].as_str().unwrap_or_default()).expect("a base64 PNG");
-        std::fs::write(shots.join(format!("{width}-11-mesh-circle-borders.png")), png).expect("write screenshot");
+        let shot = client
+            .issue_cmd(DevTools(
+                "Page.captureScreenshot",
+                json!({ "captureBeyondViewport": true, "clip": rect }),
+            ))
+            .await
+            .expect("screenshot");
+        let png = base64::engine::general_purpose::STANDARD
+            .decode(shot["data"].as_str().unwrap_or_default())
+            .expect("a base64 PNG");
+        std::fs::write(shots.join(format!("{width}-11-mesh-circle-borders.png")), png)
+            .expect("write screenshot");
     }
     client.set_window_size(1400, 1000).await.expect("wide again");
 }

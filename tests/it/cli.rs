@@ -28,7 +28,17 @@ fn analyze_prints_the_spec_fields() {
     let out = close(&["analyze", path.to_str().unwrap(), "--json", "--disks"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    for key in ["n", "corners", "folds", "label", "border_indices", "predicted_end", "metrics", "disk_start", "disk_end"] {
+    for key in [
+        "n",
+        "corners",
+        "folds",
+        "label",
+        "border_indices",
+        "predicted_end",
+        "metrics",
+        "disk_start",
+        "disk_end",
+    ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
     assert_eq!(v["n"], 76);
@@ -63,11 +73,31 @@ fn every_bad_input_gets_a_clear_error() {
         (vec![write(&dir, "empty.txt", b"")], "no vertex"),
         (vec![write(&dir, "words.txt", b"0,0,0\n1,one,0\n")], "line 2"),
         (vec![write(&dir, "nan.txt", square.replacen("0.5", "NaN", 1).as_bytes())], "non-finite"),
-        (vec![write(&dir, "few.json", br#"{"frames": [[[0,0,0],[1,0,0],[0,1,0]]]}"#)], "too few vertices"),
-        (vec![write(&dir, "line.json", br#"{"frames": [[[0,0,0],[1,1,0],[2,2,0],[3,3,0],[4,4,0]]]}"#)], "degenerate"),
-        (vec![write(&dir, "same.json", br#"{"frames": [[[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1]]]}"#)], "degenerate"),
         (
-            vec![write(&dir, "a.txt", square.as_bytes()), write(&dir, "b.txt", frame_text(&napkin(4)).as_bytes())],
+            vec![write(&dir, "few.json", br#"{"frames": [[[0,0,0],[1,0,0],[0,1,0]]]}"#)],
+            "too few vertices",
+        ),
+        (
+            vec![write(
+                &dir,
+                "line.json",
+                br#"{"frames": [[[0,0,0],[1,1,0],[2,2,0],[3,3,0],[4,4,0]]]}"#,
+            )],
+            "degenerate",
+        ),
+        (
+            vec![write(
+                &dir,
+                "same.json",
+                br#"{"frames": [[[1,1,1],[1,1,1],[1,1,1],[1,1,1],[1,1,1]]]}"#,
+            )],
+            "degenerate",
+        ),
+        (
+            vec![
+                write(&dir, "a.txt", square.as_bytes()),
+                write(&dir, "b.txt", frame_text(&napkin(4)).as_bytes()),
+            ],
             "has 16 vertices but frame 0 has 12",
         ),
         (vec![write(&dir, "huge.txt", "0 0 0\n".repeat(6000).as_bytes())], "too large"),
@@ -152,7 +182,8 @@ fn the_builtin_dataset_exports_and_evaluates() {
     let data = close::dataset::Dataset::builtin();
     let files = std::fs::read_dir(&dir.0).unwrap().count();
     assert_eq!(files, data.entries().len());
-    let picked = ["napkin__diagonal", "physics__h1_half_left_onto_right_31x31"].map(|id| dir.0.join(format!("{id}.json")));
+    let picked = ["napkin__diagonal", "physics__h1_half_left_onto_right_31x31"]
+        .map(|id| dir.0.join(format!("{id}.json")));
     let exported = close::formats::json::parse_sample(&std::fs::read(&picked[0]).unwrap()).unwrap();
     assert_eq!(Some(&exported), data.get("napkin__diagonal").map(|e| &e.sample));
     let eval = close(&["eval", picked[0].to_str().unwrap(), picked[1].to_str().unwrap(), "--json"]);
@@ -160,7 +191,8 @@ fn the_builtin_dataset_exports_and_evaluates() {
     let v: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
     assert_eq!(v["overall"]["count"], 2);
     assert_eq!(v["overall"]["errors"], 0);
-    let categories: Vec<&str> = v["categories"].as_array().unwrap().iter().filter_map(|c| c["category"].as_str()).collect();
+    let categories: Vec<&str> =
+        v["categories"].as_array().unwrap().iter().filter_map(|c| c["category"].as_str()).collect();
     assert_eq!(categories, ["napkin", "physics"]);
 }
 

@@ -26,9 +26,17 @@ pub fn builtin() -> &'static Builtin {
     static BUILTIN: OnceLock<Builtin> = OnceLock::new();
     BUILTIN.get_or_init(|| {
         let data = Dataset::builtin();
-        let analyses: Vec<Result<Analysis, Error>> =
-            data.entries().par_iter().map(|e| e.sample.border_frames().and_then(|b| analyze(&b, FrameRange::default()))).collect();
-        let results = data.entries().iter().zip(&analyses).map(|(e, a)| score(&e.sample, a.as_ref())).collect();
+        let analyses: Vec<Result<Analysis, Error>> = data
+            .entries()
+            .par_iter()
+            .map(|e| e.sample.border_frames().and_then(|b| analyze(&b, FrameRange::default())))
+            .collect();
+        let results = data
+            .entries()
+            .iter()
+            .zip(&analyses)
+            .map(|(e, a)| score(&e.sample, a.as_ref()))
+            .collect();
         let report = report(results);
         Builtin { data, analyses, report }
     })
@@ -40,7 +48,8 @@ pub fn fixture(path: &str) -> PathBuf {
 
 /// Every sample of a fixture folder, sorted by file name.
 pub fn samples_in(dir: &str) -> Vec<Sample> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(fixture(dir)).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut files: Vec<PathBuf> =
+        std::fs::read_dir(fixture(dir)).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
     files.iter().map(|f| parse_sample(&std::fs::read(f).unwrap()).unwrap()).collect()
 }

@@ -47,7 +47,11 @@ fn bar(category: &str) -> &'static Bar {
 fn every_sample_analyses_with_one_fold_per_step() {
     let (data, report) = (&builtin().data, &builtin().report);
     assert_eq!(report.overall.count, data.entries().len());
-    let failures: Vec<String> = report.samples.iter().filter_map(|r| r.error.as_ref().map(|e| format!("{}: {e}", r.name))).collect();
+    let failures: Vec<String> = report
+        .samples
+        .iter()
+        .filter_map(|r| r.error.as_ref().map(|e| format!("{}: {e}", r.name)))
+        .collect();
     assert!(failures.is_empty(), "{failures:#?}");
     let misses: Vec<String> = report
         .samples
@@ -57,18 +61,32 @@ fn every_sample_analyses_with_one_fold_per_step() {
         .collect();
     assert!(misses.is_empty(), "{misses:#?}");
     for summary in &report.categories {
-        assert!(summary.by_fold.iter().all(|f| f.found == f.count), "{}: a step without a fold", summary.category);
+        assert!(
+            summary.by_fold.iter().all(|f| f.found == f.count),
+            "{}: a step without a fold",
+            summary.category
+        );
     }
 }
 
 #[test]
 fn accuracy_per_category_within_its_bar() {
     let report = &builtin().report;
-    let mean = |s: Option<Stat>, what: &str, row: &str| s.unwrap_or_else(|| panic!("{row}: no {what}")).mean;
+    let mean = |s: Option<Stat>, what: &str, row: &str| {
+        s.unwrap_or_else(|| panic!("{row}: no {what}")).mean
+    };
     for summary in &report.categories {
         let bar = bar(&summary.category);
-        let rows = std::iter::once((format!("{}", summary.category), [summary.rmse, summary.frechet, summary.f1_error, summary.f2_error]))
-            .chain(summary.by_fold.iter().map(|f| (format!("{} fold {}", summary.category, f.fold), [f.rmse, f.frechet, f.f1_error, f.f2_error])));
+        let rows = std::iter::once((
+            summary.category.to_string(),
+            [summary.rmse, summary.frechet, summary.f1_error, summary.f2_error],
+        ))
+        .chain(summary.by_fold.iter().map(|f| {
+            (
+                format!("{} fold {}", summary.category, f.fold),
+                [f.rmse, f.frechet, f.f1_error, f.f2_error],
+            )
+        }));
         for (row, stats) in rows {
             let found = [
                 mean(stats[0], "RMSE", &row),
@@ -77,7 +95,9 @@ fn accuracy_per_category_within_its_bar() {
                 mean(stats[3], "f2 error", &row).to_degrees(),
             ];
             let limits = [bar.rmse, bar.frechet, bar.degrees, bar.degrees];
-            for ((name, found), limit) in ["RMSE", "Fréchet", "f1 error °", "f2 error °"].iter().zip(found).zip(limits) {
+            for ((name, found), limit) in
+                ["RMSE", "Fréchet", "f1 error °", "f2 error °"].iter().zip(found).zip(limits)
+            {
                 assert!(found <= limit, "{row}: {name} {found:.5} above its bar {limit}");
             }
         }
@@ -87,11 +107,19 @@ fn accuracy_per_category_within_its_bar() {
 #[test]
 fn worst_fold_angle_per_sample_in_edges() {
     let (data, report) = (&builtin().data, &builtin().report);
-    let n: HashMap<&str, usize> = data.entries().iter().map(|e| (e.id.as_str(), e.sample.border_frames().map_or(0, |b| b.len()))).collect();
+    let n: HashMap<&str, usize> = data
+        .entries()
+        .iter()
+        .map(|e| (e.id.as_str(), e.sample.border_frames().map_or(0, |b| b.len())))
+        .collect();
     let mut worst: HashMap<&str, (f64, &str)> = HashMap::new();
     for r in &report.samples {
         let edges = edge(n[r.name.as_str()]);
-        let errors = r.angle_error.iter().chain(r.steps.iter().filter_map(|s| s.angle_error.as_ref())).flatten();
+        let errors = r
+            .angle_error
+            .iter()
+            .chain(r.steps.iter().filter_map(|s| s.angle_error.as_ref()))
+            .flatten();
         let e = errors.fold(0.0, |m: f64, &a| m.max(a / edges));
         let slot = worst.entry(r.category.as_str()).or_insert((0.0, ""));
         if e >= slot.0 {
@@ -116,7 +144,10 @@ fn ids_are_unique_and_names_readable() {
         let parts: Vec<&str> = e.id.split("__").collect();
         assert!((2..=3).contains(&parts.len()), "{}", e.id);
         for part in parts {
-            let words_ok = !part.is_empty() && part.split('_').all(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit()));
+            let words_ok = !part.is_empty()
+                && part.split('_').all(|w| {
+                    !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit())
+                });
             assert!(words_ok, "{}: unreadable part {part:?}", e.id);
         }
         assert!(e.id.len() <= 48, "{} is too long to read", e.id);

@@ -26,7 +26,11 @@ fn mkfifo(path: &Path) {
 }
 
 fn errors(catalog: &Catalog) -> Vec<(&str, &str)> {
-    catalog.entries().iter().filter_map(|e| e.error.as_deref().map(|m| (e.name.as_str(), m))).collect()
+    catalog
+        .entries()
+        .iter()
+        .filter_map(|e| e.error.as_deref().map(|m| (e.name.as_str(), m)))
+        .collect()
 }
 
 fn good(catalog: &Catalog) -> Vec<&Entry> {
@@ -58,7 +62,11 @@ fn symlink_loops_are_walked_once_and_links_out_are_not_followed() {
     let errors = errors(&catalog);
     assert_eq!(errors.len(), 2, "{errors:#?}");
     for (name, message) in &errors {
-        assert!(["elsewhere", "far.csv"].contains(name) && message.contains("outside the dataset folder"), "{name}: {message}");
+        assert!(
+            ["elsewhere", "far.csv"].contains(name)
+                && message.contains("outside the dataset folder"),
+            "{name}: {message}"
+        );
     }
     // Naming the target includes it.
     let both = Catalog::open(&[root, outside.0.clone()]);
@@ -72,14 +80,18 @@ fn fifos_and_devices_are_never_read() {
     mkfifo(&dir.0.join("pipe.json"));
     mkfifo(&dir.0.join("frames.csv"));
     // Inside the folder (a bind mount, or the user's own /dev): the reader refuses it.
-    assert!(close::formats::read_file(Path::new("/dev/zero")).unwrap_err().to_string().contains("not a regular file"));
+    assert!(close::formats::read_file(Path::new("/dev/zero"))
+        .unwrap_err()
+        .to_string()
+        .contains("not a regular file"));
     std::os::unix::fs::symlink("/dev/zero", dir.0.join("zero.json")).unwrap();
     let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     assert_eq!(good(&catalog).len(), 1);
     let errors = errors(&catalog);
     assert_eq!(errors.len(), 3, "{errors:#?}");
     for (name, message) in errors {
-        let expected = if name == "zero.json" { "outside the dataset folder" } else { "not a regular file" };
+        let expected =
+            if name == "zero.json" { "outside the dataset folder" } else { "not a regular file" };
         assert!(message.contains(expected), "{name}: {message}");
     }
     let fifo = close::formats::read_file(&dir.0.join("pipe.json")).unwrap_err();
@@ -101,12 +113,20 @@ fn a_sample_too_large_is_refused_from_its_sizes_and_the_refusal_is_kept() {
     let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     let entry = catalog.entries().iter().find(|e| e.name == "frames").unwrap();
     let message = entry.error.as_deref().unwrap();
-    assert!(message.contains("bytes in the files of one sample") && message.contains(&MAX_SAMPLE_BYTES.to_string()), "{message}");
+    assert!(
+        message.contains("bytes in the files of one sample")
+            && message.contains(&MAX_SAMPLE_BYTES.to_string()),
+        "{message}"
+    );
     let refused = catalog.load(&entry.id, &Deadline::default()).unwrap_err();
-    assert!(matches!(refused, Error::TooLarge { got: Some(got), .. } if got == 3 * each), "{refused:?}");
+    assert!(
+        matches!(refused, Error::TooLarge { got: Some(got), .. } if got == 3 * each),
+        "{refused:?}"
+    );
     // The refusal is remembered: shrinking the files now does not make the load read them.
     for k in 0..3 {
-        std::fs::write(frames.join(format!("f{k}.obj")), "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n").unwrap();
+        std::fs::write(frames.join(format!("f{k}.obj")), "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n")
+            .unwrap();
     }
     assert_eq!(catalog.load(&entry.id, &Deadline::default()).unwrap_err(), refused);
 }
@@ -148,16 +168,24 @@ fn an_unreadable_sub_folder_is_one_error_and_the_rest_are_kept() {
     if listable {
         assert!(rest.is_empty(), "{errors:#?}");
     } else {
-        assert!(rest.len() == 1 && rest[0].0 == "locked" && rest[0].1.contains("cannot read the folder"), "{errors:?}");
+        assert!(
+            rest.len() == 1
+                && rest[0].0 == "locked"
+                && rest[0].1.contains("cannot read the folder"),
+            "{errors:?}"
+        );
     }
 }
 
 #[test]
 fn error_messages_quote_a_short_prefix_of_a_bad_line() {
     let line = "\u{1}".repeat(1 << 20);
-    let text = close::formats::text::parse_frame(&format!("0,0,0\n{line}\n")).unwrap_err().to_string();
+    let text =
+        close::formats::text::parse_frame(&format!("0,0,0\n{line}\n")).unwrap_err().to_string();
     assert!(text.contains("line 2") && text.len() < 400, "{} bytes", text.len());
-    let obj = close::formats::obj::parse_frame(format!("v 0 0 {line}\n").as_bytes()).unwrap_err().to_string();
+    let obj = close::formats::obj::parse_frame(format!("v 0 0 {line}\n").as_bytes())
+        .unwrap_err()
+        .to_string();
     assert!(obj.contains("line 1") && obj.len() < 400, "{} bytes", obj.len());
 }
 
@@ -165,7 +193,10 @@ fn error_messages_quote_a_short_prefix_of_a_bad_line() {
 fn a_cached_mesh_weighs_its_faces_too() {
     let faces: Vec<Vec<usize>> = (0..1000).map(|k| vec![k, k + 1, k + 2]).collect();
     let mesh = close::formats::MeshFrames::new(faces, vec![vec![[0.0; 3]; 1002]]);
-    let sample = close::formats::Sample { mesh: Some(mesh), ..close::formats::Sample::from_frames("m", "c", Vec::new()) };
+    let sample = close::formats::Sample {
+        mesh: Some(mesh),
+        ..close::formats::Sample::from_frames("m", "c", Vec::new())
+    };
     // 1002 positions of 24 bytes, 1000 faces of a 24-byte list and three 8-byte corners.
     assert_eq!(sample.weight(), 1002 * 24 + 1000 * (24 + 3 * 8));
 }
@@ -176,7 +207,8 @@ mod stores {
     use close::vrfolding::Store;
 
     fn fixture() -> PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr")
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr")
     }
 
     /// A private copy of the fixture store (4 categories, 8 videos, 16 folds).
@@ -187,7 +219,8 @@ mod stores {
     }
 
     fn edit_json(path: &Path, edit: impl FnOnce(&mut serde_json::Value)) {
-        let mut value: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+        let mut value: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
         edit(&mut value);
         std::fs::write(path, value.to_string()).unwrap();
     }
@@ -202,7 +235,13 @@ mod stores {
 
     /// The id of fold 1 of the first video of `category`.
     fn first_fold(catalog: &Catalog, category: &str) -> String {
-        catalog.entries().iter().find(|e| e.category == category && e.name.ends_with("fold 1")).unwrap().id.clone()
+        catalog
+            .entries()
+            .iter()
+            .find(|e| e.category == category && e.name.ends_with("fold 1"))
+            .unwrap()
+            .id
+            .clone()
     }
 
     #[test]
@@ -216,7 +255,10 @@ mod stores {
         let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         let errors = errors(&catalog);
         assert_eq!(errors.len(), 1, "{errors:#?}");
-        assert!(errors[0].1.contains("left_grip_vertex_id") && errors[0].1.contains("limit"), "{errors:?}");
+        assert!(
+            errors[0].1.contains("left_grip_vertex_id") && errors[0].1.contains("limit"),
+            "{errors:?}"
+        );
         assert_eq!(good(&catalog).len(), 14, "the other 7 videos keep their 2 folds");
     }
 
@@ -228,7 +270,10 @@ mod stores {
         edit_json(&verts.join(".zarray"), |z| z["shape"] = serde_json::json!([1u64 << 40, 3]));
         let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         assert!(errors(&catalog).is_empty(), "{:#?}", errors(&catalog));
-        let e = catalog.load(&first_fold(&catalog, "Top"), &Deadline::default()).unwrap_err().to_string();
+        let e = catalog
+            .load(&first_fold(&catalog, "Top"), &Deadline::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("cloth_verts") && e.contains("limit"), "{e}");
 
         // A chunk shape far past the mesh limit.
@@ -256,20 +301,27 @@ mod stores {
         let e = catalog.load(&fold, &Deadline::default()).unwrap_err();
         assert!(e.to_string().contains("decodes to 1500000000 bytes"), "{e}");
         std::fs::write(&chunk, &original).unwrap();
-        assert_eq!(catalog.load(&fold, &Deadline::default()).unwrap_err(), e, "remembered, not read again");
+        assert_eq!(
+            catalog.load(&fold, &Deadline::default()).unwrap_err(),
+            e,
+            "remembered, not read again"
+        );
     }
 
     #[test]
     fn a_frame_without_attributes_or_with_a_string_sample_id_is_one_error_each() {
         let dir = store("attrs");
         std::fs::remove_file(frames(&dir.0, "Skirt")[3].join(".zattrs")).unwrap();
-        edit_json(&frames(&dir.0, "Trousers")[2].join(".zattrs"), |a| a["sample_id"] = "two".into());
+        edit_json(&frames(&dir.0, "Trousers")[2].join(".zattrs"), |a| {
+            a["sample_id"] = "two".into()
+        });
         let catalog = Catalog::open(std::slice::from_ref(&dir.0));
         let errors = errors(&catalog);
         assert!(errors.len() >= 2, "{errors:#?}");
         assert!(errors.iter().any(|(_, m)| m.contains("no video_id")), "{errors:#?}");
         assert!(errors.iter().any(|(_, m)| m.contains("no integer sample_id")), "{errors:#?}");
-        let categories: std::collections::HashSet<&str> = good(&catalog).iter().map(|e| e.category.as_str()).collect();
+        let categories: std::collections::HashSet<&str> =
+            good(&catalog).iter().map(|e| e.category.as_str()).collect();
         assert!(["Top", "Tshirt"].iter().all(|c| categories.contains(c)), "{categories:?}");
         assert!(good(&catalog).len() >= 8, "{:#?}", catalog.entries());
     }
@@ -288,10 +340,15 @@ fn eval_counts_each_sample_once_and_names_what_it_cannot_read() {
     std::fs::create_dir_all(data.join("sub")).unwrap();
     let out = close_cli(&["dataset".as_ref(), dir.0.join("builtin").as_os_str()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let mut exported: Vec<PathBuf> = std::fs::read_dir(dir.0.join("builtin")).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut exported: Vec<PathBuf> =
+        std::fs::read_dir(dir.0.join("builtin")).unwrap().map(|e| e.unwrap().path()).collect();
     exported.sort();
     for (k, file) in exported.iter().take(3).enumerate() {
-        let to = if k == 0 { data.join("sub").join(file.file_name().unwrap()) } else { data.join(file.file_name().unwrap()) };
+        let to = if k == 0 {
+            data.join("sub").join(file.file_name().unwrap())
+        } else {
+            data.join(file.file_name().unwrap())
+        };
         std::fs::copy(file, to).unwrap();
     }
     std::os::unix::fs::symlink(".", data.join("again")).unwrap();
@@ -302,11 +359,16 @@ fn eval_counts_each_sample_once_and_names_what_it_cannot_read() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let samples = report["samples"].as_array().unwrap();
-    let failed: Vec<&serde_json::Value> = samples.iter().filter(|s| !s["error"].is_null()).collect();
+    let failed: Vec<&serde_json::Value> =
+        samples.iter().filter(|s| !s["error"].is_null()).collect();
     assert_eq!(samples.len() - failed.len(), 3, "{samples:#?}");
     assert_eq!(failed.len(), 2, "{failed:#?}");
     let errors: Vec<&str> = failed.iter().map(|s| s["error"].as_str().unwrap()).collect();
-    assert!(errors.iter().any(|e| e.contains("outside the dataset folder")) && errors.iter().any(|e| e.contains("not a regular file")), "{errors:?}");
+    assert!(
+        errors.iter().any(|e| e.contains("outside the dataset folder"))
+            && errors.iter().any(|e| e.contains("not a regular file")),
+        "{errors:?}"
+    );
 }
 
 /// `close dataset OUT` keeps what a user has: a non-empty OUT needs --force, a link inside
@@ -327,14 +389,23 @@ fn dataset_out_refuses_a_non_empty_folder_and_never_writes_through_links() {
     let again = close_cli(&["dataset".as_ref(), out.as_os_str()]);
     let stderr = String::from_utf8_lossy(&again.stderr);
     assert!(!again.status.success() && stderr.contains("--force"), "{stderr}");
-    assert!(std::fs::symlink_metadata(&victim).unwrap().file_type().is_symlink(), "refused: nothing touched");
+    assert!(
+        std::fs::symlink_metadata(&victim).unwrap().file_type().is_symlink(),
+        "refused: nothing touched"
+    );
 
     let forced = close_cli(&["dataset".as_ref(), out.as_os_str(), "--force".as_ref()]);
     assert!(forced.status.success(), "{}", String::from_utf8_lossy(&forced.stderr));
     assert_eq!(std::fs::read_to_string(&outside).unwrap(), "keep me", "written through the link");
-    assert!(std::fs::symlink_metadata(&victim).unwrap().file_type().is_file(), "the link is replaced by the sample");
+    assert!(
+        std::fs::symlink_metadata(&victim).unwrap().file_type().is_file(),
+        "the link is replaced by the sample"
+    );
     close::formats::json::parse_sample(&std::fs::read(&victim).unwrap()).unwrap();
-    let after: Vec<String> = std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    let after: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
     assert_eq!(after.len(), names.len(), "{after:?}");
     assert!(after.iter().all(|n| !n.ends_with(".tmp")), "{after:?}");
 }

@@ -15,7 +15,12 @@ use proptest::prelude::*;
 const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/formats");
 
 /// A grid of (w+1)×(h+1) vertices, id = j·(w+1) + i, with quads or triangles.
-fn grid(w: usize, h: usize, keep: impl Fn(usize, usize) -> bool, triangles: bool) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
+fn grid(
+    w: usize,
+    h: usize,
+    keep: impl Fn(usize, usize) -> bool,
+    triangles: bool,
+) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
     let id = |i: usize, j: usize| j * (w + 1) + i;
     let v = (0..=h).flat_map(|j| (0..=w).map(move |i| [i as f64, j as f64, 0.0])).collect();
     let mut faces = Vec::new();
@@ -59,17 +64,30 @@ fn ring(corners: &[[i64; 2]]) -> Vec<[i64; 2]> {
     for k in 0..corners.len() {
         let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
         let steps = (b[0] - a[0]).abs().max((b[1] - a[1]).abs());
-        out.extend((0..steps).map(|s| [a[0] + (b[0] - a[0]).signum() * s, a[1] + (b[1] - a[1]).signum() * s]));
+        out.extend(
+            (0..steps)
+                .map(|s| [a[0] + (b[0] - a[0]).signum() * s, a[1] + (b[1] - a[1]).signum() * s]),
+        );
     }
     out
 }
 
 fn mesh_sample(faces: Vec<Vec<usize>>, frames: Vec<Vec<[f64; 3]>>) -> Sample {
-    Sample { name: "mesh".into(), category: "test".into(), frames: Vec::new(), mesh: Some(MeshFrames::new(faces, frames)), truth: None }
+    Sample {
+        name: "mesh".into(),
+        category: "test".into(),
+        frames: Vec::new(),
+        mesh: Some(MeshFrames::new(faces, frames)),
+        truth: None,
+    }
 }
 
 fn border_sample(ids: &[usize], frames: &[Vec<[f64; 3]>]) -> Sample {
-    Sample::from_frames("border", "test", frames.iter().map(|f| ids.iter().map(|&k| f[k]).collect()).collect())
+    Sample::from_frames(
+        "border",
+        "test",
+        frames.iter().map(|f| ids.iter().map(|&k| f[k]).collect()).collect(),
+    )
 }
 
 fn analysis(sample: &Sample) -> Analysis {
@@ -85,7 +103,12 @@ fn assert_same_close(mesh: &Analysis, border: &Analysis, ids: &[usize], tol: f64
     for (m, b) in mesh.folds.iter().zip(&border.folds) {
         for k in 0..2 {
             let d = (m[k] - b[k]).rem_euclid(std::f64::consts::TAU);
-            assert!(d.min(std::f64::consts::TAU - d) < tol, "{:?} vs {:?}", mesh.folds, border.folds);
+            assert!(
+                d.min(std::f64::consts::TAU - d) < tol,
+                "{:?} vs {:?}",
+                mesh.folds,
+                border.folds
+            );
         }
     }
 }
@@ -124,7 +147,9 @@ fn in_shirt(i: usize, j: usize) -> bool {
 }
 
 fn in_opening(p: [i64; 2]) -> bool {
-    (p[1] == 8 && (4..=6).contains(&p[0])) || (p[1] == 0 && (3..=7).contains(&p[0])) || ((p[0] == 0 || p[0] == 10) && (6..=7).contains(&p[1]))
+    (p[1] == 8 && (4..=6).contains(&p[0]))
+        || (p[1] == 0 && (3..=7).contains(&p[0]))
+        || ((p[0] == 0 || p[0] == 10) && (6..=7).contains(&p[1]))
 }
 
 #[test]
@@ -144,8 +169,16 @@ fn a_flat_triangulated_garment_uses_its_boundary_loop() {
 fn shirt_shell(h: f64) -> (Vec<[f64; 3]>, Vec<Vec<usize>>, Vec<usize>) {
     let (back, back_faces) = grid(10, 8, in_shirt, true);
     let outline = ring(&SHIRT);
-    let seam: HashSet<usize> = outline.iter().filter(|p| !in_opening(**p)).map(|p| p[1] as usize * 11 + p[0] as usize).collect();
-    let mut vertices: Vec<[f64; 3]> = back.iter().enumerate().map(|(k, v)| [v[0], v[1], if seam.contains(&k) { h / 2.0 } else { 0.0 }]).collect();
+    let seam: HashSet<usize> = outline
+        .iter()
+        .filter(|p| !in_opening(**p))
+        .map(|p| p[1] as usize * 11 + p[0] as usize)
+        .collect();
+    let mut vertices: Vec<[f64; 3]> = back
+        .iter()
+        .enumerate()
+        .map(|(k, v)| [v[0], v[1], if seam.contains(&k) { h / 2.0 } else { 0.0 }])
+        .collect();
     let front: Vec<usize> = (0..back.len())
         .map(|k| {
             if seam.contains(&k) {
@@ -181,7 +214,9 @@ fn a_garment_shell_uses_the_silhouette_and_matches_its_outline() {
 fn a_coarser_epsilon_cover_still_gives_the_same_close() {
     // A fine shell (ε-cover thins its outline): compare with every second outline point.
     let (flat, faces, ids) = shirt_shell(0.1);
-    let scale = |f: &Vec<[f64; 3]>| f.iter().map(|v| [v[0] * 0.05, v[1] * 0.05, v[2] * 0.05]).collect::<Vec<_>>();
+    let scale = |f: &Vec<[f64; 3]>| {
+        f.iter().map(|v| [v[0] * 0.05, v[1] * 0.05, v[2] * 0.05]).collect::<Vec<_>>()
+    };
     let frames = vec![scale(&flat), scale(&fold(&flat, [2.0, 8.0], [2.0, 0.0], 0.3))];
     let mesh = analysis(&mesh_sample(faces, frames.clone()));
     assert_eq!(mesh.border_source, "mesh silhouette");
@@ -195,7 +230,12 @@ fn a_coarser_epsilon_cover_still_gives_the_same_close() {
 fn obj(v: &[[f64; 3]], faces: &[Vec<usize>]) -> Vec<u8> {
     let mut s = String::from("# napkin\no cloth\n");
     v.iter().for_each(|p| s += &format!("v {} {} {}\n", p[0], p[1], p[2]));
-    faces.iter().for_each(|f| s += &format!("f {}\n", f.iter().map(|k| format!("{}//1", k + 1)).collect::<Vec<_>>().join(" ")));
+    faces.iter().for_each(|f| {
+        s += &format!(
+            "f {}\n",
+            f.iter().map(|k| format!("{}//1", k + 1)).collect::<Vec<_>>().join(" ")
+        )
+    });
     s.into_bytes()
 }
 
@@ -210,16 +250,39 @@ fn ply(v: &[[f64; 3]], faces: &[Vec<usize>], format: &str) -> Vec<u8> {
     for p in v {
         match format {
             "ascii" => out.extend(format!("{} {} {}\n", p[0], p[1], p[2]).bytes()),
-            _ if big => out.extend([p[0].to_be_bytes().to_vec(), p[1].to_be_bytes().to_vec(), (p[2] as f32).to_be_bytes().to_vec()].concat()),
-            _ => out.extend([p[0].to_le_bytes().to_vec(), p[1].to_le_bytes().to_vec(), (p[2] as f32).to_le_bytes().to_vec()].concat()),
+            _ if big => out.extend(
+                [
+                    p[0].to_be_bytes().to_vec(),
+                    p[1].to_be_bytes().to_vec(),
+                    (p[2] as f32).to_be_bytes().to_vec(),
+                ]
+                .concat(),
+            ),
+            _ => out.extend(
+                [
+                    p[0].to_le_bytes().to_vec(),
+                    p[1].to_le_bytes().to_vec(),
+                    (p[2] as f32).to_le_bytes().to_vec(),
+                ]
+                .concat(),
+            ),
         }
     }
     for f in faces {
         if format == "ascii" {
-            out.extend(format!("{} {}\n", f.len(), f.iter().map(|k| k.to_string()).collect::<Vec<_>>().join(" ")).bytes());
+            out.extend(
+                format!(
+                    "{} {}\n",
+                    f.len(),
+                    f.iter().map(|k| k.to_string()).collect::<Vec<_>>().join(" ")
+                )
+                .bytes(),
+            );
         } else {
             out.push(f.len() as u8);
-            f.iter().for_each(|&k| out.extend(if big { (k as i32).to_be_bytes() } else { (k as i32).to_le_bytes() }));
+            f.iter().for_each(|&k| {
+                out.extend(if big { (k as i32).to_be_bytes() } else { (k as i32).to_le_bytes() })
+            });
         }
     }
     out
@@ -238,20 +301,30 @@ fn obj_and_ply_frames_read_as_one_mesh_sample() {
         ("ply", &|v| ply(v, &faces, "binary_big_endian")),
     ];
     for (ext, write) in writers {
-        let files = vec![(format!("a/f0.{ext}"), write(&flat)), (format!("a/f1.{ext}"), write(&folded))];
+        let files =
+            vec![(format!("a/f0.{ext}"), write(&flat)), (format!("a/f1.{ext}"), write(&folded))];
         let sample = read_files(&files).unwrap();
         assert_eq!(sample.mesh.as_ref(), Some(&expected), "{ext}");
         assert_eq!(sample.name, format!("f0.{ext}"));
         assert_eq!(analysis(&sample).folds.len(), 1);
     }
     // A frame with another vertex count is named.
-    let files = vec![("f0.obj".to_string(), obj(&flat, &faces)), ("f1.obj".to_string(), obj(&flat[1..], &[]))];
+    let files = vec![
+        ("f0.obj".to_string(), obj(&flat, &faces)),
+        ("f1.obj".to_string(), obj(&flat[1..], &[])),
+    ];
     let err = read_files(&files).unwrap_err().to_string();
     assert!(err.contains("f1.obj has 80 vertices") && err.contains("f0.obj has 81"), "{err}");
     // OBJ then PLY frames mix; a text file does not.
-    let mixed = vec![("f0.obj".to_string(), obj(&flat, &faces)), ("f1.ply".to_string(), ply(&folded, &faces, "ascii"))];
+    let mixed = vec![
+        ("f0.obj".to_string(), obj(&flat, &faces)),
+        ("f1.ply".to_string(), ply(&folded, &faces, "ascii")),
+    ];
     assert_eq!(read_files(&mixed).unwrap().mesh.unwrap(), expected);
-    let bad = vec![("f0.obj".to_string(), obj(&flat, &faces)), ("f1.txt".to_string(), b"0 0 0\n".to_vec())];
+    let bad = vec![
+        ("f0.obj".to_string(), obj(&flat, &faces)),
+        ("f1.txt".to_string(), b"0 0 0\n".to_vec()),
+    ];
     assert!(read_files(&bad).unwrap_err().to_string().contains(".txt"));
 }
 
@@ -261,10 +334,15 @@ fn fixture(name: &str) -> (String, Vec<u8>) {
 
 #[test]
 fn scipy_mat_files_dense_sparse_compressed_or_not() {
-    let samples: Vec<Sample> = ["napkin_dense.mat", "napkin_dense_compressed.mat", "napkin_sparse.mat", "napkin_sparse_compressed.mat"]
-        .iter()
-        .map(|f| read_files(&[fixture(f)]).unwrap())
-        .collect();
+    let samples: Vec<Sample> = [
+        "napkin_dense.mat",
+        "napkin_dense_compressed.mat",
+        "napkin_sparse.mat",
+        "napkin_sparse_compressed.mat",
+    ]
+    .iter()
+    .map(|f| read_files(&[fixture(f)]).unwrap())
+    .collect();
     let mesh = samples[0].mesh.clone().unwrap();
     for s in &samples {
         assert_eq!(s.mesh.as_ref().unwrap().frames, mesh.frames);
@@ -285,8 +363,14 @@ fn scipy_mat_files_dense_sparse_compressed_or_not() {
 #[test]
 fn mat_files_with_wrong_variables_are_named() {
     let err = read_files(&[fixture("wrong_names.mat")]).unwrap_err().to_string();
-    assert!(err.contains("wrong_names.mat") && err.contains("phiPositions") && err.contains("positions"), "{err}");
-    let err = read_files(&[fixture("open_border.mat")]).unwrap().border_frames().unwrap_err().to_string();
+    assert!(
+        err.contains("wrong_names.mat")
+            && err.contains("phiPositions")
+            && err.contains("positions"),
+        "{err}"
+    );
+    let err =
+        read_files(&[fixture("open_border.mat")]).unwrap().border_frames().unwrap_err().to_string();
     assert!(err.contains("do not close up"), "{err}");
     let mut v73 = fixture("napkin_dense.mat");
     v73.1[..10].copy_from_slice(b"MATLAB 7.3");
@@ -321,7 +405,8 @@ fn bad_meshes_are_clear_errors() {
 fn answers_within<T: Send + 'static>(seconds: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
     let (tx, rx) = std::sync::mpsc::channel();
     std::thread::spawn(move || tx.send(f()));
-    rx.recv_timeout(std::time::Duration::from_secs(seconds)).unwrap_or_else(|_| panic!("no answer within {seconds} s"))
+    rx.recv_timeout(std::time::Duration::from_secs(seconds))
+        .unwrap_or_else(|_| panic!("no answer within {seconds} s"))
 }
 
 /// Generous: a few times what a debug build needs on a busy machine; the faults these
@@ -344,10 +429,18 @@ fn ply_elements_without_properties_cannot_make_the_reader_spin() {
     with_junk.extend(b"element junk 4611686018427387904\n");
     with_junk.extend(&bomb[header_end..]);
     // Each element is counted for at least a byte: 2^62 cannot follow, in either encoding.
-    let ascii = String::from_utf8(ply(&v, &f, "ascii")).unwrap().replacen("element face", "element junk 4611686018427387904\nelement face", 1);
+    let ascii = String::from_utf8(ply(&v, &f, "ascii")).unwrap().replacen(
+        "element face",
+        "element junk 4611686018427387904\nelement face",
+        1,
+    );
     for bomb in [with_junk, ascii.into_bytes()] {
         let err = read_one("junk.ply", bomb).unwrap_err();
-        assert!(matches!(err.cause(), Error::Parse { .. }) && err.to_string().contains("4611686018427387904 junk"), "{err}");
+        assert!(
+            matches!(err.cause(), Error::Parse { .. })
+                && err.to_string().contains("4611686018427387904 junk"),
+            "{err}"
+        );
     }
 }
 
@@ -393,7 +486,8 @@ fn mat_numbers_are_capped_once_widened_and_over_all_variables() {
     // 17 M int8 values: 17 MB inflated, 136 MB once widened to f64, over the cap.
     let count = 17_000_000u32;
     assert!(count as u64 * 8 > MAX_WIDENED && (count as u64) < MAX_WIDENED);
-    let bomb = mat_file(&[compressed(&mat_matrix("phiPositions", count, 1, 1, &vec![0; count as usize]))]);
+    let bomb =
+        mat_file(&[compressed(&mat_matrix("phiPositions", count, 1, 1, &vec![0; count as usize]))]);
     assert!(bomb.len() < 100_000, "{} bytes", bomb.len());
     let err = read_one("bomb.mat", bomb).unwrap_err();
     assert!(matches!(err.cause(), Error::TooLarge { limit, .. } if *limit == MAX_WIDENED), "{err}");
@@ -419,7 +513,9 @@ fn an_obj_polygon_with_many_corners_is_checked_in_n_log_n() {
     };
     let check = |doc: Vec<u8>| {
         answers_within(SECONDS, move || {
-            let mesh = read_files(&[("k.obj".into(), doc)])?.mesh.ok_or(Error::Empty { what: "no mesh" })?;
+            let mesh = read_files(&[("k.obj".into(), doc)])?
+                .mesh
+                .ok_or(Error::Empty { what: "no mesh" })?;
             close::mesh::validate(&mesh)
         })
     };
@@ -435,16 +531,31 @@ fn json_counts_and_nesting_are_refused_while_reading() {
     // More frames than allowed, each empty: refused at frame 1001, not after reading all.
     let frames = format!("{{\"frames\": [{}[]]}}", "[],".repeat(10 * MAX_FRAMES));
     let err = read_one("f.json", frames.into_bytes()).unwrap_err();
-    assert!(matches!(err.cause(), Error::TooLarge { what: "frames", limit, .. } if *limit == MAX_FRAMES as u64), "{err}");
+    assert!(
+        matches!(err.cause(), Error::TooLarge { what: "frames", limit, .. } if *limit == MAX_FRAMES as u64),
+        "{err}"
+    );
     // A frame with more vertices than a border may have.
     let one = format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,1,2],".repeat(2 * MAX_VERTICES));
-    assert!(matches!(read_one("v.json", one.into_bytes()).unwrap_err().cause(), Error::TooLarge { .. }));
+    assert!(matches!(
+        read_one("v.json", one.into_bytes()).unwrap_err().cause(),
+        Error::TooLarge { .. }
+    ));
     // A mesh with more frames than allowed.
-    let mesh = format!("{{\"mesh\": {{\"faces\": [[0,1,2]], \"frames\": [{}[]]}}}}", "[],".repeat(MAX_FRAMES + 1));
-    assert!(matches!(read_one("m.json", mesh.into_bytes()).unwrap_err().cause(), Error::TooLarge { what: "frames", .. }));
+    let mesh = format!(
+        "{{\"mesh\": {{\"faces\": [[0,1,2]], \"frames\": [{}[]]}}}}",
+        "[],".repeat(MAX_FRAMES + 1)
+    );
+    assert!(matches!(
+        read_one("m.json", mesh.into_bytes()).unwrap_err().cause(),
+        Error::TooLarge { what: "frames", .. }
+    ));
     // Deep nesting, where a number is expected and in an ignored field: serde_json's
     // recursion limit answers, quickly, as a parse error.
-    for doc in [format!("{{\"frames\": {}", "[".repeat(1_000_000)), format!("{{\"extra\": {}", "[".repeat(1_000_000))] {
+    for doc in [
+        format!("{{\"frames\": {}", "[".repeat(1_000_000)),
+        format!("{{\"extra\": {}", "[".repeat(1_000_000)),
+    ] {
         let err = read_one("deep.json", doc.into_bytes()).unwrap_err();
         assert!(matches!(err.cause(), Error::Parse { line: Some(1), .. }), "{err}");
     }
@@ -454,13 +565,18 @@ fn json_counts_and_nesting_are_refused_while_reading() {
 fn degenerate_end_frames_are_refused_naming_the_frame() {
     use close::error::DegenerateReason;
     let square = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
-    let prepared = |end: Vec<[f64; 3]>| Sample::from_frames("s", "t", vec![square.to_vec(), end]).border_frames();
+    let prepared = |end: Vec<[f64; 3]>| {
+        Sample::from_frames("s", "t", vec![square.to_vec(), end]).border_frames()
+    };
     let reason = |r: Result<close::border::BorderFrames, Error>| match r {
         Err(Error::Degenerate { frame: 1, reason }) => reason,
         other => panic!("{other:?}"),
     };
     assert_eq!(reason(prepared(vec![[0.5, 0.5, 0.0]; 4])), DegenerateReason::Coincident);
-    assert!(matches!(reason(prepared(square.iter().map(|p| p.map(|c| c * 1e300)).collect())), DegenerateReason::FarFromStart { .. }));
+    assert!(matches!(
+        reason(prepared(square.iter().map(|p| p.map(|c| c * 1e300)).collect())),
+        DegenerateReason::FarFromStart { .. }
+    ));
     // The start frame near 1e300: too large to normalise, not "all vertices coincide".
     let huge: Vec<[f64; 3]> = square.iter().map(|p| p.map(|c| 1e300 + c * 1e299)).collect();
     let err = Sample::from_frames("s", "t", vec![huge]).border_frames().unwrap_err();
@@ -479,7 +595,12 @@ fn read_everything(name: &str, bytes: &[u8]) {
             let _ = analyze(&b, FrameRange::default());
         }
     }
-    assert!(start.elapsed().as_secs() < 5, "{name}: {} bytes took {:?}", bytes.len(), start.elapsed());
+    assert!(
+        start.elapsed().as_secs() < 5,
+        "{name}: {} bytes took {:?}",
+        bytes.len(),
+        start.elapsed()
+    );
 }
 
 /// Element counts a header may announce: small, at the limits, and absurd.
@@ -490,34 +611,56 @@ fn counts() -> impl Strategy<Value = u64> {
 /// A PLY header of random elements (vertex with x y z, face with an index list, property-
 /// less or odd ones) with any counts, then a short random payload.
 fn ply_with_counts() -> impl Strategy<Value = Vec<u8>> {
-    let scalar = prop::sample::select(vec!["char", "uchar", "short", "ushort", "int", "uint", "float", "double"]);
-    let element = (prop::sample::select(vec!["vertex", "face", "junk"]), counts(), scalar.clone(), scalar, 0usize..3);
+    let scalar = prop::sample::select(vec![
+        "char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+    ]);
+    let element = (
+        prop::sample::select(vec!["vertex", "face", "junk"]),
+        counts(),
+        scalar.clone(),
+        scalar,
+        0usize..3,
+    );
     let format = prop::sample::select(vec!["ascii", "binary_little_endian", "binary_big_endian"]);
-    (format, proptest::collection::vec(element, 0..4), proptest::collection::vec(any::<u8>(), 0..200), any::<bool>()).prop_map(
-        |(format, elements, payload, digits)| {
+    (
+        format,
+        proptest::collection::vec(element, 0..4),
+        proptest::collection::vec(any::<u8>(), 0..200),
+        any::<bool>(),
+    )
+        .prop_map(|(format, elements, payload, digits)| {
             let mut head = format!("ply\nformat {format} 1.0\n");
             for (name, count, t, u, extra) in elements {
                 head += &format!("element {name} {count}\n");
                 match name {
-                    "vertex" => ["x", "y", "z"].iter().for_each(|a| head += &format!("property {t} {a}\n")),
+                    "vertex" => {
+                        ["x", "y", "z"].iter().for_each(|a| head += &format!("property {t} {a}\n"))
+                    }
                     "face" => head += &format!("property list {u} {t} vertex_indices\n"),
                     _ => (0..extra).for_each(|k| head += &format!("property {t} p{k}\n")),
                 }
             }
             head += "end_header\n";
             // ASCII payloads of digits reach deeper than random bytes.
-            let body = if digits { payload.iter().map(|b| b"0123456789 \n-"[*b as usize % 13]).collect() } else { payload };
+            let body = if digits {
+                payload.iter().map(|b| b"0123456789 \n-"[*b as usize % 13]).collect()
+            } else {
+                payload
+            };
             [head.into_bytes(), body].concat()
-        },
-    )
+        })
 }
 
 /// OBJ statements with absurd indices and numbers.
 fn obj_with_counts() -> impl Strategy<Value = Vec<u8>> {
     let index = prop_oneof![1i64..6, -5i64..0, Just(i64::MAX), Just(i64::MIN), any::<i64>()];
     let line = prop_oneof![
-        (any::<f64>(), -2.0f64..2.0, prop_oneof![Just(1e308), Just(-1e308), Just(0.0)]).prop_map(|(x, y, z)| format!("v {x} {y} {z}")),
-        proptest::collection::vec(index, 0..8).prop_map(|f| format!("f {}", f.iter().map(|i| format!("{i}/1")).collect::<Vec<_>>().join(" "))),
+        (any::<f64>(), -2.0f64..2.0, prop_oneof![Just(1e308), Just(-1e308), Just(0.0)])
+            .prop_map(|(x, y, z)| format!("v {x} {y} {z}")),
+        proptest::collection::vec(index, 0..8).prop_map(|f| format!(
+            "f {}",
+            f.iter().map(|i| format!("{i}/1")).collect::<Vec<_>>().join(" ")
+        )),
         Just("f 1 2 3 18446744073709551616".to_string()),
     ];
     proptest::collection::vec(line, 0..12).prop_map(|lines| (lines.join("\n") + "\n").into_bytes())
@@ -525,11 +668,26 @@ fn obj_with_counts() -> impl Strategy<Value = Vec<u8>> {
 
 /// MATLAB elements whose tags, dimensions and classes claim anything, some compressed.
 fn mat_with_counts() -> impl Strategy<Value = Vec<u8>> {
-    let dims = prop_oneof![Just(vec![3u32, 4]), Just(vec![u32::MAX, u32::MAX]), Just(vec![1 << 31, 2]), proptest::collection::vec(any::<u32>(), 0..4)];
-    let matrix = (1u32..17, dims, 1u32..16, proptest::collection::vec(any::<u8>(), 0..64), any::<bool>(), any::<u32>()).prop_map(
-        |(class, dims, data_type, data, compress, claimed)| {
+    let dims = prop_oneof![
+        Just(vec![3u32, 4]),
+        Just(vec![u32::MAX, u32::MAX]),
+        Just(vec![1 << 31, 2]),
+        proptest::collection::vec(any::<u32>(), 0..4)
+    ];
+    let matrix = (
+        1u32..17,
+        dims,
+        1u32..16,
+        proptest::collection::vec(any::<u8>(), 0..64),
+        any::<bool>(),
+        any::<u32>(),
+    )
+        .prop_map(|(class, dims, data_type, data, compress, claimed)| {
             let mut body = mat_element(6, &[class as u8, 0, 0, 0, 0, 0, 0, 0]);
-            body.extend(mat_element(5, &dims.iter().flat_map(|d| d.to_le_bytes()).collect::<Vec<_>>()));
+            body.extend(mat_element(
+                5,
+                &dims.iter().flat_map(|d| d.to_le_bytes()).collect::<Vec<_>>(),
+            ));
             body.extend(mat_element(1, b"phiPositions"));
             let mut data_el = mat_element(data_type, &data);
             if claimed % 3 == 0 {
@@ -538,16 +696,27 @@ fn mat_with_counts() -> impl Strategy<Value = Vec<u8>> {
             }
             body.extend(data_el);
             let element = mat_element(14, &body);
-            if compress { compressed(&element) } else { element }
-        },
-    );
+            if compress {
+                compressed(&element)
+            } else {
+                element
+            }
+        });
     proptest::collection::vec(matrix, 0..3).prop_map(|elements| mat_file(&elements))
 }
 
 /// Sample JSON with absurd indices, deep nesting and odd shapes.
 fn json_with_counts() -> impl Strategy<Value = Vec<u8>> {
-    let nested = (0usize..3000, any::<bool>()).prop_map(|(depth, closed)| format!("{}0{}", "[".repeat(depth), if closed { "]".repeat(depth) } else { String::new() }));
-    let index = prop_oneof![Just("0".to_string()), Just("18446744073709551616".to_string()), Just("1e30".to_string()), Just("-1".to_string()), any::<u64>().prop_map(|i| i.to_string())];
+    let nested = (0usize..3000, any::<bool>()).prop_map(|(depth, closed)| {
+        format!("{}0{}", "[".repeat(depth), if closed { "]".repeat(depth) } else { String::new() })
+    });
+    let index = prop_oneof![
+        Just("0".to_string()),
+        Just("18446744073709551616".to_string()),
+        Just("1e30".to_string()),
+        Just("-1".to_string()),
+        any::<u64>().prop_map(|i| i.to_string())
+    ];
     (nested, proptest::collection::vec(index, 0..6), 0usize..8, any::<bool>()).prop_map(|(nested, face, vertices, mesh)| {
         let frame = format!("[{}]", vec!["[0, 0, 0]"; vertices].join(","));
         let doc = if mesh {
@@ -569,7 +738,11 @@ fn valid_files() -> Vec<(&'static str, Vec<u8>)> {
         ("x.mat", fixture("napkin_sparse.mat").1),
         ("x.mat", fixture("napkin_sparse_compressed.mat").1),
         ("x.mat", fixture("napkin_dense_compressed.mat").1),
-        ("x.json", br#"{"mesh": {"faces": [[0,1,2,3]], "frames": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}}"#.to_vec()),
+        (
+            "x.json",
+            br#"{"mesh": {"faces": [[0,1,2,3]], "frames": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}}"#
+                .to_vec(),
+        ),
     ]
 }
 

@@ -42,7 +42,12 @@ fn node(input: &Value) -> Value {
         .stderr(Stdio::piped())
         .spawn()
         .expect("spawn node");
-    child.stdin.take().expect("stdin").write_all(input.to_string().as_bytes()).expect("write cases");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(input.to_string().as_bytes())
+        .expect("write cases");
     let output = child.wait_with_output().expect("node runs");
     assert!(output.status.success(), "node failed: {}", String::from_utf8_lossy(&output.stderr));
     serde_json::from_slice(&output.stdout).expect("node prints JSON")
@@ -51,15 +56,27 @@ fn node(input: &Value) -> Value {
 /// The largest coordinate difference between two lists of borders.
 fn worst(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).flat_map(|(p, q)| p.iter().zip(q)).flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]).abs())).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .flat_map(|(p, q)| p.iter().zip(q))
+        .flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]).abs()))
+        .fold(0.0, f64::max)
 }
 
 #[test]
 #[ignore = "needs node (apt-get install nodejs); run with `cargo test -- --ignored`"]
 fn browser_and_server_interpolate_alike() {
     // An irregular 13-gon (x, y, z), so reflections of every edge are exercised.
-    let border: Vec<[f64; 3]> =
-        (0..13).map(|k| k as f64 * TAU / 13.0).map(|a| [(1.0 + 0.3 * (3.0 * a).sin()) * a.cos(), (1.0 + 0.2 * (2.0 * a).cos()) * a.sin(), 0.1 * a]).collect();
+    let border: Vec<[f64; 3]> = (0..13)
+        .map(|k| k as f64 * TAU / 13.0)
+        .map(|a| {
+            [
+                (1.0 + 0.3 * (3.0 * a).sin()) * a.cos(),
+                (1.0 + 0.2 * (2.0 * a).cos()) * a.sin(),
+                0.1 * a,
+            ]
+        })
+        .collect();
     let q = PI / 8.0;
     let mut cases: Vec<([f64; 2], [f64; 2], usize)> = vec![
         ([0.0, PI], [PI / 2.0, 1.5 * PI], 5),
@@ -82,10 +99,14 @@ fn browser_and_server_interpolate_alike() {
     for ((from, to, steps), js) in cases.iter().zip(&js) {
         let rust = interpolate(&points, *from, *to, *steps).expect("valid case");
         let js_folds: Vec<[f64; 2]> = serde_json::from_value(js["folds"].clone()).expect("folds");
-        let js_borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(js["borders"].clone()).expect("borders");
+        let js_borders: Vec<Vec<[f64; 3]>> =
+            serde_json::from_value(js["borders"].clone()).expect("borders");
         assert_eq!(js_folds.len(), rust.folds.len());
         for (k, (a, b)) in rust.folds.iter().zip(&js_folds).enumerate() {
-            assert!((a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9, "{from:?} → {to:?} step {k}: rust {a:?}, js {b:?}");
+            assert!(
+                (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9,
+                "{from:?} → {to:?} step {k}: rust {a:?}, js {b:?}"
+            );
         }
         let worst = worst(&rust.borders, &js_borders);
         assert!(worst < 1e-9, "{from:?} → {to:?}: borders differ by {worst}");
@@ -98,27 +119,50 @@ fn browser_and_server_interpolate_alike() {
 #[test]
 #[ignore = "needs node (apt-get install nodejs); run with `cargo test -- --ignored`"]
 fn browser_and_server_turn_arcs_alike() {
-    let mut turns: Vec<(Vec<Point>, Vec<[f64; 2]>, Option<Line>, usize)> = Vec::new();
+    // A state, its arcs, the line they turn about and the number of interpolated states.
+    type Turn = (Vec<Point>, Vec<[f64; 2]>, Option<Line>, usize);
+    let mut turns: Vec<Turn> = Vec::new();
     for sample in samples_in("physics-mujoco/border") {
         let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
         let mut state = analysis.start_border().to_vec();
         for step in analysis.steps.iter().filter(|s| s.detection.fold.is_some()) {
             turns.push((state.clone(), step.detection.arcs.clone(), step.line, 9));
-            state = close::fold::reflect::apply_arcs(&state, &step.detection.arcs, &step.line.expect("a fold has a line"));
+            state = close::fold::reflect::apply_arcs(
+                &state,
+                &step.detection.arcs,
+                &step.line.expect("a fold has a line"),
+            );
         }
     }
     assert!(turns.iter().any(|(_, arcs, _, _)| arcs.len() > 1), "a multi-arc fold among the cases");
-    let gon: Vec<Point> = (0..13).map(|k| k as f64 * TAU / 13.0).map(|a| Point::new((1.0 + 0.3 * (3.0 * a).sin()) * a.cos(), (1.0 + 0.2 * (2.0 * a).cos()) * a.sin(), 0.1 * a)).collect();
+    let gon: Vec<Point> = (0..13)
+        .map(|k| k as f64 * TAU / 13.0)
+        .map(|a| {
+            Point::new(
+                (1.0 + 0.3 * (3.0 * a).sin()) * a.cos(),
+                (1.0 + 0.2 * (2.0 * a).cos()) * a.sin(),
+                0.1 * a,
+            )
+        })
+        .collect();
     let mut rng = SplitMix64::new(7);
     for case in 0..100 {
         let mut cuts: Vec<f64> = (0..2 + 2 * (case % 3)).map(|_| rng.uniform() * TAU).collect();
         cuts.sort_by(f64::total_cmp);
         let arcs: Vec<[f64; 2]> = cuts.chunks(2).map(|c| [c[0], c[1]]).collect();
         let phi = rng.uniform() * PI;
-        let line = (case % 4 != 0).then(|| Line { point: [rng.uniform() - 0.5, rng.uniform() - 0.5], direction: [phi.cos(), phi.sin()] });
+        let line = (case % 4 != 0).then(|| Line {
+            point: [rng.uniform() - 0.5, rng.uniform() - 0.5],
+            direction: [phi.cos(), phi.sin()],
+        });
         turns.push((gon.clone(), arcs, line, 2 + (rng.uniform() * 20.0) as usize));
     }
-    let rust: Vec<_> = turns.iter().map(|(border, arcs, line, steps)| turn_arcs(border, arcs, *line, *steps).expect("a valid turn")).collect();
+    let rust: Vec<_> = turns
+        .iter()
+        .map(|(border, arcs, line, steps)| {
+            turn_arcs(border, arcs, *line, *steps).expect("a valid turn")
+        })
+        .collect();
     let xyz = |b: &[Point]| b.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>();
     let input = json!({
         "border": [],
@@ -128,7 +172,8 @@ fn browser_and_server_turn_arcs_alike() {
     let js = node(&input)["turned"].clone();
     for (k, (rust, js)) in rust.iter().zip(js.as_array().expect("a list")).enumerate() {
         let js_turns: Vec<f64> = serde_json::from_value(js["turns"].clone()).expect("turns");
-        let js_borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(js["borders"].clone()).expect("borders");
+        let js_borders: Vec<Vec<[f64; 3]>> =
+            serde_json::from_value(js["borders"].clone()).expect("borders");
         assert_eq!(Some(js_turns), rust.turns, "case {k}");
         let worst = worst(&rust.borders, &js_borders);
         assert!(worst < 1e-9, "case {k} ({:?}): borders differ by {worst}", turns[k].1);

@@ -36,7 +36,12 @@ fn assert_same_close(a: &Analysis, b: &Analysis, shift: f64) {
     assert_eq!(a.folds.len(), 1);
     assert_eq!(b.folds.len(), 1);
     for k in 0..2 {
-        assert!(angle_diff(a.folds[0][k] + shift, b.folds[0][k]) < 1e-4, "folds {:?} vs {:?}", a.folds, b.folds);
+        assert!(
+            angle_diff(a.folds[0][k] + shift, b.folds[0][k]) < 1e-4,
+            "folds {:?} vs {:?}",
+            a.folds,
+            b.folds
+        );
     }
 }
 
@@ -48,7 +53,11 @@ fn a_reflection_fold_is_found_where_it_was_made() {
     assert_eq!(a.folds.len(), 1);
     let truth = [TAU * FOLD.0 / n, TAU * FOLD.1 / n];
     for k in 0..2 {
-        assert!(angle_diff(a.folds[0][k], truth[k]) < 0.5 * 2.0 * PI / n, "{:?} vs {truth:?}", a.folds);
+        assert!(
+            angle_diff(a.folds[0][k], truth[k]) < 0.5 * 2.0 * PI / n,
+            "{:?} vs {truth:?}",
+            a.folds
+        );
     }
     assert!(a.metrics.unwrap().rmse < 0.02, "{:?}", a.metrics);
 }
@@ -57,7 +66,8 @@ fn a_reflection_fold_is_found_where_it_was_made() {
 fn rotation_and_translation_leave_close_unchanged() {
     let frames = folded_napkin();
     let (c, s) = (0.7f64.cos(), 0.7f64.sin());
-    let moved = map(&frames, |p| [c * p[0] - s * p[1] + 3.0, s * p[0] + c * p[1] - 2.0, p[2] + 0.5]);
+    let moved =
+        map(&frames, |p| [c * p[0] - s * p[1] + 3.0, s * p[0] + c * p[1] - 2.0, p[2] + 0.5]);
     assert_same_close(&run(frames), &run(moved), 0.0);
 }
 
@@ -76,7 +86,8 @@ fn cyclic_relabelling_shifts_every_angle() {
     let n = frames[0].len();
     let s = 11;
     // New vertex i is old vertex i + s: an old angle θ becomes θ − 2πs/N.
-    let shifted: Vec<Vec<[f64; 3]>> = frames.iter().map(|fr| (0..n).map(|i| fr[(i + s) % n]).collect()).collect();
+    let shifted: Vec<Vec<[f64; 3]>> =
+        frames.iter().map(|fr| (0..n).map(|i| fr[(i + s) % n]).collect()).collect();
     assert_same_close(&run(frames), &run(shifted), -2.0 * PI * s as f64 / n as f64);
 }
 
@@ -84,7 +95,8 @@ fn cyclic_relabelling_shifts_every_angle() {
 fn a_clockwise_border_gives_the_close_of_its_anticlockwise_twin() {
     let frames = folded_napkin();
     let n = frames[0].len();
-    let clockwise: Vec<Vec<[f64; 3]>> = frames.iter().map(|fr| (0..n).map(|i| fr[(n - i) % n]).collect()).collect();
+    let clockwise: Vec<Vec<[f64; 3]>> =
+        frames.iter().map(|fr| (0..n).map(|i| fr[(n - i) % n]).collect()).collect();
     let (a, b) = (run(frames), run(clockwise));
     assert!(!a.reversed);
     assert!(b.reversed);
@@ -104,7 +116,12 @@ fn second_fold_is_read_from_its_own_step() {
     let second = fold_frame(&first, 66.5, 5.0);
     let a = run(vec![start, first, second]);
     assert_eq!(a.steps.len(), 2);
-    assert_eq!(a.folds.len(), 2, "{:?}", a.steps.iter().map(|s| s.detection.cut).collect::<Vec<_>>());
+    assert_eq!(
+        a.folds.len(),
+        2,
+        "{:?}",
+        a.steps.iter().map(|s| s.detection.cut).collect::<Vec<_>>()
+    );
     assert!(a.label.text.contains("Fold 2"));
 }
 
@@ -113,7 +130,8 @@ fn noise_without_a_fold_is_no_fold() {
     let start = napkin(19);
     let mut rng = close::rng::SplitMix64::new(7);
     let mut noise = || (rng.uniform() - 0.5) * 0.01;
-    let end: Vec<[f64; 3]> = start.iter().map(|p| [p[0] + noise(), p[1] + noise(), p[2] + noise()]).collect();
+    let end: Vec<[f64; 3]> =
+        start.iter().map(|p| [p[0] + noise(), p[1] + noise(), p[2] + noise()]).collect();
     let a = run(vec![start, end]);
     assert!(a.folds.is_empty(), "{:?}", a.steps[0].detection.cut);
     assert!(a.label.text.contains("not folded"));
@@ -148,7 +166,13 @@ fn a_fold_across_exactly_straight_sides_stays_within_its_edge() {
 fn a_slide_after_the_fold_costs_rmse_but_not_aligned_rmse() {
     let frames = folded_napkin();
     let (c, s) = (0.3f64.cos(), 0.3f64.sin());
-    let slid = vec![frames[0].clone(), frames[1].iter().map(|p| [c * p[0] - s * p[1] + 4.0, s * p[0] + c * p[1] + 1.0, p[2]]).collect()];
+    let slid = vec![
+        frames[0].clone(),
+        frames[1]
+            .iter()
+            .map(|p| [c * p[0] - s * p[1] + 4.0, s * p[0] + c * p[1] + 1.0, p[2]])
+            .collect(),
+    ];
     let (still, moved) = (run(frames), run(slid));
     assert_eq!(still.folds, moved.folds);
     let (a, b) = (still.metrics.unwrap(), moved.metrics.unwrap());
@@ -163,7 +187,10 @@ fn a_slide_after_the_fold_costs_rmse_but_not_aligned_rmse() {
 fn a_cloth_only_moved_is_not_said_to_have_changed_one_crumpled_is() {
     let start = napkin(19);
     let (c, s) = (1.1f64.cos(), 1.1f64.sin());
-    let moved: Vec<[f64; 3]> = start.iter().map(|p| [c * p[0] - s * p[1] - 3.0, s * p[0] + c * p[1] + 2.0, p[2]]).collect();
+    let moved: Vec<[f64; 3]> = start
+        .iter()
+        .map(|p| [c * p[0] - s * p[1] - 3.0, s * p[0] + c * p[1] + 2.0, p[2]])
+        .collect();
     let a = run(vec![start, moved]);
     assert!(a.folds.is_empty(), "{:?}", a.folds);
     assert!(a.metrics.unwrap().rmse > 1.0);
@@ -173,7 +200,8 @@ fn a_cloth_only_moved_is_not_said_to_have_changed_one_crumpled_is() {
     let start = napkin(19);
     let mut rng = close::rng::SplitMix64::new(11);
     let mut noise = |scale: f64| (rng.uniform() - 0.5) * scale;
-    let crumpled: Vec<[f64; 3]> = start.iter().map(|p| [p[0] + noise(0.5), p[1] + noise(0.5), p[2] + noise(0.05)]).collect();
+    let crumpled: Vec<[f64; 3]> =
+        start.iter().map(|p| [p[0] + noise(0.5), p[1] + noise(0.5), p[2] + noise(0.05)]).collect();
     let a = run(vec![start, crumpled]);
     assert!(a.folds.is_empty(), "{:?}", a.folds);
     assert!(a.label.text.contains("changed, but no fold found"), "{}", a.label.text);
@@ -189,12 +217,23 @@ fn a_second_fold_turns_with_a_cloth_turned_between_folds() {
     // Left half onto the right (the folded side runs anticlockwise from the top's middle).
     let half = fold_frame(&start, 47.5, 9.5);
     // Then the top half of both layers down across y = 0, its layers reversed on top.
-    let quarter: Vec<[f64; 3]> = half.iter().map(|&[x, y, z]| if y > 1e-9 { [x, -y, 0.05 - z] } else { [x, y, z] }).collect();
+    let quarter: Vec<[f64; 3]> = half
+        .iter()
+        .map(|&[x, y, z]| if y > 1e-9 { [x, -y, 0.05 - z] } else { [x, y, z] })
+        .collect();
     let (c, s) = (10f64.to_radians().cos(), 10f64.to_radians().sin());
-    let turned = |frame: &[[f64; 3]]| frame.iter().map(|&[x, y, z]| [c * x - s * y + 0.3, s * x + c * y + 0.1, z]).collect::<Vec<_>>();
+    let turned = |frame: &[[f64; 3]]| {
+        frame
+            .iter()
+            .map(|&[x, y, z]| [c * x - s * y + 0.3, s * x + c * y + 0.1, z])
+            .collect::<Vec<_>>()
+    };
     let a = run(vec![start, turned(&half), turned(&quarter)]);
     assert_eq!(a.folds.len(), 2, "{:?}", a.folds);
-    assert!(a.steps[1].detection.synthesis.as_ref().and_then(|s| s.direction).is_some(), "the second fold's points should coincide");
+    assert!(
+        a.steps[1].detection.synthesis.as_ref().and_then(|s| s.direction).is_some(),
+        "the second fold's points should coincide"
+    );
     let m = a.metrics.unwrap();
     assert!(m.aligned_rmse < 0.01, "{m:?}");
 }

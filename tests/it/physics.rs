@@ -41,7 +41,13 @@ fn physics_folds() {
     for (sample, analysis) in &analysed {
         let truth = &sample.truth.as_ref().unwrap().folds;
         // One fold per step, k folds for a k-fold sequence.
-        assert_eq!(analysis.folds.len(), truth.len(), "{}: folds {:?}", sample.name, analysis.folds);
+        assert_eq!(
+            analysis.folds.len(),
+            truth.len(),
+            "{}: folds {:?}",
+            sample.name,
+            analysis.folds
+        );
         // Fold points near the commanded line's, in edges. The cloth does not fold exactly
         // there, so this is loose: measured at most 2.5 edges (the pentagon's askew fold).
         for (found, t) in analysis.folds.iter().zip(truth) {
@@ -49,13 +55,24 @@ fn physics_folds() {
             assert!(e <= 5.0, "{}: fold {found:?} vs {t:?}: {e:.2} edges", sample.name);
         }
         // Corners at the scale of the cloth, whatever the staircase of the mesh outline.
-        assert_eq!(analysis.corners.len(), expected_corners(&sample.name), "{}: corners {:?}", sample.name, analysis.corner_vertices);
+        assert_eq!(
+            analysis.corners.len(),
+            expected_corners(&sample.name),
+            "{}: corners {:?}",
+            sample.name,
+            analysis.corner_vertices
+        );
         let m = analysis.metrics.unwrap();
         // No sample far off (measured worst 0.047, the pentagon's askew fold).
         assert!(m.rmse <= 0.095, "{}: RMSE {}", sample.name, m.rmse);
         if truth.len() == 1 { &mut first } else { &mut second }.push((m.rmse, m.frechet));
     }
-    let means = |rows: &[(f64, f64)]| (mean(&rows.iter().map(|r| r.0).collect::<Vec<_>>()), mean(&rows.iter().map(|r| r.1).collect::<Vec<_>>()));
+    let means = |rows: &[(f64, f64)]| {
+        (
+            mean(&rows.iter().map(|r| r.0).collect::<Vec<_>>()),
+            mean(&rows.iter().map(|r| r.1).collect::<Vec<_>>()),
+        )
+    };
     let (rmse, frechet) = means(&first);
     println!("first folds: RMSE {rmse:.4}, Fréchet {frechet:.4}");
     // Measured: first folds 0.0150 / 0.0308, second folds 0.0320 / 0.0648 (RMSE / Fréchet).
@@ -71,7 +88,10 @@ fn physics_folds() {
     let (_, q3) = analysed.iter().find(|(s, _)| s.name.starts_with("q3")).unwrap();
     let step = &q3.steps[1];
     let line = step.line.expect("a fold has a line");
-    assert!(step.detection.synthesis.as_ref().and_then(|s| s.direction).is_some(), "the direction came from the disks");
+    assert!(
+        step.detection.synthesis.as_ref().and_then(|s| s.direction).is_some(),
+        "the direction came from the disks"
+    );
     assert!(line.direction[1].abs() < 0.2, "direction {:?}", line.direction);
     assert!(step.metrics.rmse < 0.08, "RMSE {}", step.metrics.rmse);
 }

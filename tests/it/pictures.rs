@@ -18,12 +18,21 @@ async fn send(app: &Router, request: Request<Body>) -> (StatusCode, Option<Strin
 }
 
 /// The answer's status, content type, `x-disk-scale` header and body.
-async fn send_typed(app: &Router, request: Request<Body>) -> (StatusCode, String, Option<String>, Vec<u8>) {
+async fn send_typed(
+    app: &Router,
+    request: Request<Body>,
+) -> (StatusCode, String, Option<String>, Vec<u8>) {
     let response = app.clone().oneshot(request).await.expect("the router never fails");
     let status = response.status();
-    let header = |name: &str| response.headers().get(name).and_then(|v| v.to_str().ok()).map(str::to_string);
+    let header =
+        |name: &str| response.headers().get(name).and_then(|v| v.to_str().ok()).map(str::to_string);
     let (kind, scale) = (header("content-type").unwrap_or_default(), header("x-disk-scale"));
-    (status, kind, scale, to_bytes(response.into_body(), usize::MAX).await.expect("a body").to_vec())
+    (
+        status,
+        kind,
+        scale,
+        to_bytes(response.into_body(), usize::MAX).await.expect("a body").to_vec(),
+    )
 }
 
 /// Whether `text` is well-formed XML as far as an SVG picture needs: one root element,
@@ -34,12 +43,19 @@ fn well_formed(text: &str) -> Result<(), String> {
     let mut roots = 0;
     while let Some(start) = rest.find('<') {
         let between = &rest[..start];
-        if between.contains('<') || between.replace("&amp;", "").replace("&lt;", "").replace("&gt;", "").replace("&quot;", "").contains('&') {
+        if between.contains('<')
+            || between
+                .replace("&amp;", "")
+                .replace("&lt;", "")
+                .replace("&gt;", "")
+                .replace("&quot;", "")
+                .contains('&')
+        {
             return Err(format!("bare markup in text {between:?}"));
         }
         let end = rest[start..].find('>').ok_or("an unclosed tag")? + start;
         let tag = &rest[start + 1..end];
-        if tag.matches('"').count() % 2 != 0 {
+        if !tag.matches('"').count().is_multiple_of(2) {
             return Err(format!("unbalanced quotes in <{tag}>"));
         }
         if let Some(name) = tag.strip_prefix('/') {
@@ -67,7 +83,13 @@ fn well_formed(text: &str) -> Result<(), String> {
 #[test]
 fn the_xml_check_finds_broken_documents() {
     assert_eq!(well_formed(r#"<svg a="1"><text x="2">a &amp; b</text><image/></svg>"#), Ok(()));
-    for bad in ["<svg><text></svg>", r#"<svg a="1><x/></svg>"#, "<svg>a & b</svg>", "<svg/><svg/>", "<svg>"] {
+    for bad in [
+        "<svg><text></svg>",
+        r#"<svg a="1><x/></svg>"#,
+        "<svg>a & b</svg>",
+        "<svg/><svg/>",
+        "<svg>",
+    ] {
         assert!(well_formed(bad).is_err(), "{bad}");
     }
 }
@@ -76,8 +98,13 @@ fn the_xml_check_finds_broken_documents() {
 async fn a_mesh_sample(app: &Router) -> String {
     let (_, body) = get(app, "/api/samples").await;
     let rows: Value = serde_json::from_slice(&body).expect("the sample list");
-    let rows = rows.as_array().cloned().or_else(|| rows["samples"].as_array().cloned()).expect("rows");
-    rows.iter().find(|r| r["category"] == "mesh").and_then(|r| r["id"].as_str()).expect("a mesh sample").to_string()
+    let rows =
+        rows.as_array().cloned().or_else(|| rows["samples"].as_array().cloned()).expect("rows");
+    rows.iter()
+        .find(|r| r["category"] == "mesh")
+        .and_then(|r| r["id"].as_str())
+        .expect("a mesh sample")
+        .to_string()
 }
 
 #[tokio::test]
@@ -87,16 +114,28 @@ async fn a_mesh_sample_shows_its_mesh_as_png_and_svg() {
     let (status, body) = get(&app, &format!("/api/samples/{id}")).await;
     assert_eq!(status, StatusCode::OK);
     let analysis: Value = serde_json::from_slice(&body).expect("the analysis");
-    let url = analysis["images"]["mesh"].as_str().unwrap_or_else(|| panic!("{id} lists no mesh picture: {}", analysis["images"])).to_string();
-    let (status, kind, _, png) = send_typed(&app, Request::get(&url).body(Body::empty()).expect("request")).await;
+    let url = analysis["images"]["mesh"]
+        .as_str()
+        .unwrap_or_else(|| panic!("{id} lists no mesh picture: {}", analysis["images"]))
+        .to_string();
+    let (status, kind, _, png) =
+        send_typed(&app, Request::get(&url).body(Body::empty()).expect("request")).await;
     assert_eq!((status, kind.as_str()), (StatusCode::OK, "image/png"));
     assert!(is_png(&png));
-    let (status, kind, _, svg) = send_typed(&app, Request::get(format!("{url}&format=svg")).body(Body::empty()).expect("request")).await;
+    let (status, kind, _, svg) = send_typed(
+        &app,
+        Request::get(format!("{url}&format=svg")).body(Body::empty()).expect("request"),
+    )
+    .await;
     assert_eq!((status, kind.as_str()), (StatusCode::OK, "image/svg+xml"));
     let svg = String::from_utf8(svg).expect("UTF-8");
     well_formed(&svg).unwrap_or_else(|e| panic!("{e}"));
     // The border loop is a vector line; the filled faces the pixels under it.
-    assert!(svg.contains("<polyline") && svg.contains("data:image/png;base64,") && svg.contains("height z"));
+    assert!(
+        svg.contains("<polyline")
+            && svg.contains("data:image/png;base64,")
+            && svg.contains("height z")
+    );
 
     // A border sample has no mesh to show: its analysis lists none, and asking says why.
     let (_, body) = get(&app, "/api/samples/napkin__half_then_half").await;
@@ -105,7 +144,11 @@ async fn a_mesh_sample_shows_its_mesh_as_png_and_svg() {
     assert!(border["images"].get("borders").is_some());
     let (status, body) = get(&app, "/api/images/sample:napkin__half_then_half/mesh.png").await;
     assert_eq!(status, StatusCode::BAD_REQUEST);
-    assert!(String::from_utf8_lossy(&body).contains("mesh samples only"), "{}", String::from_utf8_lossy(&body));
+    assert!(
+        String::from_utf8_lossy(&body).contains("mesh samples only"),
+        "{}",
+        String::from_utf8_lossy(&body)
+    );
 }
 
 #[tokio::test]
@@ -135,7 +178,8 @@ async fn a_disk_answers_svg_when_asked() {
 }
 
 async fn get(app: &Router, uri: &str) -> (StatusCode, Vec<u8>) {
-    let (status, _, body) = send(app, Request::get(uri).body(Body::empty()).expect("request")).await;
+    let (status, _, body) =
+        send(app, Request::get(uri).body(Body::empty()).expect("request")).await;
     (status, body)
 }
 
@@ -159,8 +203,10 @@ async fn a_second_fold_has_pictures_per_step() {
     let key = "sample:napkin__half_then_half";
     for picture in ["disk_start", "disk_end", "diff", "signed_diff"] {
         let (_, whole) = get(&app, &format!("/api/images/{key}/{picture}.png?size=120")).await;
-        let (s1, one) = get(&app, &format!("/api/images/{key}/{picture}.png?size=120&step=1")).await;
-        let (s2, two) = get(&app, &format!("/api/images/{key}/{picture}.png?size=120&step=2")).await;
+        let (s1, one) =
+            get(&app, &format!("/api/images/{key}/{picture}.png?size=120&step=1")).await;
+        let (s2, two) =
+            get(&app, &format!("/api/images/{key}/{picture}.png?size=120&step=2")).await;
         assert_eq!((s1, s2), (StatusCode::OK, StatusCode::OK), "{picture}");
         assert!(is_png(&one) && is_png(&two));
         assert_ne!(one, two, "{picture}: steps 1 and 2 drew the same picture");
@@ -169,7 +215,10 @@ async fn a_second_fold_has_pictures_per_step() {
     let (status, body) = get(&app, &format!("/api/images/{key}/diff.png?step=3")).await;
     assert_eq!(status, StatusCode::BAD_REQUEST);
     let error: Value = serde_json::from_slice(&body).expect("a JSON error");
-    assert!(error["error"].as_str().is_some_and(|e| e.contains("step 3") && e.contains("1…2")), "{error}");
+    assert!(
+        error["error"].as_str().is_some_and(|e| e.contains("step 3") && e.contains("1…2")),
+        "{error}"
+    );
     let (status, _) = get(&app, &format!("/api/images/{key}/close.png?step=1")).await;
     assert_eq!(status, StatusCode::BAD_REQUEST);
     // The list's thumbnails are their own small drawing.
@@ -199,13 +248,18 @@ async fn a_disk_keeps_the_scale_it_is_given() {
     let parts: Vec<f64> = scale.split(' ').map(|v| v.parse().expect("a number")).collect();
     assert!(parts.len() == 2 && parts[0] > 0.0 && parts[1] > 0.0, "{scale}");
     // The same scale sent back draws the same picture; another scale another one.
-    let (_, again, same) = post_disk(&app, &json!({ "border": square, "size": 100, "scale": { "s": parts[0], "max": parts[1] } })).await;
+    let (_, again, same) = post_disk(
+        &app,
+        &json!({ "border": square, "size": 100, "scale": { "s": parts[0], "max": parts[1] } }),
+    )
+    .await;
     assert_eq!(again.as_deref(), Some(scale.as_str()));
     assert_eq!(own, same);
     let (_, other_scale, other) = post_disk(&app, &json!({ "border": square, "size": 100, "scale": { "s": 10.0 * parts[0], "max": parts[1] } })).await;
     assert_ne!(own, other);
     assert_eq!(other_scale, Some(format!("{} {}", 10.0 * parts[0], parts[1])));
-    let (status, _, body) = post_disk(&app, &json!({ "border": square, "scale": { "s": 0.0, "max": 1.0 } })).await;
+    let (status, _, body) =
+        post_disk(&app, &json!({ "border": square, "scale": { "s": 0.0, "max": 1.0 } })).await;
     assert_eq!(status, StatusCode::BAD_REQUEST, "{}", String::from_utf8_lossy(&body));
 }
 
@@ -226,15 +280,36 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
             steps += 1;
             let curves = &step.detection.curves;
             if curves.len() != fold.len() {
-                misses.push(format!("{} step {}: {} curves for {} fold points", entry.id, k + 1, curves.len(), fold.len()));
+                misses.push(format!(
+                    "{} step {}: {} curves for {} fold points",
+                    entry.id,
+                    k + 1,
+                    curves.len(),
+                    fold.len()
+                ));
             }
-            for c in curves.iter().filter(|c| !(c.loss < 0.0)) {
-                misses.push(format!("{} step {}: the curve to {:.1}° has loss {} (no fold evidence)", entry.id, k + 1, c.rim.to_degrees(), c.loss));
+            for c in curves.iter().filter(|c| c.loss.is_nan() || c.loss >= 0.0) {
+                misses.push(format!(
+                    "{} step {}: the curve to {:.1}° has loss {} (no fold evidence)",
+                    entry.id,
+                    k + 1,
+                    c.rim.to_degrees(),
+                    c.loss
+                ));
             }
             for f in fold {
-                let nearest = curves.iter().map(|c| close::angle::distance(c.a0 + c.a1, f)).fold(f64::INFINITY, f64::min);
+                let nearest = curves
+                    .iter()
+                    .map(|c| close::angle::distance(c.a0 + c.a1, f))
+                    .fold(f64::INFINITY, f64::min);
                 if nearest > 10f64.to_radians() {
-                    misses.push(format!("{} step {}: fold point {:.1}° is {:.1}° from the nearest curve end", entry.id, k + 1, f.to_degrees(), nearest.to_degrees()));
+                    misses.push(format!(
+                        "{} step {}: fold point {:.1}° is {:.1}° from the nearest curve end",
+                        entry.id,
+                        k + 1,
+                        f.to_degrees(),
+                        nearest.to_degrees()
+                    ));
                 }
             }
         }

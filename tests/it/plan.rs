@@ -12,8 +12,12 @@ fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
     // grasp the corners where the analysis's prediction has them, along its line.
     let data = close::dataset::Dataset::builtin();
     let entry = data.get("napkin__half_then_half").expect("a built-in sample");
-    let analysis = close::analyze(&entry.sample.border_frames().unwrap(), Default::default()).unwrap();
-    assert!(analysis.steps[1].detection.synthesis.as_ref().and_then(|s| s.direction).is_some(), "the second fold's line comes from the disks");
+    let analysis =
+        close::analyze(&entry.sample.border_frames().unwrap(), Default::default()).unwrap();
+    assert!(
+        analysis.steps[1].detection.synthesis.as_ref().and_then(|s| s.direction).is_some(),
+        "the second fold's line comes from the disks"
+    );
     let p = plan_for(&analysis, [0.0, PI]).unwrap();
     assert_eq!(p.case, Case::UnfoldThenFold);
     let first = &p.steps[0];
@@ -21,7 +25,10 @@ fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
     for pick in &first.picks {
         let v = analysis.border_indices.iter().position(|&i| i == pick.vertex).unwrap();
         let now = analysis.predicted_end[v];
-        assert!((0..3).all(|c| (pick.from[c] - now[c]).abs() < 1e-9), "corner grasped at {:?}, the prediction has it at {now:?}", pick.from);
+        assert!(
+            (0..3).all(|c| (pick.from[c] - now[c]).abs() < 1e-9),
+            "corner grasped at {:?}, the prediction has it at {now:?}",
+            pick.from
+        );
     }
 }
-

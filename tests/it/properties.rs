@@ -3,7 +3,9 @@
 
 use std::f64::consts::{PI, TAU};
 
-use close::angle::{self, distance, edge, param_to_angle, wrap_pi, wrap_tau, ArcVertices, ON_LINE_EDGES};
+use close::angle::{
+    self, distance, edge, param_to_angle, wrap_pi, wrap_tau, ArcVertices, ON_LINE_EDGES,
+};
 use close::border::Point;
 use close::fold::reflect::{apply_fold, apply_fold_line, fold_line};
 use close::interpolate::{displacements, fold_path, interpolate};
@@ -12,17 +14,19 @@ use proptest::prelude::*;
 
 /// A star-shaped polygon, anticlockwise: vertex k at angle 2π(k + jitter)/n, radius in [0.5, 1].
 fn star() -> impl Strategy<Value = Vec<Point>> {
-    (6usize..40).prop_flat_map(|n| prop::collection::vec((0.5f64..1.0, -0.3f64..0.3), n)).prop_map(|radii| {
-        let n = radii.len();
-        radii
-            .iter()
-            .enumerate()
-            .map(|(k, &(r, jitter))| {
-                let t = param_to_angle(k as f64 + jitter, n);
-                Point::new(r * t.cos(), r * t.sin(), 0.0)
-            })
-            .collect()
-    })
+    (6usize..40).prop_flat_map(|n| prop::collection::vec((0.5f64..1.0, -0.3f64..0.3), n)).prop_map(
+        |radii| {
+            let n = radii.len();
+            radii
+                .iter()
+                .enumerate()
+                .map(|(k, &(r, jitter))| {
+                    let t = param_to_angle(k as f64 + jitter, n);
+                    Point::new(r * t.cos(), r * t.sin(), 0.0)
+                })
+                .collect()
+        },
+    )
 }
 
 fn close_points(a: &Point, b: &Point) -> bool {

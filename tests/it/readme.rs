@@ -43,14 +43,20 @@ fn updating() -> bool {
 
 /// What `close eval --json ARGS` prints now.
 fn binary_eval(args: &[&str]) -> Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_close")).current_dir(root()).args(["eval", "--json"]).args(args).output().expect("run close");
+    let out = Command::new(env!("CARGO_BIN_EXE_close"))
+        .current_dir(root())
+        .args(["eval", "--json"])
+        .args(args)
+        .output()
+        .expect("run close");
     assert!(out.status.success(), "close eval {args:?}: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("close eval --json prints JSON")
 }
 
 fn read_snapshot(name: &str) -> Value {
     let path = snapshot_path(name);
-    let text = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e} (UPDATE_SNAPSHOTS=1 writes it)", path.display()));
+    let text = std::fs::read(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (UPDATE_SNAPSHOTS=1 writes it)", path.display()));
     serde_json::from_slice(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
@@ -65,7 +71,10 @@ fn differences(path: &str, a: &Value, b: &Value, out: &mut Vec<String>) {
             }
         }
         (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
-            x.iter().zip(y).enumerate().for_each(|(k, (x, y))| differences(&format!("{path}[{k}]"), x, y, out));
+            x.iter()
+                .zip(y)
+                .enumerate()
+                .for_each(|(k, (x, y))| differences(&format!("{path}[{k}]"), x, y, out));
         }
         (Value::Object(x), Value::Object(y)) if x.keys().eq(y.keys()) => {
             x.iter().for_each(|(k, v)| differences(&format!("{path}.{k}"), v, &y[k], out));
@@ -104,7 +113,11 @@ fn snapshots_are_what_the_binary_prints() {
         differences(name, &now, &read_snapshot(name), &mut found);
         drift.extend(found.into_iter().take(20));
     }
-    assert!(drift.is_empty(), "the results moved (UPDATE_SNAPSHOTS=1 if on purpose):\n{}", drift.join("\n"));
+    assert!(
+        drift.is_empty(),
+        "the results moved (UPDATE_SNAPSHOTS=1 if on purpose):\n{}",
+        drift.join("\n")
+    );
 }
 
 /// The shared in-process evaluation of the built-in set (which the other tests read) is the
@@ -128,14 +141,21 @@ fn mean(stat: Option<Stat>) -> String {
 fn median(mut values: Vec<f64>) -> Option<f64> {
     values.sort_by(f64::total_cmp);
     let k = values.len();
-    (k > 0).then(|| if k % 2 == 1 { values[k / 2] } else { (values[k / 2 - 1] + values[k / 2]) / 2.0 })
+    (k > 0)
+        .then(|| if k % 2 == 1 { values[k / 2] } else { (values[k / 2 - 1] + values[k / 2]) / 2.0 })
 }
 
-fn stat_of(results: &[&SampleResult], value: impl Fn(&SampleResult) -> Option<f64>) -> Option<Stat> {
+fn stat_of(
+    results: &[&SampleResult],
+    value: impl Fn(&SampleResult) -> Option<f64>,
+) -> Option<Stat> {
     let values: Vec<f64> = results.iter().filter_map(|r| value(r)).collect();
     (!values.is_empty()).then(|| {
         let m = values.iter().sum::<f64>() / values.len() as f64;
-        Stat { mean: m, var: values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / values.len() as f64 }
+        Stat {
+            mean: m,
+            var: values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / values.len() as f64,
+        }
     })
 }
 
@@ -149,10 +169,16 @@ fn methods(names: &[&str]) -> String {
     let mut out = String::from("| method | folded samples with one fold | mean RMSE | median RMSE | mean Fréchet |\n|---|---|---|---|---|\n");
     for name in names {
         let r = report(name);
-        let folded: Vec<&SampleResult> = r.samples.iter().filter(|s| s.expected_folds == 1).collect();
+        let folded: Vec<&SampleResult> =
+            r.samples.iter().filter(|s| s.expected_folds == 1).collect();
         let right = folded.iter().filter(|s| s.folds == 1).count();
-        let rmse = median(folded.iter().filter_map(|s| s.rmse).collect()).map_or("–".into(), |m| format!("{m:.4}"));
-        let label = if name.ends_with("_paper") { "`close --method paper` (the paper's fitted curves alone)" } else { "`close` (cut + analysis by synthesis)" };
+        let rmse = median(folded.iter().filter_map(|s| s.rmse).collect())
+            .map_or("–".into(), |m| format!("{m:.4}"));
+        let label = if name.ends_with("_paper") {
+            "`close --method paper` (the paper's fitted curves alone)"
+        } else {
+            "`close` (cut + analysis by synthesis)"
+        };
         out += &format!(
             "| {label} | {right} of {} | {} | {rmse} | {} |\n",
             folded.len(),
@@ -169,9 +195,12 @@ fn folds(name: &str) -> String {
     let r = report(name);
     let first: Vec<&SampleResult> = r.samples.iter().filter(|s| s.steps.len() == 1).collect();
     let second: Vec<&SampleResult> = r.samples.iter().filter(|s| s.steps.len() == 2).collect();
-    let right = |rs: &[&SampleResult]| rs.iter().filter(|s| s.error.is_none() && s.folds == s.expected_folds).count();
+    let right = |rs: &[&SampleResult]| {
+        rs.iter().filter(|s| s.error.is_none() && s.folds == s.expected_folds).count()
+    };
     let step2 = |s: &SampleResult| s.steps.get(1).map(|t| (t.rmse, t.frechet));
-    let mut out = String::from("| | count | right fold count | RMSE | Fréchet |\n|---|---|---|---|---|\n");
+    let mut out =
+        String::from("| | count | right fold count | RMSE | Fréchet |\n|---|---|---|---|---|\n");
     out += &format!(
         "| first folds | {} | {} | {} | {} |\n",
         first.len(),
@@ -197,11 +226,23 @@ fn steps(name: &str) -> String {
     let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.4}"));
     for s in &r.samples {
         let last = s.steps.last();
-        let [rmse, frechet, aligned] = [last.map(|t| t.rmse), last.map(|t| t.frechet), last.and_then(|t| t.aligned_rmse)].map(cell);
-        out += &format!("| `{}` | {} / {} | {rmse} | {frechet} | {aligned} |\n", s.name, s.folds, s.expected_folds);
+        let [rmse, frechet, aligned] =
+            [last.map(|t| t.rmse), last.map(|t| t.frechet), last.and_then(|t| t.aligned_rmse)]
+                .map(cell);
+        out += &format!(
+            "| `{}` | {} / {} | {rmse} | {frechet} | {aligned} |\n",
+            s.name, s.folds, s.expected_folds
+        );
     }
-    let last = |f: fn(&close::eval::StepResult) -> Option<f64>| stat_of(&r.samples.iter().collect::<Vec<_>>(), |s| s.steps.last().and_then(f));
-    out += &format!("| mean | | {} | {} | {} |", mean(last(|t| Some(t.rmse))), mean(last(|t| Some(t.frechet))), mean(last(|t| t.aligned_rmse)));
+    let last = |f: fn(&close::eval::StepResult) -> Option<f64>| {
+        stat_of(&r.samples.iter().collect::<Vec<_>>(), |s| s.steps.last().and_then(f))
+    };
+    out += &format!(
+        "| mean | | {} | {} | {} |",
+        mean(last(|t| Some(t.rmse))),
+        mean(last(|t| Some(t.frechet))),
+        mean(last(|t| t.aligned_rmse))
+    );
     out
 }
 
@@ -224,8 +265,14 @@ fn regenerate(readme: &str) -> (String, Vec<std::ops::Range<usize>>) {
     while let Some((k, line)) = lines.next() {
         out += line;
         out.push('\n');
-        let Some(header) = line.strip_prefix(BEGIN).and_then(|h| h.strip_suffix(" -->")) else { continue };
-        let end = lines.by_ref().find(|(_, l)| *l == END).unwrap_or_else(|| panic!("README line {}: {header:?} has no {END}", k + 1)).0;
+        let Some(header) = line.strip_prefix(BEGIN).and_then(|h| h.strip_suffix(" -->")) else {
+            continue;
+        };
+        let end = lines
+            .by_ref()
+            .find(|(_, l)| *l == END)
+            .unwrap_or_else(|| panic!("README line {}: {header:?} has no {END}", k + 1))
+            .0;
         out += &render(header);
         out += "\n";
         out += END;
@@ -246,9 +293,19 @@ fn readme_tables_are_rendered_from_the_snapshots() {
         readme.clone_from(&fresh);
     }
     assert!(regions.len() >= 5, "only {} generated regions", regions.len());
-    let stale: Vec<String> =
-        readme.lines().zip(fresh.lines()).enumerate().filter(|(_, (a, b))| a != b).map(|(k, (a, b))| format!("line {}: {a:?} should be {b:?}", k + 1)).take(10).collect();
-    assert!(stale.is_empty() && readme == fresh, "README tables differ from the snapshots (UPDATE_SNAPSHOTS=1):\n{}", stale.join("\n"));
+    let stale: Vec<String> = readme
+        .lines()
+        .zip(fresh.lines())
+        .enumerate()
+        .filter(|(_, (a, b))| a != b)
+        .map(|(k, (a, b))| format!("line {}: {a:?} should be {b:?}", k + 1))
+        .take(10)
+        .collect();
+    assert!(
+        stale.is_empty() && readme == fresh,
+        "README tables differ from the snapshots (UPDATE_SNAPSHOTS=1):\n{}",
+        stale.join("\n")
+    );
     // Every table is generated: markdown tables and `close eval`'s text tables alike.
     let inside = |k: usize| regions.iter().any(|r| r.contains(&k));
     let loose: BTreeMap<usize, &str> = readme

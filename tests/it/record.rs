@@ -17,7 +17,9 @@ fn entities(rrd: &[u8]) -> BTreeSet<String> {
     DecoderApp::decode_eager(rrd)
         .expect("an RRD stream")
         .filter_map(|msg| match msg.expect("a decodable message") {
-            LogMsg::ArrowMsg(_, arrow) => Some(Chunk::from_arrow_msg(&arrow).expect("a chunk").entity_path().to_string()),
+            LogMsg::ArrowMsg(_, arrow) => {
+                Some(Chunk::from_arrow_msg(&arrow).expect("a chunk").entity_path().to_string())
+            }
             _ => None,
         })
         .collect()
@@ -69,7 +71,11 @@ const SQUARE: &str = "tests/fixtures/plan/square_cw_diagonal.json";
 fn record_writes_an_rrd_file() {
     let out_path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("square_cw_diagonal.rrd");
     let _ = std::fs::remove_file(&out_path);
-    let out = Command::new(env!("CARGO_BIN_EXE_close")).args(["record", SQUARE, "--out"]).arg(&out_path).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_close"))
+        .args(["record", SQUARE, "--out"])
+        .arg(&out_path)
+        .output()
+        .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let bytes = std::fs::read(&out_path).unwrap();
     // RRD files start with the magic "RRF2"; the entities are checked above.
@@ -78,7 +84,10 @@ fn record_writes_an_rrd_file() {
 
 #[test]
 fn record_to_a_missing_folder_fails_plainly() {
-    let out = Command::new(env!("CARGO_BIN_EXE_close")).args(["record", SQUARE, "--out", "/nonexistent/folder/x.rrd"]).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_close"))
+        .args(["record", SQUARE, "--out", "/nonexistent/folder/x.rrd"])
+        .output()
+        .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/folder/x.rrd"));
 }

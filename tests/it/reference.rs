@@ -31,13 +31,17 @@ fn dgli_matches_the_reference_cell_by_cell() {
         let reference: Vectors = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
         let name = path.file_name().unwrap().to_str().unwrap();
         let sample_path = fixture("reference/folded").join(name);
-        let sample = close::formats::json::parse_sample(&std::fs::read(sample_path).unwrap()).unwrap();
+        let sample =
+            close::formats::json::parse_sample(&std::fs::read(sample_path).unwrap()).unwrap();
         let frames = sample.border_frames().unwrap();
         let analysis = analyze(&frames, FrameRange::default()).unwrap();
         assert_eq!(analysis.n, reference.n);
         let flagged: std::collections::HashSet<usize> = reference.flagged.iter().copied().collect();
         let last = analysis.frames.len() - 1;
-        for (mine, theirs) in [(&analysis.disk(0).unwrap(), &reference.start), (&analysis.disk(last).unwrap(), &reference.end)] {
+        for (mine, theirs) in [
+            (&analysis.disk(0).unwrap(), &reference.start),
+            (&analysis.disk(last).unwrap(), &reference.end),
+        ] {
             assert_eq!(mine.values().len(), theirs.len());
             for (k, (a, b)) in mine.values().iter().zip(theirs).enumerate() {
                 if flagged.contains(&k) {
@@ -67,13 +71,19 @@ struct CornerInfo {
 /// take none (the border turns alike everywhere, by 22.5° over 5 % of its length).
 #[test]
 fn corners_match_the_reference_on_polygons_and_a_round_cloth_has_none() {
-    let info: HashMap<String, CornerInfo> = serde_json::from_slice(&std::fs::read(fixture("reference_corners.json")).unwrap()).unwrap();
+    let info: HashMap<String, CornerInfo> =
+        serde_json::from_slice(&std::fs::read(fixture("reference_corners.json")).unwrap()).unwrap();
     let (mut compared, mut round) = (0, 0);
     for sample in reference_samples() {
         let reference = &info[&sample.name];
         let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
         if sample.category == "disk" {
-            assert!(analysis.corner_vertices.is_empty(), "{}: {:?}", sample.name, analysis.corner_vertices);
+            assert!(
+                analysis.corner_vertices.is_empty(),
+                "{}: {:?}",
+                sample.name,
+                analysis.corner_vertices
+            );
             assert_eq!(reference.corners_vertex.len(), 64, "{}", sample.name);
             round += 1;
             continue;
@@ -107,10 +117,18 @@ fn folds_on_the_reference_samples() {
         let e = r.angle_error.map(|[a, b]| a.max(b) * 64.0 / TAU).unwrap();
         assert!(e <= 1.0, "{}: {e:.2} edges off", r.name);
     }
-    let mean = |rs: &[&&close::eval::SampleResult]| rs.iter().map(|r| r.rmse.unwrap()).sum::<f64>() / rs.len().max(1) as f64;
+    let mean = |rs: &[&&close::eval::SampleResult]| {
+        rs.iter().map(|r| r.rmse.unwrap()).sum::<f64>() / rs.len().max(1) as f64
+    };
     // Measured mean RMSE per category: disk 0.0033, napkin 0.0016, towel 0.0025,
     // trousers 0.0027, tshirt 0.0021; overall 0.0024, worst 0.0155.
-    for (category, bound) in [("disk", 0.0066), ("napkin", 0.0032), ("towel", 0.005), ("trousers", 0.0054), ("tshirt", 0.0042)] {
+    for (category, bound) in [
+        ("disk", 0.0066),
+        ("napkin", 0.0032),
+        ("towel", 0.005),
+        ("trousers", 0.0054),
+        ("tshirt", 0.0042),
+    ] {
         let rows: Vec<_> = folded.iter().filter(|r| r.category == category).collect();
         assert!(rows.len() >= 15, "{category}: {} samples", rows.len());
         assert!(mean(&rows) <= bound, "{category}: mean RMSE {} > {bound}", mean(&rows));
@@ -132,7 +150,11 @@ fn a_half_fold_of_the_towel_lands_on_its_truth() {
     let sample = reference_samples().into_iter().find(|s| s.name == "towel__half_long").unwrap();
     let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
     let truth = sample.truth.as_ref().unwrap().folds[0];
-    assert!(common::error_in_edges(analysis.folds[0], truth, analysis.n) < 0.25, "{:?} vs {truth:?}", analysis.folds);
+    assert!(
+        common::error_in_edges(analysis.folds[0], truth, analysis.n) < 0.25,
+        "{:?} vs {truth:?}",
+        analysis.folds
+    );
     assert!(analysis.metrics.unwrap().rmse < 0.005);
 }
 
@@ -142,8 +164,11 @@ fn a_half_fold_of_the_towel_lands_on_its_truth() {
 fn rigid_copies_give_the_same_fold() {
     let samples = reference_samples();
     for rigid in samples.iter().filter(|s| s.name.ends_with("__jitter__rigid")) {
-        let plain = samples.iter().find(|s| s.name == rigid.name.trim_end_matches("__rigid")).unwrap();
-        let fold = |s: &close::Sample| analyze(&s.border_frames().unwrap(), FrameRange::default()).unwrap().folds;
+        let plain =
+            samples.iter().find(|s| s.name == rigid.name.trim_end_matches("__rigid")).unwrap();
+        let fold = |s: &close::Sample| {
+            analyze(&s.border_frames().unwrap(), FrameRange::default()).unwrap().folds
+        };
         let (a, b) = (fold(plain), fold(rigid));
         assert_eq!(a.len(), 1);
         assert_eq!(b.len(), 1);

@@ -41,8 +41,15 @@ fn random_start(rng: &mut SplitMix64, index: usize) -> Vec<[f64; 3]> {
     let mut start = match index % 4 {
         0 => outline(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], n),
         1 => outline(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]], n),
-        2 => outline(&(0..6).map(|k| [(k as f64 * PI / 3.0).cos(), (k as f64 * PI / 3.0).sin()]).collect::<Vec<_>>(), n),
-        _ => (0..n).map(|k| [(TAU * k as f64 / n as f64).cos(), (TAU * k as f64 / n as f64).sin(), 0.0]).collect(),
+        2 => outline(
+            &(0..6)
+                .map(|k| [(k as f64 * PI / 3.0).cos(), (k as f64 * PI / 3.0).sin()])
+                .collect::<Vec<_>>(),
+            n,
+        ),
+        _ => (0..n)
+            .map(|k| [(TAU * k as f64 / n as f64).cos(), (TAU * k as f64 / n as f64).sin(), 0.0])
+            .collect(),
     };
     for p in &mut start {
         p[0] += 1e-5 * rng.gaussian();
@@ -68,9 +75,19 @@ fn random_sample(rng: &mut SplitMix64, index: usize) -> Sample {
     let (angle, scale) = (TAU * rng.uniform(), [0.3, 1.0, 5.0][index % 3]);
     let (c, s) = (angle.cos(), angle.sin());
     let place = |frame: Vec<[f64; 3]>| -> Vec<[f64; 3]> {
-        frame.iter().map(|p| [scale * (c * p[0] - s * p[1]) + 2.0, scale * (s * p[0] + c * p[1]) - 1.0, scale * p[2]]).collect()
+        frame
+            .iter()
+            .map(|p| {
+                [
+                    scale * (c * p[0] - s * p[1]) + 2.0,
+                    scale * (s * p[0] + c * p[1]) - 1.0,
+                    scale * p[2],
+                ]
+            })
+            .collect()
     };
-    let mut sample = Sample::from_frames(format!("unseen_{index}"), "unseen", vec![place(start), place(end)]);
+    let mut sample =
+        Sample::from_frames(format!("unseen_{index}"), "unseen", vec![place(start), place(end)]);
     sample.truth = Some(Truth { folds: vec![[TAU * f1 / n, TAU * f2 / n]], folded_vertices: None });
     sample
 }
@@ -121,13 +138,18 @@ fn the_no_fold_threshold_separates_noise_from_noisy_folds() {
         let still = noisy(&mut rng, &start, 0.003);
         let ratio = |end: Vec<[f64; 3]>| {
             let sample = Sample::from_frames("t", "unseen", vec![start.clone(), end]);
-            let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+            let analysis =
+                analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
             let cut = analysis.steps[0].detection.cut.expect("noise changes the disk");
             (cut.same_to_cross, analysis.folds.len())
         };
         let (fold_ratio, folds) = ratio(folded);
         let (noise_ratio, none) = ratio(still);
-        assert_eq!((folds, none), (1, 0), "cloth {k}: ratios {fold_ratio:.2} (fold) and {noise_ratio:.2} (noise)");
+        assert_eq!(
+            (folds, none),
+            (1, 0),
+            "cloth {k}: ratios {fold_ratio:.2} (fold) and {noise_ratio:.2} (noise)"
+        );
         fold_high = fold_high.max(fold_ratio);
         noise_low = noise_low.min(noise_ratio);
     }
@@ -139,12 +161,16 @@ fn the_no_fold_threshold_separates_noise_from_noisy_folds() {
 /// image across the fold line, and the rest stay (a check of the helper, not of the crate).
 #[test]
 fn the_test_fold_reflects_the_folded_arc() {
-    let square: Vec<[f64; 3]> = (0..8).map(|k| [(PI / 4.0 * k as f64).cos(), (PI / 4.0 * k as f64).sin(), 0.0]).collect();
+    let square: Vec<[f64; 3]> =
+        (0..8).map(|k| [(PI / 4.0 * k as f64).cos(), (PI / 4.0 * k as f64).sin(), 0.0]).collect();
     // Fold from vertex 0 to vertex 4 (the x axis): vertices 1, 2, 3 go below it.
     let end = fold_frame(&square, 0.0, 4.0);
     for (k, (e, s)) in end.iter().zip(&square).enumerate() {
         if (1..4).contains(&k) {
-            assert!((e[0] - s[0]).abs() < 1e-12 && (e[1] + s[1]).abs() < 1e-12 && e[2] == 0.01, "{k}: {e:?}");
+            assert!(
+                (e[0] - s[0]).abs() < 1e-12 && (e[1] + s[1]).abs() < 1e-12 && e[2] == 0.01,
+                "{k}: {e:?}"
+            );
         } else {
             assert_eq!(e, s);
         }

@@ -117,7 +117,11 @@ impl Analysis {
     /// that found a fold), in fold order: one arc, the fold itself, unless the fold line
     /// crossed the border more than twice.
     pub fn fold_arcs(&self) -> Vec<&[[f64; 2]]> {
-        self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.detection.arcs.as_slice()).collect()
+        self.steps
+            .iter()
+            .filter(|s| s.detection.fold.is_some())
+            .map(|s| s.detection.arcs.as_slice())
+            .collect()
     }
 
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
@@ -161,10 +165,15 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let start = range.start.unwrap_or(0);
     let end = range.end.unwrap_or(last);
     if start > last || end > last {
-        return Err(Error::InvalidArgument(format!("frame {} does not exist (the sample has frames 0…{last})", start.max(end))));
+        return Err(Error::InvalidArgument(format!(
+            "frame {} does not exist (the sample has frames 0…{last})",
+            start.max(end)
+        )));
     }
     if end < start {
-        return Err(Error::InvalidArgument(format!("end frame {end} comes before start frame {start}")));
+        return Err(Error::InvalidArgument(format!(
+            "end frame {end} comes before start frame {start}"
+        )));
     }
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
@@ -172,15 +181,27 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let start_border = norm.apply_all(&frames[0]);
     let start_disk = Disk::of_border_until(&start_border, &options.deadline)?;
     // The corners need only the start state: found while the steps are analysed.
-    let (found, steps) = rayon::join(|| corners(&start_disk, &start_border), || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options));
+    let (found, steps) = rayon::join(
+        || corners(&start_disk, &start_border),
+        || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options),
+    );
     let (steps, predicted) = steps?;
     let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
-    let arcs: Vec<&[[f64; 2]]> = steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.detection.arcs.as_slice()).collect();
+    let arcs: Vec<&[[f64; 2]]> = steps
+        .iter()
+        .filter(|s| s.detection.fold.is_some())
+        .map(|s| s.detection.arcs.as_slice())
+        .collect();
     let mut label = label_arcs(n, &found.vertices, &folds, &arcs);
     // A cloth only moved across the table is in the same state: the aligned error decides.
-    let changed: Vec<usize> = steps.iter().enumerate().filter(|(_, s)| s.detection.fold.is_none() && s.metrics.aligned_rmse > CHANGED_RMSE).map(|(k, _)| k + 1).collect();
+    let changed: Vec<usize> = steps
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.detection.fold.is_none() && s.metrics.aligned_rmse > CHANGED_RMSE)
+        .map(|(k, _)| k + 1)
+        .collect();
     label.changed_without_fold(&changed);
     Ok(Analysis {
         n,
@@ -206,7 +227,13 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
 
 /// The steps between consecutive `frames` (the first is the sample's frame `first`), each
 /// from the state before it, and the start border with the folds found applied.
-fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, start: (&[Point], &Disk), options: &Options) -> Result<(Vec<Step>, Vec<Point>)> {
+fn analyse_steps(
+    frames: &[Vec<Point>],
+    first: usize,
+    norm: &Normalisation,
+    start: (&[Point], &Disk),
+    options: &Options,
+) -> Result<(Vec<Step>, Vec<Point>)> {
     let mut predicted = frames[0].clone();
     // The vertices no fold found so far has moved: where the predicted state and the observed
     // one differ only by how the cloth lies on the table.
@@ -216,14 +243,16 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
     for (k, frame) in frames.iter().enumerate().skip(1) {
         let after_border = norm.apply_all(frame);
         let after = Disk::of_border_until(&after_border, &options.deadline)?;
-        let (before_border, before) = previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
+        let (before_border, before) =
+            previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
         let detection = detect(before_border, before, &after, options.method);
         options.deadline.check()?;
         let line = detection.fold.and_then(|fold| {
             let direction = detection.synthesis.as_ref().and_then(|s| s.direction);
             // A direction read on the observed frame turns with the predicted state, which may
             // lie rotated from it (a cloth that slid as it folded).
-            let direction = direction.map(|d| placement(before_border, &norm.apply_all(&predicted), &unmoved).rotate(d));
+            let direction = direction
+                .map(|d| placement(before_border, &norm.apply_all(&predicted), &unmoved).rotate(d));
             let line = fold_line(&predicted, fold, direction)?;
             predicted = apply_arcs(&predicted, &detection.arcs, &line);
             for &arc in &detection.arcs {
@@ -234,7 +263,14 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
             Some(line)
         });
         let metrics = Metrics::measure(norm, &predicted, frame);
-        steps.push(Step { from_frame: first + k - 1, to_frame: first + k, detection, line, metrics, predicted: predicted.iter().map(to_xyz).collect() });
+        steps.push(Step {
+            from_frame: first + k - 1,
+            to_frame: first + k,
+            detection,
+            line,
+            metrics,
+            predicted: predicted.iter().map(to_xyz).collect(),
+        });
         previous = Some((after_border, after));
     }
     Ok((steps, predicted))
@@ -244,8 +280,13 @@ fn analyse_steps(frames: &[Vec<Point>], first: usize, norm: &Normalisation, star
 /// vertices no fold has moved (on them the two differ only by a slide across the table;
 /// on the flaps, also by the folds' own errors), or on all when fewer than three are left.
 fn placement(observed: &[Point], predicted: &[Point], unmoved: &[bool]) -> RigidMotion {
-    let (observed_base, predicted_base): (Vec<Point>, Vec<Point>) =
-        observed.iter().zip(predicted).zip(unmoved).filter(|(_, &keep)| keep).map(|(pair, _)| pair).unzip();
+    let (observed_base, predicted_base): (Vec<Point>, Vec<Point>) = observed
+        .iter()
+        .zip(predicted)
+        .zip(unmoved)
+        .filter(|(_, &keep)| keep)
+        .map(|(pair, _)| pair)
+        .unzip();
     if observed_base.len() < 3 {
         RigidMotion::fit_xy(observed, predicted)
     } else {
@@ -259,13 +300,28 @@ mod tests {
 
     #[test]
     fn a_sample_without_frames_is_an_error_not_a_panic() {
-        let empty = BorderFrames { frames: Vec::new(), border_indices: Vec::new(), source: "border".into(), reversed: false, warnings: Vec::new() };
+        let empty = BorderFrames {
+            frames: Vec::new(),
+            border_indices: Vec::new(),
+            source: "border".into(),
+            reversed: false,
+            warnings: Vec::new(),
+        };
         assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty { .. })));
     }
 
     fn square_frames(frames: usize) -> BorderFrames {
-        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
-        BorderFrames { frames: vec![square; frames], border_indices: (0..4).collect(), source: "border".into(), reversed: false, warnings: Vec::new() }
+        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+            .iter()
+            .map(|p| Point::new(p[0], p[1], 0.0))
+            .collect();
+        BorderFrames {
+            frames: vec![square; frames],
+            border_indices: (0..4).collect(),
+            source: "border".into(),
+            reversed: false,
+            warnings: Vec::new(),
+        }
     }
 
     #[test]
@@ -275,22 +331,40 @@ mod tests {
         assert!(matches!(over, Err(Error::OverBudget { got: 48, limit: 32, .. })));
         // Only the analysed frames count.
         let range = FrameRange { start: Some(1), end: Some(2) };
-        assert!(analyze_with(&square_frames(3), Options { budget, frames: range, ..Options::default() }).is_ok());
+        assert!(analyze_with(
+            &square_frames(3),
+            Options { budget, frames: range, ..Options::default() }
+        )
+        .is_ok());
     }
 
     #[test]
     fn each_step_carries_the_border_it_predicts() {
         // A square of 40 vertices, its right half folded onto the left, then left alone.
-        let square: Vec<[f64; 3]> = (0..40).map(|k| {
-            let t = (k % 10) as f64 / 10.0;
-            let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10];
-            [x, y, 0.0]
-        }).collect();
-        let folded: Vec<[f64; 3]> = square.iter().map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] }).collect();
-        let analysis = analyze(&crate::border::prepare(vec![square.clone(), folded.clone(), folded]).unwrap(), FrameRange::default()).unwrap();
-        assert_eq!(analysis.steps.iter().map(|s| s.detection.fold.is_some()).collect::<Vec<_>>(), [true, false]);
+        let square: Vec<[f64; 3]> = (0..40)
+            .map(|k| {
+                let t = (k % 10) as f64 / 10.0;
+                let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10];
+                [x, y, 0.0]
+            })
+            .collect();
+        let folded: Vec<[f64; 3]> = square
+            .iter()
+            .map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] })
+            .collect();
+        let analysis = analyze(
+            &crate::border::prepare(vec![square.clone(), folded.clone(), folded]).unwrap(),
+            FrameRange::default(),
+        )
+        .unwrap();
+        assert_eq!(
+            analysis.steps.iter().map(|s| s.detection.fold.is_some()).collect::<Vec<_>>(),
+            [true, false]
+        );
         // Step 1 folds the start; step 2 finds nothing and predicts the same state.
-        let moved = |p: &[[f64; 3]]| p.iter().zip(&square).map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1])).fold(0.0, f64::max);
+        let moved = |p: &[[f64; 3]]| {
+            p.iter().zip(&square).map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1])).fold(0.0, f64::max)
+        };
         assert!(moved(&analysis.steps[0].predicted) > 0.3);
         assert_eq!(analysis.steps[0].predicted, analysis.steps[1].predicted);
         assert_eq!(analysis.steps[1].predicted, analysis.predicted_end);
@@ -300,6 +374,9 @@ mod tests {
     fn an_expired_deadline_stops_the_analysis() {
         let deadline = Deadline::default();
         deadline.cancel();
-        assert_eq!(analyze_with(&square_frames(2), Options { deadline, ..Options::default() }), Err(Error::Cancelled));
+        assert_eq!(
+            analyze_with(&square_frames(2), Options { deadline, ..Options::default() }),
+            Err(Error::Cancelled)
+        );
     }
 }

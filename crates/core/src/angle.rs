@@ -160,7 +160,11 @@ mod tests {
         // Endpoints on vertices are not inside.
         assert_eq!(vertices_in_arc(8, 2.0, 5.0), vec![3, 4]);
         assert_eq!(vertices_in_arc(8, 2.0, 2.0), Vec::<usize>::new());
-        assert!(!arc_contains(0.0, 1.0, 1.0) && arc_contains(0.0, 1.0, 0.5) && !arc_contains(0.0, 1.0, 2.0));
+        assert!(
+            !arc_contains(0.0, 1.0, 1.0)
+                && arc_contains(0.0, 1.0, 0.5)
+                && !arc_contains(0.0, 1.0, 2.0)
+        );
     }
 
     #[test]
@@ -171,12 +175,17 @@ mod tests {
         let fold = [at(1.2), at(5.6)];
         let inside: Vec<usize> = (0..n).filter(|&v| folds_vertex(n, fold, v, 0.0)).collect();
         assert_eq!(inside, vec![2, 3, 4, 5]);
-        assert!((0..n).all(|v| folds_vertex(n, fold, v, 0.0) == arc_contains(fold[0], fold[1], at(v as f64))));
+        assert!(
+            (0..n)
+                .all(|v| folds_vertex(n, fold, v, 0.0)
+                    == arc_contains(fold[0], fold[1], at(v as f64)))
+        );
         // Off the line: vertex 5 is 0.6 edges from the end, vertex 2 0.8 from the start.
         let off: Vec<usize> = (0..n).filter(|&v| folds_vertex(n, fold, v, ON_LINE_EDGES)).collect();
         assert_eq!(off, vec![2, 3, 4, 5]);
         let near_ends = [at(1.7), at(5.4)];
-        let off: Vec<usize> = (0..n).filter(|&v| folds_vertex(n, near_ends, v, ON_LINE_EDGES)).collect();
+        let off: Vec<usize> =
+            (0..n).filter(|&v| folds_vertex(n, near_ends, v, ON_LINE_EDGES)).collect();
         assert_eq!(off, vec![3, 4]);
         // Through zero, and a vertex exactly on a fold point is on the line.
         let through_zero = [at(6.0), at(2.0)];

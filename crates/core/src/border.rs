@@ -204,7 +204,11 @@ pub fn prepare(raw: Vec<Vec<[f64; 3]>>) -> Result<BorderFrames> {
         }
     }
     if !merged.is_empty() {
-        warnings.push(format!("merged {} duplicate consecutive vertices (input indices {:?})", merged.len(), merged));
+        warnings.push(format!(
+            "merged {} duplicate consecutive vertices (input indices {:?})",
+            merged.len(),
+            merged
+        ));
     }
     if kept.len() < MIN_VERTICES {
         return Err(Error::TooFewVertices { got: kept.len(), min: MIN_VERTICES });
@@ -223,7 +227,8 @@ pub fn prepare(raw: Vec<Vec<[f64; 3]>>) -> Result<BorderFrames> {
         // Walk the other way round, keeping vertex 0 first.
         kept[1..].reverse();
     }
-    let frames: Vec<Vec<Point>> = raw.iter().map(|frame| kept.iter().map(|&k| from_xyz(&frame[k])).collect()).collect();
+    let frames: Vec<Vec<Point>> =
+        raw.iter().map(|frame| kept.iter().map(|&k| from_xyz(&frame[k])).collect()).collect();
     for (f, frame) in frames.iter().enumerate().skip(1) {
         check_later_frame(&norm, frame).map_err(degenerate(f))?;
     }
@@ -276,22 +281,34 @@ mod tests {
     fn bad_inputs_name_the_problem() {
         assert_eq!(prepare(vec![]).unwrap_err(), Error::Empty { what: "the sample has no frame" });
         assert!(matches!(prepare(vec![vec![]]), Err(Error::Empty { .. })));
-        assert_eq!(prepare(vec![square()[..3].to_vec()]).unwrap_err(), Error::TooFewVertices { got: 3, min: 4 });
+        assert_eq!(
+            prepare(vec![square()[..3].to_vec()]).unwrap_err(),
+            Error::TooFewVertices { got: 3, min: 4 }
+        );
         let mut nan = square();
         nan[2][1] = f64::NAN;
-        assert_eq!(prepare(vec![square(), nan]).unwrap_err(), Error::NonFinite { frame: 1, vertex: 2 });
+        assert_eq!(
+            prepare(vec![square(), nan]).unwrap_err(),
+            Error::NonFinite { frame: 1, vertex: 2 }
+        );
         assert_eq!(
             prepare(vec![square(), square()[..3].to_vec()]).unwrap_err(),
             Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }
         );
         let line: Vec<[f64; 3]> = (0..6).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect();
-        assert_eq!(prepare(vec![line]).unwrap_err(), Error::Degenerate { frame: 0, reason: DegenerateReason::NoArea });
+        assert_eq!(
+            prepare(vec![line]).unwrap_err(),
+            Error::Degenerate { frame: 0, reason: DegenerateReason::NoArea }
+        );
         assert_eq!(
             prepare(vec![vec![[1.0, 1.0, 1.0]; 8]]).unwrap_err(),
             Error::Degenerate { frame: 0, reason: DegenerateReason::Coincident }
         );
         let huge = vec![vec![[0.0; 3]; MAX_VERTICES + 10]];
-        assert!(matches!(prepare(huge), Err(Error::TooLarge { what: "border vertices", limit: 5000, .. })));
+        assert!(matches!(
+            prepare(huge),
+            Err(Error::TooLarge { what: "border vertices", limit: 5000, .. })
+        ));
     }
 
     /// A start frame and `end` made from it point by point.
@@ -302,25 +319,44 @@ mod tests {
     #[test]
     fn degenerate_end_frames_are_refused_naming_the_frame() {
         let collapsed = with_end(|_| [0.3, 0.3, 0.0]);
-        assert_eq!(prepare(collapsed).unwrap_err(), Error::Degenerate { frame: 1, reason: DegenerateReason::Coincident });
+        assert_eq!(
+            prepare(collapsed).unwrap_err(),
+            Error::Degenerate { frame: 1, reason: DegenerateReason::Coincident }
+        );
         // Shrunk to a speck (1e-12 of the start's size): collapsed too, not a tiny cloth.
         let speck = with_end(|p| p.map(|c| c * 1e-12));
-        assert_eq!(prepare(speck).unwrap_err(), Error::Degenerate { frame: 1, reason: DegenerateReason::Coincident });
+        assert_eq!(
+            prepare(speck).unwrap_err(),
+            Error::Degenerate { frame: 1, reason: DegenerateReason::Coincident }
+        );
         // Scaled by 1e300: finite, but nothing the dGLI can be computed on.
         let far = with_end(|p| p.map(|c| c * 1e300));
         let err = prepare(far).unwrap_err();
-        assert!(matches!(err, Error::Degenerate { frame: 1, reason: DegenerateReason::FarFromStart { .. } }), "{err}");
+        assert!(
+            matches!(
+                err,
+                Error::Degenerate { frame: 1, reason: DegenerateReason::FarFromStart { .. } }
+            ),
+            "{err}"
+        );
         assert!(err.to_string().contains("too large to normalise"), "{err}");
         // A middle frame is checked as well as the end.
         let mut three = with_end(|p| p);
         three.insert(1, vec![[2.0, 2.0, 2.0]; 4]);
-        assert_eq!(prepare(three).unwrap_err(), Error::Degenerate { frame: 1, reason: DegenerateReason::Coincident });
+        assert_eq!(
+            prepare(three).unwrap_err(),
+            Error::Degenerate { frame: 1, reason: DegenerateReason::Coincident }
+        );
     }
 
     #[test]
     fn later_frames_may_be_moved_held_up_or_small() {
         // Translated far (1000 sizes away), held up vertically (no XY area), a tenth the size.
-        for end in [with_end(|p| [p[0] + 1000.0, p[1], p[2]]), with_end(|p| [p[0], 0.0, p[1]]), with_end(|p| p.map(|c| c * 0.1))] {
+        for end in [
+            with_end(|p| [p[0] + 1000.0, p[1], p[2]]),
+            with_end(|p| [p[0], 0.0, p[1]]),
+            with_end(|p| p.map(|c| c * 0.1)),
+        ] {
             assert_eq!(prepare(end).unwrap().frames.len(), 2);
         }
     }
@@ -329,7 +365,10 @@ mod tests {
     fn huge_coordinates_are_too_large_to_normalise_not_coincident() {
         let big: Vec<[f64; 3]> = square().iter().map(|p| p.map(|c| c * 1e300)).collect();
         let err = prepare(vec![big]).unwrap_err();
-        assert_eq!(err, Error::Degenerate { frame: 0, reason: DegenerateReason::TooLargeToNormalise });
+        assert_eq!(
+            err,
+            Error::Degenerate { frame: 0, reason: DegenerateReason::TooLargeToNormalise }
+        );
         assert!(err.to_string().contains("coordinates too large to normalise"), "{err}");
         // Near 1e300 but a unit apart: the centroid overflows, the spread does not.
         let offset: Vec<[f64; 3]> = square().iter().map(|p| [p[0] + 1.7e308, p[1], 0.0]).collect();
@@ -349,7 +388,8 @@ mod tests {
 
     #[test]
     fn normalisation_puts_farthest_vertex_on_unit_circle() {
-        let pts: Vec<Point> = square().iter().map(|p| Point::new(3.0 * p[0] + 5.0, 3.0 * p[1], p[2])).collect();
+        let pts: Vec<Point> =
+            square().iter().map(|p| Point::new(3.0 * p[0] + 5.0, 3.0 * p[1], p[2])).collect();
         let t = Normalisation::of(&pts).unwrap();
         let max = t.apply_all(&pts).iter().map(|p| p.coords.norm()).fold(0.0, f64::max);
         assert!((max - 1.0).abs() < 1e-12);

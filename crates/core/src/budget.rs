@@ -59,7 +59,11 @@ impl Budget {
 
     /// Refuse an interpolation of `n` vertices in `steps` steps over [`Budget::max_points`].
     pub fn interpolation(&self, n: usize, steps: usize) -> Result<()> {
-        within("vertices × steps of the interpolation", (n as u64).saturating_mul(steps as u64), self.max_points)
+        within(
+            "vertices × steps of the interpolation",
+            (n as u64).saturating_mul(steps as u64),
+            self.max_points,
+        )
     }
 }
 
@@ -111,7 +115,14 @@ mod tests {
     fn budgets_refuse_over_the_limit_and_name_it() {
         let b = Budget { max_cells: 100, max_points: 10 };
         assert!(b.analysis(1, 10).is_ok());
-        assert_eq!(b.analysis(2, 10), Err(Error::OverBudget { what: "analysed frames × N² (dGLI cells)", got: 200, limit: 100 }));
+        assert_eq!(
+            b.analysis(2, 10),
+            Err(Error::OverBudget {
+                what: "analysed frames × N² (dGLI cells)",
+                got: 200,
+                limit: 100
+            })
+        );
         assert!(b.interpolation(5, 2).is_ok());
         assert!(matches!(b.interpolation(5, 3), Err(Error::OverBudget { got: 15, limit: 10, .. })));
         // Huge counts saturate instead of wrapping round to a small product.

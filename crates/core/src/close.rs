@@ -105,12 +105,16 @@ pub fn corners(disk: &Disk, border: &[Point]) -> Corners {
     let reach = window_reach(border, WINDOW);
     let core = window_reach(border, CORE_WINDOW);
     let passes = |v: usize| threshold > 0.0 && rim(v) > threshold;
-    let candidate: Vec<bool> = (0..n).map(|v| passes(v) && turn(border, v, &reach).abs() >= MIN_TURN).collect();
+    let candidate: Vec<bool> =
+        (0..n).map(|v| passes(v) && turn(border, v, &reach).abs() >= MIN_TURN).collect();
     // The bend at v is concentrated when a vertex within CORE_WINDOW of it turns by
     // MIN_TURN at that scale too (the corner need not be the vertex of the largest rim cell).
     let concentrated = |v: usize| {
         let (back, forward) = core[v];
-        (0..=back).map(|k| (v + n - k % n) % n).chain((1..=forward).map(|k| (v + k) % n)).any(|u| turn(border, u, &core).abs() >= MIN_TURN)
+        (0..=back)
+            .map(|k| (v + n - k % n) % n)
+            .chain((1..=forward).map(|k| (v + k) % n))
+            .any(|u| turn(border, u, &core).abs() >= MIN_TURN)
     };
     let single: Vec<(usize, usize)> = vec![(1, 1); n];
     let vertex_turn: Vec<f64> = (0..n).map(|v| turn(border, v, &single).abs()).collect();
@@ -123,7 +127,9 @@ pub fn corners(disk: &Disk, border: &[Point]) -> Corners {
     let vertices: Vec<usize> = (0..n)
         .filter(|&v| {
             let (back, forward) = reach[v];
-            let largest = (1..=back).map(|k| (v + n - k % n) % n).all(|u| !candidate[u] || rim(u) < rim(v))
+            let largest = (1..=back)
+                .map(|k| (v + n - k % n) % n)
+                .all(|u| !candidate[u] || rim(u) < rim(v))
                 && (1..=forward).map(|k| (v + k) % n).all(|u| !candidate[u] || rim(u) <= rim(v));
             (candidate[v] && largest && concentrated(v)) || (passes(v) && isolated(v))
         })
@@ -152,14 +158,19 @@ fn window_reach(border: &[Point], window: f64) -> Vec<(usize, usize)> {
         }
         count.max(1)
     };
-    (0..n).map(|v| (walk(&mut (1..=n).map(|k| (v + n - k) % n)), walk(&mut (v..v + n).map(|k| k % n)))).collect()
+    (0..n)
+        .map(|v| {
+            (walk(&mut (1..=n).map(|k| (v + n - k) % n)), walk(&mut (v..v + n).map(|k| k % n)))
+        })
+        .collect()
 }
 
 /// The turn of the border at `v` between the chords from `reach[v]` edges back and forward.
 fn turn(border: &[Point], v: usize, reach: &[(usize, usize)]) -> f64 {
     let n = border.len();
     let (back, forward) = reach[v];
-    let (a, b, c) = (border[(v + n - back % n) % n].xy(), border[v].xy(), border[(v + forward) % n].xy());
+    let (a, b, c) =
+        (border[(v + n - back % n) % n].xy(), border[v].xy(), border[(v + forward) % n].xy());
     let (u, w) = (b - a, c - b);
     wrap_pi(w.y.atan2(w.x) - u.y.atan2(u.x))
 }
@@ -192,7 +203,11 @@ mod tests {
     }
 
     fn found(border: &[Point]) -> Vec<[f64; 2]> {
-        corners(&Disk::of_border(border), border).vertices.iter().map(|&v| [border[v].x, border[v].y]).collect()
+        corners(&Disk::of_border(border), border)
+            .vertices
+            .iter()
+            .map(|&v| [border[v].x, border[v].y])
+            .collect()
     }
 
     fn near(a: [f64; 2], b: [f64; 2], tolerance: f64) -> bool {
@@ -238,21 +253,41 @@ mod tests {
             let t = -std::f64::consts::PI * k as f64 / neck_edges as f64;
             Point::new(neck * t.cos(), 1.0 + neck * t.sin(), 0.0)
         });
-        let border = path(&[[-1.0, -1.5], [1.0, -1.5], [1.0, 0.3], [2.0, 0.3], [2.0, 1.0], [neck, 1.0]], step)
-            .into_iter()
-            .chain(neckline)
-            .chain(path(&[[-neck, 1.0], [-2.0, 1.0], [-2.0, 0.3], [-1.0, 0.3], [-1.0, -1.5]], step))
-            .collect();
-        let truth = vec![[-1.0, -1.5], [1.0, -1.5], [1.0, 0.3], [2.0, 0.3], [2.0, 1.0], [neck, 1.0], [-neck, 1.0], [-2.0, 1.0], [-2.0, 0.3], [-1.0, 0.3]];
+        let border = path(
+            &[[-1.0, -1.5], [1.0, -1.5], [1.0, 0.3], [2.0, 0.3], [2.0, 1.0], [neck, 1.0]],
+            step,
+        )
+        .into_iter()
+        .chain(neckline)
+        .chain(path(&[[-neck, 1.0], [-2.0, 1.0], [-2.0, 0.3], [-1.0, 0.3], [-1.0, -1.5]], step))
+        .collect();
+        let truth = vec![
+            [-1.0, -1.5],
+            [1.0, -1.5],
+            [1.0, 0.3],
+            [2.0, 0.3],
+            [2.0, 1.0],
+            [neck, 1.0],
+            [-neck, 1.0],
+            [-2.0, 1.0],
+            [-2.0, 0.3],
+            [-1.0, 0.3],
+        ];
         (border, truth)
     }
 
+    type Points = Vec<[f64; 2]>;
+
     /// The corners found on a T-shirt, and those of them that are not its own.
-    fn shirt_corners(neck: f64) -> (Vec<[f64; 2]>, Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    fn shirt_corners(neck: f64) -> (Points, Points, Points) {
         let step = 0.05;
         let (border, truth) = tshirt(neck, step);
         let corners = found(&border);
-        let spurious = corners.iter().copied().filter(|&c| !truth.iter().any(|&t| near(c, t, 1.5 * step))).collect();
+        let spurious = corners
+            .iter()
+            .copied()
+            .filter(|&c| !truth.iter().any(|&t| near(c, t, 1.5 * step)))
+            .collect();
         (corners, truth, spurious)
     }
 
@@ -271,8 +306,15 @@ mod tests {
         // about half of it at CORE_WINDOW, where every corner of the shirt keeps all of its own.
         let (border, _) = tshirt(0.4, 0.05);
         let reach = window_reach(&border, WINDOW);
-        let widest = (0..border.len()).filter(|&v| border[v].x.abs() < 0.35 && (0.55..0.95).contains(&border[v].y)).map(|v| turn(&border, v, &reach).abs()).fold(0.0, f64::max);
-        assert!(widest >= MIN_TURN, "the neckline must turn past MIN_TURN at WINDOW for this test to mean anything: {}", widest.to_degrees());
+        let widest = (0..border.len())
+            .filter(|&v| border[v].x.abs() < 0.35 && (0.55..0.95).contains(&border[v].y))
+            .map(|v| turn(&border, v, &reach).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            widest >= MIN_TURN,
+            "the neckline must turn past MIN_TURN at WINDOW for this test to mean anything: {}",
+            widest.to_degrees()
+        );
         let (corners, truth, spurious) = shirt_corners(0.4);
         assert!(truth.iter().all(|&t| corners.iter().any(|&c| near(c, t, 0.075))), "{corners:?}");
         assert!(spurious.is_empty(), "corners in the neckline: {spurious:?}");

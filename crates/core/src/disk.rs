@@ -119,7 +119,10 @@ impl Disk {
     /// Elementwise map of two disks of the same size.
     fn zip_with(&self, other: &Disk, f: impl Fn(f64, f64) -> f64) -> Disk {
         assert_eq!(self.n, other.n, "disks of different sizes");
-        Disk { n: self.n, values: self.values.iter().zip(&other.values).map(|(&a, &b)| f(a, b)).collect() }
+        Disk {
+            n: self.n,
+            values: self.values.iter().zip(&other.values).map(|(&a, &b)| f(a, b)).collect(),
+        }
     }
 
     /// The abs diff disk | |end| − |start| | (shows the fold curve). `self` is the start.
@@ -172,7 +175,11 @@ fn pair_values(points: &[Point], deadline: &Deadline) -> Vec<f64> {
 /// assert_eq!(d.n(), 4);
 /// assert!(disk::of_state(vec![[0.0; 3]; 4], None, &Deadline::default()).is_err());
 /// ```
-pub fn of_state(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, deadline: &Deadline) -> Result<Disk> {
+pub fn of_state(
+    border: Vec<[f64; 3]>,
+    reference: Option<Vec<[f64; 3]>>,
+    deadline: &Deadline,
+) -> Result<Disk> {
     let frames = match reference {
         Some(reference) => vec![reference, border],
         None => vec![border],
@@ -237,7 +244,9 @@ mod tests {
 
     #[test]
     fn a_cancelled_disk_stops_with_an_error() {
-        let ring: Vec<Point> = (0..40).map(|k| Point::new((k as f64 * 0.157).cos(), (k as f64 * 0.157).sin(), 0.0)).collect();
+        let ring: Vec<Point> = (0..40)
+            .map(|k| Point::new((k as f64 * 0.157).cos(), (k as f64 * 0.157).sin(), 0.0))
+            .collect();
         let full = Disk::of_border_until(&ring, &Deadline::default()).unwrap();
         assert_eq!(full, Disk::of_border(&ring));
         let stopped = Deadline::default();
@@ -247,7 +256,9 @@ mod tests {
 
     #[test]
     fn a_state_is_normalised_by_its_reference() {
-        let square = |s: f64, dx: f64| vec![[dx, 0.0, 0.0], [dx + s, 0.0, 0.0], [dx + s, s, 0.0], [dx, s, 0.0]];
+        let square = |s: f64, dx: f64| {
+            vec![[dx, 0.0, 0.0], [dx + s, 0.0, 0.0], [dx + s, s, 0.0], [dx, s, 0.0]]
+        };
         let never = Deadline::default();
         // Position and size of the reference do not matter when the state is the reference.
         let a = of_state(square(1.0, 0.0), None, &never).unwrap();
@@ -257,7 +268,10 @@ mod tests {
         // A small state against a large reference is a different disk: dGLI scales with 1/size.
         let small = of_state(square(1.0, 0.0), Some(square(3.0, 0.0)), &never).unwrap();
         assert_ne!(small, a);
-        assert!(matches!(of_state(square(1.0, 0.0)[..3].to_vec(), None, &never), Err(Error::TooFewVertices { .. })));
+        assert!(matches!(
+            of_state(square(1.0, 0.0)[..3].to_vec(), None, &never),
+            Err(Error::TooFewVertices { .. })
+        ));
     }
 
     #[test]

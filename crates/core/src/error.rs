@@ -142,8 +142,12 @@ impl fmt::Display for DegenerateReason {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             DegenerateReason::Coincident => f.write_str("all vertices coincide"),
-            DegenerateReason::NoArea => f.write_str("no area seen from +z (collinear or vertical border)"),
-            DegenerateReason::TooLargeToNormalise => f.write_str("coordinates too large to normalise"),
+            DegenerateReason::NoArea => {
+                f.write_str("no area seen from +z (collinear or vertical border)")
+            }
+            DegenerateReason::TooLargeToNormalise => {
+                f.write_str("coordinates too large to normalise")
+            }
             DegenerateReason::FarFromStart { limit } => {
                 write!(f, "vertices lie more than {limit:e} start-frame radii from the start frame's centre (coordinates too large to normalise)")
             }

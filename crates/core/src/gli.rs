@@ -73,7 +73,10 @@ pub fn gli(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
     let n2 = unit(ad.cross(&bd));
     let n3 = unit(bd.cross(&bc));
     let n4 = unit(bc.cross(&ac));
-    s * (asin_clamped(n1.dot(&n2)) + asin_clamped(n2.dot(&n3)) + asin_clamped(n3.dot(&n4)) + asin_clamped(n4.dot(&n1)))
+    s * (asin_clamped(n1.dot(&n2))
+        + asin_clamped(n2.dot(&n3))
+        + asin_clamped(n3.dot(&n4))
+        + asin_clamped(n4.dot(&n1)))
 }
 
 /// dGLI of edges AB and CD: the finite-difference derivative of [`gli`] as B and D are
@@ -94,7 +97,9 @@ pub fn dgli(a: &Point, b: &Point, c: &Point, d: &Point) -> f64 {
 /// The arithmetic of [`dgli_fast`], on one pair (`f64`) or on four pairs at once (`f64x4`):
 /// one kernel, so a disk computed four cells at a time equals one computed cell by cell, bit
 /// for bit.
-trait Lane: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> {
+trait Lane:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
     fn splat(x: f64) -> Self;
     fn sqrt(self) -> Self;
     /// `self` where it is positive, else 1 (the length of a zero vector, see [`Ray`]).
@@ -184,7 +189,11 @@ impl<L: Lane> V3<L> {
     }
     #[inline(always)]
     fn cross(self, o: Self) -> Self {
-        V3 { x: self.y * o.z - self.z * o.y, y: self.z * o.x - self.x * o.z, z: self.x * o.y - self.y * o.x }
+        V3 {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
     }
     /// The point lifted by ε.
     #[inline(always)]
@@ -201,7 +210,11 @@ impl From<&Point> for V3<f64> {
 
 impl From<[&Point; 4]> for V3<f64x4> {
     fn from(p: [&Point; 4]) -> Self {
-        V3 { x: f64x4::new(p.map(|p| p.x)), y: f64x4::new(p.map(|p| p.y)), z: f64x4::new(p.map(|p| p.z)) }
+        V3 {
+            x: f64x4::new(p.map(|p| p.x)),
+            y: f64x4::new(p.map(|p| p.y)),
+            z: f64x4::new(p.map(|p| p.z)),
+        }
     }
 }
 
@@ -225,7 +238,10 @@ impl<L: Lane> Ray<L> {
 /// (the unit-vector form scaled by |a||b||c| > 0, which leaves the argument: no division).
 #[inline(always)]
 fn triangle<L: Lane>(a: &Ray<L>, b: &Ray<L>, c: &Ray<L>) -> (L, L) {
-    (a.len * b.len * c.len + a.v.dot(b.v) * c.len + b.v.dot(c.v) * a.len + c.v.dot(a.v) * b.len, a.v.dot(b.v.cross(c.v)))
+    (
+        a.len * b.len * c.len + a.v.dot(b.v) * c.len + b.v.dot(c.v) * a.len + c.v.dot(a.v) * b.len,
+        a.v.dot(b.v.cross(c.v)),
+    )
 }
 
 /// Complex product: arguments add.
@@ -246,7 +262,8 @@ fn quadrilateral<L: Lane>(u1: &Ray<L>, u2: &Ray<L>, u3: &Ray<L>, u4: &Ray<L>) ->
 fn atan_series<L: Lane>(t: L) -> L {
     let t2 = t * t;
     // atan t = t·Σ (−t²)^k / (2k + 1), Horner from k = 7.
-    const C: [f64; 8] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0, -1.0 / 15.0];
+    const C: [f64; 8] =
+        [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0, -1.0 / 15.0];
     t * C.iter().rev().fold(L::splat(0.0), |acc, &c| acc * t2 + L::splat(c))
 }
 
@@ -339,11 +356,18 @@ mod tests {
         let mut fallback = 0;
         for k in 0..4000 {
             let spread = [1.0, 1e-3, 1e-5][k % 3];
-            let points: Vec<Point> = (0..16).map(|_| Point::new(spread * next(), spread * next(), 0.5 * spread * next())).collect();
-            let pairs: [[&Point; 4]; 4] = std::array::from_fn(|l| std::array::from_fn(|c| &points[4 * l + c]));
+            let points: Vec<Point> = (0..16)
+                .map(|_| Point::new(spread * next(), spread * next(), 0.5 * spread * next()))
+                .collect();
+            let pairs: [[&Point; 4]; 4] =
+                std::array::from_fn(|l| std::array::from_fn(|c| &points[4 * l + c]));
             let four = dgli_fast_x4(pairs);
             for (l, [a, b, c, d]) in pairs.iter().enumerate() {
-                assert_eq!(four[l].to_bits(), dgli_fast(a, b, c, d).to_bits(), "pair {k}, lane {l}");
+                assert_eq!(
+                    four[l].to_bits(),
+                    dgli_fast(a, b, c, d).to_bits(),
+                    "pair {k}, lane {l}"
+                );
             }
             // An angle beyond atan(1/8) is outside the series.
             fallback += usize::from(four.iter().any(|v| v.abs() * EPSILON / 2.0 > 0.125f64.atan()));
@@ -380,7 +404,10 @@ mod tests {
             let y = k as f64 * 1.3e-4;
             for x in [1e-9, 0.5, 1.0, 7.0] {
                 let (fast, exact) = (atan2_small(y * x, x), (y * x).atan2(x));
-                assert!((fast - exact).abs() <= 1e-15 * exact.abs().max(1e-300), "{y} {x}: {fast} vs {exact}");
+                assert!(
+                    (fast - exact).abs() <= 1e-15 * exact.abs().max(1e-300),
+                    "{y} {x}: {fast} vs {exact}"
+                );
             }
         }
         assert_eq!(atan2_small(1.0, -1.0), 1.0f64.atan2(-1.0));

@@ -67,14 +67,25 @@ pub enum Motion {
 
 impl Motion {
     /// The motion a request names: `from` and `to`, or `arcs` with an optional `line`.
-    pub fn of(from: Option<[f64; 2]>, to: Option<[f64; 2]>, arcs: Option<Vec<[f64; 2]>>, line: Option<Line>) -> Result<Motion> {
+    pub fn of(
+        from: Option<[f64; 2]>,
+        to: Option<[f64; 2]>,
+        arcs: Option<Vec<[f64; 2]>>,
+        line: Option<Line>,
+    ) -> Result<Motion> {
         let bad = |what: &str| Err(Error::InvalidArgument(what.into()));
         match (from, to, arcs) {
             (Some(from), Some(to), None) if line.is_none() => Ok(Motion::Between { from, to }),
-            (Some(_), Some(_), None) => bad("a line turns arcs over: give `arcs` with it, not `from` and `to`"),
+            (Some(_), Some(_), None) => {
+                bad("a line turns arcs over: give `arcs` with it, not `from` and `to`")
+            }
             (None, None, Some(arcs)) => Ok(Motion::Turn { arcs, line }),
-            (None, None, None) => bad("give the folds `from` and `to`, or the `arcs` of a fold to turn over"),
-            (Some(_), None, None) | (None, Some(_), None) => bad("`from` and `to` go together: give both"),
+            (None, None, None) => {
+                bad("give the folds `from` and `to`, or the `arcs` of a fold to turn over")
+            }
+            (Some(_), None, None) | (None, Some(_), None) => {
+                bad("`from` and `to` go together: give both")
+            }
             (_, _, Some(_)) => bad("give either `from` and `to`, or `arcs`, not both"),
         }
     }
@@ -105,7 +116,13 @@ pub fn displacements(from: [f64; 2], to: [f64; 2]) -> [f64; 2] {
     let span_change = wrap_tau(to[1] - to[0]) - wrap_tau(from[1] - from[0]);
     let d1 = wrap_pi(to[0] - from[0]);
     let cost = |d: f64| d.abs() + (d + span_change).abs();
-    let best = [d1, d1 - TAU, d1 + TAU].into_iter().fold(d1, |best, d| if cost(d) < cost(best) - 1e-12 { d } else { best });
+    let best = [d1, d1 - TAU, d1 + TAU].into_iter().fold(d1, |best, d| {
+        if cost(d) < cost(best) - 1e-12 {
+            d
+        } else {
+            best
+        }
+    });
     [best, best + span_change]
 }
 
@@ -141,23 +158,36 @@ pub fn turn_about(p: &Point, line: &Line, turn: f64) -> Point {
 fn turn_line(border: &[Point], arcs: &[[f64; 2]], line: Option<Line>) -> Result<Line> {
     let Some(line) = line else {
         let span = [arcs[0][0], arcs[arcs.len() - 1][1]];
-        return fold_line(border, span, None)
-            .ok_or_else(|| Error::InvalidArgument("the fold's two points lie on top of each other: give the `line` to turn about".into()));
+        return fold_line(border, span, None).ok_or_else(|| {
+            Error::InvalidArgument(
+                "the fold's two points lie on top of each other: give the `line` to turn about"
+                    .into(),
+            )
+        });
     };
     if let Some(bad) = line.point.iter().chain(&line.direction).find(|c| !c.is_finite()) {
-        return Err(Error::InvalidArgument(format!("the line's point and direction must be finite numbers, got {bad}")));
+        return Err(Error::InvalidArgument(format!(
+            "the line's point and direction must be finite numbers, got {bad}"
+        )));
     }
     let length = line.direction[0].hypot(line.direction[1]);
     if length == 0.0 || !length.is_finite() {
         return Err(Error::InvalidArgument("the line's direction has no length".into()));
     }
-    Ok(Line { point: line.point, direction: [line.direction[0] / length, line.direction[1] / length] })
+    Ok(Line {
+        point: line.point,
+        direction: [line.direction[0] / length, line.direction[1] / length],
+    })
 }
 
 /// The checks every motion makes of its border and step count.
 fn check(border: &[Point], steps: usize) -> Result<()> {
     if !STEPS.contains(&steps) {
-        return Err(Error::InvalidArgument(format!("steps must be in {}..={}, got {steps}", STEPS.start(), STEPS.end())));
+        return Err(Error::InvalidArgument(format!(
+            "steps must be in {}..={}, got {steps}",
+            STEPS.start(),
+            STEPS.end()
+        )));
     }
     if border.len() < MIN_VERTICES {
         return Err(Error::TooFewVertices { got: border.len(), min: MIN_VERTICES });
@@ -174,7 +204,9 @@ fn check(border: &[Point], steps: usize) -> Result<()> {
 /// Angles must be finite; `what` names them in the error.
 fn finite_angles<'a>(angles: impl IntoIterator<Item = &'a f64>, what: &str) -> Result<()> {
     match angles.into_iter().find(|a| !a.is_finite()) {
-        Some(bad) => Err(Error::InvalidArgument(format!("{what} must be finite numbers, got {bad}"))),
+        Some(bad) => {
+            Err(Error::InvalidArgument(format!("{what} must be finite numbers, got {bad}")))
+        }
         None => Ok(()),
     }
 }
@@ -182,29 +214,51 @@ fn finite_angles<'a>(angles: impl IntoIterator<Item = &'a f64>, what: &str) -> R
 /// The border folded along each fold of [`fold_path`]; `border` is taken as given (an
 /// anticlockwise border, e.g. an analysis's start border), checked for size and finite
 /// coordinates only: see [`interpolate_border`] for a user's input.
-pub fn interpolate(border: &[Point], from: [f64; 2], to: [f64; 2], steps: usize) -> Result<Interpolation> {
+pub fn interpolate(
+    border: &[Point],
+    from: [f64; 2],
+    to: [f64; 2],
+    steps: usize,
+) -> Result<Interpolation> {
     check(border, steps)?;
     finite_angles(from.iter().chain(&to), "fold angles")?;
     let folds = fold_path(from, to, steps);
-    let borders = folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
-    Ok(Interpolation { folds, turns: None, line: None, borders, border_indices: (0..border.len()).collect() })
+    let borders =
+        folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
+    Ok(Interpolation {
+        folds,
+        turns: None,
+        line: None,
+        borders,
+        border_indices: (0..border.len()).collect(),
+    })
 }
 
 /// `steps` states of the fold that turns `arcs` of `border` over about `line` (see the
 /// module doc): turn t/(steps−1) each, the first `border` itself and the last
 /// [`apply_arcs`] exactly. `border` is taken as [`interpolate`] takes it.
-pub fn turn_arcs(border: &[Point], arcs: &[[f64; 2]], line: Option<Line>, steps: usize) -> Result<Interpolation> {
+pub fn turn_arcs(
+    border: &[Point],
+    arcs: &[[f64; 2]],
+    line: Option<Line>,
+    steps: usize,
+) -> Result<Interpolation> {
     check(border, steps)?;
     if arcs.is_empty() {
         return Err(Error::InvalidArgument("a fold to turn over needs at least one arc".into()));
     }
     // An arc holds at least one vertex strictly inside: more arcs than vertices is no fold.
     if arcs.len() > border.len() {
-        return Err(Error::InvalidArgument(format!("{} arcs on a border of {} vertices", arcs.len(), border.len())));
+        return Err(Error::InvalidArgument(format!(
+            "{} arcs on a border of {} vertices",
+            arcs.len(),
+            border.len()
+        )));
     }
     finite_angles(arcs.iter().flatten(), "arc angles")?;
     let line = turn_line(border, arcs, line)?;
-    let mut moved: Vec<usize> = arcs.iter().flat_map(|&arc| folded_vertices(border.len(), arc)).collect();
+    let mut moved: Vec<usize> =
+        arcs.iter().flat_map(|&arc| folded_vertices(border.len(), arc)).collect();
     moved.sort_unstable();
     moved.dedup();
     let last = (steps - 1) as f64;
@@ -226,11 +280,21 @@ pub fn turn_arcs(border: &[Point], arcs: &[[f64; 2]], line: Option<Line>, steps:
         })
         .collect();
     let span = [wrap_tau(arcs[0][0]), wrap_tau(arcs[arcs.len() - 1][1])];
-    Ok(Interpolation { folds: vec![span; steps], turns: Some(turns), line: Some(line), borders, border_indices: (0..border.len()).collect() })
+    Ok(Interpolation {
+        folds: vec![span; steps],
+        turns: Some(turns),
+        line: Some(line),
+        borders,
+        border_indices: (0..border.len()).collect(),
+    })
 }
 
 /// [`interpolate`] or [`turn_arcs`], as `motion` says, on `border` as given.
-pub fn interpolate_motion(border: &[Point], motion: &Motion, steps: usize) -> Result<Interpolation> {
+pub fn interpolate_motion(
+    border: &[Point],
+    motion: &Motion,
+    steps: usize,
+) -> Result<Interpolation> {
     match motion {
         Motion::Between { from, to } => interpolate(border, *from, *to, steps),
         Motion::Turn { arcs, line } => turn_arcs(border, arcs, *line, steps),
@@ -257,7 +321,12 @@ pub fn interpolate_motion(border: &[Point], motion: &Motion, steps: usize) -> Re
 /// let motion = interpolate_border(square, None, &turn, 3).unwrap();
 /// assert!((motion.borders[2][1][0] - 0.0).abs() < 1e-12 && (motion.borders[2][1][1] - 1.0).abs() < 1e-12);
 /// ```
-pub fn interpolate_border(border: Vec<[f64; 3]>, reference: Option<Vec<[f64; 3]>>, motion: &Motion, steps: usize) -> Result<Interpolation> {
+pub fn interpolate_border(
+    border: Vec<[f64; 3]>,
+    reference: Option<Vec<[f64; 3]>>,
+    motion: &Motion,
+    steps: usize,
+) -> Result<Interpolation> {
     let frames = match reference {
         Some(reference) => vec![reference, border],
         None => vec![border],
@@ -293,7 +362,15 @@ mod tests {
     /// vertex every 0.1: the line y = 0 crosses the border 4 times, once per leg side. The
     /// two arcs below it (border parameters) are the hems.
     fn two_legs() -> (Vec<Point>, Vec<[f64; 2]>) {
-        let corners: [(f64, f64); 7] = [(-1.0, -1.0), (-0.4, -1.0), (0.0, 0.5), (0.4, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let corners: [(f64, f64); 7] = [
+            (-1.0, -1.0),
+            (-0.4, -1.0),
+            (0.0, 0.5),
+            (0.4, -1.0),
+            (1.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+        ];
         let mut points = Vec::new();
         for (k, a) in corners.iter().enumerate() {
             let b = corners[(k + 1) % corners.len()];
@@ -315,7 +392,10 @@ mod tests {
         let angle = |s: f64| s * TAU / n as f64;
         // Below the line: from the last crossing (the right outer side) round through
         // vertex 0 to the first, and between the second and the third (the inner sides).
-        let arcs = vec![[angle(crossings[3]), angle(crossings[0])], [angle(crossings[1]), angle(crossings[2])]];
+        let arcs = vec![
+            [angle(crossings[3]), angle(crossings[0])],
+            [angle(crossings[1]), angle(crossings[2])],
+        ];
         (points, arcs)
     }
 
@@ -329,15 +409,24 @@ mod tests {
         assert!(below.iter().filter(|&&b| b).count() > 10);
         // The ends exactly: the border as given, and the analysis's reflection.
         assert_eq!(motion.borders[0], legs.iter().map(to_xyz).collect::<Vec<_>>());
-        assert_eq!(motion.borders[steps - 1], apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>());
-        assert_eq!(motion.turns.as_deref(), Some(&[0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0][..]));
+        assert_eq!(
+            motion.borders[steps - 1],
+            apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>()
+        );
+        assert_eq!(
+            motion.turns.as_deref(),
+            Some(&[0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0][..])
+        );
         assert_eq!(motion.folds, vec![[arcs[0][0], arcs[1][1]]; steps]);
         for (t, state) in motion.borders.iter().enumerate() {
             let c = (PI * t as f64 / 8.0).cos();
             for (v, (p, q)) in legs.iter().zip(state).enumerate() {
                 if below[v] {
                     // Both hems, the same angle: x and z kept, y scaled by cos(πτ).
-                    assert!((q[0] - p.x).abs() < 1e-12 && (q[1] - c * p.y).abs() < 1e-12 && q[2] == p.z, "step {t}, vertex {v}: {q:?}");
+                    assert!(
+                        (q[0] - p.x).abs() < 1e-12 && (q[1] - c * p.y).abs() < 1e-12 && q[2] == p.z,
+                        "step {t}, vertex {v}: {q:?}"
+                    );
                 } else {
                     // The crotch between the hems and everything above the line stay.
                     assert_eq!(*q, to_xyz(p), "step {t}, vertex {v}");
@@ -352,9 +441,14 @@ mod tests {
         let motion = turn_arcs(&legs, &arcs, None, 3).unwrap();
         let line = fold_line(&legs, [arcs[0][0], arcs[1][1]], None).unwrap();
         assert_eq!(motion.line, Some(line));
-        assert_eq!(motion.borders[2], apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>());
+        assert_eq!(
+            motion.borders[2],
+            apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>()
+        );
         // A given line is made unit.
-        let long = turn_arcs(&legs, &arcs, Some(Line { point: [0.0, 0.0], direction: [3.0, 0.0] }), 3).unwrap();
+        let long =
+            turn_arcs(&legs, &arcs, Some(Line { point: [0.0, 0.0], direction: [3.0, 0.0] }), 3)
+                .unwrap();
         assert_eq!(long.line.map(|l| l.direction), Some([1.0, 0.0]));
     }
 
@@ -362,26 +456,44 @@ mod tests {
     fn bad_turns_are_named() {
         let (legs, arcs) = two_legs();
         let flat = Line { point: [0.0, 0.0], direction: [0.0, 0.0] };
-        assert!(turn_arcs(&legs, &arcs, Some(flat), 3).unwrap_err().to_string().contains("no length"));
+        assert!(turn_arcs(&legs, &arcs, Some(flat), 3)
+            .unwrap_err()
+            .to_string()
+            .contains("no length"));
         let nan = Line { point: [f64::NAN, 0.0], direction: [1.0, 0.0] };
         assert!(turn_arcs(&legs, &arcs, Some(nan), 3).unwrap_err().to_string().contains("finite"));
-        assert!(turn_arcs(&legs, &[], None, 3).unwrap_err().to_string().contains("at least one arc"));
-        assert!(turn_arcs(&legs, &[[0.0, f64::INFINITY]], None, 3).unwrap_err().to_string().contains("arc angles"));
-        assert!(turn_arcs(&legs, &vec![[0.0, 1.0]; legs.len() + 1], None, 3).unwrap_err().to_string().contains("arcs on a border"));
+        assert!(turn_arcs(&legs, &[], None, 3)
+            .unwrap_err()
+            .to_string()
+            .contains("at least one arc"));
+        assert!(turn_arcs(&legs, &[[0.0, f64::INFINITY]], None, 3)
+            .unwrap_err()
+            .to_string()
+            .contains("arc angles"));
+        assert!(turn_arcs(&legs, &vec![[0.0, 1.0]; legs.len() + 1], None, 3)
+            .unwrap_err()
+            .to_string()
+            .contains("arcs on a border"));
         assert!(turn_arcs(&legs, &arcs, None, 1).unwrap_err().to_string().contains("steps"));
         // Two fold points on top of each other give no line: the error asks for one.
         let mut stacked = legs.clone();
         let n = legs.len();
         stacked[n / 2] = stacked[0];
         let q = TAU / n as f64;
-        assert!(turn_arcs(&stacked, &[[0.0, (n / 2) as f64 * q]], None, 3).unwrap_err().to_string().contains("`line`"));
+        assert!(turn_arcs(&stacked, &[[0.0, (n / 2) as f64 * q]], None, 3)
+            .unwrap_err()
+            .to_string()
+            .contains("`line`"));
     }
 
     #[test]
     fn a_motion_is_one_of_the_two_forms() {
         let line = Some(Line { point: [0.0, 0.0], direction: [1.0, 0.0] });
         assert_eq!(Motion::of(Some([0.0, 1.0]), Some([1.0, 2.0]), None, None), Ok(between()));
-        assert_eq!(Motion::of(None, None, Some(vec![[0.0, 1.0]]), line), Ok(Motion::Turn { arcs: vec![[0.0, 1.0]], line }));
+        assert_eq!(
+            Motion::of(None, None, Some(vec![[0.0, 1.0]]), line),
+            Ok(Motion::Turn { arcs: vec![[0.0, 1.0]], line })
+        );
         for (from, to, arcs, line, says) in [
             (None, None, None, None, "give the folds"),
             (Some([0.0, 1.0]), None, None, None, "go together"),
@@ -390,7 +502,10 @@ mod tests {
             (Some([0.0, 1.0]), None, Some(vec![[0.0, 1.0]]), None, "not both"),
             (Some([0.0, 1.0]), Some([1.0, 2.0]), None, line, "give `arcs`"),
         ] {
-            assert!(Motion::of(from, to, arcs, line).unwrap_err().to_string().contains(says), "{says}");
+            assert!(
+                Motion::of(from, to, arcs, line).unwrap_err().to_string().contains(says),
+                "{says}"
+            );
         }
     }
 
@@ -427,7 +542,10 @@ mod tests {
             let (s0, s1) = (spans[0], spans[100]);
             for w in spans.windows(2) {
                 // The span moves in the direction of s1 − s0, by equal steps: no jump of ~2π.
-                assert!(((w[1] - w[0]) - (s1 - s0) / 100.0).abs() < 1e-9, "{from:?} → {to:?}: {w:?}");
+                assert!(
+                    ((w[1] - w[0]) - (s1 - s0) / 100.0).abs() < 1e-9,
+                    "{from:?} → {to:?}: {w:?}"
+                );
             }
         }
     }
@@ -469,19 +587,35 @@ mod tests {
         let motion = interpolate(&sq, [PI / 4.0 + 0.01, 1.25 * PI + 0.01], [0.0, PI], 61).unwrap();
         assert_eq!(motion.borders.len(), 61);
         for w in motion.borders.windows(2) {
-            let jump = w[0].iter().zip(&w[1]).map(|(a, b)| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()).fold(0.0, f64::max);
+            let jump = w[0]
+                .iter()
+                .zip(&w[1])
+                .map(|(a, b)| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt())
+                .fold(0.0, f64::max);
             assert!(jump < 0.25, "a vertex jumped by {jump}");
         }
         let last = apply_fold(&sq, [0.0, PI]);
-        assert!(motion.borders[60].iter().zip(&last).all(|(a, b)| (a[0] - b.x).abs() < 1e-12 && (a[1] - b.y).abs() < 1e-12));
+        assert!(motion.borders[60]
+            .iter()
+            .zip(&last)
+            .all(|(a, b)| (a[0] - b.x).abs() < 1e-12 && (a[1] - b.y).abs() < 1e-12));
     }
 
     #[test]
     fn bad_arguments_are_named() {
         let sq = square(2);
-        assert!(interpolate(&sq, [0.0, 1.0], [1.0, 2.0], 1).unwrap_err().to_string().contains("steps"));
-        assert!(interpolate(&sq, [f64::NAN, 1.0], [1.0, 2.0], 5).unwrap_err().to_string().contains("finite"));
-        assert!(matches!(interpolate(&sq[..3], [0.0, 1.0], [1.0, 2.0], 5), Err(Error::TooFewVertices { .. })));
+        assert!(interpolate(&sq, [0.0, 1.0], [1.0, 2.0], 1)
+            .unwrap_err()
+            .to_string()
+            .contains("steps"));
+        assert!(interpolate(&sq, [f64::NAN, 1.0], [1.0, 2.0], 5)
+            .unwrap_err()
+            .to_string()
+            .contains("finite"));
+        assert!(matches!(
+            interpolate(&sq[..3], [0.0, 1.0], [1.0, 2.0], 5),
+            Err(Error::TooFewVertices { .. })
+        ));
     }
 
     #[test]
@@ -489,7 +623,11 @@ mod tests {
         let raw: Vec<[f64; 3]> = square(2).iter().map(to_xyz).collect();
         let ok = interpolate_border(raw.clone(), None, &between(), 5).unwrap();
         assert_eq!(ok.border_indices, (0..8).collect::<Vec<_>>());
-        for bad in [raw[..3].to_vec(), vec![[1.0, 2.0, 0.0]; 8], (0..8).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect()] {
+        for bad in [
+            raw[..3].to_vec(),
+            vec![[1.0, 2.0, 0.0]; 8],
+            (0..8).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect(),
+        ] {
             let ours = interpolate_border(bad.clone(), None, &between(), 5).unwrap_err();
             assert_eq!(ours, prepare(vec![bad]).unwrap_err(), "the same refusal as the analysis");
         }
@@ -501,12 +639,19 @@ mod tests {
         assert_eq!(reversed.borders, ok.borders);
         // A square folded in half has no area of its own: against the flat one, it folds on,
         // in its own vertex order; against a reference of another vertex count, it is refused.
-        let half: Vec<[f64; 3]> = apply_fold(&square(2), [PI / 4.0, 1.25 * PI]).iter().map(to_xyz).collect();
+        let half: Vec<[f64; 3]> =
+            apply_fold(&square(2), [PI / 4.0, 1.25 * PI]).iter().map(to_xyz).collect();
         assert!(interpolate_border(half.clone(), None, &between(), 5).is_err());
         let on = interpolate_border(half.clone(), Some(raw.clone()), &between(), 5).unwrap();
         assert_eq!(on.border_indices, (0..8).collect::<Vec<_>>());
         let half_points: Vec<Point> = half.iter().map(crate::border::from_xyz).collect();
-        assert_eq!(on.borders, interpolate(&half_points, [0.0, 1.0], [1.0, 2.0], 5).unwrap().borders);
-        assert!(matches!(interpolate_border(half, Some(raw[..6].to_vec()), &between(), 5), Err(Error::FrameSizeMismatch { .. })));
+        assert_eq!(
+            on.borders,
+            interpolate(&half_points, [0.0, 1.0], [1.0, 2.0], 5).unwrap().borders
+        );
+        assert!(matches!(
+            interpolate_border(half, Some(raw[..6].to_vec()), &between(), 5),
+            Err(Error::FrameSizeMismatch { .. })
+        ));
     }
 }

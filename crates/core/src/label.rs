@@ -132,13 +132,20 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]]) -> Label {
 /// anticlockwise, for fold k; a fold with no entry, or one arc, is the arc of `folds[k]`).
 /// A multi-arc fold is classed by the pair that spans its arcs; its folded corners and share
 /// are those of its arcs, and its sentence says how many separate flaps turned over.
-pub fn label_arcs(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]], arcs: &[&[[f64; 2]]]) -> Label {
+pub fn label_arcs(
+    n: usize,
+    corner_vertices: &[usize],
+    folds: &[[f64; 2]],
+    arcs: &[&[[f64; 2]]],
+) -> Label {
     let circular = corner_vertices.len() > CIRCULAR_CORNERS || corner_vertices.is_empty();
     let fold_labels: Vec<FoldLabel> = folds
         .iter()
         .enumerate()
         .map(|(k, &f)| match arcs.get(k) {
-            Some(&several) if several.len() > 1 => label_multi_arc(n, corner_vertices, f, several, circular),
+            Some(&several) if several.len() > 1 => {
+                label_multi_arc(n, corner_vertices, f, several, circular)
+            }
             _ => label_fold(n, corner_vertices, f, circular),
         })
         .collect();
@@ -175,7 +182,11 @@ impl Label {
         if changed.is_empty() {
             return;
         }
-        let steps = if changed.len() > 1 { format!("steps {}", list(changed)) } else { format!("step {}", changed[0]) };
+        let steps = if changed.len() > 1 {
+            format!("steps {}", list(changed))
+        } else {
+            format!("step {}", changed[0])
+        };
         let note = format!(" It changed, but no fold found ({steps}).");
         match self.text.strip_suffix(" It is not folded.") {
             Some(head) => self.text = format!("{head}{note}"),
@@ -222,13 +233,25 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
     } else {
         folded_corners
             .iter()
-            .map(|&c| FoldedCorner { corner: c, vertex: corners[c - 1], before: side((c + nc - 2) % nc), after: side(c - 1) })
+            .map(|&c| FoldedCorner {
+                corner: c,
+                vertex: corners[c - 1],
+                before: side((c + nc - 2) % nc),
+                after: side(c - 1),
+            })
             .collect()
     };
     // A fold point on a corner runs through it and cuts no side.
     let on_corner = |s: f64| corners.iter().any(|&c| near(c as f64, s));
-    let cut_sides: Vec<SideFold> =
-        if circular { Vec::new() } else { [s1, s2.rem_euclid(nf)].into_iter().filter(|&s| !on_corner(s)).map(|s| side(side_of(s))).collect() };
+    let cut_sides: Vec<SideFold> = if circular {
+        Vec::new()
+    } else {
+        [s1, s2.rem_euclid(nf)]
+            .into_iter()
+            .filter(|&s| !on_corner(s))
+            .map(|s| side(side_of(s)))
+            .collect()
+    };
     let even = |a: f64, b: f64| (a - b).abs() <= EVEN_PERCENT;
     // Symmetric: the two cut sides folded alike, or, through a corner, the one cut side
     // cut in half (the axis through a corner and the middle of the opposite side).
@@ -250,31 +273,52 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
         match folded_corners.len() {
             0 => FoldClass::OneSideFolded,
             1 => FoldClass::CornerFolded,
-            _ => {
-                match (half, askew) {
-                    (true, false) => FoldClass::FoldedInHalf,
-                    (true, true) => FoldClass::FoldedInHalfAskew,
-                    (false, false) => FoldClass::OneSideFolded,
-                    (false, true) => FoldClass::OneSideAskew,
-                }
-            }
+            _ => match (half, askew) {
+                (true, false) => FoldClass::FoldedInHalf,
+                (true, true) => FoldClass::FoldedInHalfAskew,
+                (false, false) => FoldClass::OneSideFolded,
+                (false, true) => FoldClass::OneSideAskew,
+            },
         }
     };
     let border_degrees = fold.map(|f| wrap_tau(f).to_degrees());
-    let mut text = fold_text(class, folded_percent, &folded_corners, &on_line, &corner_sides, &cut_sides);
+    let mut text =
+        fold_text(class, folded_percent, &folded_corners, &on_line, &corner_sides, &cut_sides);
     if circular {
-        text.push_str(&format!(" The border from {:.0}° to {:.0}° is folded over.", border_degrees[0], border_degrees[1]));
+        text.push_str(&format!(
+            " The border from {:.0}° to {:.0}° is folded over.",
+            border_degrees[0], border_degrees[1]
+        ));
     }
-    FoldLabel { class, folded_corners, corners_on_fold_line: on_line, corner_sides, cut_sides, folded_percent, border_degrees, text }
+    FoldLabel {
+        class,
+        folded_corners,
+        corners_on_fold_line: on_line,
+        corner_sides,
+        cut_sides,
+        folded_percent,
+        border_degrees,
+        text,
+    }
 }
 
 /// The label of a fold that turned the `arcs` over together (a line crossing the border
 /// 2k times, k ≥ 2): classed by the pair `fold` that spans them, with the corners and the
 /// share of the border that lie on the arcs themselves, and a sentence naming the flaps.
-fn label_multi_arc(n: usize, corners: &[usize], fold: [f64; 2], arcs: &[[f64; 2]], circular: bool) -> FoldLabel {
+fn label_multi_arc(
+    n: usize,
+    corners: &[usize],
+    fold: [f64; 2],
+    arcs: &[[f64; 2]],
+    circular: bool,
+) -> FoldLabel {
     let mut out = label_fold(n, corners, fold, circular);
     let nf = n as f64;
-    let on_arcs = |v: usize| arcs.iter().any(|&[a, b]| (v as f64 - angle_to_param(a, n)).rem_euclid(nf) < angle_to_param(b - a, n));
+    let on_arcs = |v: usize| {
+        arcs.iter().any(|&[a, b]| {
+            (v as f64 - angle_to_param(a, n)).rem_euclid(nf) < angle_to_param(b - a, n)
+        })
+    };
     out.folded_corners.retain(|&c| on_arcs(corners[c - 1]));
     out.corner_sides.retain(|s| on_arcs(s.vertex));
     out.folded_percent = arcs.iter().map(|&[a, b]| 100.0 * angle_to_param(b - a, n) / nf).sum();
@@ -303,7 +347,11 @@ fn fold_text(
     corner_sides: &[FoldedCorner],
     cut_sides: &[SideFold],
 ) -> String {
-    let mut out = format!("{}{} ({percent:.0}% of the border folded over).", &class.phrase()[..1].to_uppercase(), &class.phrase()[1..]);
+    let mut out = format!(
+        "{}{} ({percent:.0}% of the border folded over).",
+        &class.phrase()[..1].to_uppercase(),
+        &class.phrase()[1..]
+    );
     match folded.len() {
         0 => {}
         1 => out.push_str(&format!(" Corner {} is folded", folded[0])),
@@ -324,12 +372,24 @@ fn fold_text(
         out.push('.');
     }
     if !on_line.is_empty() {
-        out.push_str(&format!(" The fold line runs through corner{} {}.", if on_line.len() > 1 { "s" } else { "" }, list(on_line)));
+        out.push_str(&format!(
+            " The fold line runs through corner{} {}.",
+            if on_line.len() > 1 { "s" } else { "" },
+            list(on_line)
+        ));
     }
     if corner_sides.len() != 1 && !cut_sides.is_empty() && on_line.len() < 2 {
-        let sides: Vec<String> =
-            cut_sides.iter().map(|s| format!("side {}–{} is {:.0}% folded", s.from_corner, s.to_corner, s.folded_percent)).collect();
-        out.push_str(&format!(" The fold line cuts {}; {}.", if cut_sides.len() > 1 { "two sides" } else { "one side" }, sides.join(", ")));
+        let sides: Vec<String> = cut_sides
+            .iter()
+            .map(|s| {
+                format!("side {}–{} is {:.0}% folded", s.from_corner, s.to_corner, s.folded_percent)
+            })
+            .collect();
+        out.push_str(&format!(
+            " The fold line cuts {}; {}.",
+            if cut_sides.len() > 1 { "two sides" } else { "one side" },
+            sides.join(", ")
+        ));
     }
     out
 }
@@ -424,8 +484,15 @@ mod tests {
         assert!(l.text.starts_with("Cloth has no corners."), "{}", l.text);
         let fold = &l.folds[0];
         assert_eq!(fold.class, FoldClass::FoldedInHalf);
-        assert!(fold.folded_corners.is_empty() && fold.corner_sides.is_empty() && fold.cut_sides.is_empty());
-        assert!((fold.border_degrees[0] - 90.0).abs() < 1e-9 && (fold.border_degrees[1] - 270.0).abs() < 1e-9);
+        assert!(
+            fold.folded_corners.is_empty()
+                && fold.corner_sides.is_empty()
+                && fold.cut_sides.is_empty()
+        );
+        assert!(
+            (fold.border_degrees[0] - 90.0).abs() < 1e-9
+                && (fold.border_degrees[1] - 270.0).abs() < 1e-9
+        );
         assert!(fold.text.contains("The border from 90° to 270° is folded over."), "{}", fold.text);
     }
 }

@@ -43,7 +43,11 @@ impl Metrics {
     pub fn measure(norm: &Normalisation, predicted: &[Point], truth: &[Point]) -> Metrics {
         let p = norm.apply_all(predicted);
         let t = norm.apply_all(truth);
-        Metrics { rmse: rmse_xy(&p, &t), frechet: frechet_xy(&p, &t), aligned_rmse: aligned_rmse_xy(&p, &t) }
+        Metrics {
+            rmse: rmse_xy(&p, &t),
+            frechet: frechet_xy(&p, &t),
+            aligned_rmse: aligned_rmse_xy(&p, &t),
+        }
     }
 }
 
@@ -153,9 +157,15 @@ mod tests {
 
     #[test]
     fn aligned_rmse_ignores_a_rigid_motion_but_not_a_change_of_shape() {
-        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 1.5]].iter().map(|&[x, y]| Point::new(x, y, 0.0)).collect();
+        let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 1.5]]
+            .iter()
+            .map(|&[x, y]| Point::new(x, y, 0.0))
+            .collect();
         let (sin, cos) = 0.7_f64.sin_cos();
-        let moved: Vec<Point> = square.iter().map(|p| Point::new(3.0 + cos * p.x - sin * p.y, -2.0 + sin * p.x + cos * p.y, 0.0)).collect();
+        let moved: Vec<Point> = square
+            .iter()
+            .map(|p| Point::new(3.0 + cos * p.x - sin * p.y, -2.0 + sin * p.x + cos * p.y, 0.0))
+            .collect();
         assert!(rmse_xy(&square, &moved) > 1.0);
         assert!(aligned_rmse_xy(&square, &moved) < 1e-12);
         // A mirror image is no rigid motion of the plane: the roof vertex cannot be matched.

@@ -39,7 +39,9 @@ use std::collections::BTreeSet;
 use serde::Serialize;
 
 use crate::analysis::Analysis;
-use crate::angle::{angle_to_param, distance, edge, folds_vertex, param_to_angle, wrap_tau, ON_LINE_EDGES};
+use crate::angle::{
+    angle_to_param, distance, edge, folds_vertex, param_to_angle, wrap_tau, ON_LINE_EDGES,
+};
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
 use crate::fold::reflect::{apply_arcs, fold_line, folded_vertices, reflect_xy};
@@ -133,12 +135,15 @@ fn param(f: f64, n: usize) -> f64 {
 /// Twice the signed XY area of a polygon (shoelace).
 fn twice_area(polygon: &[Point]) -> f64 {
     let n = polygon.len();
-    (0..n).map(|k| polygon[k].x * polygon[(k + 1) % n].y - polygon[(k + 1) % n].x * polygon[k].y).sum()
+    (0..n)
+        .map(|k| polygon[k].x * polygon[(k + 1) % n].y - polygon[(k + 1) % n].x * polygon[k].y)
+        .sum()
 }
 
 /// Whether XY segments ab and cd cross at a point inside both.
 fn segments_cross(a: &Point, b: &Point, c: &Point, d: &Point) -> bool {
-    let side = |p: &Point, q: &Point, r: &Point| (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+    let side =
+        |p: &Point, q: &Point, r: &Point| (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
     side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0
 }
 
@@ -189,7 +194,14 @@ fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
 /// `arcs` are the arcs the fold turns (a multi-arc fold; `[fold]` otherwise). `line` is the
 /// line the fold is made along (by default through its two fold points of `before`);
 /// `from_state` gives where a grasped vertex is now when the step starts a fold.
-fn step(action: Action, before: &[Point], corners: &[usize], (fold, arcs): ([f64; 2], &[[f64; 2]]), line: Option<Line>, from_state: &[Point]) -> PlanStep {
+fn step(
+    action: Action,
+    before: &[Point],
+    corners: &[usize],
+    (fold, arcs): ([f64; 2], &[[f64; 2]]),
+    line: Option<Line>,
+    from_state: &[Point],
+) -> PlanStep {
     let n = before.len();
     let (p1, p2) = (point_at(before, param(fold[0], n)), point_at(before, param(fold[1], n)));
     let line = line.or_else(|| fold_line(before, fold, None));
@@ -200,8 +212,17 @@ fn step(action: Action, before: &[Point], corners: &[usize], (fold, arcs): ([f64
         .into_iter()
         .map(|v| {
             let folded = reflect(&before[v]);
-            let (from, to) = if action == Action::Unfold { (folded, before[v]) } else { (from_state[v], folded) };
-            Pick { vertex: v, angle: param_to_angle(v as f64, n), from: to_xyz(&from), to: to_xyz(&to) }
+            let (from, to) = if action == Action::Unfold {
+                (folded, before[v])
+            } else {
+                (from_state[v], folded)
+            };
+            Pick {
+                vertex: v,
+                angle: param_to_angle(v as f64, n),
+                from: to_xyz(&from),
+                to: to_xyz(&to),
+            }
         })
         .collect();
     let number = |c: usize| corners.iter().position(|&k| k == c).map_or(0, |i| i + 1);
@@ -210,7 +231,10 @@ fn step(action: Action, before: &[Point], corners: &[usize], (fold, arcs): ([f64
 
 fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
     if !(fold[0].is_finite() && fold[1].is_finite()) {
-        return Err(Error::InvalidArgument(format!("{name} ({}, {}) is not finite", fold[0], fold[1])));
+        return Err(Error::InvalidArgument(format!(
+            "{name} ({}, {}) is not finite",
+            fold[0], fold[1]
+        )));
     }
     let edge = edge(n);
     if distance(fold[0], fold[1]) <= edge {
@@ -225,7 +249,12 @@ fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
 /// Plan from the current state (the flat border, its corner vertices, the folds applied so
 /// far in order) to the goal fold (g1, g2), all folds in angles. Each current fold is made
 /// along the line through its two fold points of the state before it.
-pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], goal: [f64; 2]) -> Result<Plan> {
+pub fn plan(
+    flat: &[Point],
+    corner_vertices: &[usize],
+    current_folds: &[[f64; 2]],
+    goal: [f64; 2],
+) -> Result<Plan> {
     plan_along(flat, corner_vertices, current_folds, &vec![None; current_folds.len()], &[], goal)
 }
 
@@ -233,7 +262,14 @@ pub fn plan(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]
 /// for fold k): a fold through two stacked layers has its two fold points (nearly) on top of
 /// each other, so the line through them is no guide, and the analysis gives its line. A
 /// multi-arc fold k turns only its `arcs[k]` (a fold without an entry turns its own arc).
-fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 2]], lines: &[Option<Line>], arcs: &[&[[f64; 2]]], goal: [f64; 2]) -> Result<Plan> {
+fn plan_along(
+    flat: &[Point],
+    corner_vertices: &[usize],
+    current_folds: &[[f64; 2]],
+    lines: &[Option<Line>],
+    arcs: &[&[[f64; 2]]],
+    goal: [f64; 2],
+) -> Result<Plan> {
     let n = flat.len();
     if n < crate::border::MIN_VERTICES {
         return Err(Error::TooFewVertices { got: n, min: crate::border::MIN_VERTICES });
@@ -242,23 +278,29 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
         return Err(Error::NonFinite { frame: 0, vertex: v });
     }
     if let Some(&c) = corner_vertices.iter().find(|&&c| c >= n) {
-        return Err(Error::InvalidArgument(format!("corner vertex {c} does not exist (the border has {n} vertices)")));
+        return Err(Error::InvalidArgument(format!(
+            "corner vertex {c} does not exist (the border has {n} vertices)"
+        )));
     }
     check_fold("the goal fold", goal, n)?;
     let goal = goal.map(wrap_tau);
     for (k, &f) in current_folds.iter().enumerate() {
         check_fold(&format!("current fold {}", k + 1), f, n)?;
     }
-    let corners: Vec<usize> = corner_vertices.iter().copied().collect::<BTreeSet<_>>().into_iter().collect();
+    let corners: Vec<usize> =
+        corner_vertices.iter().copied().collect::<BTreeSet<_>>().into_iter().collect();
     // The line of each current fold, and states[k], the border after the first k folds.
     let mut states = vec![flat.to_vec()];
     let mut made_along = Vec::with_capacity(current_folds.len());
     let own: Vec<[[f64; 2]; 1]> = current_folds.iter().map(|&f| [f]).collect();
-    let arcs_of = |k: usize| -> &[[f64; 2]] { arcs.get(k).copied().filter(|a| !a.is_empty()).unwrap_or(&own[k]) };
+    let arcs_of = |k: usize| -> &[[f64; 2]] {
+        arcs.get(k).copied().filter(|a| !a.is_empty()).unwrap_or(&own[k])
+    };
     for (k, &f) in current_folds.iter().enumerate() {
         let before = states.last().expect("the flat state");
         let line = lines.get(k).copied().flatten().or_else(|| fold_line(before, f, None));
-        let next = line.as_ref().map_or_else(|| before.clone(), |l| apply_arcs(before, arcs_of(k), l));
+        let next =
+            line.as_ref().map_or_else(|| before.clone(), |l| apply_arcs(before, arcs_of(k), l));
         made_along.push(line);
         states.push(next);
     }
@@ -270,16 +312,35 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
         }
     }
     if current_folds.is_empty() {
-        return Ok(Plan { case: Case::Fold, steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat)] });
+        return Ok(Plan {
+            case: Case::Fold,
+            steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat)],
+        });
     }
-    let folded_now: BTreeSet<usize> = (0..current_folds.len()).flat_map(|k| arcs_of(k).iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()).collect();
+    let folded_now: BTreeSet<usize> = (0..current_folds.len())
+        .flat_map(|k| {
+            arcs_of(k).iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()
+        })
+        .collect();
     let folded_by_goal: BTreeSet<usize> = corners_moved(n, &corners, goal).into_iter().collect();
     if folded_now == folded_by_goal {
-        return Ok(Plan { case: Case::Direct, steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, current)] });
+        return Ok(Plan {
+            case: Case::Direct,
+            steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, current)],
+        });
     }
     let mut steps: Vec<PlanStep> = (0..current_folds.len())
         .rev()
-        .map(|k| step(Action::Unfold, &states[k], &corners, (current_folds[k], arcs_of(k)), made_along[k], &states[k]))
+        .map(|k| {
+            step(
+                Action::Unfold,
+                &states[k],
+                &corners,
+                (current_folds[k], arcs_of(k)),
+                made_along[k],
+                &states[k],
+            )
+        })
         .collect();
     steps.push(step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat));
     Ok(Plan { case: Case::UnfoldThenFold, steps })
@@ -291,10 +352,21 @@ fn plan_along(flat: &[Point], corner_vertices: &[usize], current_folds: &[[f64; 
 /// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
 pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
     // Each fold along the line the analysis made it along (its `predicted_end`).
-    let mut plan = plan_along(analysis.start_border(), &analysis.corner_vertices, &analysis.folds, &analysis.fold_lines(), &analysis.fold_arcs(), goal)?;
+    let mut plan = plan_along(
+        analysis.start_border(),
+        &analysis.corner_vertices,
+        &analysis.folds,
+        &analysis.fold_lines(),
+        &analysis.fold_arcs(),
+        goal,
+    )?;
     for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
         pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
-            Error::InvalidArgument(format!("border vertex {} has no input index ({} known)", pick.vertex, analysis.border_indices.len()))
+            Error::InvalidArgument(format!(
+                "border vertex {} has no input index ({} known)",
+                pick.vertex,
+                analysis.border_indices.len()
+            ))
         })?;
     }
     Ok(plan)
@@ -340,7 +412,11 @@ mod tests {
         let m = corners.len();
         let points = (0..m * per_side)
             .map(|k| {
-                let (a, b, t) = (corners[k / per_side], corners[(k / per_side + 1) % m], (k % per_side) as f64 / per_side as f64);
+                let (a, b, t) = (
+                    corners[k / per_side],
+                    corners[(k / per_side + 1) % m],
+                    (k % per_side) as f64 / per_side as f64,
+                );
                 Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
             })
             .collect();
@@ -353,8 +429,13 @@ mod tests {
 
     /// Angles are fractions of 2π, so positions come back to within rounding.
     fn assert_pick(pick: &Pick, vertex: usize, from: [f64; 2], to: [f64; 2]) {
-        let near = |a: [f64; 3], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12 && a[2] == 0.0;
-        assert!(pick.vertex == vertex && near(pick.from, from) && near(pick.to, to), "{pick:?}: expected vertex {vertex} {from:?} → {to:?}");
+        let near = |a: [f64; 3], b: [f64; 2]| {
+            (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12 && a[2] == 0.0
+        };
+        assert!(
+            pick.vertex == vertex && near(pick.from, from) && near(pick.to, to),
+            "{pick:?}: expected vertex {vertex} {from:?} → {to:?}"
+        );
     }
 
     fn square() -> (Vec<Point>, Vec<usize>) {
@@ -439,8 +520,16 @@ mod tests {
         let current = [[angle(3.0, 16), angle(9.0, 16)], [angle(14.0, 16), angle(6.0, 16)]];
         let p = plan(&sq, &corners, &current, [angle(0.0, 16), angle(8.0, 16)]).unwrap();
         assert_eq!(p.case, Case::UnfoldThenFold);
-        let summary: Vec<(Action, [f64; 2], Vec<usize>)> = p.steps.iter().map(|s| (s.action, s.fold, s.corners.clone())).collect();
-        assert_eq!(summary, vec![(Action::Unfold, current[1], vec![1, 2]), (Action::Unfold, current[0], vec![2, 3]), (Action::Fold, [0.0, PI], vec![2])]);
+        let summary: Vec<(Action, [f64; 2], Vec<usize>)> =
+            p.steps.iter().map(|s| (s.action, s.fold, s.corners.clone())).collect();
+        assert_eq!(
+            summary,
+            vec![
+                (Action::Unfold, current[1], vec![1, 2]),
+                (Action::Unfold, current[0], vec![2, 3]),
+                (Action::Fold, [0.0, PI], vec![2])
+            ]
+        );
         assert_pick(&p.steps[0].picks[0], 0, [0.0, 1.0], [0.0, 0.0]);
         assert_pick(&p.steps[0].picks[1], 4, [0.5, 1.0], [0.5, 0.0]);
         assert_pick(&p.steps[1].picks[0], 4, [0.5, 0.0], [1.0, 0.0]);
@@ -451,7 +540,8 @@ mod tests {
     fn of_three_corners_the_largest_trapezoid_wins() {
         // A house, folded along y = 1: corners (4,2), (3,3), (0,2) are on the folded side.
         // Areas with P1 = (4,1), P2 = (0,1): {(4,2),(3,3)} 4.5, {(4,2),(0,2)} 4, {(3,3),(0,2)} 5.5.
-        let (house, corners) = polygon(&[[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [3.0, 3.0], [0.0, 2.0]], 4);
+        let (house, corners) =
+            polygon(&[[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [3.0, 3.0], [0.0, 2.0]], 4);
         let n = house.len();
         let p = plan(&house, &corners, &[], [angle(6.0, n), angle(18.0, n)]).unwrap();
         let s = &p.steps[0];
@@ -471,7 +561,9 @@ mod tests {
     #[test]
     fn a_flap_without_corners_is_grasped_at_its_farthest_vertex() {
         // A circle of 16 vertices folded from vertex 2 to vertex 6: the arc's middle, 4, is farthest.
-        let circle: Vec<Point> = (0..16).map(|k| Point::new(angle(k as f64, 16).cos(), angle(k as f64, 16).sin(), 0.0)).collect();
+        let circle: Vec<Point> = (0..16)
+            .map(|k| Point::new(angle(k as f64, 16).cos(), angle(k as f64, 16).sin(), 0.0))
+            .collect();
         let p = plan(&circle, &[], &[], [angle(2.0, 16), angle(6.0, 16)]).unwrap();
         assert!(p.steps[0].corners.is_empty());
         assert_eq!(p.steps[0].picks.iter().map(|k| k.vertex).collect::<Vec<_>>(), vec![4]);
@@ -486,8 +578,18 @@ mod tests {
         assert_eq!(p.case, Case::AlreadyThere);
         assert!(p.steps.is_empty());
         // A quarter of an edge off is the same fold; a whole edge is not.
-        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]]).unwrap().case, Case::AlreadyThere);
-        assert_eq!(plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]]).unwrap().case, Case::Direct);
+        assert_eq!(
+            plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]])
+                .unwrap()
+                .case,
+            Case::AlreadyThere
+        );
+        assert_eq!(
+            plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]])
+                .unwrap()
+                .case,
+            Case::Direct
+        );
     }
 
     #[test]
@@ -514,7 +616,8 @@ mod tests {
         let (sq, corners) = square();
         let message = |r: Result<Plan>| r.unwrap_err().to_string();
         assert!(message(plan(&sq, &corners, &[], [f64::NAN, 1.0])).contains("not finite"));
-        assert!(message(plan(&sq, &corners, &[], [1.0, 1.0 + angle(1.0, 16)])).contains("more than one edge"));
+        assert!(message(plan(&sq, &corners, &[], [1.0, 1.0 + angle(1.0, 16)]))
+            .contains("more than one edge"));
         assert!(message(plan(&sq, &corners, &[], [0.1, 0.1 + TAU])).contains("more than one edge"));
         assert!(message(plan(&sq, &[3, 99], &[], [0.0, PI])).contains("corner vertex 99"));
         assert!(message(plan(&sq[..3], &[], &[], [0.0, PI])).contains("too few vertices"));

@@ -26,7 +26,10 @@ impl SplitMix64 {
 
     /// Seeded from a name (FNV-1a), so a named sample's randomness does not depend on others.
     pub fn from_name(name: &str) -> Self {
-        SplitMix64(name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)))
+        SplitMix64(
+            name.bytes()
+                .fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)),
+        )
     }
 
     /// The next 64 random bits.

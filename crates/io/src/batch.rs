@@ -7,12 +7,13 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::{Error, Result};
 use crate::eval::{self, SampleResult};
-use crate::fold::FoldMethod;
+use close_core::error::{Error, Result};
+use close_core::fold::FoldMethod;
 
 /// Why a store cannot be read by a build without the `vrfolding` feature.
-pub const NO_VRFOLDING: &str = "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
+pub const NO_VRFOLDING: &str =
+    "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
 
 /// One unit of evaluation work.
 pub enum Unit {
@@ -31,7 +32,8 @@ impl Unit {
         match self {
             Unit::File(path) => {
                 // Read as a user's file is: a regular file, through the readers' byte cap.
-                let sample = crate::formats::read_file(path).and_then(|bytes| crate::formats::json::parse_sample(&bytes));
+                let sample = crate::formats::read_file(path)
+                    .and_then(|bytes| crate::formats::json::parse_sample(&bytes));
                 vec![match sample {
                     Ok(sample) => eval::evaluate_with(&sample, method),
                     Err(e) => SampleResult::unreadable(&path.display().to_string(), &e.to_string()),
@@ -58,13 +60,16 @@ pub fn units(paths: &[PathBuf]) -> Result<Vec<Unit>> {
 /// failed unit, the rest of its store kept), and the other paths.
 #[cfg(feature = "vrfolding")]
 pub fn store_units(paths: &[PathBuf]) -> Result<(Vec<Unit>, Vec<PathBuf>)> {
-    let (stores, rest): (Vec<PathBuf>, Vec<PathBuf>) = paths.iter().cloned().partition(|p| crate::vrfolding::is_store(p));
+    let (stores, rest): (Vec<PathBuf>, Vec<PathBuf>) =
+        paths.iter().cloned().partition(|p| crate::vrfolding::is_store(p));
     let mut units = Vec::new();
     for path in stores {
         let store = std::sync::Arc::new(crate::vrfolding::Store::open(&path)?);
         let (videos, unreadable) = store.videos()?;
         units.extend(videos.into_iter().map(|v| Unit::Video(store.clone(), v)));
-        units.extend(unreadable.into_iter().map(|e| Unit::Failed(path.display().to_string(), e.to_string())));
+        units.extend(
+            unreadable.into_iter().map(|e| Unit::Failed(path.display().to_string(), e.to_string())),
+        );
     }
     Ok((units, rest))
 }
@@ -86,13 +91,20 @@ fn sample_files(paths: &[PathBuf]) -> Result<Vec<Unit>> {
     let (mut files, mut failed) = (Vec::new(), Vec::new());
     for p in paths {
         if p.is_dir() {
-            let tree = crate::catalog::walk::walk(p, &json).map_err(|e| Error::InvalidArgument(format!("{}: {e}", p.display())))?;
+            let tree = crate::catalog::walk::walk(p, &json)
+                .map_err(|e| Error::InvalidArgument(format!("{}: {e}", p.display())))?;
             files.extend(tree.files().cloned());
-            failed.extend(tree.unreadable().map(|(path, why)| Unit::Failed(path.display().to_string(), why.clone())));
+            failed.extend(
+                tree.unreadable()
+                    .map(|(path, why)| Unit::Failed(path.display().to_string(), why.clone())),
+            );
         } else if json(p) {
             files.push(p.clone());
         } else {
-            return Err(Error::InvalidArgument(format!("{}: not a folder or a Sample JSON file", p.display())));
+            return Err(Error::InvalidArgument(format!(
+                "{}: not a folder or a Sample JSON file",
+                p.display()
+            )));
         }
     }
     files.sort();

@@ -30,7 +30,13 @@ pub struct Lru<V> {
 
 impl<V: Clone> Lru<V> {
     pub fn new(max_entries: usize, max_bytes: usize) -> Self {
-        Lru { max_entries: max_entries.max(1), max_bytes, bytes: 0, tick: 0, entries: HashMap::new() }
+        Lru {
+            max_entries: max_entries.max(1),
+            max_bytes,
+            bytes: 0,
+            tick: 0,
+            entries: HashMap::new(),
+        }
     }
 
     pub fn get(&mut self, key: &str) -> Option<V> {
@@ -52,7 +58,9 @@ impl<V: Clone> Lru<V> {
             self.bytes -= old;
         }
         while self.entries.len() >= self.max_entries || self.bytes + bytes > self.max_bytes {
-            let Some(oldest) = self.entries.iter().min_by_key(|(_, (_, used, _))| *used).map(|(k, _)| k.clone()) else {
+            let Some(oldest) =
+                self.entries.iter().min_by_key(|(_, (_, used, _))| *used).map(|(k, _)| k.clone())
+            else {
                 break;
             };
             if let Some((_, _, w)) = self.entries.remove(&oldest) {

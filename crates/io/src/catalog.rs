@@ -40,10 +40,10 @@ use std::sync::{Arc, Mutex};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::budget::Deadline;
-use crate::error::{Error, Result};
-use crate::formats::{read_file, read_files, Sample, MAX_FILE_BYTES};
 use crate::cache::Lru;
+use crate::formats::{read_file, read_files, Sample, MAX_FILE_BYTES};
+use close_core::budget::Deadline;
+use close_core::error::{Error, Result};
 use walk::{Folder, Node};
 
 /// Samples kept loaded at once.
@@ -94,7 +94,11 @@ impl Query {
     /// Whether a sample with this name, id and category passes the filters.
     pub fn matches(&self, id: &str, name: &str, category: &str) -> bool {
         let category_ok = self.category.as_deref().is_none_or(|c| c.is_empty() || c == category);
-        let text_ok = self.q.as_deref().map(str::to_lowercase).is_none_or(|q| [id, name, category].iter().any(|t| t.to_lowercase().contains(&q)));
+        let text_ok = self
+            .q
+            .as_deref()
+            .map(str::to_lowercase)
+            .is_none_or(|q| [id, name, category].iter().any(|t| t.to_lowercase().contains(&q)));
         category_ok && text_ok
     }
 }
@@ -129,7 +133,9 @@ fn extension(path: &Path) -> String {
 
 /// `text` made safe for a URL path segment.
 fn slug(text: &str) -> String {
-    text.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '-' }).collect()
+    text.chars()
+        .map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '-' })
+        .collect()
 }
 
 /// Read a sample's files into a sample: their total size is checked against
@@ -139,7 +145,11 @@ fn read_sample(files: &[PathBuf], deadline: &Deadline) -> Result<Sample> {
     let size = |p: &PathBuf| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
     let total = files.iter().map(size).fold(0u64, u64::saturating_add);
     if total > MAX_SAMPLE_BYTES {
-        return Err(Error::TooLarge { what: "bytes in the files of one sample", got: Some(total), limit: MAX_SAMPLE_BYTES });
+        return Err(Error::TooLarge {
+            what: "bytes in the files of one sample",
+            got: Some(total),
+            limit: MAX_SAMPLE_BYTES,
+        });
     }
     let mut read = 0u64;
     let named = files
@@ -150,7 +160,11 @@ fn read_sample(files: &[PathBuf], deadline: &Deadline) -> Result<Sample> {
             // Sizes may change between the check and the read: count what was read.
             read += bytes.len() as u64;
             if read > MAX_SAMPLE_BYTES {
-                return Err(Error::TooLarge { what: "bytes in the files of one sample", got: Some(read), limit: MAX_SAMPLE_BYTES });
+                return Err(Error::TooLarge {
+                    what: "bytes in the files of one sample",
+                    got: Some(read),
+                    limit: MAX_SAMPLE_BYTES,
+                });
             }
             Ok((p.display().to_string(), bytes))
         })
@@ -172,20 +186,33 @@ type Found = (std::result::Result<Vec<PathBuf>, String>, PathBuf, String);
 /// sub-folder holding sample files is a folder of samples itself, named as a category), and
 /// each entry that could not be walked, with the category (sub-folder) it is in.
 fn file_samples(root: &Path, folder: &Folder, out: &mut Vec<Found>) {
-    let category = folder.path.strip_prefix(root).ok().map(|r| r.display().to_string()).unwrap_or_default();
+    let category =
+        folder.path.strip_prefix(root).ok().map(|r| r.display().to_string()).unwrap_or_default();
     for node in &folder.entries {
         match node {
             Node::Folder(sub) => {
-                let files: Vec<&PathBuf> = sub.entries.iter().filter_map(|n| if let Node::File(p) = n { Some(p) } else { None }).collect();
-                let frames: Vec<PathBuf> = files.iter().filter(|p| FRAME_FILES.contains(&extension(p).as_str())).map(|p| p.to_path_buf()).collect();
-                if files.iter().any(|p| ["json", "mat"].contains(&extension(p).as_str())) || frames.is_empty() {
+                let files: Vec<&PathBuf> = sub
+                    .entries
+                    .iter()
+                    .filter_map(|n| if let Node::File(p) = n { Some(p) } else { None })
+                    .collect();
+                let frames: Vec<PathBuf> = files
+                    .iter()
+                    .filter(|p| FRAME_FILES.contains(&extension(p).as_str()))
+                    .map(|p| p.to_path_buf())
+                    .collect();
+                if files.iter().any(|p| ["json", "mat"].contains(&extension(p).as_str()))
+                    || frames.is_empty()
+                {
                     file_samples(root, sub, out);
                 } else {
                     out.push((Ok(frames), sub.path.clone(), category.clone()));
                 }
             }
             Node::File(path) => out.push((Ok(vec![path.clone()]), path.clone(), category.clone())),
-            Node::Unreadable(path, why) => out.push((Err(why.clone()), path.clone(), category.clone())),
+            Node::Unreadable(path, why) => {
+                out.push((Err(why.clone()), path.clone(), category.clone()))
+            }
         }
     }
 }
@@ -213,30 +240,69 @@ impl Catalog {
             let tree = match walk::walk(path, &sample_file) {
                 Ok(tree) => tree,
                 Err(e) => {
-                    catalog.push(&prefix, Entry::broken(&source, &source, format!("cannot read the dataset folder: {e}")), Origin::Broken);
+                    catalog.push(
+                        &prefix,
+                        Entry::broken(
+                            &source,
+                            &source,
+                            format!("cannot read the dataset folder: {e}"),
+                        ),
+                        Origin::Broken,
+                    );
                     continue;
                 }
             };
             let mut samples = Vec::new();
             file_samples(path, &tree, &mut samples);
-            let fallback = path.file_name().map_or("dataset".into(), |n| n.to_string_lossy().to_string());
+            let fallback =
+                path.file_name().map_or("dataset".into(), |n| n.to_string_lossy().to_string());
             let listed: Vec<Entry> = samples
                 .par_iter()
                 .map(|(files, at, folder)| {
                     let name = at.strip_prefix(path).unwrap_or(at).display().to_string();
-                    let fallback = if folder.is_empty() { fallback.clone() } else { folder.clone() };
-                    let read = files.as_ref().map_err(Clone::clone).and_then(|files| read_sample(files, &Deadline::default()).map_err(|e| e.to_string()));
+                    let fallback =
+                        if folder.is_empty() { fallback.clone() } else { folder.clone() };
+                    let read = files.as_ref().map_err(Clone::clone).and_then(|files| {
+                        read_sample(files, &Deadline::default()).map_err(|e| e.to_string())
+                    });
                     match read {
                         Ok(sample) => {
-                            let frames = sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len());
-                            let category = if sample.category.is_empty() || sample.category == "upload" { fallback } else { sample.category.clone() };
+                            let frames = sample
+                                .mesh
+                                .as_ref()
+                                .map_or(sample.frames.len(), |m| m.frames.len());
+                            let category =
+                                if sample.category.is_empty() || sample.category == "upload" {
+                                    fallback
+                                } else {
+                                    sample.category.clone()
+                                };
                             let (n, error) = match sample.border_frames() {
                                 Ok(b) => (Some(b.len()), None),
                                 Err(e) => (None, Some(e.to_string())),
                             };
-                            let first = files.as_ref().ok().and_then(|f| f.first()).and_then(|f| f.file_name()).map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-                            let shown = if sample.name.is_empty() || sample.name == first { name.clone() } else { sample.name.clone() };
-                            Entry { id: String::new(), name: shown, category, n, frames, mesh: sample.mesh.is_some(), source: source.clone(), error }
+                            let first = files
+                                .as_ref()
+                                .ok()
+                                .and_then(|f| f.first())
+                                .and_then(|f| f.file_name())
+                                .map(|n| n.to_string_lossy().to_string())
+                                .unwrap_or_default();
+                            let shown = if sample.name.is_empty() || sample.name == first {
+                                name.clone()
+                            } else {
+                                sample.name.clone()
+                            };
+                            Entry {
+                                id: String::new(),
+                                name: shown,
+                                category,
+                                n,
+                                frames,
+                                mesh: sample.mesh.is_some(),
+                                source: source.clone(),
+                                error,
+                            }
                         }
                         Err(e) => Entry { category: fallback, ..Entry::broken(&name, &source, e) },
                     }
@@ -256,10 +322,17 @@ impl Catalog {
     fn add_store(&mut self, prefix: &str, path: &Path) {
         use crate::vrfolding::{Store, FOLDS};
         let source = path.display().to_string();
-        let opened = Store::open(path).and_then(|store| store.videos().map(|videos| (store, videos)));
+        let opened =
+            Store::open(path).and_then(|store| store.videos().map(|videos| (store, videos)));
         let (store, (videos, unreadable)) = match opened {
             Ok(found) => found,
-            Err(e) => return self.push(prefix, Entry::broken(&source, &source, e.to_string()), Origin::Broken),
+            Err(e) => {
+                return self.push(
+                    prefix,
+                    Entry::broken(&source, &source, e.to_string()),
+                    Origin::Broken,
+                )
+            }
         };
         for e in unreadable {
             let name = match &e {
@@ -268,7 +341,8 @@ impl Catalog {
             };
             self.push(prefix, Entry::broken(&name, &source, e.to_string()), Origin::Broken);
         }
-        let cuts: Vec<Result<usize>> = videos.par_iter().map(|v| store.cut(v).map(|c| c.actions.len().min(FOLDS))).collect();
+        let cuts: Vec<Result<usize>> =
+            videos.par_iter().map(|v| store.cut(v).map(|c| c.actions.len().min(FOLDS))).collect();
         let index = self.stores.len();
         for (v, (video, cut)) in videos.iter().zip(cuts).enumerate() {
             let name = format!("{}/{}", video.category, video.id);
@@ -285,10 +359,23 @@ impl Catalog {
                             source: source.clone(),
                             error: None,
                         };
-                        self.push_named(prefix, &format!("{}-{}-fold{fold}", video.category, video.id), entry, Origin::Fold { store: index, video: v, fold });
+                        self.push_named(
+                            prefix,
+                            &format!("{}-{}-fold{fold}", video.category, video.id),
+                            entry,
+                            Origin::Fold { store: index, video: v, fold },
+                        );
                     }
                 }
-                Err(e) => self.push_named(prefix, &name, Entry { category: video.category.clone(), ..Entry::broken(&name, &source, e.to_string()) }, Origin::Broken),
+                Err(e) => self.push_named(
+                    prefix,
+                    &name,
+                    Entry {
+                        category: video.category.clone(),
+                        ..Entry::broken(&name, &source, e.to_string())
+                    },
+                    Origin::Broken,
+                ),
             }
         }
         self.stores.push((store, videos));
@@ -375,10 +462,13 @@ impl Catalog {
                 folds.sample(&videos[video], fold).ok_or_else(|| Error::Store {
                     store: entry.source.clone(),
                     path: entry.name.clone(),
-                    problem: "dropped: a mesh of this fold is broken (BiFold's z-score test)".into(),
+                    problem: "dropped: a mesh of this fold is broken (BiFold's z-score test)"
+                        .into(),
                 })?
             }
-            Origin::Broken => return Err(Error::InvalidArgument(entry.error.clone().unwrap_or_default())),
+            Origin::Broken => {
+                return Err(Error::InvalidArgument(entry.error.clone().unwrap_or_default()))
+            }
         };
         sample.name = entry.name.clone();
         sample.category = entry.category.clone();
@@ -388,7 +478,16 @@ impl Catalog {
 
 impl Entry {
     fn broken(name: &str, source: &str, error: String) -> Entry {
-        Entry { id: String::new(), name: name.to_string(), category: String::new(), n: None, frames: 0, mesh: false, source: source.to_string(), error: Some(error) }
+        Entry {
+            id: String::new(),
+            name: name.to_string(),
+            category: String::new(),
+            n: None,
+            frames: 0,
+            mesh: false,
+            source: source.to_string(),
+            error: Some(error),
+        }
     }
 }
 
@@ -419,15 +518,25 @@ mod tests {
         assert_eq!(entries.len(), 4, "{entries:#?}");
         let run = entries.iter().find(|e| e.name == "towel_run").unwrap();
         assert_eq!((run.n, run.frames, run.error.as_deref()), (Some(4), 2, None));
-        assert!(entries.iter().any(|e| e.name == "bad.json" && e.error.as_deref().is_some_and(|m| m.contains("parse"))));
-        assert!(entries.iter().any(|e| e.error.as_deref().is_some_and(|m| m.contains("cannot read the dataset folder"))));
+        assert!(entries.iter().any(
+            |e| e.name == "bad.json" && e.error.as_deref().is_some_and(|m| m.contains("parse"))
+        ));
+        assert!(entries.iter().any(|e| e
+            .error
+            .as_deref()
+            .is_some_and(|m| m.contains("cannot read the dataset folder"))));
         let ids: std::collections::HashSet<&str> = entries.iter().map(|e| e.id.as_str()).collect();
         assert_eq!(ids.len(), 4);
-        assert!(ids.iter().all(|id| id.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))));
+        assert!(ids
+            .iter()
+            .all(|id| id.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))));
         let forever = Deadline::default();
         let loaded = catalog.load(&run.id, &forever).unwrap();
         assert_eq!(loaded.frames.len(), 2);
-        assert!(Arc::ptr_eq(&loaded, &catalog.load(&run.id, &forever).unwrap()), "the second load is the cached one");
+        assert!(
+            Arc::ptr_eq(&loaded, &catalog.load(&run.id, &forever).unwrap()),
+            "the second load is the cached one"
+        );
         assert!(matches!(catalog.load("nope", &forever), Err(Error::UnknownSample { .. })));
         let bad = entries.iter().find(|e| e.name == "bad.json").unwrap();
         assert!(catalog.load(&bad.id, &forever).is_err());
@@ -436,7 +545,8 @@ mod tests {
 
     #[test]
     fn queries_filter_by_category_and_text() {
-        let q = Query { category: Some("napkin".into()), q: Some("DIAG".into()), ..Query::default() };
+        let q =
+            Query { category: Some("napkin".into()), q: Some("DIAG".into()), ..Query::default() };
         assert!(q.matches("d0-x", "napkin_diag_half", "napkin"));
         assert!(!q.matches("d0-x", "napkin_half", "napkin"));
         assert!(!q.matches("d0-x", "towel_diag", "towel"));

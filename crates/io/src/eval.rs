@@ -14,13 +14,13 @@ use std::f64::consts::PI;
 
 use serde::{Deserialize, Serialize};
 
-use crate::analysis::{analyze_with, Analysis, Options};
-use crate::error::Error;
-use crate::angle;
-use crate::fold::FoldMethod;
 use crate::formats::Sample;
 #[cfg(feature = "vrfolding")]
 use crate::vrfolding::{Store, Video};
+use close_core::analysis::{analyze_with, Analysis, Options};
+use close_core::angle;
+use close_core::error::Error;
+use close_core::fold::FoldMethod;
 
 /// The outcome for one sample. Rows scored elsewhere (another process, another machine)
 /// come back as JSON and are reported as they were.
@@ -34,7 +34,7 @@ pub struct SampleResult {
     pub rmse: Option<f64>,
     pub frechet: Option<f64>,
     /// The RMSE once the prediction is moved rigidly onto the truth
-    /// ([`crate::metrics::aligned_rmse_xy`]): what is left when the cloth's slide across
+    /// ([`close_core::metrics::aligned_rmse_xy`]): what is left when the cloth's slide across
     /// the table, which the disks cannot see, is taken out. Absent from rows scored before
     /// it was measured.
     #[serde(default)]
@@ -170,7 +170,9 @@ pub fn evaluate(sample: &Sample) -> SampleResult {
 
 /// Evaluate one sample, choosing fold points with `method`.
 pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
-    let analysis = sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() }));
+    let analysis = sample
+        .border_frames()
+        .and_then(|b| analyze_with(&b, Options { method, ..Options::default() }));
     score(sample, analysis.as_ref())
 }
 
@@ -179,7 +181,9 @@ pub fn evaluate_with(sample: &Sample, method: FoldMethod) -> SampleResult {
 pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) -> SampleResult {
     let truth_folds = sample.truth.as_ref().map(|t| t.folds.clone());
     let mut result = SampleResult {
-        expected_folds: truth_folds.as_ref().map_or(sample.frames.len().saturating_sub(1), Vec::len),
+        expected_folds: truth_folds
+            .as_ref()
+            .map_or(sample.frames.len().saturating_sub(1), Vec::len),
         ..SampleResult::empty(&sample.name, category_of(sample))
     };
     match analysis {
@@ -188,8 +192,12 @@ pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) 
             result.rmse = a.metrics.map(|m| m.rmse);
             result.frechet = a.metrics.map(|m| m.frechet);
             result.aligned_rmse = a.metrics.map(|m| m.aligned_rmse);
-            let error = |found: &[f64; 2], truth: &[f64; 2]| [angle::distance(found[0], truth[0]), angle::distance(found[1], truth[1])];
-            if let (Some(found), Some(truth)) = (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first())) {
+            let error = |found: &[f64; 2], truth: &[f64; 2]| {
+                [angle::distance(found[0], truth[0]), angle::distance(found[1], truth[1])]
+            };
+            if let (Some(found), Some(truth)) =
+                (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first()))
+            {
                 result.angle_error = Some(error(found, truth));
             }
             result.steps = a
@@ -201,7 +209,11 @@ pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) 
                     rmse: step.metrics.rmse,
                     frechet: step.metrics.frechet,
                     aligned_rmse: Some(step.metrics.aligned_rmse),
-                    angle_error: step.detection.fold.zip(truth_folds.as_ref().and_then(|t| t.get(k))).map(|(f, t)| error(&f, t)),
+                    angle_error: step
+                        .detection
+                        .fold
+                        .zip(truth_folds.as_ref().and_then(|t| t.get(k)))
+                        .map(|(f, t)| error(&f, t)),
                 })
                 .collect();
         }
@@ -225,9 +237,15 @@ pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> 
     let rows = sample.frames.len().saturating_sub(1);
     let row = |k: usize| SampleResult {
         expected_folds: 1,
-        ..SampleResult::empty(&format!("{}/fold{k}", sample.name), &format!("{}/fold{k}", category_of(sample)))
+        ..SampleResult::empty(
+            &format!("{}/fold{k}", sample.name),
+            &format!("{}/fold{k}", category_of(sample)),
+        )
     };
-    match sample.border_frames().and_then(|b| analyze_with(&b, Options { method, ..Options::default() })) {
+    match sample
+        .border_frames()
+        .and_then(|b| analyze_with(&b, Options { method, ..Options::default() }))
+    {
         Ok(a) => a
             .steps
             .iter()
@@ -250,7 +268,9 @@ pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> 
                 }
             })
             .collect(),
-        Err(e) => (1..=rows.max(1)).map(|k| SampleResult { error: Some(e.to_string()), ..row(k) }).collect(),
+        Err(e) => (1..=rows.max(1))
+            .map(|k| SampleResult { error: Some(e.to_string()), ..row(k) })
+            .collect(),
     }
 }
 
@@ -263,17 +283,29 @@ pub fn evaluate_video(store: &Store, video: &Video, method: FoldMethod) -> Vec<S
     let category = |k: usize| format!("{}/fold{k}", video.category);
     let folds = match store.folds(video) {
         Ok(folds) => folds,
-        Err(e) => return vec![SampleResult { category: category(1), ..SampleResult::unreadable(&name(1), &e.to_string()) }],
+        Err(e) => {
+            return vec![SampleResult {
+                category: category(1),
+                ..SampleResult::unreadable(&name(1), &e.to_string())
+            }]
+        }
     };
     let usable = folds.usable();
     let mut rows = if usable == 0 {
         Vec::new()
     } else {
-        evaluate_steps(&Sample::from_frames(video.id.clone(), video.category.clone(), folds.frames.clone()), method)
+        evaluate_steps(
+            &Sample::from_frames(video.id.clone(), video.category.clone(), folds.frames.clone()),
+            method,
+        )
     };
     for k in usable + 1..=folds.broken.len() {
         let culprit = folds.broken.iter().position(|&b| b).map_or(k, |a| a + 1);
-        rows.push(SampleResult::dropped(&name(k), &category(k), &format!("broken mesh at the start or end of action {culprit}")));
+        rows.push(SampleResult::dropped(
+            &name(k),
+            &category(k),
+            &format!("broken mesh at the start or end of action {culprit}"),
+        ));
     }
     rows
 }
@@ -312,7 +344,10 @@ fn summarise(category: &str, all: &[&SampleResult]) -> Summary {
         rmse: pick(&|r| r.rmse),
         frechet: pick(&|r| r.frechet),
         aligned_rmse: pick(&|r| r.aligned_rmse),
-        fold_count_misses: results.iter().filter(|r| r.error.is_none() && r.folds != r.expected_folds).count(),
+        fold_count_misses: results
+            .iter()
+            .filter(|r| r.error.is_none() && r.folds != r.expected_folds)
+            .count(),
         errors: results.iter().filter(|r| r.error.is_some()).count(),
         dropped: all.len() - results.len(),
         f1_error: pick(&|r| r.angle_error.map(|a| a[0])),
@@ -335,13 +370,29 @@ pub fn report(samples: Vec<SampleResult>) -> Report {
 impl Report {
     /// The table as aligned text.
     pub fn table(&self) -> String {
-        let mut out = row(["category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "aligned", "misses", "errors", "dropped", "f1 err°", "f2 err°"].map(String::from));
+        let mut out = row([
+            "category", "count", "RMSE", "RMSE var", "Fréchet", "Fr. var", "aligned", "misses",
+            "errors", "dropped", "f1 err°", "f2 err°",
+        ]
+        .map(String::from));
         for s in self.categories.iter().chain(std::iter::once(&self.overall)) {
             let counts = [s.errors, s.dropped].map(|c| c.to_string());
-            out.push_str(&stats_row(&s.category, s.count, [s.rmse, s.frechet, s.aligned_rmse, s.f1_error, s.f2_error], s.fold_count_misses, counts));
+            out.push_str(&stats_row(
+                &s.category,
+                s.count,
+                [s.rmse, s.frechet, s.aligned_rmse, s.f1_error, s.f2_error],
+                s.fold_count_misses,
+                counts,
+            ));
             for f in &s.by_fold {
                 let label = format!("  fold {}", f.fold);
-                out.push_str(&stats_row(&label, f.count, [f.rmse, f.frechet, f.aligned_rmse, f.f1_error, f.f2_error], f.count - f.found, [String::new(), String::new()]));
+                out.push_str(&stats_row(
+                    &label,
+                    f.count,
+                    [f.rmse, f.frechet, f.aligned_rmse, f.f1_error, f.f2_error],
+                    f.count - f.found,
+                    [String::new(), String::new()],
+                ));
             }
         }
         out
@@ -356,8 +407,16 @@ fn row(cells: [String; 12]) -> String {
 
 /// A row from statistics: RMSE and Fréchet with their variances, the aligned RMSE, angle
 /// errors in degrees.
-fn stats_row(label: &str, count: usize, [rmse, frechet, aligned, f1, f2]: [Option<Stat>; 5], misses: usize, [errors, dropped]: [String; 2]) -> String {
-    let mean = |s: Option<Stat>, scale: f64| s.map_or("-".to_string(), |s| format!("{:.4}", s.mean * scale));
+fn stats_row(
+    label: &str,
+    count: usize,
+    [rmse, frechet, aligned, f1, f2]: [Option<Stat>; 5],
+    misses: usize,
+    [errors, dropped]: [String; 2],
+) -> String {
+    let mean = |s: Option<Stat>, scale: f64| {
+        s.map_or("-".to_string(), |s| format!("{:.4}", s.mean * scale))
+    };
     let var = |s: Option<Stat>| s.map_or("-".to_string(), |s| format!("{:.5}", s.var));
     let degrees = 180.0 / PI;
     row([
@@ -381,7 +440,13 @@ mod tests {
     use super::*;
 
     fn scored(name: &str, category: &str, rmse: f64, folds: usize) -> SampleResult {
-        SampleResult { rmse: Some(rmse), frechet: Some(2.0 * rmse), folds, expected_folds: 1, ..SampleResult::empty(name, category) }
+        SampleResult {
+            rmse: Some(rmse),
+            frechet: Some(2.0 * rmse),
+            folds,
+            expected_folds: 1,
+            ..SampleResult::empty(name, category)
+        }
     }
 
     #[test]
@@ -394,7 +459,9 @@ mod tests {
             SampleResult::dropped("b2", "b", "broken mesh"),
         ];
         let r = report(results);
-        let row = |c: &str| r.categories.iter().find(|s| s.category == c).unwrap_or_else(|| panic!("no row {c}"));
+        let row = |c: &str| {
+            r.categories.iter().find(|s| s.category == c).unwrap_or_else(|| panic!("no row {c}"))
+        };
         let a = row("a");
         assert_eq!((a.count, a.fold_count_misses, a.errors, a.dropped), (2, 1, 0, 0));
         let rmse = a.rmse.expect("scored samples");

@@ -1,12 +1,10 @@
 //! CloSE readers: the files a user brings, the built-in dataset and the evaluation table,
-//! over [`close_core`] (re-exported whole, so `close_io::border` is `close_core::border`).
+//! over [`close_core`] (re-exported whole, so `close_core::border` is `close_core::border`).
 //!
 //! [`formats`] (Sample JSON, text/CSV, OBJ, PLY, MATLAB v5) → [`mesh`] (a mesh's border) →
 //! [`dataset`] (the built-in samples) → [`eval`] (the evaluation table) → [`vrfolding`]
 //! (VR-Folding Zarr stores, feature `vrfolding`: Blosc is C) → [`catalog`] (the user's
 //! datasets) → [`batch`] (the units of `close eval`'s work); [`cache`] is a bounded LRU.
-
-pub use close_core::*;
 
 pub mod batch;
 pub mod cache;

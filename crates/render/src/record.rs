@@ -16,9 +16,9 @@
 //! Tested in `tests/record.rs` (with the feature).
 //!
 //! ```no_run
-//! # fn main() -> close_render::Result<()> {
+//! # fn main() -> close_core::Result<()> {
 //! use close_render::{analyze, FrameRange};
-//! let sample = close_render::formats::json::parse_sample(&std::fs::read("sample.json").unwrap())?;
+//! let sample = close_io::formats::json::parse_sample(&std::fs::read("sample.json").unwrap())?;
 //! let frames = sample.border_frames()?;
 //! let analysis = analyze(&frames, FrameRange::default())?;
 //! std::fs::write("sample.rrd", close_render::record::record(&analysis, &frames)?).unwrap();
@@ -26,14 +26,16 @@
 //! ```
 
 use rerun::datatypes::{TensorBuffer, TensorData};
-use rerun::{LineStrips3D, Points3D, RecordingStream, RecordingStreamBuilder, Scalars, Tensor, TextDocument};
+use rerun::{
+    LineStrips3D, Points3D, RecordingStream, RecordingStreamBuilder, Scalars, Tensor, TextDocument,
+};
 
-use crate::analysis::Analysis;
-use crate::angle::angle_to_param;
-use crate::border::{point_at, BorderFrames, Point};
-use crate::disk::Disk;
-use crate::error::{Error, Result};
-use crate::fold::reflect::apply_fold;
+use close_core::analysis::Analysis;
+use close_core::angle::angle_to_param;
+use close_core::border::{point_at, BorderFrames, Point};
+use close_core::disk::Disk;
+use close_core::error::{Error, Result};
+use close_core::fold::reflect::apply_fold;
 
 /// Name of the frame timeline.
 pub const TIMELINE: &str = "frame";
@@ -76,10 +78,14 @@ fn log_disk(rec: &RecordingStream, path: &str, disk: &Disk) -> Result<()> {
 
 /// Record an analysis of `frames` as an in-memory `.rrd` file.
 pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
-    let (rec, storage) = RecordingStreamBuilder::new("close").enabled(true).memory().map_err(failed)?;
+    let (rec, storage) =
+        RecordingStreamBuilder::new("close").enabled(true).memory().map_err(failed)?;
     let (start, end) = (analysis.start_frame, analysis.end_frame);
     let Some(analysed) = frames.frames.get(start..=end) else {
-        return Err(Error::InvalidArgument(format!("the analysis covers frames {start}…{end}, the sample has {}", frames.frames.len())));
+        return Err(Error::InvalidArgument(format!(
+            "the analysis covers frames {start}…{end}, the sample has {}",
+            frames.frames.len()
+        )));
     };
     for (k, border) in (start..).zip(analysed) {
         rec.set_time_sequence(TIMELINE, k as i64);
@@ -96,7 +102,8 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
         rec.set_time_sequence(TIMELINE, frame as i64);
         let ends = fold.map(|f| xyz(&point_at(&folded, angle_to_param(f, n))));
         let base = format!("fold/{}", k + 1);
-        rec.log(format!("{base}/points"), &Points3D::new(ends).with_labels(["f1", "f2"])).map_err(failed)?;
+        rec.log(format!("{base}/points"), &Points3D::new(ends).with_labels(["f1", "f2"]))
+            .map_err(failed)?;
         rec.log(format!("{base}/line"), &LineStrips3D::new([ends])).map_err(failed)?;
         rec.log("close/f1", &Scalars::single(fold[0])).map_err(failed)?;
         rec.log("close/f2", &Scalars::single(fold[1])).map_err(failed)?;

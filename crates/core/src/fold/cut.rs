@@ -126,7 +126,9 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     if total <= 0.0 {
         return None;
     }
-    let same_side = |h1: usize, h2: usize| sums.within(arc_edges(n, h1, h2)) + sums.within(arc_edges(n, h2, h1));
+    let same_side = |h1: usize, h2: usize| {
+        sums.within(arc_edges(n, h1, h2)) + sums.within(arc_edges(n, h2, h1))
+    };
     let grid = 2 * n;
     // Every cut {h1, h2 = h1 + span}: for one span and one parity of h1 both arcs keep their
     // lengths and their starts advance by one edge per step, so each reads two rows in order.
@@ -137,7 +139,11 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
             let (a0, la) = arc_edges(n, parity, parity + span);
             let (b0, lb) = arc_edges(n, (parity + span) % grid, parity);
             let (inside, outside) = (sums.of_length(la), sums.of_length(lb));
-            for (k, s) in cyclic_from(inside, a0).zip(cyclic_from(outside, b0)).map(|(i, o)| i + o).enumerate() {
+            for (k, s) in cyclic_from(inside, a0)
+                .zip(cyclic_from(outside, b0))
+                .map(|(i, o)| i + o)
+                .enumerate()
+            {
                 if s <= best.0 {
                     let h1 = 2 * k + parity;
                     let h2 = (h1 + span) % grid;
@@ -153,7 +159,8 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     let tie = s_min + TIE * total;
     // Middle of the run of tying positions around `h`, moving one end with the other fixed.
     let middle = |h: usize, other: usize, first: bool| -> f64 {
-        let score = |x: usize| if first { same_side(x % grid, other) } else { same_side(other, x % grid) };
+        let score =
+            |x: usize| if first { same_side(x % grid, other) } else { same_side(other, x % grid) };
         let ok = |x: usize| x % grid != other && score(x) <= tie;
         let (mut lo, mut hi) = (0, 0);
         while lo < grid && ok(h + grid - lo - 1) {
@@ -170,18 +177,25 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     let pairs = |len: usize| (len * len.saturating_sub(1) / 2) as f64;
     let same_mean = s_min / (pairs(arc_in.1) + pairs(arc_out.1)).max(1.0);
     let edges = |(start, len): (usize, usize)| (start..start + len).map(move |e| e % n);
-    let between: f64 = edges(arc_in).map(|i| edges(arc_out).map(|j| g.get(i, j)).sum::<f64>()).sum();
+    let between: f64 =
+        edges(arc_in).map(|i| edges(arc_out).map(|j| g.get(i, j)).sum::<f64>()).sum();
     let cross_mean = between / ((arc_in.1 * arc_out.1) as f64).max(1.0);
     let same_to_cross = if cross_mean > 0.0 { same_mean / cross_mean } else { f64::INFINITY };
-    Some(Cut { p1, p2, residual: s_min / total, same_to_cross, inside_edge: [inside(p1), inside(p2)] })
+    Some(Cut {
+        p1,
+        p2,
+        residual: s_min / total,
+        same_to_cross,
+        inside_edge: [inside(p1), inside(p2)],
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::angle::param_to_angle;
     use crate::border::Point;
     use crate::fold::reflect::apply_fold;
-    use crate::angle::param_to_angle;
 
     fn square(per_side: usize) -> Vec<Point> {
         let s = per_side as f64;
@@ -189,13 +203,20 @@ mod tests {
             .map(|k| {
                 let t = (k % per_side) as f64 / s;
                 let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
-                Point::new(x - 0.5 + 1e-6 * (k as f64).sin(), y - 0.5 + 1e-6 * (k as f64).cos(), 0.0)
+                Point::new(
+                    x - 0.5 + 1e-6 * (k as f64).sin(),
+                    y - 0.5 + 1e-6 * (k as f64).cos(),
+                    0.0,
+                )
             })
             .collect()
     }
 
     fn cut_of(points: &[Point], f: [f64; 2]) -> Cut {
-        let mut end = apply_fold(points, [param_to_angle(f[0], points.len()), param_to_angle(f[1], points.len())]);
+        let mut end = apply_fold(
+            points,
+            [param_to_angle(f[0], points.len()), param_to_angle(f[1], points.len())],
+        );
         for (e, s) in end.iter_mut().zip(points) {
             if e != s {
                 e.z = 0.01;

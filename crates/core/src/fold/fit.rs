@@ -47,12 +47,15 @@ pub struct Curve {
     pub rim: f64,
 }
 
+/// A point of the solver's parameters, the loss there and its gradient.
+type Evaluated = ([f64; 2], f64, [f64; 2]);
+
 /// The loss in the solver's parameters (a0, u) with a1 = π·sin u, and its gradient.
 struct Problem<'a> {
     tables: &'a RingTables,
     /// The last point evaluated: the line search asks for the cost and then the gradient of
     /// the same point, and one table pass gives both.
-    last: RefCell<Option<([f64; 2], f64, [f64; 2])>>,
+    last: RefCell<Option<Evaluated>>,
 }
 
 impl Problem<'_> {
@@ -88,7 +91,11 @@ impl Gradient for Problem<'_> {
 
 /// Minimise the tabulated loss from one starting line; `None` when the solver fails.
 fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
-    let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7).with_tolerance_grad(1e-9).ok()?.with_tolerance_cost(1e-12).ok()?;
+    let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7)
+        .with_tolerance_grad(1e-9)
+        .ok()?
+        .with_tolerance_cost(1e-12)
+        .ok()?;
     let result = Executor::new(Problem { tables, last: RefCell::new(None) }, solver)
         .configure(|state| state.param(Vector2::new(a0, 0.0)).max_iters(200))
         .timer(false)
@@ -179,8 +186,10 @@ pub fn curves_through(tables: &RingTables, n: usize, fold: [f64; 2]) -> Vec<Curv
     // The two points in parallel: this runs after the fold is found, with nothing beside it.
     fold.par_iter()
         .filter_map(|&rim| {
-            let scan: Vec<(f64, f64)> = (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (rim - a1, a1)).collect();
-            let best = scan.iter().zip(tables.losses(&scan)).min_by(|a, b| a.1.total_cmp(&b.1))?.0 .1;
+            let scan: Vec<(f64, f64)> =
+                (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (rim - a1, a1)).collect();
+            let best =
+                scan.iter().zip(tables.losses(&scan)).min_by(|a, b| a.1.total_cmp(&b.1))?.0 .1;
             // Brent's method within a grid step either side of the best slope.
             let solver = BrentOpt::new((best - step).max(-A1_BOUND), (best + step).min(A1_BOUND));
             let a1 = Executor::new(SlopeProblem { tables, rim }, solver)
@@ -246,8 +255,9 @@ pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> O
     // Only a changed rim cell (a vertex) within the searched angles says where the fold is;
     // change elsewhere (pairs reaching a nearby corner) would pull the minimum to a bound.
     let tiny = 1e-9 * edge;
-    let informative =
-        near.iter().any(|c| c.layer == 1 && c.angle >= lo - tiny && c.angle <= hi + tiny && c.value > super::FLAT_DIFF);
+    let informative = near.iter().any(|c| {
+        c.layer == 1 && c.angle >= lo - tiny && c.angle <= hi + tiny && c.value > super::FLAT_DIFF
+    });
     if !informative {
         return None;
     }
@@ -272,7 +282,12 @@ mod tests {
             .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
             .map(|(i, j)| {
                 let p = position(n, i, j);
-                ridges.iter().map(|&(rim, a1)| (-(wrap_pi(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()).sum()
+                ridges
+                    .iter()
+                    .map(|&(rim, a1)| {
+                        (-(wrap_pi(p.angle - rim - a1 * (p.radius - 1.0)) * 8.0).powi(2)).exp()
+                    })
+                    .sum()
             })
             .collect();
         Disk::from_values(n, values).unwrap()
@@ -313,7 +328,8 @@ mod tests {
     fn minima_closer_than_the_merge_distance_are_one_curve() {
         let n = 60;
         let curves = fit(&ridged(n, &[(2.0, 0.0)]));
-        let near: Vec<_> = curves.iter().filter(|c| wrap_pi(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
+        let near: Vec<_> =
+            curves.iter().filter(|c| wrap_pi(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
         assert_eq!(near.len(), 1, "{curves:?}");
     }
 

@@ -64,7 +64,12 @@ pub fn ring_cells(disk: &Disk, d: usize) -> impl Iterator<Item = Cell> + '_ {
     let n = disk.n();
     let l = disk.layers();
     let radius = (l - d + 1) as f64 / l as f64;
-    (0..n).map(move |a| Cell { layer: d, radius, angle: ring_angle(n, d, a), value: disk.ring_value(d, a) })
+    (0..n).map(move |a| Cell {
+        layer: d,
+        radius,
+        angle: ring_angle(n, d, a),
+        value: disk.ring_value(d, a),
+    })
 }
 
 /// Exact loss of the curve θ̂ = a0 + a1·r over the given cells.
@@ -131,7 +136,12 @@ impl RingTables {
                 let (mut s, mut p) = (forward.make_output_vec(), forward.make_output_vec());
                 forward.process(&mut sqrt_g, &mut s).expect("buffers sized by the plan");
                 forward.process(&mut plain_g, &mut p).expect("buffers sized by the plan");
-                let mut product: Vec<Complex<f64>> = s.iter().zip(&p).zip(ka.iter().zip(&kb)).map(|((s, p), (a, b))| s * a - p * b).collect();
+                let mut product: Vec<Complex<f64>> = s
+                    .iter()
+                    .zip(&p)
+                    .zip(ka.iter().zip(&kb))
+                    .map(|((s, p), (a, b))| s * a - p * b)
+                    .collect();
                 // The spectrum of a real signal: its DC and Nyquist terms are real.
                 product[0].im = 0.0;
                 if let Some(last) = product.last_mut().filter(|_| grid % 2 == 0) {
@@ -141,7 +151,8 @@ impl RingTables {
                 inverse.process(&mut product, &mut table).expect("buffers sized by the plan");
                 // Padded by one point before and two after, so an interpolation reads four
                 // consecutive entries without wrapping.
-                let padded = (0..grid + 3).map(|k| table[(k + grid - 1) % grid] / grid as f64).collect();
+                let padded =
+                    (0..grid + 3).map(|k| table[(k + grid - 1) % grid] / grid as f64).collect();
                 ((l - d + 1) as f64 / l as f64, stride as f64, padded)
             })
             .collect();
@@ -252,11 +263,18 @@ mod tests {
         for &(a0, a1) in &[(1.0, 0.0), (0.7, 0.3), (5.0, -1.2), (3.1, 2.0)] {
             let exact = exact_loss(&cells, a0, a1);
             let (approx, grad) = tables.loss_and_gradient(a0, a1);
-            assert!((exact - approx).abs() < 2e-3 * (1.0 + exact.abs()), "{a0} {a1}: {exact} vs {approx}");
+            assert!(
+                (exact - approx).abs() < 2e-3 * (1.0 + exact.abs()),
+                "{a0} {a1}: {exact} vs {approx}"
+            );
             // The gradient is the derivative of the interpolant: check by central difference.
             let h = 1e-6;
-            let num0 = (tables.loss_and_gradient(a0 + h, a1).0 - tables.loss_and_gradient(a0 - h, a1).0) / (2.0 * h);
-            let num1 = (tables.loss_and_gradient(a0, a1 + h).0 - tables.loss_and_gradient(a0, a1 - h).0) / (2.0 * h);
+            let num0 = (tables.loss_and_gradient(a0 + h, a1).0
+                - tables.loss_and_gradient(a0 - h, a1).0)
+                / (2.0 * h);
+            let num1 = (tables.loss_and_gradient(a0, a1 + h).0
+                - tables.loss_and_gradient(a0, a1 - h).0)
+                / (2.0 * h);
             assert!((num0 - grad[0]).abs() < 1e-4 * (1.0 + num0.abs()));
             assert!((num1 - grad[1]).abs() < 1e-4 * (1.0 + num1.abs()));
         }
@@ -265,7 +283,8 @@ mod tests {
     #[test]
     fn many_curves_at_once_are_each_the_same() {
         let tables = RingTables::new(&synthetic_diff(50, 2.5));
-        let curves: Vec<(f64, f64)> = (0..200).map(|k| (-7.0 + 0.07 * k as f64, -3.0 + 0.03 * k as f64)).collect();
+        let curves: Vec<(f64, f64)> =
+            (0..200).map(|k| (-7.0 + 0.07 * k as f64, -3.0 + 0.03 * k as f64)).collect();
         for (loss, &(a0, a1)) in tables.losses(&curves).iter().zip(&curves) {
             assert_eq!(loss.to_bits(), tables.loss_and_gradient(a0, a1).0.to_bits(), "{a0} {a1}");
         }

@@ -82,7 +82,9 @@ pub struct FoldDetection {
 
 /// True when every vertex of `points` lies at one height (a cloth flat on the table).
 pub(crate) fn is_flat(points: &[Point]) -> bool {
-    let (lo, hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)));
+    let (lo, hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)));
     hi - lo <= FLAT_HEIGHT
 }
 
@@ -114,7 +116,14 @@ pub(crate) fn is_flat(points: &[Point]) -> bool {
 /// ```
 pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) -> FoldDetection {
     let g = start.abs_diff(end);
-    let mut found = FoldDetection { fold: None, arcs: Vec::new(), curves: Vec::new(), cut: None, orientation: None, synthesis: None };
+    let mut found = FoldDetection {
+        fold: None,
+        arcs: Vec::new(),
+        curves: Vec::new(),
+        cut: None,
+        orientation: None,
+        synthesis: None,
+    };
     if g.values().iter().all(|&v| v <= FLAT_DIFF) {
         return found;
     }
@@ -162,7 +171,12 @@ fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
 
 /// [`FoldMethod::Cut`]: on a flat start the cut, oriented, refined; on a stacked one the
 /// best of the lines turned over, each refined. The orientation is `None` on a stacked start.
-fn fold_by_cut(before: &[Point], start: &Disk, end: &Disk, cut: Option<Cut>) -> (Option<Synthesis>, Option<Orientation>) {
+fn fold_by_cut(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    cut: Option<Cut>,
+) -> (Option<Synthesis>, Option<Orientation>) {
     let n = start.n();
     if is_flat(before) {
         let Some(cut) = cut.filter(|c| c.same_to_cross <= MAX_SAME_TO_CROSS) else {
@@ -170,14 +184,28 @@ fn fold_by_cut(before: &[Point], start: &Disk, end: &Disk, cut: Option<Cut>) -> 
         };
         let (p, q) = (param_to_angle(cut.p1, n), param_to_angle(cut.p2, n));
         let (fold, orientation) = orientation::orient(start, end, p, q);
-        (Some(synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)), Some(orientation))
+        (
+            Some(synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)),
+            Some(orientation),
+        )
     } else {
         let refined = synth::search_line(before, start, end)
             .into_iter()
             .filter_map(|found| match (found.arcs.len(), found.direction) {
-                (1, direction) => Some(synth::refine(before, start, end, found.s, direction.map(|[x, y]| y.atan2(x)))),
+                (1, direction) => Some(synth::refine(
+                    before,
+                    start,
+                    end,
+                    found.s,
+                    direction.map(|[x, y]| y.atan2(x)),
+                )),
                 // Every arc left of the line: the line is refined, the arcs follow it.
-                (_, Some([x, y])) => Some(synth::refine_arcs(before, start, end, &crossing_line(before, found.s[0], y.atan2(x)))),
+                (_, Some([x, y])) => Some(synth::refine_arcs(
+                    before,
+                    start,
+                    end,
+                    &crossing_line(before, found.s[0], y.atan2(x)),
+                )),
                 (_, None) => None,
             })
             .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
@@ -204,7 +232,10 @@ mod tests {
 
     /// The square with the vertices x > c turned over the line x = c, a layer above.
     fn folded(points: &[Point], c: f64) -> Vec<Point> {
-        points.iter().map(|p| if p.x > c + 1e-9 { Point::new(2.0 * c - p.x, p.y, p.z + 0.02) } else { *p }).collect()
+        points
+            .iter()
+            .map(|p| if p.x > c + 1e-9 { Point::new(2.0 * c - p.x, p.y, p.z + 0.02) } else { *p })
+            .collect()
     }
 
     fn run(before: &[Point], after: &[Point]) -> FoldDetection {
@@ -237,16 +268,28 @@ mod tests {
         // Right half over the left (x = 0), then the stack's top half down (y = 0).
         let s = square(6);
         let half = folded(&s, 0.0);
-        let top = half.iter().map(|p| if p.y > 1e-9 { Point::new(p.x, -p.y, 0.1 - p.z) } else { *p }).collect::<Vec<_>>();
+        let top = half
+            .iter()
+            .map(|p| if p.y > 1e-9 { Point::new(p.x, -p.y, 0.1 - p.z) } else { *p })
+            .collect::<Vec<_>>();
         let found = run(&half, &top);
         let [f1, f2] = found.fold.unwrap();
         let n = s.len();
         // The folded arc runs from the right side's middle (vertex 9) to the left side's (21),
         // both on the line, where they lie on top of each other: within an edge of them.
-        assert!(crate::angle::distance(f1, param_to_angle(9.0, n)) <= edge(n) + 1e-9, "{}", f1 / edge(n));
-        assert!(crate::angle::distance(f2, param_to_angle(21.0, n)) <= edge(n) + 1e-9, "{}", f2 / edge(n));
+        assert!(
+            crate::angle::distance(f1, param_to_angle(9.0, n)) <= edge(n) + 1e-9,
+            "{}",
+            f1 / edge(n)
+        );
+        assert!(
+            crate::angle::distance(f2, param_to_angle(21.0, n)) <= edge(n) + 1e-9,
+            "{}",
+            f2 / edge(n)
+        );
         // The line came from the disks: horizontal.
-        let direction = found.synthesis.as_ref().and_then(|s| s.direction).expect("the fold points coincide");
+        let direction =
+            found.synthesis.as_ref().and_then(|s| s.direction).expect("the fold points coincide");
         assert!(direction[1].abs() < 0.1, "{direction:?}");
         assert!(found.orientation.is_none(), "a stacked start is not oriented by flips");
     }

@@ -115,7 +115,17 @@ mod tests {
     fn the_flipping_side_is_the_folded_one() {
         let start = square();
         // The bottom-left corner's flap (vertices 15, 0, 1) folded over the diagonal.
-        let end: Vec<Point> = start.iter().map(|p| if p.x + p.y < 0.5 - 1e-3 { Point::new(0.5 - p.y, 0.5 - p.x, 0.02) } else { *p }).collect();
+        let end: Vec<Point> =
+            start
+                .iter()
+                .map(|p| {
+                    if p.x + p.y < 0.5 - 1e-3 {
+                        Point::new(0.5 - p.y, 0.5 - p.x, 0.02)
+                    } else {
+                        *p
+                    }
+                })
+                .collect();
         let (a, b) = (param_to_angle(14.0, 16), param_to_angle(2.0, 16));
         let (fold, how) = orient(&Disk::of_border(&start), &Disk::of_border(&end), a, b);
         assert_eq!(fold, [a, b]);

@@ -40,7 +40,10 @@ pub fn reflect_xy(p: &Point, a: &Point, b: &Point) -> Point {
 /// coincide and no direction is given.
 pub fn fold_line(points: &[Point], fold: [f64; 2], direction: Option<[f64; 2]>) -> Option<Line> {
     let n = points.len();
-    let (a, b) = (point_at(points, angle_to_param(fold[0], n)), point_at(points, angle_to_param(fold[1], n)));
+    let (a, b) = (
+        point_at(points, angle_to_param(fold[0], n)),
+        point_at(points, angle_to_param(fold[1], n)),
+    );
     match direction {
         Some(direction) => Some(Line { point: [(a.x + b.x) / 2.0, (a.y + b.y) / 2.0], direction }),
         None => Line::through(&a, &b),
@@ -92,7 +95,8 @@ mod tests {
     #[test]
     fn a_multi_arc_fold_turns_only_its_arcs() {
         // Arcs 1.5 → 3.5 and 7.5 → 9.5 of 12 vertices: vertices 2, 3, 8, 9 cross y = 0.
-        let points: Vec<Point> = (0..12).map(|k| Point::new(k as f64, 1.0 + (k as f64).sin(), 0.5)).collect();
+        let points: Vec<Point> =
+            (0..12).map(|k| Point::new(k as f64, 1.0 + (k as f64).sin(), 0.5)).collect();
         let line = Line { point: [0.0, 0.0], direction: [1.0, 0.0] };
         let q = edge(12);
         let out = apply_arcs(&points, &[[1.5 * q, 3.5 * q], [7.5 * q, 9.5 * q]], &line);

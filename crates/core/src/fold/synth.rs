@@ -175,7 +175,13 @@ struct Probe {
 impl Probe {
     /// Probe `pairs`, compressed, on the start disk and the measured end disk.
     /// `flat`: whether the step starts flat, which sets the compression's scale.
-    fn of(pairs: Vec<(usize, usize)>, start: &Disk, end: &Disk, flap_negates: bool, flat: bool) -> Probe {
+    fn of(
+        pairs: Vec<(usize, usize)>,
+        start: &Disk,
+        end: &Disk,
+        flap_negates: bool,
+        flat: bool,
+    ) -> Probe {
         let scale = if flat { SCALE } else { STACKED_SCALE };
         let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j), scale)).collect();
         let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j), scale)).collect();
@@ -199,11 +205,14 @@ impl Probe {
         near.dedup();
         let mut pairs: Vec<(usize, usize)> = Vec::new();
         for &i in &near {
-            pairs.extend(sampled.iter().chain(&near).filter(|&&j| j != i).map(|&j| (i.min(j), i.max(j))));
+            pairs.extend(
+                sampled.iter().chain(&near).filter(|&&j| j != i).map(|&j| (i.min(j), i.max(j))),
+            );
         }
         // Flap against the rest: sampled edges on either side of the cut.
         let turned = moved_mask(n, arcs);
-        let (inside, outside): (Vec<usize>, Vec<usize>) = sampled.iter().partition(|&&e| turned[e] && turned[(e + 1) % n]);
+        let (inside, outside): (Vec<usize>, Vec<usize>) =
+            sampled.iter().partition(|&&e| turned[e] && turned[(e + 1) % n]);
         for &i in &inside {
             pairs.extend(outside.iter().map(|&j| (i.min(j), i.max(j))));
         }
@@ -221,10 +230,12 @@ impl Probe {
         let (state, next) = (&turned.state, |e: usize| turned.next(e));
         COST_BUFFERS.with_borrow_mut(|(values, across)| {
             values.clear();
-            values.extend(self.pairs.iter().zip(&self.start).map(|(&(i, j), start)| match (turned.edge_moved(i), turned.edge_moved(j)) {
-                ((false, false), (false, false)) => Some(*start),
-                ((true, true), (true, true)) if self.flap_negates => Some(-start),
-                _ => None,
+            values.extend(self.pairs.iter().zip(&self.start).map(|(&(i, j), start)| {
+                match (turned.edge_moved(i), turned.edge_moved(j)) {
+                    ((false, false), (false, false)) => Some(*start),
+                    ((true, true), (true, true)) if self.flap_negates => Some(-start),
+                    _ => None,
+                }
             }));
             across.clear();
             across.extend((0..values.len()).filter(|&k| values[k].is_none()));
@@ -240,14 +251,19 @@ impl Probe {
                     }
                 },
             );
-            let total: f64 = values.iter().zip(&self.measured).map(|(value, m)| (value.unwrap_or(0.0) - m).abs()).sum();
+            let total: f64 = values
+                .iter()
+                .zip(&self.measured)
+                .map(|(value, m)| (value.unwrap_or(0.0) - m).abs())
+                .sum();
             total / self.pairs.len().max(1) as f64
         })
     }
 
     /// Mean mismatch of the start state left as it was.
     fn unfolded(&self) -> f64 {
-        self.start.iter().zip(&self.measured).map(|(s, m)| (s - m).abs()).sum::<f64>() / self.pairs.len().max(1) as f64
+        self.start.iter().zip(&self.measured).map(|(s, m)| (s - m).abs()).sum::<f64>()
+            / self.pairs.len().max(1) as f64
     }
 }
 
@@ -306,17 +322,26 @@ fn mean_edge(points: &[Point]) -> f64 {
 /// coincide the direction is searched too: from `heading` (the direction of a line that
 /// gave `s`, radians) or else the best of [`DIRECTIONS`] per half turn, again over a half
 /// turn from the best start, then with the points.
-pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: Option<f64>) -> Synthesis {
+pub fn refine(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    s: [f64; 2],
+    heading: Option<f64>,
+) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
     let probe = Probe::around(start, end, &[s], super::is_flat(before));
     let axis = flap_axis(before);
     let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
-        line_of(before, s, phi).map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, axis, &[s], &line)))
+        line_of(before, s, phi)
+            .map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, axis, &[s], &line)))
     });
     let half_turn = |search: &mut Search<_>, s: [f64; 2]| {
-        search.least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect()).and_then(|((_, phi), _)| phi)
+        search
+            .least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect())
+            .and_then(|((_, phi), _)| phi)
     };
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
     let coincide = (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before);
@@ -324,7 +349,10 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
     // Start from the best of the given points and their snaps to the vertices either side and
     // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
     let snaps = |x: f64| [x, x.floor(), x.ceil(), (2.0 * x).round() / 2.0];
-    let starts = snaps(s[0]).into_iter().flat_map(|a| snaps(s[1]).into_iter().map(move |b| ([a, b], phi))).collect();
+    let starts = snaps(s[0])
+        .into_iter()
+        .flat_map(|a| snaps(s[1]).into_iter().map(move |b| ([a, b], phi)))
+        .collect();
     let start = search.least(starts).map_or(s, |((t, _), _)| t);
     let phi = if coincide { half_turn(&mut search, start) } else { None };
     let mut best = search.least(vec![(start, phi)]).unwrap_or(((start, phi), f64::INFINITY));
@@ -334,9 +362,15 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
         let turns: &[f64] = if centre_phi.is_some() { &[-1.0, 0.0, 1.0] } else { &[0.0] };
         let neighbours = [-1.0, 0.0, 1.0]
             .iter()
-            .flat_map(|&d1| [-1.0, 0.0, 1.0].iter().flat_map(move |&d2| turns.iter().map(move |&dp| (d1, d2, dp))))
+            .flat_map(|&d1| {
+                [-1.0, 0.0, 1.0]
+                    .iter()
+                    .flat_map(move |&d2| turns.iter().map(move |&dp| (d1, d2, dp)))
+            })
             .filter(|&step| step != (0.0, 0.0, 0.0))
-            .map(|(d1, d2, dp)| ([centre[0] + d1 * h, centre[1] + d2 * h], centre_phi.map(|p| p + dp * h_phi)))
+            .map(|(d1, d2, dp)| {
+                ([centre[0] + d1 * h, centre[1] + d2 * h], centre_phi.map(|p| p + dp * h_phi))
+            })
             .filter(|(t, _)| (t[0] - s[0]).abs() <= REACH && (t[1] - s[1]).abs() <= REACH)
             .collect();
         match search.least(neighbours) {
@@ -346,7 +380,13 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, s: [f64; 2], heading: 
     }
     let ((s, phi), mismatch) = best;
     let s = s.map(|x| x.rem_euclid(nf));
-    Synthesis { s, arcs: vec![s], direction: phi.map(|p| [p.cos(), p.sin()]), mismatch, unfolded_mismatch: probe.unfolded() }
+    Synthesis {
+        s,
+        arcs: vec![s],
+        direction: phi.map(|p| [p.cos(), p.sin()]),
+        mismatch,
+        unfolded_mismatch: probe.unfolded(),
+    }
 }
 
 /// The line at angle `phi` to the x axis whose signed distance from the origin (along its
@@ -380,7 +420,8 @@ pub fn refine_arcs(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> S
         }
     });
     let edge = mean_edge(before);
-    let mut best = search.least(vec![([phi0, rho0], None)]).unwrap_or((([phi0, rho0], None), f64::INFINITY));
+    let mut best =
+        search.least(vec![([phi0, rho0], None)]).unwrap_or((([phi0, rho0], None), f64::INFINITY));
     let (mut h_rho, mut h_phi) = (edge, PI / DIRECTIONS as f64);
     while h_rho >= STEP * edge {
         let [phi, rho] = best.0 .0;
@@ -401,7 +442,13 @@ pub fn refine_arcs(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> S
         (Some(first), Some(last)) => [first[0], last[1]],
         _ => [0.0; 2],
     };
-    Synthesis { s, arcs, direction: Some(line.direction), mismatch, unfolded_mismatch: probe.unfolded() }
+    Synthesis {
+        s,
+        arcs,
+        direction: Some(line.direction),
+        mismatch,
+        unfolded_mismatch: probe.unfolded(),
+    }
 }
 
 /// Fold points (border parameters) and, when searched, the line's direction.
@@ -425,12 +472,16 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 
     /// The candidate of least cost, the first on a tie.
     fn least(&mut self, candidates: Vec<Candidate>) -> Option<(Candidate, f64)> {
-        let mut fresh: Vec<&Candidate> = candidates.iter().filter(|c| !self.known.contains_key(&Self::key(c))).collect();
+        let mut fresh: Vec<&Candidate> =
+            candidates.iter().filter(|c| !self.known.contains_key(&Self::key(c))).collect();
         fresh.sort_by_key(|c| Self::key(c));
         fresh.dedup_by_key(|c| Self::key(c));
         let costs: Vec<f64> = fresh.par_iter().map(|c| (self.cost)(c)).collect();
         self.known.extend(fresh.iter().map(|c| Self::key(c)).zip(costs));
-        candidates.into_iter().map(|c| (c, self.known[&Self::key(&c)])).min_by(|a, b| a.1.total_cmp(&b.1))
+        candidates
+            .into_iter()
+            .map(|c| (c, self.known[&Self::key(&c)]))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
     }
 }
 
@@ -449,7 +500,10 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis> {
     let n = before.len();
     let sampled = sampled_edges(n, SCREEN_SAMPLES);
-    let pairs = sampled.iter().flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j))).collect();
+    let pairs = sampled
+        .iter()
+        .flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j)))
+        .collect();
     let probe = Probe::of(pairs, start, end, true, false);
     let unfolded = probe.unfolded();
     let axis = flap_axis(before);
@@ -458,7 +512,9 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
     let offsets = (2.0 * reach / step).ceil() as usize;
     let mut found: Vec<(Vec<[f64; 2]>, f64, f64, Turn)> = (0..2 * DIRECTIONS)
         .into_par_iter()
-        .flat_map_iter(|k| (0..offsets).map(move |m| (PI * k as f64 / DIRECTIONS as f64, -reach + m as f64 * step)))
+        .flat_map_iter(|k| {
+            (0..offsets).map(move |m| (PI * k as f64 / DIRECTIONS as f64, -reach + m as f64 * step))
+        })
         .flat_map_iter(|(phi, rho)| {
             let line = line_at(phi, rho);
             turns_of(before, &line).into_iter().map(move |(arcs, turn)| (arcs, phi, line, turn))
@@ -479,10 +535,17 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
             if taken == CANDIDATES || *mismatch >= MAX_MISMATCH_RATIO * unfolded {
                 break;
             }
-            let key = |arcs: &[[f64; 2]]| arcs.iter().map(|a| a.map(f64::round)).collect::<Vec<_>>();
+            let key =
+                |arcs: &[[f64; 2]]| arcs.iter().map(|a| a.map(f64::round)).collect::<Vec<_>>();
             if kept.iter().all(|k| key(&k.arcs) != key(arcs)) {
                 let s = [arcs[0][0], arcs[arcs.len() - 1][1]];
-                kept.push(Synthesis { s, arcs: arcs.clone(), direction: Some([phi.cos(), phi.sin()]), mismatch: *mismatch, unfolded_mismatch: unfolded });
+                kept.push(Synthesis {
+                    s,
+                    arcs: arcs.clone(),
+                    direction: Some([phi.cos(), phi.sin()]),
+                    mismatch: *mismatch,
+                    unfolded_mismatch: unfolded,
+                });
                 taken += 1;
             }
         }
@@ -512,7 +575,12 @@ fn turns_of(before: &[Point], line: &Line) -> Vec<(Vec<[f64; 2]>, Turn)> {
     if let [arc] = arcs[..] {
         return if fits(sizes[0]) { vec![(vec![arc], Turn::Whole)] } else { Vec::new() };
     }
-    let mut turns: Vec<(Vec<[f64; 2]>, Turn)> = arcs.iter().zip(&sizes).filter(|(_, &m)| fits(m)).map(|(&arc, _)| (vec![arc], Turn::Partial)).collect();
+    let mut turns: Vec<(Vec<[f64; 2]>, Turn)> = arcs
+        .iter()
+        .zip(&sizes)
+        .filter(|(_, &m)| fits(m))
+        .map(|(&arc, _)| (vec![arc], Turn::Partial))
+        .collect();
     if arcs.len() > 1 && fits(sizes.iter().sum()) {
         turns.push((arcs, Turn::Arcs));
     }
@@ -526,7 +594,8 @@ fn turns_of(before: &[Point], line: &Line) -> Vec<(Vec<[f64; 2]>, Turn)> {
 fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
     let n = before.len();
     let [ux, uy] = line.direction;
-    let d: Vec<f64> = before.iter().map(|p| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0])).collect();
+    let d: Vec<f64> =
+        before.iter().map(|p| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0])).collect();
     // The vertex after k, without a remainder: this runs for every vertex of every line tried.
     let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
     let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[next(k)]);
@@ -540,7 +609,8 @@ fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
         .collect();
     if arcs.len() > 1 {
         let nf = n as f64;
-        let gap = |k: usize| (arcs[k][0] - arcs[(k + arcs.len() - 1) % arcs.len()][1]).rem_euclid(nf);
+        let gap =
+            |k: usize| (arcs[k][0] - arcs[(k + arcs.len() - 1) % arcs.len()][1]).rem_euclid(nf);
         let widest = (0..arcs.len()).max_by(|&a, &b| gap(a).total_cmp(&gap(b))).unwrap_or(0);
         arcs.rotate_left(widest);
     }
@@ -609,14 +679,23 @@ mod tests {
             let line = line_of(&before, s, None).expect("two distinct fold points");
             let turned = Turned::new(&before, axis, &[s], &line);
             // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
-            let (flap, unmoved) = (|e: usize| turned.edge_moved(e) == (true, true), |e: usize| turned.edge_moved(e) == (false, false));
-            let has = |kind: &dyn Fn(usize, usize) -> bool| probe.pairs.iter().any(|&(i, j)| kind(i, j));
-            assert!(has(&|i, j| unmoved(i) && unmoved(j)) && has(&|i, j| flap(i) && flap(j)) && has(&|i, j| flap(i) != flap(j)));
+            let (flap, unmoved) = (
+                |e: usize| turned.edge_moved(e) == (true, true),
+                |e: usize| turned.edge_moved(e) == (false, false),
+            );
+            let has =
+                |kind: &dyn Fn(usize, usize) -> bool| probe.pairs.iter().any(|&(i, j)| kind(i, j));
+            assert!(
+                has(&|i, j| unmoved(i) && unmoved(j))
+                    && has(&|i, j| flap(i) && flap(j))
+                    && has(&|i, j| flap(i) != flap(j))
+            );
             let cost = probe.cost(&turned);
             assert!(cost < 1e-9, "flap negated: {flap_negates}: the synthesised disk differs from the folded border's by {cost}");
             // The same probe tells another fold apart.
             let other = [5.0, 15.0];
-            let wrong = Turned::new(&before, axis, &[other], &line_of(&before, other, None).unwrap());
+            let wrong =
+                Turned::new(&before, axis, &[other], &line_of(&before, other, None).unwrap());
             assert!(probe.cost(&wrong) > 1e-2, "{}", probe.cost(&wrong));
         }
     }
@@ -625,26 +704,47 @@ mod tests {
     fn arcs_left_of_a_line_are_where_the_border_crosses_it() {
         // y = 0.6 rightwards across a unit square of 16 vertices: its left is above; the border
         // crosses on edge 6 (y 0.5 → 0.75) and edge 13 (0.75 → 0.5).
-        let unit = square(4, 0.5, |_| 0.0).iter().map(|p| Point::new(p.x + 0.5, p.y + 0.5, 0.0)).collect::<Vec<_>>();
+        let unit = square(4, 0.5, |_| 0.0)
+            .iter()
+            .map(|p| Point::new(p.x + 0.5, p.y + 0.5, 0.0))
+            .collect::<Vec<_>>();
         let across = Line { point: [0.0, 0.6], direction: [1.0, 0.0] };
         let arcs = arcs_left_of(&unit, &across);
         assert_eq!(arcs.len(), 1);
         assert!((arcs[0][0] - 6.4).abs() < 1e-12 && (arcs[0][1] - 13.6).abs() < 1e-12, "{arcs:?}");
         // Turned round, the line's left is below: the arc from 13.6 round to 6.4.
         let below = arcs_left_of(&unit, &Line { point: [0.0, 0.6], direction: [-1.0, 0.0] });
-        assert!(below.len() == 1 && (below[0][0] - 13.6).abs() < 1e-12 && (below[0][1] - 6.4).abs() < 1e-12, "{below:?}");
+        assert!(
+            below.len() == 1
+                && (below[0][0] - 13.6).abs() < 1e-12
+                && (below[0][1] - 6.4).abs() < 1e-12,
+            "{below:?}"
+        );
         // A line that misses the border gives no arc; one that cuts off a single vertex, an arc
         // of that vertex alone (too small to fold, the candidates' size check leaves it out).
         assert!(arcs_left_of(&unit, &Line { point: [0.0, 2.0], direction: [-1.0, 0.0] }).is_empty());
         let h = 0.5f64.sqrt();
         let corner = arcs_left_of(&unit, &Line { point: [0.05, 0.05], direction: [-h, h] });
-        assert!(corner.len() == 1 && ArcVertices::of(16, corner[0][0], corner[0][1]).vertices().eq([0]), "{corner:?}");
+        assert!(
+            corner.len() == 1 && ArcVertices::of(16, corner[0][0], corner[0][1]).vertices().eq([0]),
+            "{corner:?}"
+        );
 
         // A U (open upwards) crossed by y = 1.5: both prongs, each its own arc.
-        let corners = [[0.0, 0.0], [3.0, 0.0], [3.0, 2.0], [2.0, 2.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]];
+        let corners = [
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 2.0],
+            [2.0, 2.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
         let u: Vec<Point> = (0..corners.len() * 4)
             .map(|k| {
-                let (a, b, t) = (corners[k / 4], corners[(k / 4 + 1) % corners.len()], (k % 4) as f64 / 4.0);
+                let (a, b, t) =
+                    (corners[k / 4], corners[(k / 4 + 1) % corners.len()], (k % 4) as f64 / 4.0);
                 Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
             })
             .collect();
@@ -670,13 +770,20 @@ mod tests {
         let start = Disk::of_border(&before);
         let mut rng = SplitMix64::new(16);
         for _ in 0..4 {
-            let truth = [rng.below(6) as f64 + 2.0 + rng.range(0.1, 0.9), rng.below(6) as f64 + 21.0 + rng.range(0.1, 0.9)];
+            let truth = [
+                rng.below(6) as f64 + 2.0 + rng.range(0.1, 0.9),
+                rng.below(6) as f64 + 21.0 + rng.range(0.1, 0.9),
+            ];
             // Laid at a height of its own, not the synthesis's LIFT.
             let end = Disk::of_border(&fold_by_hand(&before, truth, 0.006));
             let guess = truth.map(|s| (2.0 * s).round() / 2.0);
             let found = refine(&before, &start, &end, guess, None);
             let error = [0, 1].map(|k| (found.s[k] - truth[k]).abs());
-            assert!(error.iter().all(|&e| e <= 0.1), "truth {truth:?}, found {:?}: {error:?} edges off", found.s);
+            assert!(
+                error.iter().all(|&e| e <= 0.1),
+                "truth {truth:?}, found {:?}: {error:?} edges off",
+                found.s
+            );
             assert!(found.mismatch < 0.2 * found.unfolded_mismatch, "{found:?}");
         }
     }

@@ -58,13 +58,15 @@ impl Folder {
 
     /// Every entry that could not be walked, with its reason.
     pub fn unreadable(&self) -> Box<dyn Iterator<Item = (&PathBuf, &String)> + '_> {
-        Box::new(self.entries.iter().flat_map(|node| -> Box<dyn Iterator<Item = (&PathBuf, &String)> + '_> {
-            match node {
-                Node::Unreadable(path, why) => Box::new(std::iter::once((path, why))),
-                Node::Folder(folder) => folder.unreadable(),
-                Node::File(_) => Box::new(std::iter::empty()),
-            }
-        }))
+        Box::new(self.entries.iter().flat_map(
+            |node| -> Box<dyn Iterator<Item = (&PathBuf, &String)> + '_> {
+                match node {
+                    Node::Unreadable(path, why) => Box::new(std::iter::once((path, why))),
+                    Node::Folder(folder) => folder.unreadable(),
+                    Node::File(_) => Box::new(std::iter::empty()),
+                }
+            },
+        ))
     }
 }
 
@@ -103,7 +105,8 @@ pub fn walk(root: &Path, wanted: &dyn Fn(&Path) -> bool) -> std::io::Result<Fold
 impl Walker<'_> {
     /// Sorted paths in `dir`; entries that vanish while listed are skipped.
     fn listing(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
-        let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)?.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        let mut paths: Vec<PathBuf> =
+            std::fs::read_dir(dir)?.filter_map(|e| e.ok().map(|e| e.path())).collect();
         paths.sort();
         Ok(paths)
     }
@@ -129,7 +132,9 @@ impl Walker<'_> {
                 Ok(target) => {
                     return Some(Node::Unreadable(path, format!("links to {}, outside the dataset folder: not followed (name it as a dataset to include it)", target.display())));
                 }
-                Err(e) => return Some(Node::Unreadable(path, format!("cannot resolve the link: {e}"))),
+                Err(e) => {
+                    return Some(Node::Unreadable(path, format!("cannot resolve the link: {e}")))
+                }
             }
         }
         if let Some(id) = identity(&meta) {

@@ -6,7 +6,7 @@
 //! along the bottom and h up the side as its outline has ([`outline`]), and normalised as
 //! the outline is (a grid and its outline share the centre and the farthest vertex), so its
 //! boundary loop is exactly the outline. A fold mirrors every vertex on the folded arc's
-//! side of the line (interior ones too), as [`fold_border`](super::synth::fold_border)
+//! side of the line (interior ones too), as [`fold_border`](super::exact_fold::fold_border)
 //! does to the border.
 //!
 //! ```
@@ -18,10 +18,10 @@
 //! assert!(grid_mesh(Shape::Skirt).is_none());
 //! ```
 
+use super::exact_fold::{scale_of, top, Fold, EPS};
 use super::shapes::{normalise, outline, Shape};
-use super::synth::{scale_of, top, Fold, EPS};
-use crate::border::Point;
-use crate::error::Result;
+use close_core::border::Point;
+use close_core::error::Result;
 
 /// A flat grid mesh and its boundary (built by [`grid_mesh`] only, so indices are valid).
 #[derive(Debug, Clone, PartialEq)]
@@ -49,7 +49,7 @@ impl GridMesh {
 
     /// The mesh folded along border parameters `f1`, `f2` of its boundary ring: every vertex
     /// on the folded arc's side of the line mirrored and stacked `thickness` above the
-    /// cloth. Errors as [`fold_border`](super::synth::fold_border) does.
+    /// cloth. Errors as [`fold_border`](super::exact_fold::fold_border) does.
     pub fn fold(&self, f1: f64, f2: f64, thickness: f64) -> Result<Vec<Point>> {
         let boundary: Vec<Point> = self.ring.iter().map(|&k| self.vertices[k]).collect();
         let fold = Fold::of(&boundary, f1, f2, thickness)?;
@@ -78,9 +78,18 @@ pub fn grid_mesh(kind: Shape) -> Option<GridMesh> {
     let o = outline(kind);
     let (w, h) = (o.side_starts[1] - o.side_starts[0], o.side_starts[2] - o.side_starts[1]);
     let id = |i: usize, j: usize| j * (w + 1) + i;
-    let raw: Vec<Point> =
-        (0..=h).flat_map(|j| (0..=w).map(move |i| Point::new(i as f64 / w as f64 * width, j as f64 / h as f64 * height, 0.0))).collect();
-    let faces = (0..h).flat_map(|j| (0..w).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])).collect();
+    let raw: Vec<Point> = (0..=h)
+        .flat_map(|j| {
+            (0..=w).map(move |i| {
+                Point::new(i as f64 / w as f64 * width, j as f64 / h as f64 * height, 0.0)
+            })
+        })
+        .collect();
+    let faces = (0..h)
+        .flat_map(|j| {
+            (0..w).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+        })
+        .collect();
     let ring = (0..w)
         .map(|i| id(i, 0))
         .chain((0..h).map(|j| id(w, j)))
@@ -93,8 +102,8 @@ pub fn grid_mesh(kind: Shape) -> Option<GridMesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dataset::synth::fold_border;
-    use crate::error::{Error, FoldProblem};
+    use crate::dataset::exact_fold::fold_border;
+    use close_core::error::{Error, FoldProblem};
 
     fn worst(a: &[Point], b: &[Point]) -> f64 {
         a.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max)
@@ -112,7 +121,8 @@ mod tests {
             assert_eq!(grid.faces().len(), w * h);
             assert!(grid.faces().iter().flatten().all(|&k| k < grid.vertices().len()));
         }
-        for kind in [Shape::CircularTowel, Shape::TShirt, Shape::Top, Shape::Trousers, Shape::Skirt] {
+        for kind in [Shape::CircularTowel, Shape::TShirt, Shape::Top, Shape::Trousers, Shape::Skirt]
+        {
             assert!(grid_mesh(kind).is_none(), "{kind:?}");
         }
     }
@@ -124,14 +134,24 @@ mod tests {
         for [f1, f2] in [[9.5, 47.5], [0.0, 38.0], [12.0, 25.0]] {
             let folded = grid.fold(f1, f2, 0.01).unwrap();
             let ring: Vec<Point> = grid.ring().iter().map(|&k| folded[k]).collect();
-            assert!(worst(&ring, &fold_border(&o.points, f1, f2, 0.01).unwrap()) < 1e-12, "({f1}, {f2})");
+            assert!(
+                worst(&ring, &fold_border(&o.points, f1, f2, 0.01).unwrap()) < 1e-12,
+                "({f1}, {f2})"
+            );
             let moved = grid.vertices().iter().zip(&folded).filter(|(p, q)| p != q).count();
-            let moved_on_border = grid.ring().iter().filter(|&&k| folded[k] != grid.vertices()[k]).count();
+            let moved_on_border =
+                grid.ring().iter().filter(|&&k| folded[k] != grid.vertices()[k]).count();
             assert!(moved > moved_on_border, "({f1}, {f2}): {moved} moved");
             // Folded vertices lie on one layer's height, the rest on the table.
             assert!(folded.iter().all(|p| p.z == 0.0 || p.z == 0.01));
         }
-        assert!(matches!(grid.fold(5.0, 5.5, 0.01), Err(Error::InvalidFold { problem: FoldProblem::EmptyArc, .. })));
-        assert!(matches!(grid.fold(9.5, 47.5, f64::NAN), Err(Error::InvalidFold { problem: FoldProblem::NotFinite, .. })));
+        assert!(matches!(
+            grid.fold(5.0, 5.5, 0.01),
+            Err(Error::InvalidFold { problem: FoldProblem::EmptyArc, .. })
+        ));
+        assert!(matches!(
+            grid.fold(9.5, 47.5, f64::NAN),
+            Err(Error::InvalidFold { problem: FoldProblem::NotFinite, .. })
+        ));
     }
 }

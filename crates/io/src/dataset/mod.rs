@@ -8,7 +8,7 @@
 //!   skirt), anticlockwise and normalised;
 //! - [`spec`]: the folds, as points along the outline's sides, made at seeded random
 //!   points a fraction of an edge from them (never on a vertex or half-edge);
-//! - [`synth`]: the exact fold that makes the end frames, independent of [`crate::fold`];
+//! - [`exact_fold`]: the exact fold that makes the end frames, independent of [`close_core::fold`];
 //! - [`variants`]: noise, rigid motion, start jitter and relabelling of a clean fold;
 //! - [`grid`]: the napkin and towel as grid meshes (category `mesh`);
 //! - [`physics`]: twenty simulated folds (categories `physics`, `physics_second_fold`).
@@ -29,22 +29,22 @@
 //! assert!(data.get("no such sample").is_none());
 //! ```
 
+pub mod exact_fold;
 pub mod grid;
 pub mod physics;
 pub mod shapes;
 pub mod spec;
-pub mod synth;
 pub mod variants;
 
-use crate::angle::param_to_angle;
-use crate::border::{to_xyz, Point};
-use crate::error::Result;
 use crate::formats::{MeshFrames, Sample, Truth};
+use close_core::angle::param_to_angle;
+use close_core::border::{to_xyz, Point};
+use close_core::error::Result;
 
+use exact_fold::fold_border;
 use grid::grid_mesh;
 use shapes::{outline, Shape};
 use spec::{fold_off_grid, second_folds, single_folds};
-use synth::fold_border;
 use variants::{Variant, Varied};
 
 /// Cloth thickness: the height a folded layer gains.
@@ -52,7 +52,7 @@ pub const THICKNESS: f64 = 0.01;
 
 /// One sample of the built-in dataset.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Entry {
+pub struct BuiltinSample {
     /// Stable identifier (the sample name).
     pub id: String,
     pub sample: Sample,
@@ -62,7 +62,7 @@ pub struct Entry {
 /// meshes, physics.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dataset {
-    entries: Vec<Entry>,
+    entries: Vec<BuiltinSample>,
 }
 
 impl Dataset {
@@ -73,7 +73,12 @@ impl Dataset {
         samples.extend(second_fold_samples()?);
         samples.extend(mesh_samples()?);
         samples.extend(physics::physics_samples()?);
-        Ok(Dataset { entries: samples.into_iter().map(|sample| Entry { id: sample.name.clone(), sample }).collect() })
+        Ok(Dataset {
+            entries: samples
+                .into_iter()
+                .map(|sample| BuiltinSample { id: sample.name.clone(), sample })
+                .collect(),
+        })
     }
 
     /// The built-in dataset. Its specifications and files are constants that the tests
@@ -83,12 +88,12 @@ impl Dataset {
     }
 
     /// Every sample, in the dataset's order.
-    pub fn entries(&self) -> &[Entry] {
+    pub fn entries(&self) -> &[BuiltinSample] {
         &self.entries
     }
 
     /// The sample with this id.
-    pub fn get(&self, id: &str) -> Option<&Entry> {
+    pub fn get(&self, id: &str) -> Option<&BuiltinSample> {
         self.entries.iter().find(|e| e.id == id)
     }
 }
@@ -126,13 +131,19 @@ fn single_fold_samples() -> Result<Vec<Sample>> {
         for (k, spec) in single_folds(kind).iter().enumerate() {
             // The clean fold and its variants share the fold's draw.
             let fold_name = format!("{}__{}", kind.name(), spec.name);
-            let ([[f1, f2]], _) = fold_off_grid(&fold_name, n, [spec.params(&outline)], |[[f1, f2]]| fold_border(&outline.points, f1, f2, THICKNESS))?;
+            let ([[f1, f2]], _) =
+                fold_off_grid(&fold_name, n, [spec.params(&outline)], |[[f1, f2]]| {
+                    fold_border(&outline.points, f1, f2, THICKNESS)
+                })?;
             for &variant in std::iter::once(&Variant::Clean).chain(Variant::of_fold(k)) {
                 let name = format!("{fold_name}{}", variant.suffix());
                 let start = variant.start(&outline.points, &name);
                 let end = fold_border(&start, f1, f2, THICKNESS)?;
                 let folded = moved(&start, &end);
-                let varied = variant.apply(Varied { frames: vec![start, end], folds: vec![[f1, f2]], folded }, &name);
+                let varied = variant.apply(
+                    Varied { frames: vec![start, end], folds: vec![[f1, f2]], folded },
+                    &name,
+                );
                 samples.push(border_sample(name, kind.name(), varied));
             }
         }
@@ -156,7 +167,11 @@ fn second_fold_samples() -> Result<Vec<Sample>> {
             })?;
             let folded = moved(&start, &twice);
             let category = format!("{}_second_fold", spec.shape.name());
-            Ok(border_sample(name, &category, Varied { frames: vec![start, once, twice], folds: vec![f, g], folded }))
+            Ok(border_sample(
+                name,
+                &category,
+                Varied { frames: vec![start, once, twice], folds: vec![f, g], folded },
+            ))
         })
         .collect()
 }
@@ -171,7 +186,10 @@ fn mesh_samples() -> Result<Vec<Sample>> {
             let n = grid.ring().len();
             // Drawn as its border twin `<shape>__<fold>` is, so both fold at the same points.
             let twin = format!("{}__{}", kind.name(), spec.name);
-            let ([[f1, f2]], folded) = fold_off_grid(&twin, n, [spec.params(&outline)], |[[f1, f2]]| grid.fold(f1, f2, THICKNESS))?;
+            let ([[f1, f2]], folded) =
+                fold_off_grid(&twin, n, [spec.params(&outline)], |[[f1, f2]]| {
+                    grid.fold(f1, f2, THICKNESS)
+                })?;
             samples.push(Sample {
                 name: format!("{}_mesh__{}", kind.name(), spec.name),
                 category: "mesh".into(),
@@ -180,7 +198,10 @@ fn mesh_samples() -> Result<Vec<Sample>> {
                     folds: vec![[param_to_angle(f1, n), param_to_angle(f2, n)]],
                     folded_vertices: Some(moved(grid.vertices(), &folded)),
                 }),
-                mesh: Some(MeshFrames::new(grid.faces().to_vec(), vec![to_arrays(grid.vertices()), to_arrays(&folded)])),
+                mesh: Some(MeshFrames::new(
+                    grid.faces().to_vec(),
+                    vec![to_arrays(grid.vertices()), to_arrays(&folded)],
+                )),
             });
         }
     }
@@ -190,11 +211,11 @@ fn mesh_samples() -> Result<Vec<Sample>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fold::reflect::apply_fold;
+    use close_core::fold::reflect::apply_fold;
     use std::collections::HashSet;
 
     /// Frames of a border sample or of a mesh sample.
-    fn frame_count(e: &Entry) -> usize {
+    fn frame_count(e: &BuiltinSample) -> usize {
         e.sample.mesh.as_ref().map_or(e.sample.frames.len(), |m| m.frames.len())
     }
 
@@ -210,20 +231,26 @@ mod tests {
     #[test]
     fn every_category_is_there_with_its_frames_and_truth() {
         let data = Dataset::builtin();
-        let count = |category: &str| data.entries().iter().filter(|e| e.sample.category == category).count();
+        let count = |category: &str| {
+            data.entries().iter().filter(|e| e.sample.category == category).count()
+        };
         for kind in Shape::ALL {
             assert!(count(kind.name()) >= single_folds(kind).len(), "{kind:?}");
         }
         assert_eq!(count("mesh"), 3);
         assert_eq!(count("physics"), 17);
         assert_eq!(count("physics_second_fold"), 3);
-        let seconds = data.entries().iter().filter(|e| e.sample.category.ends_with("_second_fold")).count();
+        let seconds =
+            data.entries().iter().filter(|e| e.sample.category.ends_with("_second_fold")).count();
         assert_eq!(seconds, second_folds().len() + 3);
         for e in data.entries() {
             let truth = e.sample.truth.as_ref().unwrap_or_else(|| panic!("{}: no truth", e.id));
             assert_eq!(truth.folds.len() + 1, frame_count(e), "{}", e.id);
         }
-        assert_eq!(data.get("napkin__half_vertical__noisy").map(|e| e.sample.category.as_str()), Some("napkin"));
+        assert_eq!(
+            data.get("napkin__half_vertical__noisy").map(|e| e.sample.category.as_str()),
+            Some("napkin")
+        );
     }
 
     /// The generator's own mirror against the predictor's `apply_fold`: two independent
@@ -237,15 +264,28 @@ mod tests {
             let start = &b.frames[0];
             let predicted = truth.folds.iter().fold(start.clone(), |b, &f| apply_fold(&b, f));
             let end = &b.frames[b.frames.len() - 1];
-            let worst = predicted.iter().zip(end).map(|(p, q)| (p.xy() - q.xy()).norm()).fold(0.0, f64::max);
-            let tolerance = if e.id.ends_with("__noisy") { 6.0 * variants::END_NOISE } else { 1e-9 };
+            let worst = predicted
+                .iter()
+                .zip(end)
+                .map(|(p, q)| (p.xy() - q.xy()).norm())
+                .fold(0.0, f64::max);
+            let tolerance =
+                if e.id.ends_with("__noisy") { 6.0 * variants::END_NOISE } else { 1e-9 };
             assert!(worst < tolerance, "{}: worst XY error {worst}", e.id);
             // The truth lists input vertices: of a mesh, interior ones too.
-            let mut moved: Vec<usize> =
-                (0..start.len()).filter(|&v| (predicted[v] - start[v]).norm() > 0.0).map(|v| b.border_indices[v]).collect();
+            let mut moved: Vec<usize> = (0..start.len())
+                .filter(|&v| (predicted[v] - start[v]).norm() > 0.0)
+                .map(|v| b.border_indices[v])
+                .collect();
             moved.sort_unstable();
             let on_border: HashSet<usize> = b.border_indices.iter().copied().collect();
-            let listed: Vec<usize> = truth.folded_vertices.iter().flatten().copied().filter(|v| on_border.contains(v)).collect();
+            let listed: Vec<usize> = truth
+                .folded_vertices
+                .iter()
+                .flatten()
+                .copied()
+                .filter(|v| on_border.contains(v))
+                .collect();
             assert_eq!(listed, moved, "{}", e.id);
         }
     }
@@ -265,20 +305,37 @@ mod tests {
     #[test]
     fn mesh_samples_have_the_border_of_their_border_twins() {
         let data = Dataset::builtin();
-        let meshes: Vec<&Entry> = data.entries().iter().filter(|e| e.sample.mesh.is_some()).collect();
+        let meshes: Vec<&BuiltinSample> =
+            data.entries().iter().filter(|e| e.sample.mesh.is_some()).collect();
         assert_eq!(meshes.len(), 3);
         for e in meshes {
-            let twin = data.get(&e.id.replace("_mesh__", "__")).unwrap_or_else(|| panic!("{}: no border twin", e.id));
-            let (mesh, border) = (e.sample.border_frames().unwrap(), twin.sample.border_frames().unwrap());
+            let twin = data
+                .get(&e.id.replace("_mesh__", "__"))
+                .unwrap_or_else(|| panic!("{}: no border twin", e.id));
+            let (mesh, border) =
+                (e.sample.border_frames().unwrap(), twin.sample.border_frames().unwrap());
             assert_eq!(mesh.len(), border.len(), "{}", e.id);
             for (m, b) in mesh.frames.iter().zip(&border.frames) {
                 let worst = m.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
                 assert!(worst < 1e-12, "{}: frames differ by {worst}", e.id);
             }
-            assert_eq!(e.sample.truth.as_ref().map(|t| &t.folds), twin.sample.truth.as_ref().map(|t| &t.folds));
+            assert_eq!(
+                e.sample.truth.as_ref().map(|t| &t.folds),
+                twin.sample.truth.as_ref().map(|t| &t.folds)
+            );
             // Interior vertices fold too: more moved than the border's share.
-            let moved = e.sample.truth.as_ref().and_then(|t| t.folded_vertices.as_ref()).map_or(0, Vec::len);
-            let moved_on_border = twin.sample.truth.as_ref().and_then(|t| t.folded_vertices.as_ref()).map_or(0, Vec::len);
+            let moved = e
+                .sample
+                .truth
+                .as_ref()
+                .and_then(|t| t.folded_vertices.as_ref())
+                .map_or(0, Vec::len);
+            let moved_on_border = twin
+                .sample
+                .truth
+                .as_ref()
+                .and_then(|t| t.folded_vertices.as_ref())
+                .map_or(0, Vec::len);
             assert!(moved > moved_on_border, "{}: {moved} mesh vertices moved", e.id);
         }
     }

@@ -20,9 +20,9 @@
 //! assert!(samples.iter().any(|s| s.name == "physics__q3_napkin_half_then_quarter_31x31"));
 //! ```
 
-use crate::error::Result;
 use crate::formats::json::parse_sample;
 use crate::formats::Sample;
+use close_core::error::Result;
 
 /// Embeds each named file of `assets/physics/` as (name, JSON text).
 macro_rules! physics_files {
@@ -67,7 +67,8 @@ pub fn physics_samples() -> Result<Vec<Sample>> {
         .map(|(id, text)| {
             let mut sample = parse_sample(text.as_bytes())?;
             sample.name = format!("physics__{id}");
-            sample.category = if sample.frames.len() > 2 { SEQUENCE_CATEGORY } else { CATEGORY }.to_string();
+            sample.category =
+                if sample.frames.len() > 2 { SEQUENCE_CATEGORY } else { CATEGORY }.to_string();
             Ok(sample)
         })
         .collect()
@@ -76,15 +77,23 @@ pub fn physics_samples() -> Result<Vec<Sample>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::angle::TAU;
+    use close_core::angle::TAU;
 
     #[test]
     fn twenty_folds_with_one_true_fold_a_step() {
         let samples = physics_samples().unwrap();
-        let sequences: Vec<&str> = samples.iter().filter(|s| s.category == SEQUENCE_CATEGORY).map(|s| s.name.as_str()).collect();
+        let sequences: Vec<&str> = samples
+            .iter()
+            .filter(|s| s.category == SEQUENCE_CATEGORY)
+            .map(|s| s.name.as_str())
+            .collect();
         assert_eq!(
             sequences,
-            ["physics__q3_napkin_half_then_quarter_31x31", "physics__q5_towel_half_then_half_26x41", "physics__tshirt_q1_left_sleeve_then_half"]
+            [
+                "physics__q3_napkin_half_then_quarter_31x31",
+                "physics__q5_towel_half_then_half_26x41",
+                "physics__tshirt_q1_left_sleeve_then_half"
+            ]
         );
         for s in &samples {
             let truth = s.truth.as_ref().unwrap_or_else(|| panic!("{}: no truth", s.name));

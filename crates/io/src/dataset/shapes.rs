@@ -20,8 +20,8 @@
 //! assert!((napkin.on_side(2, 1.0 / 3.0) - 44.333).abs() < 1e-3);
 //! ```
 
-use crate::angle::param_to_angle;
-use crate::border::{Normalisation, Point};
+use close_core::angle::param_to_angle;
+use close_core::border::{Normalisation, Point};
 
 /// The cloth shapes of the dataset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -43,8 +43,15 @@ pub enum Shape {
 }
 
 impl Shape {
-    pub const ALL: [Shape; 7] =
-        [Shape::Napkin, Shape::Towel, Shape::CircularTowel, Shape::TShirt, Shape::Top, Shape::Trousers, Shape::Skirt];
+    pub const ALL: [Shape; 7] = [
+        Shape::Napkin,
+        Shape::Towel,
+        Shape::CircularTowel,
+        Shape::TShirt,
+        Shape::Top,
+        Shape::Trousers,
+        Shape::Skirt,
+    ];
 
     /// The name used for sample names and categories.
     pub fn name(self) -> &'static str {
@@ -148,7 +155,8 @@ fn segments_per_side(lengths: &[f64], n: usize) -> Vec<usize> {
     let mut counts: Vec<usize> = ideal.iter().map(|x| x.floor() as usize).collect();
     let mut by_remainder: Vec<usize> = (0..lengths.len()).collect();
     // Stable sort: equal remainders go to the earlier side.
-    by_remainder.sort_by(|&a, &b| (ideal[b] - ideal[b].floor()).total_cmp(&(ideal[a] - ideal[a].floor())));
+    by_remainder
+        .sort_by(|&a, &b| (ideal[b] - ideal[b].floor()).total_cmp(&(ideal[a] - ideal[a].floor())));
     let missing = n - counts.iter().sum::<usize>();
     for &k in by_remainder.iter().take(missing) {
         counts[k] += 1;
@@ -206,8 +214,8 @@ pub fn shape(kind: Shape) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::angle::TAU;
-    use crate::border::signed_area_xy;
+    use close_core::angle::TAU;
+    use close_core::border::signed_area_xy;
     use nalgebra::Vector3;
 
     /// The exterior turning angle at each vertex of a closed XY polyline, in (−π, π]: how far
@@ -240,9 +248,13 @@ mod tests {
             assert!(signed_area_xy(&o.points) > 0.0, "{kind:?} is clockwise");
             // Closed without a repeated vertex: every edge, the closing one too, is a
             // segment of about the same length (uniform sampling).
-            let edges: Vec<f64> = (0..n).map(|k| (o.points[(k + 1) % n] - o.points[k]).norm()).collect();
+            let edges: Vec<f64> =
+                (0..n).map(|k| (o.points[(k + 1) % n] - o.points[k]).norm()).collect();
             let mean = edges.iter().sum::<f64>() / n as f64;
-            assert!(edges.iter().all(|&e| e > 0.5 * mean && e < 1.5 * mean), "{kind:?} edges {edges:?}");
+            assert!(
+                edges.iter().all(|&e| e > 0.5 * mean && e < 1.5 * mean),
+                "{kind:?} edges {edges:?}"
+            );
             // Full turn of a simple anticlockwise polygon.
             let total: f64 = turning_angles(&o.points).iter().sum();
             assert!((total - TAU).abs() < 1e-9, "{kind:?} turns {total}");
@@ -253,8 +265,12 @@ mod tests {
     fn corners_are_vertices_at_the_side_starts() {
         for kind in Shape::ALL {
             let o = outline(kind);
-            let corners: Vec<usize> =
-                turning_angles(&o.points).iter().enumerate().filter(|(_, t)| t.abs() > CORNER_TURN).map(|(v, _)| v).collect();
+            let corners: Vec<usize> = turning_angles(&o.points)
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| t.abs() > CORNER_TURN)
+                .map(|(v, _)| v)
+                .collect();
             let expected = match kind {
                 Shape::CircularTowel => 0,
                 Shape::TShirt => 13,
@@ -266,7 +282,11 @@ mod tests {
             // Every corner starts a side (the T-shirt's side 0 starts at the middle of the hem).
             assert!(corners.iter().all(|c| o.side_starts.contains(c)), "{kind:?}");
             // Between corners the border runs straight.
-            let straight = turning_angles(&o.points).iter().enumerate().filter(|(v, _)| !o.side_starts.contains(v)).all(|(_, t)| t.abs() < 1e-9);
+            let straight = turning_angles(&o.points)
+                .iter()
+                .enumerate()
+                .filter(|(v, _)| !o.side_starts.contains(v))
+                .all(|(_, t)| t.abs() < 1e-9);
             assert_eq!(straight, kind != Shape::CircularTowel, "{kind:?}");
         }
         // The reference's vertex layout: 19 segments per napkin side, 24/12/24/12 on the towel.

@@ -20,8 +20,8 @@
 //! ```
 
 use super::shapes::{Outline, Shape};
-use crate::error::Result;
-use crate::rng::SplitMix64;
+use close_core::error::Result;
+use close_core::rng::SplitMix64;
 
 /// A fold endpoint: (side, fraction along it).
 pub type At = (usize, f64);
@@ -223,7 +223,12 @@ pub fn second_folds() -> Vec<SecondFoldSpec> {
         // Exact half, then the top layer's corner (right side's top end, now on the left).
         sf(Shape::Napkin, "half_then_corner", ((0, 0.5), (2, 0.5)), ((1, 0.75), (2, 0.25))),
         // Letter fold: right third over, then left third over it.
-        sf(Shape::Napkin, "thirds_then_thirds", ((0, 2.0 / 3.0), (2, 1.0 / 3.0)), ((2, 2.0 / 3.0), (0, 1.0 / 3.0))),
+        sf(
+            Shape::Napkin,
+            "thirds_then_thirds",
+            ((0, 2.0 / 3.0), (2, 1.0 / 3.0)),
+            ((2, 2.0 / 3.0), (0, 1.0 / 3.0)),
+        ),
         // Diagonal, then the top layer's corner (corner 1, now on corner 3).
         sf(Shape::Napkin, "diagonal_then_corner", ((0, 0.0), (2, 0.0)), ((0, 0.7), (1, 0.3))),
         // Short-axis near-half, then the stack along the long axis.
@@ -235,15 +240,20 @@ pub fn second_folds() -> Vec<SecondFoldSpec> {
         // Half, then the top layer's sleeve.
         sf(Shape::TShirt, "half_then_sleeve", ((7, 0.0), (0, 0.0)), ((9, 0.0), (12, 0.0))),
         // Legs up over the waist part, then the stack's left half over (waist middle to crotch).
-        sf(Shape::Trousers, "legs_up_then_half", ((6, 0.25 / 1.1), (4, 0.85 / 1.1)), ((5, 0.5), (2, 0.0))),
+        sf(
+            Shape::Trousers,
+            "legs_up_then_half",
+            ((6, 0.25 / 1.1), (4, 0.85 / 1.1)),
+            ((5, 0.5), (2, 0.0)),
+        ),
     ]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dataset::exact_fold::fold_border;
     use crate::dataset::shapes::outline;
-    use crate::dataset::synth::fold_border;
     use std::collections::HashSet;
 
     /// Every endpoint is a fraction of a side that exists.
@@ -261,10 +271,19 @@ mod tests {
             for s in &specs {
                 assert!(on_a_side(kind, s.from) && on_a_side(kind, s.to), "{kind:?} {}", s.name);
                 let [f1, f2] = s.params(&o);
-                let folded = fold_border(&o.points, f1, f2, 0.01).unwrap_or_else(|e| panic!("{kind:?} {}: {e}", s.name));
-                assert!(!s.mesh || crate::dataset::grid::grid_mesh(kind).is_some(), "{kind:?} {}: no grid to fold", s.name);
+                let folded = fold_border(&o.points, f1, f2, 0.01)
+                    .unwrap_or_else(|e| panic!("{kind:?} {}: {e}", s.name));
+                assert!(
+                    !s.mesh || crate::dataset::grid::grid_mesh(kind).is_some(),
+                    "{kind:?} {}: no grid to fold",
+                    s.name
+                );
                 // A "_wrap" fold moves vertex 0; every fold leaves part of the cloth.
-                assert!(!s.name.ends_with("_wrap") || folded[0] != o.points[0], "{kind:?} {}", s.name);
+                assert!(
+                    !s.name.ends_with("_wrap") || folded[0] != o.points[0],
+                    "{kind:?} {}",
+                    s.name
+                );
                 assert!(folded.iter().zip(&o.points).any(|(a, b)| a == b), "{kind:?} {}", s.name);
             }
         }
@@ -276,7 +295,8 @@ mod tests {
             let o = outline(s.shape);
             let [f, g] = s.params(&o);
             let once = fold_border(&o.points, f[0], f[1], 0.01).unwrap();
-            let twice = fold_border(&once, g[0], g[1], 0.01).unwrap_or_else(|e| panic!("{}: {e}", s.name));
+            let twice =
+                fold_border(&once, g[0], g[1], 0.01).unwrap_or_else(|e| panic!("{}: {e}", s.name));
             // The second fold moves vertices the first left, or turns folded ones back.
             assert!(twice.iter().zip(&once).any(|(a, b)| a != b), "{}", s.name);
         }
@@ -290,7 +310,8 @@ mod tests {
         assert_eq!(drawn, draw("napkin__x"));
         assert_ne!(drawn, draw("napkin__y"));
         for (d, f) in drawn.iter().flatten().zip(nominal.iter().flatten()) {
-            let moved = crate::angle::wrap_pi((d - f) / 76.0 * std::f64::consts::TAU) * 76.0 / std::f64::consts::TAU;
+            let moved = close_core::angle::wrap_pi((d - f) / 76.0 * std::f64::consts::TAU) * 76.0
+                / std::f64::consts::TAU;
             assert!((0.1..=0.4).contains(&moved.abs()), "{f} → {d}");
             let half = d.rem_euclid(0.5);
             assert!(half.min(0.5 - half) >= 0.1 - 1e-12 && (0.0..76.0).contains(d), "{d}");
@@ -299,11 +320,18 @@ mod tests {
         let mut calls = 0;
         let (_, second) = fold_off_grid("napkin__x", 76, nominal, |_| {
             calls += 1;
-            if calls < 3 { Err(crate::error::Error::Cancelled) } else { Ok(calls) }
+            if calls < 3 {
+                Err(close_core::error::Error::Cancelled)
+            } else {
+                Ok(calls)
+            }
         })
         .unwrap();
         assert_eq!(second, 3);
-        assert!(fold_off_grid("napkin__x", 76, nominal, |_| Err::<(), _>(crate::error::Error::Cancelled)).is_err());
+        assert!(fold_off_grid("napkin__x", 76, nominal, |_| Err::<(), _>(
+            close_core::error::Error::Cancelled
+        ))
+        .is_err());
     }
 
     #[test]

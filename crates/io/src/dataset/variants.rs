@@ -14,7 +14,7 @@
 //! sample's draws do not depend on the others and two builds are identical.
 //!
 //! ```
-//! use close_io::border::Point;
+//! use close_core::border::Point;
 //! use close_io::dataset::variants::{Variant, Varied};
 //! let square = vec![Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
 //! let clean = Varied { frames: vec![square.clone(), square], folds: vec![[0.0, 2.0]], folded: vec![1] };
@@ -27,9 +27,9 @@
 
 use nalgebra::{Rotation3, Vector3};
 
-use crate::angle::TAU;
-use crate::border::Point;
-use crate::rng::SplitMix64;
+use close_core::angle::TAU;
+use close_core::border::Point;
+use close_core::rng::SplitMix64;
 
 /// Standard deviation of the noise added to a noisy sample's end frame.
 pub const END_NOISE: f64 = 0.005;
@@ -138,8 +138,8 @@ impl Variant {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dataset::exact_fold::fold_border;
     use crate::dataset::shapes::{shape, Shape};
-    use crate::dataset::synth::fold_border;
 
     /// The napkin's half fold, clean.
     fn half_fold() -> Varied {
@@ -168,7 +168,11 @@ mod tests {
         assert_eq!((&rotated.folds, &rotated.folded), (&clean.folds, &clean.folded));
         for (r, c) in rotated.frames.iter().zip(&clean.frames) {
             assert!(r != c, "the frame moved");
-            let worst = distances(r).iter().zip(distances(c)).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let worst = distances(r)
+                .iter()
+                .zip(distances(c))
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
             assert!(worst < 1e-12, "distances change by {worst}");
             // Heights are kept.
             assert!(r.iter().zip(c).all(|(p, q)| (p.z - q.z).abs() < 1e-15));
@@ -185,7 +189,10 @@ mod tests {
         let shifted = Variant::Shifted.apply(clean.clone(), "napkin__half_horizontal__shifted");
         let s = (clean.folds[0][0] - shifted.folds[0][0]).rem_euclid(n as f64).round() as usize;
         assert!(s > 0 && s < n);
-        assert_eq!((clean.folds[0][1] - shifted.folds[0][1]).rem_euclid(n as f64).round() as usize, s);
+        assert_eq!(
+            (clean.folds[0][1] - shifted.folds[0][1]).rem_euclid(n as f64).round() as usize,
+            s
+        );
         for (new, old) in shifted.frames.iter().zip(&clean.frames) {
             assert!((0..n).all(|i| new[i] == old[(i + s) % n]));
         }
@@ -199,7 +206,11 @@ mod tests {
         let clean = half_fold();
         let noisy = Variant::Noisy.apply(clean.clone(), "napkin__half_vertical__noisy");
         assert_eq!(noisy.frames[0], clean.frames[0]);
-        let offsets: Vec<f64> = noisy.frames[1].iter().zip(&clean.frames[1]).flat_map(|(p, q)| (p - q).iter().copied().collect::<Vec<_>>()).collect();
+        let offsets: Vec<f64> = noisy.frames[1]
+            .iter()
+            .zip(&clean.frames[1])
+            .flat_map(|(p, q)| (p - q).iter().copied().collect::<Vec<_>>())
+            .collect();
         let sd = (offsets.iter().map(|x| x * x).sum::<f64>() / offsets.len() as f64).sqrt();
         assert!(sd > 0.5 * END_NOISE && sd < 1.5 * END_NOISE, "noise sd {sd}");
         // Seeded by name: the same name draws the same noise, another name other noise.

@@ -23,9 +23,9 @@ use serde::de::{self, DeserializeSeed, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 
 use super::{Sample, MAX_FILE_BYTES};
-use crate::border::{MAX_FRAMES, MAX_VERTICES};
-use crate::error::{Error, Format, Result};
 use crate::mesh::{MeshFrames, MAX_FACE_CORNERS, MAX_MESH_FACES, MAX_MESH_VERTICES};
+use close_core::border::{MAX_FRAMES, MAX_VERTICES};
+use close_core::error::{Error, Format, Result};
 
 /// Deepest nesting of lists and objects a JSON document may have.
 pub const MAX_NESTING: usize = 128;
@@ -43,7 +43,11 @@ pub fn check_nesting(bytes: &[u8]) -> Result<()> {
             (false, b'[' | b'{') => {
                 depth += 1;
                 if depth > MAX_NESTING {
-                    return Err(Error::parse_at(Format::SampleJson, line, format!("nested deeper than {MAX_NESTING} levels")));
+                    return Err(Error::parse_at(
+                        Format::SampleJson,
+                        line,
+                        format!("nested deeper than {MAX_NESTING} levels"),
+                    ));
                 }
             }
             (false, b']' | b'}') => depth = depth.saturating_sub(1),
@@ -82,7 +86,11 @@ fn parse_error(e: &serde_json::Error) -> Error {
     let message = e.to_string();
     let position = format!(" at line {} column {}", e.line(), e.column());
     match message.strip_suffix(&position) {
-        Some(reason) if e.line() > 0 => Error::parse_at(Format::SampleJson, e.line(), format!("{reason} (column {})", e.column())),
+        Some(reason) if e.line() > 0 => Error::parse_at(
+            Format::SampleJson,
+            e.line(),
+            format!("{reason} (column {})", e.column()),
+        ),
         _ => Error::parse(Format::SampleJson, message),
     }
 }
@@ -164,19 +172,29 @@ impl<'de> DeserializeSeed<'de> for Corner<'_> {
 }
 
 /// Frames of at most `per_frame` points each.
-fn frames<'de, D: Deserializer<'de>>(d: D, per_frame: usize, what: &'static str) -> Result<Vec<Vec<[f64; 3]>>, D::Error> {
+fn frames<'de, D: Deserializer<'de>>(
+    d: D,
+    per_frame: usize,
+    what: &'static str,
+) -> Result<Vec<Vec<[f64; 3]>>, D::Error> {
     let frame = Bounded { what, limit: per_frame, item: PhantomData::<[f64; 3]> };
     Bounded { what: "frames", limit: MAX_FRAMES, item: frame }.deserialize(d)
 }
 
 /// `"frames"` of a border sample (a closing vertex may repeat vertex 0).
-pub(super) fn border_frames<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<[f64; 3]>>, D::Error> {
+pub(super) fn border_frames<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Vec<Vec<[f64; 3]>>, D::Error> {
     frames(d, MAX_VERTICES + 1, "vertices in one border frame")
 }
 
 /// `"mesh"`: read through [`MeshJson`], whose every list is bounded.
 pub(super) fn mesh<'de, D: Deserializer<'de>>(d: D) -> Result<Option<MeshFrames>, D::Error> {
-    Ok(Option::<MeshJson>::deserialize(d)?.map(|m| MeshFrames { faces: m.faces, frames: m.frames, border_edges: m.border_edges }))
+    Ok(Option::<MeshJson>::deserialize(d)?.map(|m| MeshFrames {
+        faces: m.faces,
+        frames: m.frames,
+        border_edges: m.border_edges,
+    }))
 }
 
 /// [`MeshFrames`] as JSON gives it, with bounded lists.
@@ -192,7 +210,8 @@ struct MeshJson {
 
 fn faces<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<usize>>, D::Error> {
     let corners = Cell::new(0);
-    let face = Bounded { what: "corners in one face", limit: MAX_FACE_CORNERS, item: Corner(&corners) };
+    let face =
+        Bounded { what: "corners in one face", limit: MAX_FACE_CORNERS, item: Corner(&corners) };
     Bounded { what: "faces", limit: MAX_MESH_FACES, item: face }.deserialize(d)
 }
 
@@ -206,19 +225,28 @@ pub(super) fn truth_folds<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2
 }
 
 /// `truth.folded_vertices`: at most one entry per mesh vertex.
-pub(super) fn folded_vertices<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vec<usize>>, D::Error> {
+pub(super) fn folded_vertices<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<Vec<usize>>, D::Error> {
     /// The bounded list, as a type `Option` can wrap (null stays `None`).
     struct Vertices(Vec<usize>);
     impl<'de> Deserialize<'de> for Vertices {
         fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-            Bounded { what: "folded vertices", limit: MAX_MESH_VERTICES, item: PhantomData::<usize> }.deserialize(d).map(Vertices)
+            Bounded {
+                what: "folded vertices",
+                limit: MAX_MESH_VERTICES,
+                item: PhantomData::<usize>,
+            }
+            .deserialize(d)
+            .map(Vertices)
         }
     }
     Ok(Option::<Vertices>::deserialize(d)?.map(|v| v.0))
 }
 
 fn border_edges<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[usize; 2]>, D::Error> {
-    Bounded { what: "border edges", limit: MAX_MESH_VERTICES, item: PhantomData::<[usize; 2]> }.deserialize(d)
+    Bounded { what: "border edges", limit: MAX_MESH_VERTICES, item: PhantomData::<[usize; 2]> }
+        .deserialize(d)
 }
 
 #[cfg(test)]
@@ -243,17 +271,31 @@ mod tests {
     fn round_trip() {
         let s = Sample::from_frames("a", "napkin", vec![vec![[0.0, 1.0, 2.0]; 4]]);
         assert_eq!(parse_sample(to_json(&s).as_bytes()).unwrap(), s);
-        let mesh = Sample { mesh: Some(MeshFrames::new(vec![vec![0, 1, 2]], vec![vec![[0.0; 3]; 3]])), ..Sample::from_frames("m", "", vec![]) };
+        let mesh = Sample {
+            mesh: Some(MeshFrames::new(vec![vec![0, 1, 2]], vec![vec![[0.0; 3]; 3]])),
+            ..Sample::from_frames("m", "", vec![])
+        };
         assert_eq!(parse_sample(to_json(&mesh).as_bytes()).unwrap(), mesh);
     }
 
     #[test]
     fn counts_over_the_limits_are_too_large() {
         let frames = format!("{{\"frames\": [{}[]]}}", "[],".repeat(MAX_FRAMES));
-        assert_eq!(parse_sample(frames.as_bytes()).unwrap_err(), Error::too_large("frames", MAX_FRAMES + 1, MAX_FRAMES));
-        let vertices = format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,0,0],".repeat(MAX_VERTICES + 5));
+        assert_eq!(
+            parse_sample(frames.as_bytes()).unwrap_err(),
+            Error::too_large("frames", MAX_FRAMES + 1, MAX_FRAMES)
+        );
+        let vertices =
+            format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,0,0],".repeat(MAX_VERTICES + 5));
         let err = parse_sample(vertices.as_bytes()).unwrap_err();
-        assert_eq!(err.to_string(), format!("input too large: {} vertices in one border frame (at most {})", MAX_VERTICES + 6, MAX_VERTICES + 1));
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "input too large: {} vertices in one border frame (at most {})",
+                MAX_VERTICES + 6,
+                MAX_VERTICES + 1
+            )
+        );
         // A later, well-formed parse on the same thread is not confused by the last one.
         assert!(matches!(parse_sample(b"{\"frames\": [[1]]}"), Err(Error::Parse { .. })));
     }
@@ -261,12 +303,19 @@ mod tests {
     #[test]
     fn truth_is_bounded_and_may_be_null() {
         let doc = |truth: &str| format!("{{\"frames\": [[[0,0,0]]], \"truth\": {truth}}}");
-        let s = parse_sample(doc(r#"{"folds": [[1, 2]], "folded_vertices": null}"#).as_bytes()).unwrap();
-        assert_eq!(s.truth, Some(crate::formats::Truth { folds: vec![[1.0, 2.0]], folded_vertices: None }));
+        let s = parse_sample(doc(r#"{"folds": [[1, 2]], "folded_vertices": null}"#).as_bytes())
+            .unwrap();
+        assert_eq!(
+            s.truth,
+            Some(crate::formats::Truth { folds: vec![[1.0, 2.0]], folded_vertices: None })
+        );
         let s = parse_sample(doc(r#"{"folded_vertices": [3, 4]}"#).as_bytes()).unwrap();
         assert_eq!(s.truth.and_then(|t| t.folded_vertices), Some(vec![3, 4]));
         let many = doc(&format!("{{\"folds\": [{}[0, 1]]}}", "[0, 1],".repeat(MAX_FRAMES)));
-        assert_eq!(parse_sample(many.as_bytes()).unwrap_err(), Error::too_large("true folds", MAX_FRAMES + 1, MAX_FRAMES));
+        assert_eq!(
+            parse_sample(many.as_bytes()).unwrap_err(),
+            Error::too_large("true folds", MAX_FRAMES + 1, MAX_FRAMES)
+        );
     }
 
     #[test]

@@ -32,8 +32,8 @@ use flate2::read::ZlibDecoder;
 use std::cell::Cell;
 
 use super::Sample;
-use crate::error::{Error, Format, Result};
 use crate::mesh::{MeshFrames, MAX_MESH_VERTICES};
+use close_core::error::{Error, Format, Result};
 
 /// Most bytes the compressed variables of one file may expand to, in all.
 pub const MAX_DECOMPRESSED: u64 = 256 * 1024 * 1024;
@@ -61,8 +61,14 @@ fn bad(message: impl ToString) -> Error {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
     /// Dense real matrix, column-major (sparse ones are made dense).
-    Matrix { dims: Vec<usize>, data: Vec<f64> },
-    Cell { dims: Vec<usize>, items: Vec<Value> },
+    Matrix {
+        dims: Vec<usize>,
+        data: Vec<f64>,
+    },
+    Cell {
+        dims: Vec<usize>,
+        items: Vec<Value>,
+    },
     /// A class the dataset does not use (struct, char, object, …), by MATLAB class number.
     Other(u32),
 }
@@ -91,7 +97,11 @@ impl Walk {
     fn widen(&self, values: usize) -> Result<()> {
         let total = self.widened.get().saturating_add((values as u64).saturating_mul(8));
         if total > MAX_WIDENED {
-            return Err(Error::TooLarge { what: "bytes of numbers once widened to f64", got: Some(total), limit: MAX_WIDENED });
+            return Err(Error::TooLarge {
+                what: "bytes of numbers once widened to f64",
+                got: Some(total),
+                limit: MAX_WIDENED,
+            });
         }
         self.widened.set(total);
         Ok(())
@@ -114,7 +124,11 @@ impl Walk {
 
     fn u32(&self, b: &[u8]) -> u32 {
         let a = [b[0], b[1], b[2], b[3]];
-        if self.big { u32::from_be_bytes(a) } else { u32::from_le_bytes(a) }
+        if self.big {
+            u32::from_be_bytes(a)
+        } else {
+            u32::from_le_bytes(a)
+        }
     }
 
     fn element<'a>(&self, buf: &'a [u8], pos: usize) -> Result<Element<'a>> {
@@ -125,7 +139,9 @@ impl Walk {
             // Small data element: count and type share the first 4 bytes.
             let n = (first >> 16) as usize;
             if n > 4 {
-                return Err(bad(format!("small data element at byte {pos} claims {n} bytes (at most 4)")));
+                return Err(bad(format!(
+                    "small data element at byte {pos} claims {n} bytes (at most 4)"
+                )));
             }
             let data = buf.get(pos + 4..pos + 4 + n).ok_or_else(truncated)?;
             return Ok(Element { kind: first & 0xffff, data, next: pos + 8 });
@@ -149,15 +165,23 @@ impl Walk {
             other => return Err(bad(format!("data type {other} where numbers were expected"))),
         };
         if !b.len().is_multiple_of(size) {
-            return Err(bad(format!("{} bytes is not a whole number of {size}-byte values", b.len())));
+            return Err(bad(format!(
+                "{} bytes is not a whole number of {size}-byte values",
+                b.len()
+            )));
         }
         self.widen(b.len() / size)?;
         let word = |c: &[u8]| -> [u8; 8] {
             let mut w = [0u8; 8];
-            if self.big { w[8 - c.len()..].copy_from_slice(c) } else { w[..c.len()].copy_from_slice(c) }
+            if self.big {
+                w[8 - c.len()..].copy_from_slice(c)
+            } else {
+                w[..c.len()].copy_from_slice(c)
+            }
             w
         };
-        let from = |w: [u8; 8]| if self.big { u64::from_be_bytes(w) } else { u64::from_le_bytes(w) };
+        let from =
+            |w: [u8; 8]| if self.big { u64::from_be_bytes(w) } else { u64::from_le_bytes(w) };
         Ok(b.chunks_exact(size)
             .map(|c| {
                 let v = from(word(c));
@@ -181,7 +205,13 @@ impl Walk {
     fn counts(&self, e: &Element, what: &str) -> Result<Vec<usize>> {
         self.numbers(e.kind, e.data)?
             .into_iter()
-            .map(|v| if v >= 0.0 && v.fract() == 0.0 && v < 1e15 { Ok(v as usize) } else { Err(bad(format!("{what} holds {v}"))) })
+            .map(|v| {
+                if v >= 0.0 && v.fract() == 0.0 && v < 1e15 {
+                    Ok(v as usize)
+                } else {
+                    Err(bad(format!("{what} holds {v}")))
+                }
+            })
             .collect()
     }
 
@@ -196,7 +226,11 @@ impl Walk {
                     let inflated = self.inflate(e.data, pos)?;
                     self.variables(&inflated, out, true)?;
                 }
-                other => return Err(bad(format!("unexpected data type {other} at byte {pos} (expected a variable)"))),
+                other => {
+                    return Err(bad(format!(
+                        "unexpected data type {other} at byte {pos} (expected a variable)"
+                    )))
+                }
             }
             pos = e.next;
         }
@@ -234,12 +268,16 @@ impl Walk {
             pos = e.next;
             Ok(e)
         };
-        let total = dims.iter().try_fold(1usize, |a, &d| a.checked_mul(d)).ok_or_else(|| bad(format!("{name}: dimensions {dims:?} overflow")))?;
+        let total = dims
+            .iter()
+            .try_fold(1usize, |a, &d| a.checked_mul(d))
+            .ok_or_else(|| bad(format!("{name}: dimensions {dims:?} overflow")))?;
         let value = match class {
             MX_CELL => {
                 let mut items = Vec::new();
                 for k in 0..total {
-                    let e = next().map_err(|err| bad(format!("{name}: cell {k} of {total}: {err}")))?;
+                    let e =
+                        next().map_err(|err| bad(format!("{name}: cell {k} of {total}: {err}")))?;
                     if e.kind != MI_MATRIX {
                         return Err(bad(format!("{name}: cell {k} is not an array")));
                     }
@@ -252,7 +290,13 @@ impl Walk {
                 if complex {
                     return Err(bad(format!("{name} holds complex numbers")));
                 }
-                self.sparse(&name, dims, self.counts(&ir, "a sparse row index")?, self.counts(&jc, "a sparse column start")?, self.numbers(pr.kind, pr.data)?)?
+                self.sparse(
+                    &name,
+                    dims,
+                    self.counts(&ir, "a sparse row index")?,
+                    self.counts(&jc, "a sparse column start")?,
+                    self.numbers(pr.kind, pr.data)?,
+                )?
             }
             6..=15 => {
                 let real = next()?;
@@ -261,7 +305,10 @@ impl Walk {
                 }
                 let data = self.numbers(real.kind, real.data)?;
                 if data.len() != total {
-                    return Err(bad(format!("{name}: {dims:?} needs {total} values but {} are stored", data.len())));
+                    return Err(bad(format!(
+                        "{name}: {dims:?} needs {total} values but {} are stored",
+                        data.len()
+                    )));
                 }
                 Value::Matrix { dims, data }
             }
@@ -271,13 +318,24 @@ impl Walk {
     }
 
     /// Expand compressed-column storage into a dense column-major matrix.
-    fn sparse(&self, name: &str, dims: Vec<usize>, ir: Vec<usize>, jc: Vec<usize>, pr: Vec<f64>) -> Result<Value> {
+    fn sparse(
+        &self,
+        name: &str,
+        dims: Vec<usize>,
+        ir: Vec<usize>,
+        jc: Vec<usize>,
+        pr: Vec<f64>,
+    ) -> Result<Value> {
         let [rows, cols] = dims[..] else {
             return Err(bad(format!("{name}: a sparse array must be 2-D, not {dims:?}")));
         };
         let cells = rows.saturating_mul(cols);
         if cells > MAX_DENSE {
-            return Err(Error::too_large("cells of one sparse matrix made dense", cells, MAX_DENSE));
+            return Err(Error::too_large(
+                "cells of one sparse matrix made dense",
+                cells,
+                MAX_DENSE,
+            ));
         }
         self.widen(cells)?;
         let corrupt = |why: &str| bad(format!("{name}: corrupt sparse array ({why})"));
@@ -304,7 +362,10 @@ impl Walk {
 /// All variables of a MATLAB v5 file.
 pub fn variables(bytes: &[u8]) -> Result<Vec<(String, Value)>> {
     if bytes.len() < 128 {
-        return Err(bad(format!("{} bytes is shorter than the 128-byte MAT-file header", bytes.len())));
+        return Err(bad(format!(
+            "{} bytes is shorter than the 128-byte MAT-file header",
+            bytes.len()
+        )));
     }
     let text = String::from_utf8_lossy(&bytes[..116]);
     if text.starts_with("MATLAB 7.3") {
@@ -330,7 +391,9 @@ fn positions(value: &Value, what: &str) -> Result<Vec<[f64; 3]>> {
     };
     match dims[..] {
         [rows, 3] => Ok((0..rows).map(|r| [data[r], data[rows + r], data[2 * rows + r]]).collect()),
-        [3, cols] => Ok((0..cols).map(|c| [data[3 * c], data[3 * c + 1], data[3 * c + 2]]).collect()),
+        [3, cols] => {
+            Ok((0..cols).map(|c| [data[3 * c], data[3 * c + 1], data[3 * c + 2]]).collect())
+        }
         _ => Err(bad(format!("{what} is {dims:?}, expected N×3 positions"))),
     }
 }
@@ -348,7 +411,13 @@ fn edges(value: &Value) -> Result<Vec<[usize; 2]>> {
     pairs
         .into_iter()
         .map(|p| {
-            p.map(|v| if v >= 1.0 && v.fract() == 0.0 && v <= MAX_MESH_VERTICES as f64 { Ok(v as usize - 1) } else { Err(bad(format!("Eb holds {v}, not a 1-based vertex index"))) })
+            p.map(|v| {
+                if v >= 1.0 && v.fract() == 0.0 && v <= MAX_MESH_VERTICES as f64 {
+                    Ok(v as usize - 1)
+                } else {
+                    Err(bad(format!("Eb holds {v}, not a 1-based vertex index")))
+                }
+            })
         })
         .map(|[a, b]| Ok([a?, b?]))
         .collect()
@@ -360,14 +429,21 @@ pub fn parse_sample(bytes: &[u8], name: &str) -> Result<Sample> {
     let find = |want: &str| {
         vars.iter().find(|(n, _)| n == want).map(|(_, v)| v).ok_or_else(|| {
             let found: Vec<&str> = vars.iter().map(|(n, _)| n.as_str()).collect();
-            bad(format!("no variable {want:?} (the file holds {}); expected phiPositions and Eb", super::quote(&found.join(", "))))
+            bad(format!(
+                "no variable {want:?} (the file holds {}); expected phiPositions and Eb",
+                super::quote(&found.join(", "))
+            ))
         })
     };
     let frames = match find("phiPositions")? {
-        Value::Cell { items, .. } if !items.is_empty() => {
-            items.iter().enumerate().map(|(k, m)| positions(m, &format!("phiPositions{{{}}}", k + 1))).collect::<Result<Vec<_>>>()?
+        Value::Cell { items, .. } if !items.is_empty() => items
+            .iter()
+            .enumerate()
+            .map(|(k, m)| positions(m, &format!("phiPositions{{{}}}", k + 1)))
+            .collect::<Result<Vec<_>>>()?,
+        Value::Cell { .. } => {
+            return Err(Error::Empty { what: "phiPositions is an empty cell array" })
         }
-        Value::Cell { .. } => return Err(Error::Empty { what: "phiPositions is an empty cell array" }),
         _ => return Err(bad("phiPositions is not a cell array (one N×3 matrix per frame)")),
     };
     let border_edges = edges(find("Eb")?)?;
@@ -446,6 +522,9 @@ mod tests {
         assert_eq!(m, Value::Matrix { dims: vec![2, 2], data: vec![0.0, 5.0, 7.0, 0.0] });
         assert!(e.sparse("s", vec![2, 2], vec![3, 0], vec![0, 1, 2], vec![5.0, 7.0]).is_err());
         assert!(e.sparse("s", vec![2, 2], vec![1], vec![0, 1, 2], vec![5.0]).is_err());
-        assert!(matches!(e.sparse("s", vec![1 << 40, 1 << 30], vec![], vec![], vec![]), Err(Error::TooLarge { .. })));
+        assert!(matches!(
+            e.sparse("s", vec![1 << 40, 1 << 30], vec![], vec![], vec![]),
+            Err(Error::TooLarge { .. })
+        ));
     }
 }

@@ -21,8 +21,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::border::{prepare, BorderFrames, MAX_FRAMES};
-use crate::error::{Error, Format, MeshError, Result};
+use close_core::border::{prepare, BorderFrames, MAX_FRAMES};
+use close_core::error::{Error, Format, MeshError, Result};
 // Mesh frames belong to `mesh` (formats reads files into them); re-exported for callers.
 pub use crate::mesh::MeshFrames;
 
@@ -57,9 +57,15 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
     let file = options.open(path).map_err(fail)?;
     let meta = file.metadata().map_err(fail)?;
     if !meta.is_file() {
-        return Err(Error::InvalidArgument(format!("{}: not a regular file (a FIFO, device or socket is never read)", path.display())));
+        return Err(Error::InvalidArgument(format!(
+            "{}: not a regular file (a FIFO, device or socket is never read)",
+            path.display()
+        )));
     }
-    let too_large = |got: u64| Error::TooLarge { what: "bytes in one file", got: Some(got), limit: MAX_FILE_BYTES as u64 }.in_file(&path.display().to_string());
+    let too_large = |got: u64| {
+        Error::TooLarge { what: "bytes in one file", got: Some(got), limit: MAX_FILE_BYTES as u64 }
+            .in_file(&path.display().to_string())
+    };
     if meta.len() > MAX_FILE_BYTES as u64 {
         return Err(too_large(meta.len()));
     }
@@ -76,7 +82,11 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
 pub struct Truth {
     #[serde(default, deserialize_with = "json::truth_folds")]
     pub folds: Vec<[f64; 2]>,
-    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "json::folded_vertices")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "json::folded_vertices"
+    )]
     pub folded_vertices: Option<Vec<usize>>,
 }
 
@@ -94,7 +104,11 @@ pub struct Sample {
     pub name: String,
     #[serde(default)]
     pub category: String,
-    #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "json::border_frames")]
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "json::border_frames"
+    )]
     pub frames: Vec<Vec<[f64; 3]>>,
     #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "json::mesh")]
     pub mesh: Option<MeshFrames>,
@@ -104,7 +118,11 @@ pub struct Sample {
 
 impl Sample {
     /// A border sample from frames.
-    pub fn from_frames(name: impl Into<String>, category: impl Into<String>, frames: Vec<Vec<[f64; 3]>>) -> Sample {
+    pub fn from_frames(
+        name: impl Into<String>,
+        category: impl Into<String>,
+        frames: Vec<Vec<[f64; 3]>>,
+    ) -> Sample {
         Sample { name: name.into(), category: category.into(), frames, mesh: None, truth: None }
     }
 
@@ -114,7 +132,9 @@ impl Sample {
     pub fn weight(&self) -> usize {
         let positions = |frames: &[Vec<[f64; 3]>]| 24 * frames.iter().map(Vec::len).sum::<usize>();
         let mesh = self.mesh.as_ref().map_or(0, |m| {
-            positions(&m.frames) + m.faces.iter().map(|f| 24 + 8 * f.len()).sum::<usize>() + 16 * m.border_edges.len()
+            positions(&m.frames)
+                + m.faces.iter().map(|f| 24 + 8 * f.len()).sum::<usize>()
+                + 16 * m.border_edges.len()
         });
         positions(&self.frames) + mesh
     }
@@ -123,13 +143,21 @@ impl Sample {
     /// found on frame 0 and `border_indices` are mesh vertex indices.
     pub fn border_frames(&self) -> Result<BorderFrames> {
         match (&self.mesh, self.frames.is_empty()) {
-            (Some(_), false) => Err(Error::parse(Format::SampleJson, "give either \"frames\" or \"mesh\", not both")),
+            (Some(_), false) => Err(Error::parse(
+                Format::SampleJson,
+                "give either \"frames\" or \"mesh\", not both",
+            )),
             (Some(mesh), true) => {
                 let found = crate::mesh::border_of(mesh)?;
-                let raw = mesh.frames.iter().map(|frame| found.indices.iter().map(|&k| frame[k]).collect()).collect();
+                let raw = mesh
+                    .frames
+                    .iter()
+                    .map(|frame| found.indices.iter().map(|&k| frame[k]).collect())
+                    .collect();
                 let mut border = prepare(raw)?;
                 // prepare's indices point into the gathered border; map them to the mesh.
-                border.border_indices = border.border_indices.iter().map(|&k| found.indices[k]).collect();
+                border.border_indices =
+                    border.border_indices.iter().map(|&k| found.indices[k]).collect();
                 border.source = found.method.name().into();
                 Ok(border)
             }
@@ -156,7 +184,9 @@ pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
     };
     let single = |what: &str| {
         if files.len() > 1 {
-            return Err(Error::InvalidArgument(format!("give one {what} file, or one text or mesh file per frame")));
+            return Err(Error::InvalidArgument(format!(
+                "give one {what} file, or one text or mesh file per frame"
+            )));
         }
         Ok(&files[0].1)
     };
@@ -192,7 +222,9 @@ fn read_mesh_files(files: &[(String, Vec<u8>)], name: String) -> Result<Sample> 
         let frame = match extension(file).as_str() {
             "obj" => obj::parse_frame(bytes),
             "ply" => ply::parse_frame(bytes),
-            other => Err(Error::InvalidArgument(format!("a mesh sample takes .obj or .ply files, not .{other}"))),
+            other => Err(Error::InvalidArgument(format!(
+                "a mesh sample takes .obj or .ply files, not .{other}"
+            ))),
         }
         .map_err(|e| e.in_file(file))?;
         if let Some(expected) = frames.first().map(Vec::len) {
@@ -214,5 +246,11 @@ fn read_mesh_files(files: &[(String, Vec<u8>)], name: String) -> Result<Sample> 
     if faces.is_empty() {
         return Err(Error::from(MeshError::NoFaces).in_file(&name));
     }
-    Ok(Sample { name, category: "upload".into(), frames: Vec::new(), mesh: Some(MeshFrames::new(faces, frames)), truth: None })
+    Ok(Sample {
+        name,
+        category: "upload".into(),
+        frames: Vec::new(),
+        mesh: Some(MeshFrames::new(faces, frames)),
+        truth: None,
+    })
 }

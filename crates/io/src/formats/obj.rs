@@ -17,8 +17,8 @@
 //! ```
 
 use super::{MeshFrame, MAX_FILE_BYTES};
-use crate::error::{Error, Format, MeshError, Result};
 use crate::mesh::{MAX_FACE_CORNERS, MAX_MESH_VERTICES};
+use close_core::error::{Error, Format, MeshError, Result};
 
 fn bad(line: usize, message: impl ToString) -> Error {
     Error::parse_at(Format::Obj, line, message)
@@ -29,7 +29,8 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
     if bytes.len() > MAX_FILE_BYTES {
         return Err(Error::too_large("bytes of OBJ", bytes.len(), MAX_FILE_BYTES));
     }
-    let text = std::str::from_utf8(bytes).map_err(|e| Error::parse(Format::Obj, format!("not UTF-8 text ({e})")))?;
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| Error::parse(Format::Obj, format!("not UTF-8 text ({e})")))?;
     let mut mesh = MeshFrame::default();
     let mut corners = 0usize;
     for (k, line) in text.lines().enumerate() {
@@ -43,14 +44,21 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
                 let mut xyz = [0.0; 3];
                 for c in &mut xyz {
                     let word = words.next().ok_or_else(|| bad(line_no, "a vertex needs x y z"))?;
-                    *c = word.parse().map_err(|_| bad(line_no, format!("{} is not a number", super::quote(word))))?;
+                    *c = word.parse().map_err(|_| {
+                        bad(line_no, format!("{} is not a number", super::quote(word)))
+                    })?;
                 }
                 mesh.vertices.push(xyz);
             }
             Some("f") => {
-                let face = words.map(|w| corner(w, mesh.vertices.len(), line_no)).collect::<Result<Vec<_>>>()?;
+                let face = words
+                    .map(|w| corner(w, mesh.vertices.len(), line_no))
+                    .collect::<Result<Vec<_>>>()?;
                 if face.len() < 3 {
-                    return Err(bad(line_no, format!("a face needs at least 3 vertices, got {}", face.len())));
+                    return Err(bad(
+                        line_no,
+                        format!("a face needs at least 3 vertices, got {}", face.len()),
+                    ));
                 }
                 corners += face.len();
                 if corners > MAX_FACE_CORNERS {
@@ -65,7 +73,9 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         return Err(Error::Empty { what: "the OBJ file holds no vertex" });
     }
     let n = mesh.vertices.len();
-    if let Some((k, &v)) = mesh.faces.iter().enumerate().find_map(|(k, f)| f.iter().find(|&&v| v >= n).map(|v| (k, v))) {
+    if let Some((k, &v)) =
+        mesh.faces.iter().enumerate().find_map(|(k, f)| f.iter().find(|&&v| v >= n).map(|v| (k, v)))
+    {
         // OBJ counts vertices from 1: name the vertex as the file does.
         return Err(MeshError::VertexOutOfRange { face: k, vertex: v + 1, vertices: n }.into());
     }
@@ -75,13 +85,17 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
 /// One face corner `v`, `v/t`, `v//n` or `v/t/n` → 0-based vertex index.
 fn corner(word: &str, defined: usize, line: usize) -> Result<usize> {
     let v = word.split('/').next().unwrap_or(word);
-    let index: i64 = v.parse().map_err(|_| bad(line, format!("{} is not a vertex index", super::quote(word))))?;
+    let index: i64 = v
+        .parse()
+        .map_err(|_| bad(line, format!("{} is not a vertex index", super::quote(word))))?;
     match index {
         0 => Err(bad(line, "vertex index 0 (OBJ counts from 1)")),
         // Negative indices count back from the last vertex defined so far.
         i if i < 0 => usize::try_from(defined as i64 + i)
             .map_err(|_| bad(line, format!("relative index {i} reaches before the first vertex"))),
-        i => usize::try_from(i - 1).map_err(|_| bad(line, format!("vertex index {i} is too large"))),
+        i => {
+            usize::try_from(i - 1).map_err(|_| bad(line, format!("vertex index {i} is too large")))
+        }
     }
 }
 

@@ -18,11 +18,13 @@
 //! ```
 
 use ply_rs_bw::parser::{Parser, Reader};
-use ply_rs_bw::ply::{ElementDef, Encoding, Property, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType};
+use ply_rs_bw::ply::{
+    ElementDef, Encoding, Property, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
+};
 
 use super::{MeshFrame, MAX_FILE_BYTES};
-use crate::error::{Error, Format, MeshError, Result};
 use crate::mesh::{MAX_FACE_CORNERS, MAX_MESH_FACES, MAX_MESH_VERTICES};
+use close_core::error::{Error, Format, MeshError, Result};
 
 /// A scalar property as f64; `None` for lists.
 fn scalar(p: &Property) -> Option<f64> {
@@ -128,9 +130,13 @@ fn scalar_size(t: &ScalarType) -> usize {
 fn min_element_bytes(e: &ElementDef, encoding: Encoding) -> usize {
     let bytes = match encoding {
         Encoding::Ascii => 2 * e.properties.len(),
-        _ => e.properties.values().map(|p| match &p.data_type {
-            PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_size(t),
-        }).sum(),
+        _ => e
+            .properties
+            .values()
+            .map(|p| match &p.data_type {
+                PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_size(t),
+            })
+            .sum(),
     };
     bytes.max(1)
 }
@@ -148,9 +154,17 @@ fn check_counts(elements: &[&ElementDef], encoding: Encoding, payload_bytes: usi
             _ => usize::MAX,
         };
         if e.count > limit {
-            return Err(Error::too_large(if e.name == "vertex" { "mesh vertices" } else { "mesh faces" }, e.count, limit));
+            return Err(Error::too_large(
+                if e.name == "vertex" { "mesh vertices" } else { "mesh faces" },
+                e.count,
+                limit,
+            ));
         }
-        needed = e.count.checked_mul(min_element_bytes(e, encoding)).and_then(|b| needed.checked_add(b)).unwrap_or(usize::MAX);
+        needed = e
+            .count
+            .checked_mul(min_element_bytes(e, encoding))
+            .and_then(|b| needed.checked_add(b))
+            .unwrap_or(usize::MAX);
         if needed > payload_bytes {
             return Err(bad(format!(
                 "the header announces {} {} elements, which with those before take at least {needed} bytes, but only {payload_bytes} bytes follow (truncated file?)",
@@ -170,11 +184,13 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         return Err(bad("not a PLY file (it must start with the line \"ply\")"));
     }
     let mut reader = Reader::new(bytes);
-    let header = Parser::<Skip>::new().read_header(&mut reader).map_err(|e| bad(format!("header: {e}")))?;
+    let header =
+        Parser::<Skip>::new().read_header(&mut reader).map_err(|e| bad(format!("header: {e}")))?;
     let elements: Vec<&ElementDef> = header.elements.values().collect();
     // The payload starts after the line "end_header" (its newline counted as payload: one
     // byte of slack for an ASCII file whose last line has none).
-    let payload_start = bytes.windows(11).position(|w| w == b"\nend_header").map_or(bytes.len(), |k| k + 11);
+    let payload_start =
+        bytes.windows(11).position(|w| w == b"\nend_header").map_or(bytes.len(), |k| k + 11);
     check_counts(&elements, header.encoding, bytes.len() - payload_start)?;
     let Some(vertex) = header.elements.get("vertex") else {
         return Err(bad("no \"vertex\" element"));
@@ -182,7 +198,9 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
     for axis in ["x", "y", "z"] {
         match vertex.properties.get(axis).map(|p| &p.data_type) {
             Some(PropertyType::Scalar(_)) => {}
-            Some(PropertyType::List(..)) => return Err(bad(format!("vertex property {axis} is a list, not a number"))),
+            Some(PropertyType::List(..)) => {
+                return Err(bad(format!("vertex property {axis} is a list, not a number")))
+            }
             None => return Err(bad(format!("the vertex element has no {axis} property"))),
         }
     }
@@ -198,19 +216,29 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
                 Encoding::BinaryBigEndian => "binary big endian",
             };
             // The parser's message may quote a whole line of the file.
-            bad(format!("{encoding} {} data: {}", super::clip(&e.name, super::QUOTE_CHARS), super::clip(&err.to_string(), 4 * super::QUOTE_CHARS)))
+            bad(format!(
+                "{encoding} {} data: {}",
+                super::clip(&e.name, super::QUOTE_CHARS),
+                super::clip(&err.to_string(), 4 * super::QUOTE_CHARS)
+            ))
         };
         match e.name.as_str() {
             "vertex" => {
-                let read = Parser::<Vertex>::new().read_payload_for_element(&mut reader, e, &header).map_err(read_error)?;
+                let read = Parser::<Vertex>::new()
+                    .read_payload_for_element(&mut reader, e, &header)
+                    .map_err(read_error)?;
                 frame.vertices = read.into_iter().map(|v| v.0).collect();
             }
             "face" => {
-                let read = Parser::<Face>::new().read_payload_for_element(&mut reader, e, &header).map_err(read_error)?;
+                let read = Parser::<Face>::new()
+                    .read_payload_for_element(&mut reader, e, &header)
+                    .map_err(read_error)?;
                 frame.faces = faces(read, e.count)?;
             }
             _ => {
-                Parser::<Skip>::new().read_payload_for_element(&mut reader, e, &header).map_err(read_error)?;
+                Parser::<Skip>::new()
+                    .read_payload_for_element(&mut reader, e, &header)
+                    .map_err(read_error)?;
             }
         }
     }
@@ -218,7 +246,12 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         return Err(Error::Empty { what: "the PLY file holds no vertex" });
     }
     let n = frame.vertices.len();
-    if let Some((k, &v)) = frame.faces.iter().enumerate().find_map(|(k, f)| f.iter().find(|&&v| v >= n).map(|v| (k, v))) {
+    if let Some((k, &v)) = frame
+        .faces
+        .iter()
+        .enumerate()
+        .find_map(|(k, f)| f.iter().find(|&&v| v >= n).map(|v| (k, v)))
+    {
         return Err(MeshError::VertexOutOfRange { face: k, vertex: v, vertices: n }.into());
     }
     Ok(frame)
@@ -233,7 +266,10 @@ fn faces(read: Vec<Face>, count: usize) -> Result<Vec<Vec<usize>>> {
         .enumerate()
         .map(|(k, f)| {
             f.0.into_iter()
-                .map(|v| usize::try_from(v).map_err(|_| MeshError::NegativeIndex { face: k, index: v }.into()))
+                .map(|v| {
+                    usize::try_from(v)
+                        .map_err(|_| MeshError::NegativeIndex { face: k, index: v }.into())
+                })
                 .collect()
         })
         .collect()
@@ -285,12 +321,17 @@ mod tests {
         };
         // 2^62 of them cannot fit in what follows, in either encoding.
         for format in ["binary_little_endian", "ascii"] {
-            let err = parse_frame(junk(format, "4611686018427387904", "1 2 3\n\n").as_bytes()).unwrap_err().to_string();
+            let err = parse_frame(junk(format, "4611686018427387904", "1 2 3\n\n").as_bytes())
+                .unwrap_err()
+                .to_string();
             assert!(err.contains("4611686018427387904 junk elements"), "{err}");
         }
         // Counts that fit: binary ones hold no byte and are skipped; ASCII ones are lines.
         let m = parse_frame(junk("binary_little_endian", "1", "\x01\x02\x03").as_bytes()).unwrap();
         assert_eq!(m.vertices, vec![[1.0, 2.0, 3.0]]);
-        assert_eq!(parse_frame(junk("ascii", "2", "1 2 3\n\n\n").as_bytes()).unwrap().vertices.len(), 1);
+        assert_eq!(
+            parse_frame(junk("ascii", "2", "1 2 3\n\n\n").as_bytes()).unwrap().vertices.len(),
+            1
+        );
     }
 }

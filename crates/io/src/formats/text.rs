@@ -10,8 +10,8 @@
 //! ```
 
 use super::MAX_FILE_BYTES;
-use crate::border::MAX_VERTICES;
-use crate::error::{Error, Format, Result};
+use close_core::border::MAX_VERTICES;
+use close_core::error::{Error, Format, Result};
 
 /// Parse one frame of vertices.
 pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
@@ -24,15 +24,34 @@ pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let fields: Vec<&str> = line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
-        let numbers: Vec<f64> = match fields.iter().map(|f| f.parse::<f64>()).collect::<Result<_, _>>() {
-            Ok(numbers) => numbers,
-            // A header line of words before any vertex.
-            Err(_) if out.is_empty() && fields.iter().all(|f| f.chars().all(char::is_alphabetic)) => continue,
-            Err(_) => return Err(Error::parse_at(Format::Text, k + 1, format!("{} is not three numbers", super::quote(line)))),
-        };
+        let fields: Vec<&str> = line
+            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .collect();
+        let numbers: Vec<f64> =
+            match fields.iter().map(|f| f.parse::<f64>()).collect::<Result<_, _>>() {
+                Ok(numbers) => numbers,
+                // A header line of words before any vertex.
+                Err(_)
+                    if out.is_empty()
+                        && fields.iter().all(|f| f.chars().all(char::is_alphabetic)) =>
+                {
+                    continue
+                }
+                Err(_) => {
+                    return Err(Error::parse_at(
+                        Format::Text,
+                        k + 1,
+                        format!("{} is not three numbers", super::quote(line)),
+                    ))
+                }
+            };
         if numbers.len() != 3 {
-            return Err(Error::parse_at(Format::Text, k + 1, format!("expected x,y,z but found {} values", numbers.len())));
+            return Err(Error::parse_at(
+                Format::Text,
+                k + 1,
+                format!("expected x,y,z but found {} values", numbers.len()),
+            ));
         }
         // One more than a border's vertices: a closing vertex may repeat vertex 0.
         if out.len() > MAX_VERTICES {
@@ -53,7 +72,10 @@ mod tests {
     #[test]
     fn bad_lines_are_named() {
         assert!(matches!(parse_frame(""), Err(Error::Empty { .. })));
-        assert!(matches!(parse_frame(&"0 0 0\n".repeat(MAX_VERTICES + 2)), Err(Error::TooLarge { .. })));
+        assert!(matches!(
+            parse_frame(&"0 0 0\n".repeat(MAX_VERTICES + 2)),
+            Err(Error::TooLarge { .. })
+        ));
         assert!(parse_frame("1,2\n").unwrap_err().to_string().contains("line 1"));
         assert!(parse_frame("0 0 0\n1 2 3 4\n").unwrap_err().to_string().contains("4 values"));
         // NaN parses as a number here; the border check names it.

@@ -16,7 +16,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use crate::error::{MeshError, Result};
+use close_core::error::{MeshError, Result};
 
 /// Split undirected edges into closed loops, each starting at its lowest vertex; loops are
 /// listed by that vertex.
@@ -32,7 +32,12 @@ pub fn chain_loops(edges: &[[usize; 2]]) -> Result<Vec<Vec<usize>>> {
     }
     if let Some((v, n)) = neighbours.iter().find(|(_, n)| n.len() != 2) {
         let (vertex, edges) = (*v, n.len());
-        return Err(if edges < 2 { MeshError::OpenBorder { vertex, edges } } else { MeshError::TouchingLoops { vertex, edges } }.into());
+        return Err(if edges < 2 {
+            MeshError::OpenBorder { vertex, edges }
+        } else {
+            MeshError::TouchingLoops { vertex, edges }
+        }
+        .into());
     }
     let mut visited: HashMap<usize, ()> = HashMap::with_capacity(neighbours.len());
     let mut loops = Vec::new();
@@ -43,7 +48,8 @@ pub fn chain_loops(edges: &[[usize; 2]]) -> Result<Vec<Vec<usize>>> {
         let mut cycle = vec![start];
         visited.insert(start, ());
         // Of the two neighbours of the start, go towards the smaller one (a fixed choice).
-        let (mut prev, mut cur) = (start, neighbours[&start].iter().copied().min().unwrap_or(start));
+        let (mut prev, mut cur) =
+            (start, neighbours[&start].iter().copied().min().unwrap_or(start));
         while cur != start {
             if visited.insert(cur, ()).is_some() {
                 return Err(MeshError::ReachedTwice { vertex: cur }.into());

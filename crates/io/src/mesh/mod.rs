@@ -36,8 +36,8 @@ use std::collections::HashMap;
 
 use serde::Serialize;
 
-use crate::border::{signed_area_xy, Point, MAX_FRAMES};
-use crate::error::{Error, MeshError, Result};
+use close_core::border::{signed_area_xy, Point, MAX_FRAMES};
+use close_core::error::{Error, MeshError, Result};
 
 /// Most vertices a mesh may have.
 pub const MAX_MESH_VERTICES: usize = 2_000_000;
@@ -172,7 +172,8 @@ pub fn edge_faces(faces: &[Vec<usize>]) -> Result<HashMap<[usize; 2], u8>> {
 
 /// The boundary loops (edges with exactly one face), each from its lowest vertex.
 pub fn boundary_loops(faces: &[Vec<usize>]) -> Result<Vec<Vec<usize>>> {
-    let mut edges: Vec<[usize; 2]> = edge_faces(faces)?.into_iter().filter(|&(_, c)| c == 1).map(|(e, _)| e).collect();
+    let mut edges: Vec<[usize; 2]> =
+        edge_faces(faces)?.into_iter().filter(|&(_, c)| c == 1).map(|(e, _)| e).collect();
     edges.sort_unstable();
     boundary::chain_loops(&edges)
 }
@@ -188,10 +189,14 @@ pub fn start_lowest(mut indices: Vec<usize>, vertices: &[[f64; 3]]) -> Vec<usize
     let points: Vec<Point> = indices.iter().map(|&k| Point::from(vertices[k])).collect();
     let n = points.len() as f64;
     let centre = points.iter().fold([0.0, 0.0], |c, p| [c[0] + p.x / n, c[1] + p.y / n]);
-    let extent = points.iter().map(|p| (p.x - centre[0]).hypot(p.y - centre[1])).fold(0.0, f64::max);
+    let extent =
+        points.iter().map(|p| (p.x - centre[0]).hypot(p.y - centre[1])).fold(0.0, f64::max);
     let bottom = points.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
     let level = |k: &usize| points[*k].y <= bottom + LEVEL * extent;
-    let lowest = (0..points.len()).filter(level).min_by(|&a, &b| points[a].x.total_cmp(&points[b].x)).unwrap_or(0);
+    let lowest = (0..points.len())
+        .filter(level)
+        .min_by(|&a, &b| points[a].x.total_cmp(&points[b].x))
+        .unwrap_or(0);
     indices.rotate_left(lowest);
     if signed_area_xy(&points) < 0.0 {
         indices[1..].reverse();
@@ -211,7 +216,10 @@ fn find_border(mesh: &MeshFrames) -> Result<MeshBorder> {
     validate(mesh)?;
     let vertices = &mesh.frames[0];
     if !mesh.border_edges.is_empty() {
-        return Ok(MeshBorder { indices: boundary::single_loop(&mesh.border_edges)?, method: BorderMethod::BorderEdges });
+        return Ok(MeshBorder {
+            indices: boundary::single_loop(&mesh.border_edges)?,
+            method: BorderMethod::BorderEdges,
+        });
     }
     if mesh.faces.is_empty() {
         return Err(MeshError::NoFaces.into());
@@ -219,7 +227,9 @@ fn find_border(mesh: &MeshFrames) -> Result<MeshBorder> {
     let seen = silhouette::Silhouette::render(vertices, &mesh.faces)?;
     // Touching boundary loops cannot give an outline; the silhouette still can.
     let outline = boundary_loops(&mesh.faces).ok().and_then(|loops| {
-        loops.into_iter().max_by(|a, b| loop_length(vertices, a).total_cmp(&loop_length(vertices, b)))
+        loops
+            .into_iter()
+            .max_by(|a, b| loop_length(vertices, a).total_cmp(&loop_length(vertices, b)))
     });
     if let Some(outline) = outline {
         let points: Vec<Point> = outline.iter().map(|&k| Point::from(vertices[k])).collect();
@@ -228,7 +238,7 @@ fn find_border(mesh: &MeshFrames) -> Result<MeshBorder> {
         }
     }
     let indices = seen.border(vertices, silhouette::EPSILON)?;
-    if indices.len() < crate::border::MIN_VERTICES {
+    if indices.len() < close_core::border::MIN_VERTICES {
         return Err(MeshError::SilhouetteTooSmall { vertices: indices.len() }.into());
     }
     Ok(MeshBorder { indices, method: BorderMethod::Silhouette })
@@ -239,9 +249,14 @@ mod tests {
     use super::*;
 
     fn square_grid(n: usize) -> MeshFrames {
-        let v: Vec<[f64; 3]> = (0..=n).flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, 0.0])).collect();
+        let v: Vec<[f64; 3]> =
+            (0..=n).flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, 0.0])).collect();
         let id = |i: usize, j: usize| j * (n + 1) + i;
-        let f = (0..n).flat_map(|j| (0..n).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])).collect();
+        let f = (0..n)
+            .flat_map(|j| {
+                (0..n).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+            })
+            .collect();
         MeshFrames::new(f, vec![v])
     }
 
@@ -284,12 +299,26 @@ mod tests {
         for (k, p) in grid.frames[0].iter().enumerate() {
             frame[new_id[k]] = *p;
         }
-        let faces = grid.faces.iter().rev().map(|f| f.iter().rev().map(|&k| new_id[k]).collect()).collect();
+        let faces =
+            grid.faces.iter().rev().map(|f| f.iter().rev().map(|&k| new_id[k]).collect()).collect();
         assert_eq!(walked(&MeshFrames::new(faces, vec![frame])), expected);
         // Given border edges, walked clockwise from the top-right corner, give it too.
         let mut ring = grid.clone();
         let id = |i: usize, j: usize| j * 4 + i;
-        let outline = [id(3, 3), id(3, 2), id(3, 1), id(3, 0), id(2, 0), id(1, 0), id(0, 0), id(0, 1), id(0, 2), id(0, 3), id(1, 3), id(2, 3)];
+        let outline = [
+            id(3, 3),
+            id(3, 2),
+            id(3, 1),
+            id(3, 0),
+            id(2, 0),
+            id(1, 0),
+            id(0, 0),
+            id(0, 1),
+            id(0, 2),
+            id(0, 3),
+            id(1, 3),
+            id(2, 3),
+        ];
         ring.border_edges = (0..12).map(|k| [outline[k], outline[(k + 1) % 12]]).collect();
         assert_eq!(walked(&ring), expected);
     }
@@ -325,10 +354,20 @@ mod tests {
     #[test]
     fn a_closed_surface_uses_the_silhouette() {
         // A pillow: 8 equator vertices round a 2×2 square, an apex above and one below.
-        let ring = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0], [0.0, 2.0], [0.0, 1.0]];
+        let ring = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [2.0, 2.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+            [0.0, 1.0],
+        ];
         let mut v: Vec<[f64; 3]> = ring.iter().map(|p| [p[0], p[1], 0.0]).collect();
         v.extend([[1.0, 1.0, 0.5], [1.0, 1.0, -0.5]]);
-        let faces = (0..8).flat_map(|k| [vec![k, (k + 1) % 8, 8], vec![(k + 1) % 8, k, 9]]).collect();
+        let faces =
+            (0..8).flat_map(|k| [vec![k, (k + 1) % 8, 8], vec![(k + 1) % 8, k, 9]]).collect();
         let m = MeshFrames::new(faces, vec![v]);
         assert!(boundary_loops(&m.faces).unwrap().is_empty());
         let b = border_of(&m).unwrap();

@@ -25,8 +25,8 @@
 
 use std::collections::{HashSet, VecDeque};
 
-use crate::border::{Normalisation, Point};
-use crate::error::{DegenerateReason, Error, MeshError, Result};
+use close_core::border::{Normalisation, Point};
+use close_core::error::{DegenerateReason, Error, MeshError, Result};
 
 /// Cells along the longer side of the bounding box (plus a margin of empty cells).
 pub const GRID: usize = 256;
@@ -65,7 +65,10 @@ impl Silhouette {
         let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
         // +∞: finite coordinates whose span overflows; −∞: no face at all.
         if extent == f64::INFINITY {
-            return Err(Error::Degenerate { frame: 0, reason: DegenerateReason::TooLargeToNormalise });
+            return Err(Error::Degenerate {
+                frame: 0,
+                reason: DegenerateReason::TooLargeToNormalise,
+            });
         }
         if extent <= 0.0 {
             return Err(MeshError::NoExtent.into());
@@ -74,14 +77,28 @@ impl Silhouette {
         let cells = |a: usize| ((hi[a] - lo[a]) / cell).ceil() as usize + 2 * MARGIN;
         let (nx, ny) = (cells(0), cells(1));
         let origin = [lo[0] - MARGIN as f64 * cell, lo[1] - MARGIN as f64 * cell];
-        let mut s = Silhouette { nx, ny, cell, depth: vec![f64::NEG_INFINITY; nx * ny], visible: vec![NO_VERTEX; nx * ny] };
-        let triangles = || faces.iter().flat_map(|face| (1..face.len().saturating_sub(1)).map(|k| [face[0], face[k], face[k + 1]]));
+        let mut s = Silhouette {
+            nx,
+            ny,
+            cell,
+            depth: vec![f64::NEG_INFINITY; nx * ny],
+            visible: vec![NO_VERTEX; nx * ny],
+        };
+        let triangles = || {
+            faces.iter().flat_map(|face| {
+                (1..face.len().saturating_sub(1)).map(|k| [face[0], face[k], face[k + 1]])
+            })
+        };
         let work = triangles().fold(0usize, |sum, tri| {
             let [cols, rows] = s.bounding_cells(&tri.map(|k| vertices[k]), origin);
             sum.saturating_add(cols.count().saturating_mul(rows.count()))
         });
         if work > MAX_CELL_TESTS {
-            return Err(Error::too_large("silhouette cell tests (face triangles × cells of their bounding boxes)", work, MAX_CELL_TESTS));
+            return Err(Error::too_large(
+                "silhouette cell tests (face triangles × cells of their bounding boxes)",
+                work,
+                MAX_CELL_TESTS,
+            ));
         }
         for tri in triangles() {
             s.fill_triangle(tri, vertices, origin);
@@ -105,7 +122,8 @@ impl Silhouette {
 
     fn fill_triangle(&mut self, tri: [usize; 3], vertices: &[[f64; 3]], origin: [f64; 2]) {
         let p = tri.map(|k| vertices[k]);
-        let det = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+        let det =
+            (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
         if det.abs() <= f64::EPSILON * self.cell * self.cell {
             return; // seen edge-on: covers nothing
         }
@@ -116,8 +134,12 @@ impl Silhouette {
             let y = origin[1] + (j as f64 + 0.5) * self.cell;
             for i in cols.clone() {
                 let x = origin[0] + (i as f64 + 0.5) * self.cell;
-                let b1 = ((x - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (y - p[0][1])) / det;
-                let b2 = ((p[1][0] - p[0][0]) * (y - p[0][1]) - (x - p[0][0]) * (p[1][1] - p[0][1])) / det;
+                let b1 = ((x - p[0][0]) * (p[2][1] - p[0][1])
+                    - (p[2][0] - p[0][0]) * (y - p[0][1]))
+                    / det;
+                let b2 = ((p[1][0] - p[0][0]) * (y - p[0][1])
+                    - (x - p[0][0]) * (p[1][1] - p[0][1]))
+                    / det;
                 let b0 = 1.0 - b1 - b2;
                 if b0 < tolerance || b1 < tolerance || b2 < tolerance {
                     continue;
@@ -127,7 +149,8 @@ impl Silhouette {
                 if z > self.depth[c] {
                     self.depth[c] = z;
                     let d2 = |v: &[f64; 3]| (v[0] - x).powi(2) + (v[1] - y).powi(2);
-                    let nearest = (0..3).min_by(|&a, &b| d2(&p[a]).total_cmp(&d2(&p[b]))).unwrap_or(0);
+                    let nearest =
+                        (0..3).min_by(|&a, &b| d2(&p[a]).total_cmp(&d2(&p[b]))).unwrap_or(0);
                     self.visible[c] = tri[nearest] as u32;
                 }
             }
@@ -135,7 +158,11 @@ impl Silhouette {
     }
 
     fn covered(&self, i: isize, j: isize) -> bool {
-        i >= 0 && j >= 0 && (i as usize) < self.nx && (j as usize) < self.ny && self.visible[j as usize * self.nx + i as usize] != NO_VERTEX
+        i >= 0
+            && j >= 0
+            && (i as usize) < self.nx
+            && (j as usize) < self.ny
+            && self.visible[j as usize * self.nx + i as usize] != NO_VERTEX
     }
 
     /// Covered area, in the mesh's units squared.
@@ -153,12 +180,15 @@ impl Silhouette {
             }
             seen[start] = true;
             let mut region = HashSet::new();
-            let mut queue = VecDeque::from([((start % self.nx) as isize, (start / self.nx) as isize)]);
+            let mut queue =
+                VecDeque::from([((start % self.nx) as isize, (start / self.nx) as isize)]);
             while let Some((i, j)) = queue.pop_front() {
                 region.insert((i, j));
                 for (di, dj) in NEIGHBOURS {
                     let (a, b) = (i + di, j + dj);
-                    if self.covered(a, b) && !std::mem::replace(&mut seen[b as usize * self.nx + a as usize], true) {
+                    if self.covered(a, b)
+                        && !std::mem::replace(&mut seen[b as usize * self.nx + a as usize], true)
+                    {
                         queue.push_back((a, b));
                     }
                 }
@@ -211,7 +241,9 @@ impl Silhouette {
     pub fn border(&self, vertices: &[[f64; 3]], epsilon: f64) -> Result<Vec<usize>> {
         let points: Vec<Point> = vertices.iter().map(|v| Point::new(v[0], v[1], v[2])).collect();
         let reach = epsilon * Normalisation::of(&points)?.radius;
-        let far = |a: usize, b: usize| (vertices[a][0] - vertices[b][0]).hypot(vertices[a][1] - vertices[b][1]) > reach;
+        let far = |a: usize, b: usize| {
+            (vertices[a][0] - vertices[b][0]).hypot(vertices[a][1] - vertices[b][1]) > reach
+        };
         let mut kept: Vec<usize> = Vec::new();
         let mut used = HashSet::new();
         for (i, j) in self.contour() {
@@ -228,7 +260,8 @@ impl Silhouette {
 }
 
 /// The 8 neighbours clockwise (x right, y up) starting west.
-const NEIGHBOURS: [(isize, isize); 8] = [(-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1)];
+const NEIGHBOURS: [(isize, isize); 8] =
+    [(-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1)];
 
 #[cfg(test)]
 mod tests {
@@ -253,11 +286,20 @@ mod tests {
     fn a_polygon_of_many_corners_is_refused_before_rendering() {
         // 20 000 corners on a circle fan into triangles that each span the grid.
         let k = 20_000;
-        let v: Vec<[f64; 3]> = (0..k).map(|i| (i as f64 / k as f64 * std::f64::consts::TAU).sin_cos()).map(|(s, c)| [c, s, 0.0]).collect();
+        let v: Vec<[f64; 3]> = (0..k)
+            .map(|i| (i as f64 / k as f64 * std::f64::consts::TAU).sin_cos())
+            .map(|(s, c)| [c, s, 0.0])
+            .collect();
         let err = Silhouette::render(&v, &[(0..k).collect()]).unwrap_err();
-        assert!(matches!(err, Error::TooLarge { limit, .. } if limit == MAX_CELL_TESTS as u64), "{err}");
+        assert!(
+            matches!(err, Error::TooLarge { limit, .. } if limit == MAX_CELL_TESTS as u64),
+            "{err}"
+        );
         // The same circle as a fan of 64 corners renders.
-        let v: Vec<[f64; 3]> = (0..64).map(|i| (i as f64 / 64.0 * std::f64::consts::TAU).sin_cos()).map(|(s, c)| [c, s, 0.0]).collect();
+        let v: Vec<[f64; 3]> = (0..64)
+            .map(|i| (i as f64 / 64.0 * std::f64::consts::TAU).sin_cos())
+            .map(|(s, c)| [c, s, 0.0])
+            .collect();
         let s = Silhouette::render(&v, &[(0..64).collect()]).unwrap();
         assert!((s.area() - std::f64::consts::PI).abs() < 0.05, "{}", s.area());
     }
@@ -275,14 +317,18 @@ mod tests {
         // Consecutive in the polygon's cyclic order (either direction).
         let ring = [0, 1, 2, 3, 4, 5, 6];
         let pos = |v: usize| ring.iter().position(|&r| r == v).unwrap() as isize;
-        let steps: Vec<isize> = (0..7).map(|k| (pos(border[(k + 1) % 7]) - pos(border[k])).rem_euclid(7)).collect();
+        let steps: Vec<isize> =
+            (0..7).map(|k| (pos(border[(k + 1) % 7]) - pos(border[k])).rem_euclid(7)).collect();
         assert!(steps.iter().all(|&s| s == 1) || steps.iter().all(|&s| s == 6), "{border:?}");
     }
 
     #[test]
     fn the_top_layer_is_the_visible_one() {
         // Two coincident squares; the upper one (z = 1) owns vertices 4..8.
-        let mut v: Vec<[f64; 3]> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().map(|p| [p[0], p[1], 0.0]).collect();
+        let mut v: Vec<[f64; 3]> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+            .iter()
+            .map(|p| [p[0], p[1], 0.0])
+            .collect();
         v.extend(v.clone().iter().map(|p| [p[0], p[1], 1.0]));
         let f = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]];
         let mut b = Silhouette::render(&v, &f).unwrap().border(&v, EPSILON).unwrap();
@@ -293,18 +339,30 @@ mod tests {
     #[test]
     fn no_area_is_an_error() {
         let v = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
-        assert!(Silhouette::render(&v, &[vec![0, 1, 2]]).unwrap_err().to_string().contains("no area"));
+        assert!(Silhouette::render(&v, &[vec![0, 1, 2]])
+            .unwrap_err()
+            .to_string()
+            .contains("no area"));
         let p = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 2.0]];
-        assert!(Silhouette::render(&p, &[vec![0, 1, 2]]).unwrap_err().to_string().contains("no extent"));
+        assert!(Silhouette::render(&p, &[vec![0, 1, 2]])
+            .unwrap_err()
+            .to_string()
+            .contains("no extent"));
     }
 
     #[test]
     fn epsilon_cover_thins_a_fine_outline() {
         // A 40×40 grid of a unit square: 160 outline vertices 0.025 apart.
         let n = 40;
-        let v: Vec<[f64; 3]> = (0..=n).flat_map(|j| (0..=n).map(move |i| [i as f64 / n as f64, j as f64 / n as f64, 0.0])).collect();
+        let v: Vec<[f64; 3]> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| [i as f64 / n as f64, j as f64 / n as f64, 0.0]))
+            .collect();
         let id = |i: usize, j: usize| j * (n + 1) + i;
-        let f: Vec<Vec<usize>> = (0..n).flat_map(|j| (0..n).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])).collect();
+        let f: Vec<Vec<usize>> = (0..n)
+            .flat_map(|j| {
+                (0..n).map(move |i| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+            })
+            .collect();
         let b = Silhouette::render(&v, &f).unwrap().border(&v, EPSILON).unwrap();
         // Normalised radius is √2/2, so ε = 0.04 reaches 0.028: every second outline vertex.
         assert!((70..=90).contains(&b.len()), "{}", b.len());

@@ -58,7 +58,16 @@ mod tests {
     fn grid(n: usize) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
         let v = (0..=n).flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, 0.0])).collect();
         let id = |i: usize, j: usize| j * (n + 1) + i;
-        let f = (0..n).flat_map(|j| (0..n).flat_map(move |i| [[id(i, j), id(i + 1, j), id(i + 1, j + 1)], [id(i, j), id(i + 1, j + 1), id(i, j + 1)]])).collect();
+        let f = (0..n)
+            .flat_map(|j| {
+                (0..n).flat_map(move |i| {
+                    [
+                        [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+                        [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+                    ]
+                })
+            })
+            .collect();
         (v, f)
     }
 
@@ -92,7 +101,8 @@ mod tests {
             .map(|(a, b)| ((v[a][0] - v[b][0]).powi(2) + (v[a][1] - v[b][1]).powi(2)).sqrt())
             .collect();
         let mean = lengths.iter().sum::<f64>() / lengths.len() as f64;
-        let std = (lengths.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / lengths.len() as f64).sqrt();
+        let std =
+            (lengths.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / lengths.len() as f64).sqrt();
         let max = lengths.iter().cloned().fold(0.0, f64::max);
         assert!((max_edge_zscore(&v, &f).unwrap() - (max - mean) / std).abs() < 1e-9);
     }

@@ -41,8 +41,8 @@
 //! }
 //! ```
 
+pub mod bifold;
 pub mod broken;
-pub mod cut;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -56,11 +56,11 @@ use zarrs::group::Group;
 use zarrs::plugin::{ExtensionName, ZarrVersion};
 use zarrs::storage::{ListableStorageTraits, StorePrefix};
 
-use crate::error::{Error, Result};
 use crate::formats::Sample;
 use crate::mesh::silhouette::{Silhouette, EPSILON};
 use crate::mesh::{MAX_MESH_FACES, MAX_MESH_VERTICES};
-use cut::Action;
+use bifold::Action;
+use close_core::error::{Error, Result};
 
 /// Folds scored per video: the paper's Table I has first and second folds.
 pub const FOLDS: usize = 2;
@@ -114,7 +114,11 @@ impl VideoFolds {
     /// end of action k), so fold k is its k-th step; `None` when fold k is absent or dropped.
     pub fn sample(&self, video: &Video, k: usize) -> Option<Sample> {
         (k >= 1 && k <= self.usable()).then(|| {
-            Sample::from_frames(format!("{}/fold{k}", video.id), format!("{}/fold{k}", video.category), self.frames[..=k].to_vec())
+            Sample::from_frames(
+                format!("{}/fold{k}", video.id),
+                format!("{}/fold{k}", video.category),
+                self.frames[..=k].to_vec(),
+            )
         })
     }
 }
@@ -136,7 +140,11 @@ fn attr_text(attrs: &serde_json::Map<String, Value>, key: &str) -> Option<String
 impl Store {
     /// Open a store, or one category folder of it (a group holding `samples/`).
     pub fn open(path: &Path) -> Result<Store> {
-        let problem = |p: &str, m: String| Error::Store { store: path.display().to_string(), path: p.into(), problem: m };
+        let problem = |p: &str, m: String| Error::Store {
+            store: path.display().to_string(),
+            path: p.into(),
+            problem: m,
+        };
         if !path.is_dir() {
             return Err(problem("/", "not a folder".into()));
         }
@@ -146,7 +154,9 @@ impl Store {
         let fs = Arc::new(FilesystemStore::new(path).map_err(|e| problem("/", e.to_string()))?);
         let mut store = Store { path: path.to_path_buf(), fs, categories: Vec::new() };
         if store.group("/samples").is_ok() {
-            let name = path.file_name().map_or("store".into(), |n| n.to_string_lossy().trim_end_matches('/').to_string());
+            let name = path
+                .file_name()
+                .map_or("store".into(), |n| n.to_string_lossy().trim_end_matches('/').to_string());
             store.categories.push((name, "/samples".into()));
         } else {
             for child in store.children("/")? {
@@ -157,7 +167,10 @@ impl Store {
             }
         }
         if store.categories.is_empty() {
-            return Err(problem("/", "no category group with a samples/ group (e.g. Tshirt/samples)".into()));
+            return Err(problem(
+                "/",
+                "no category group with a samples/ group (e.g. Tshirt/samples)".into(),
+            ));
         }
         Ok(store)
     }
@@ -173,16 +186,26 @@ impl Store {
     }
 
     fn error(&self, path: &str, problem: impl ToString) -> Error {
-        Error::Store { store: self.path.display().to_string(), path: path.into(), problem: problem.to_string() }
+        Error::Store {
+            store: self.path.display().to_string(),
+            path: path.into(),
+            problem: problem.to_string(),
+        }
     }
 
     fn group(&self, path: &str) -> Result<Group<FilesystemStore>> {
-        Group::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2).map_err(|e| self.error(path, format!("missing or unreadable group: {e}")))
+        Group::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
+            .map_err(|e| self.error(path, format!("missing or unreadable group: {e}")))
     }
 
     /// Names of the child groups/arrays of `path`, sorted.
     fn children(&self, path: &str) -> Result<Vec<String>> {
-        let prefix = if path == "/" { StorePrefix::root() } else { StorePrefix::new(format!("{}/", path.trim_matches('/'))).map_err(|e| self.error(path, e))? };
+        let prefix = if path == "/" {
+            StorePrefix::root()
+        } else {
+            StorePrefix::new(format!("{}/", path.trim_matches('/')))
+                .map_err(|e| self.error(path, e))?
+        };
         let listed = self.fs.list_dir(&prefix).map_err(|e| self.error(path, e))?;
         let mut names: Vec<String> = listed
             .prefixes()
@@ -213,26 +236,39 @@ impl Store {
                     let attrs = group.attributes();
                     let video = attr_text(attrs, "video_id")
                         .or_else(|| attr_text(attrs, "instance_id"))
-                        .ok_or_else(|| self.error(&path, "the frame's attributes have no video_id or instance_id"))?;
-                    let sample_id = attrs
-                        .get("sample_id")
-                        .and_then(Value::as_i64)
-                        .ok_or_else(|| self.error(&path, "the frame's attributes have no integer sample_id"))?;
-                    let garment = attr_text(attrs, "garment_name").unwrap_or_else(|| category.clone());
+                        .ok_or_else(|| {
+                            self.error(
+                                &path,
+                                "the frame's attributes have no video_id or instance_id",
+                            )
+                        })?;
+                    let sample_id =
+                        attrs.get("sample_id").and_then(Value::as_i64).ok_or_else(|| {
+                            self.error(&path, "the frame's attributes have no integer sample_id")
+                        })?;
+                    let garment =
+                        attr_text(attrs, "garment_name").unwrap_or_else(|| category.clone());
                     Ok((video, sample_id, path, garment))
                 })
                 .collect::<Vec<Result<_>>>();
             let mut videos: BTreeMap<String, Vec<(i64, String, String)>> = BTreeMap::new();
             for frame in frames {
                 match frame {
-                    Ok((video, sample_id, path, garment)) => videos.entry(video).or_default().push((sample_id, path, garment)),
+                    Ok((video, sample_id, path, garment)) => {
+                        videos.entry(video).or_default().push((sample_id, path, garment))
+                    }
                     Err(e) => unreadable.push(e),
                 }
             }
             for (id, mut frames) in videos {
                 frames.sort();
                 let garment = frames[0].2.clone();
-                out.push(Video { category: category.clone(), id, garment, frames: frames.into_iter().map(|f| f.1).collect() });
+                out.push(Video {
+                    category: category.clone(),
+                    id,
+                    garment,
+                    frames: frames.into_iter().map(|f| f.1).collect(),
+                });
             }
         }
         Ok((out, unreadable))
@@ -241,7 +277,12 @@ impl Store {
     /// Open array `path` and check its shape: 1-D (`width` None) or [rows, width], with at
     /// most `max_rows` rows, and chunks of at most as many elements. Returns the array, its
     /// row count and its data type's name ("float32", "int64", …).
-    fn open_array(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<(Array<FilesystemStore>, usize, String)> {
+    fn open_array(
+        &self,
+        path: &str,
+        width: Option<u64>,
+        max_rows: usize,
+    ) -> Result<(Array<FilesystemStore>, usize, String)> {
         let array = Array::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
             .map_err(|e| self.error(path, format!("missing or unreadable array: {e}")))?;
         let rows = match (array.shape(), width) {
@@ -253,22 +294,40 @@ impl Store {
             }
         };
         if rows > max_rows as u64 {
-            return Err(self.error(path, format!("shape {:?}: more than {max_rows} rows, the limit", array.shape())));
+            return Err(self.error(
+                path,
+                format!("shape {:?}: more than {max_rows} rows, the limit", array.shape()),
+            ));
         }
         let rows = usize::try_from(rows).map_err(|_| self.error(path, "too many rows"))?;
         let most = (max_rows as u64).saturating_mul(width.unwrap_or(1));
-        let chunk = array.chunk_shape(&vec![0; array.dimensionality()]).map_err(|e| self.error(path, e))?;
+        let chunk =
+            array.chunk_shape(&vec![0; array.dimensionality()]).map_err(|e| self.error(path, e))?;
         let elements = chunk.iter().map(|d| d.get()).fold(1u64, u64::saturating_mul);
         if elements > most {
-            return Err(self.error(path, format!("chunks of {elements} elements: more than {most}, the limit of the whole array")));
+            return Err(self.error(
+                path,
+                format!(
+                    "chunks of {elements} elements: more than {most}, the limit of the whole array"
+                ),
+            ));
         }
-        let kind = array.data_type().name(ZarrVersion::V3).map_or_else(|| array.data_type().to_string(), |n| n.to_string());
+        let kind = array
+            .data_type()
+            .name(ZarrVersion::V3)
+            .map_or_else(|| array.data_type().to_string(), |n| n.to_string());
         Ok((array, rows, kind))
     }
 
-    fn retrieve<T: zarrs::array::ElementOwned>(&self, array: &Array<FilesystemStore>, path: &str) -> Result<Vec<T>> {
+    fn retrieve<T: zarrs::array::ElementOwned>(
+        &self,
+        array: &Array<FilesystemStore>,
+        path: &str,
+    ) -> Result<Vec<T>> {
         self.check_chunks(array, path)?;
-        array.retrieve_array_subset(&array.subset_all()).map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
+        array
+            .retrieve_array_subset(&array.subset_all())
+            .map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
     }
 
     /// Check each stored chunk of `array` before it is decoded: a Blosc chunk's header
@@ -276,18 +335,30 @@ impl Store {
     /// and an uncompressed chunk's length must not exceed the chunk's own size, its shape ×
     /// its element size. A forged header could otherwise ask for gigabytes from a few bytes.
     fn check_chunks(&self, array: &Array<FilesystemStore>, path: &str) -> Result<()> {
-        let element = array.data_type().fixed_size().ok_or_else(|| self.error(path, "a data type of variable size"))?;
+        let element = array
+            .data_type()
+            .fixed_size()
+            .ok_or_else(|| self.error(path, "a data type of variable size"))?;
         let codecs = array.codecs();
-        let outer = codecs.bytes_to_bytes_codecs().last().and_then(|c| c.name(ZarrVersion::V2)).map(|n| n.to_string());
-        let chunks = array.chunks_in_array_subset(&array.subset_all()).map_err(|e| self.error(path, e))?;
+        let outer = codecs
+            .bytes_to_bytes_codecs()
+            .last()
+            .and_then(|c| c.name(ZarrVersion::V2))
+            .map(|n| n.to_string());
+        let chunks =
+            array.chunks_in_array_subset(&array.subset_all()).map_err(|e| self.error(path, e))?;
         for indices in chunks.iter().flat_map(|c| c.indices().into_iter()) {
-            let Some(encoded) = array.retrieve_encoded_chunk(&indices).map_err(|e| self.error(path, e))? else {
+            let Some(encoded) =
+                array.retrieve_encoded_chunk(&indices).map_err(|e| self.error(path, e))?
+            else {
                 continue;
             };
             let shape = array.chunk_shape(&indices).map_err(|e| self.error(path, e))?;
             let size = shape.iter().map(|d| d.get()).fold(element as u64, u64::saturating_mul);
             let declared = match outer.as_deref() {
-                Some("blosc") => encoded.get(4..8).map_or(0, |b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+                Some("blosc") => encoded
+                    .get(4..8)
+                    .map_or(0, |b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
                 Some(_) => 0,
                 None => encoded.len() as u64,
             };
@@ -307,7 +378,11 @@ impl Store {
         let values = match kind.as_str() {
             "float32" => widen(self.retrieve::<f32>(&array, path)?),
             "float64" => self.retrieve::<f64>(&array, path)?,
-            other => return Err(self.error(path, format!("data type {other}, expected float32 or float64"))),
+            other => {
+                return Err(
+                    self.error(path, format!("data type {other}, expected float32 or float64"))
+                )
+            }
         };
         if let Some(k) = values.iter().position(|v| !v.is_finite()) {
             return Err(self.error(path, format!("non-finite coordinate at vertex {}", k / 3)));
@@ -327,13 +402,21 @@ impl Store {
             "uint8" => self.widen::<u8>(&array, path)?,
             "uint16" => self.widen::<u16>(&array, path)?,
             "uint32" => self.widen::<u32>(&array, path)?,
-            "uint64" => self.retrieve::<u64>(&array, path)?.into_iter().map(|v| i64::try_from(v).unwrap_or(i64::MAX)).collect(),
+            "uint64" => self
+                .retrieve::<u64>(&array, path)?
+                .into_iter()
+                .map(|v| i64::try_from(v).unwrap_or(i64::MAX))
+                .collect(),
             other => return Err(self.error(path, format!("data type {other}, expected integers"))),
         };
         Ok((rows, values))
     }
 
-    fn widen<T: zarrs::array::ElementOwned + Into<i64>>(&self, array: &Array<FilesystemStore>, path: &str) -> Result<Vec<i64>> {
+    fn widen<T: zarrs::array::ElementOwned + Into<i64>>(
+        &self,
+        array: &Array<FilesystemStore>,
+        path: &str,
+    ) -> Result<Vec<i64>> {
         Ok(self.retrieve::<T>(array, path)?.into_iter().map(Into::into).collect())
     }
 
@@ -345,25 +428,33 @@ impl Store {
         if let Some(&bad) = ids.iter().find(|&&v| v < -1 || v >= vertices as i64) {
             return Err(self.error(&path, format!("gripped vertex {bad} is out of range: the mesh has {vertices} vertices (ids 0…{}, or -1 for none)", vertices - 1)));
         }
-        Ok(cut::holds(&ids))
+        Ok(bifold::holds(&ids))
     }
 
     /// Cut `video` into fold actions from its grips alone (no mesh is read); a video with
     /// no finished action is an error.
-    pub fn cut(&self, video: &Video) -> Result<cut::Actions> {
+    pub fn cut(&self, video: &Video) -> Result<bifold::Actions> {
         let Some(first) = video.frames.first() else {
             return Err(self.error(&video.id, "the video has no frame"));
         };
-        let (_, vertices, _) = self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3), MAX_MESH_VERTICES)?;
+        let (_, vertices, _) =
+            self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3), MAX_MESH_VERTICES)?;
         let grips = video
             .frames
             .iter()
             .map(|f| Ok(self.grip(f, "left", vertices)? | self.grip(f, "right", vertices)?))
             .collect::<Result<Vec<bool>>>()?;
-        let cut = cut::actions(&grips);
+        let cut = bifold::actions(&grips);
         if cut.actions.is_empty() {
-            let why = if cut.unfinished { "a hand grips until the last frame and never lets go" } else { "no hand grips in any frame" };
-            return Err(self.error(&format!("video {}", video.id), format!("no fold action in its {} frames: {why}", video.frames.len())));
+            let why = if cut.unfinished {
+                "a hand grips until the last frame and never lets go"
+            } else {
+                "no hand grips in any frame"
+            };
+            return Err(self.error(
+                &format!("video {}", video.id),
+                format!("no fold action in its {} frames: {why}", video.frames.len()),
+            ));
         }
         Ok(cut)
     }
@@ -374,20 +465,32 @@ impl Store {
         let first = &video.frames[0];
         let verts0 = self.points(&format!("{first}/mesh/cloth_verts"))?;
         let vertices = verts0.len();
-        if vertices < crate::border::MIN_VERTICES {
-            return Err(self.error(&format!("{first}/mesh/cloth_verts"), format!("{vertices} vertices: too few for a cloth")));
+        if vertices < close_core::border::MIN_VERTICES {
+            return Err(self.error(
+                &format!("{first}/mesh/cloth_verts"),
+                format!("{vertices} vertices: too few for a cloth"),
+            ));
         }
         let faces = self.faces(&format!("{first}/mesh/cloth_faces_tri"), vertices)?;
         let nocs = self.points(&format!("{first}/mesh/cloth_nocs_verts"))?;
         if nocs.len() != vertices {
-            return Err(self.error(&format!("{first}/mesh/cloth_nocs_verts"), format!("{} vertices, but cloth_verts has {vertices}", nocs.len())));
+            return Err(self.error(
+                &format!("{first}/mesh/cloth_nocs_verts"),
+                format!("{} vertices, but cloth_verts has {vertices}", nocs.len()),
+            ));
         }
         let canonical = broken::max_edge_zscore(&nocs, &faces);
         drop(nocs);
         let faces_poly: Vec<Vec<usize>> = faces.iter().map(|f| f.to_vec()).collect();
         let border_indices = Silhouette::render(&verts0, &faces_poly)?.border(&verts0, EPSILON)?;
-        if border_indices.len() < crate::border::MIN_VERTICES {
-            return Err(self.error(first, format!("the silhouette from +z gives only {} border vertices", border_indices.len())));
+        if border_indices.len() < close_core::border::MIN_VERTICES {
+            return Err(self.error(
+                first,
+                format!(
+                    "the silhouette from +z gives only {} border vertices",
+                    border_indices.len()
+                ),
+            ));
         }
         // Each needed frame is read once: its border positions and its broken-mesh verdict.
         let mut seen: HashMap<usize, (Vec<[f64; 3]>, bool)> = HashMap::new();
@@ -404,7 +507,10 @@ impl Store {
                 &read
             };
             if verts.len() != vertices {
-                return Err(self.error(&path, format!("{} vertices, but the video's first frame has {vertices}", verts.len())));
+                return Err(self.error(
+                    &path,
+                    format!("{} vertices, but the video's first frame has {vertices}", verts.len()),
+                ));
             }
             let bad = broken::is_broken(broken::max_edge_zscore(verts, &faces), canonical);
             let found = (border_indices.iter().map(|&i| verts[i]).collect(), bad);
@@ -424,14 +530,24 @@ impl Store {
         }
         let usable = broken.iter().take_while(|b| !**b).count();
         frames.truncate(usable + 1);
-        Ok(VideoFolds { actions: cut.actions, unfinished: cut.unfinished, broken, vertices, border_indices, frames })
+        Ok(VideoFolds {
+            actions: cut.actions,
+            unfinished: cut.unfinished,
+            broken,
+            vertices,
+            border_indices,
+            frames,
+        })
     }
 
     /// The triangles of `path`, every id checked against the mesh's `vertices`.
     fn faces(&self, path: &str, vertices: usize) -> Result<Vec<[usize; 3]>> {
         let (_, ids) = self.ints(path, Some(3), MAX_MESH_FACES)?;
         if let Some(&bad) = ids.iter().find(|&&v| v < 0 || v >= vertices as i64) {
-            return Err(self.error(path, format!("face uses vertex {bad}, but the mesh has {vertices} vertices")));
+            return Err(self.error(
+                path,
+                format!("face uses vertex {bad}, but the mesh has {vertices} vertices"),
+            ));
         }
         Ok(ids.chunks_exact(3).map(|c| [c[0] as usize, c[1] as usize, c[2] as usize]).collect())
     }

@@ -2,7 +2,7 @@
 //! take `AppJson<T>`, `AppPath<T>`, `AppQuery<T>` and never see a rejection.
 //!
 //! ```
-//! use close_server::server::AppJson;
+//! use close_server::AppJson;
 //! use serde::Deserialize;
 //! #[derive(Deserialize)]
 //! struct Goal { goal: [f64; 2] }
@@ -19,17 +19,22 @@ use axum::Json;
 use serde::de::DeserializeOwned;
 
 use super::ApiError;
-use crate::formats::json::check_nesting;
+use close_io::formats::json::check_nesting;
 
-/// A JSON body of type `T`, nested at most [`crate::formats::json::MAX_NESTING`] deep
+/// A JSON body of type `T`, nested at most [`close_io::formats::json::MAX_NESTING`] deep
 /// anywhere (inside an unknown key too).
 pub struct AppJson<T>(pub T);
 
 /// Whether the body says it is JSON: `application/json` or `application/…+json`.
 fn is_json(headers: &HeaderMap) -> bool {
-    let essence = headers.get(header::CONTENT_TYPE).and_then(|t| t.to_str().ok()).and_then(|t| t.split(';').next()).unwrap_or("");
+    let essence = headers
+        .get(header::CONTENT_TYPE)
+        .and_then(|t| t.to_str().ok())
+        .and_then(|t| t.split(';').next())
+        .unwrap_or("");
     let essence = essence.trim().to_ascii_lowercase();
-    essence == "application/json" || (essence.starts_with("application/") && essence.ends_with("+json"))
+    essence == "application/json"
+        || (essence.starts_with("application/") && essence.ends_with("+json"))
 }
 
 impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for AppJson<T> {
@@ -37,10 +42,14 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for AppJson<T> {
 
     async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
         if !is_json(request.headers()) {
-            return Err(ApiError::Rejected(StatusCode::UNSUPPORTED_MEDIA_TYPE, "Expected request with `Content-Type: application/json`".into()));
+            return Err(ApiError::Rejected(
+                StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                "Expected request with `Content-Type: application/json`".into(),
+            ));
         }
         let bytes = Bytes::from_request(request, state).await?;
-        check_nesting(&bytes).map_err(|e| ApiError::Rejected(StatusCode::BAD_REQUEST, e.to_string()))?;
+        check_nesting(&bytes)
+            .map_err(|e| ApiError::Rejected(StatusCode::BAD_REQUEST, e.to_string()))?;
         let Json(value) = Json::<T>::from_bytes(&bytes)?;
         Ok(AppJson(value))
     }

@@ -4,7 +4,7 @@
 //! This is the fold that Kamat, Borràs, Torras, "CloSE: A Geometric Shape-Agnostic Cloth
 //! State Representation" predict from the fold coordinates (f1, f2): the part of the border
 //! on the anticlockwise arc from f1 to f2 turns over the line through the border points at
-//! f1 and f2. It is written here on its own, not with the predictor's `crate::fold` nor the
+//! f1 and f2. It is written here on its own, not with the predictor's `close_core::fold` nor the
 //! primitives it uses (`border::point_at`, `angle::vertices_in_arc`), so that a fault in
 //! one is not copied into the other and cancelled in the evaluation.
 //!
@@ -22,7 +22,7 @@
 //!
 //! ```
 //! use close_io::dataset::shapes::{shape, Shape};
-//! use close_io::dataset::synth::fold_border;
+//! use close_io::dataset::exact_fold::fold_border;
 //! let napkin = shape(Shape::Napkin);
 //! // Fold the square along its diagonal from corner 0 to corner 38: corner 19 lands on 57.
 //! let folded = fold_border(&napkin, 0.0, 38.0, 0.01).unwrap();
@@ -32,8 +32,8 @@
 
 use nalgebra::Vector2;
 
-use crate::border::Point;
-use crate::error::{Error, FoldProblem, Result};
+use close_core::border::Point;
+use close_core::error::{Error, FoldProblem, Result};
 
 /// Relative size under which two fold points are one point, and a vertex is on the line.
 pub(super) const EPS: f64 = 1e-9;
@@ -74,8 +74,10 @@ pub fn border_point(points: &[Point], s: f64) -> Point {
 pub fn arc_vertices(n: usize, s1: f64, s2: f64) -> Vec<usize> {
     let nf = n as f64;
     let span = modulo(s2 - s1, nf);
-    let mut inside: Vec<(f64, usize)> =
-        (0..n).map(|v| (modulo(v as f64 - s1, nf), v)).filter(|&(offset, _)| offset > ON_LINE && offset < span - ON_LINE).collect();
+    let mut inside: Vec<(f64, usize)> = (0..n)
+        .map(|v| (modulo(v as f64 - s1, nf), v))
+        .filter(|&(offset, _)| offset > ON_LINE && offset < span - ON_LINE)
+        .collect();
     inside.sort_by(|a, b| a.0.total_cmp(&b.0));
     inside.into_iter().map(|(_, v)| v).collect()
 }
@@ -93,7 +95,8 @@ impl Mirror {
         let d = b.xy() - a.xy();
         let length = d.norm();
         let scale = scale_of(&[*a, *b]);
-        (length > EPS * scale).then(|| Mirror { origin: a.xy().coords, normal: Vector2::new(-d.y, d.x) / length })
+        (length > EPS * scale)
+            .then(|| Mirror { origin: a.xy().coords, normal: Vector2::new(-d.y, d.x) / length })
     }
 
     /// Signed XY distance of `p` from the line, positive on its left.
@@ -118,7 +121,8 @@ fn inside_xy(points: &[Point], p: &Point) -> bool {
     let n = points.len();
     (0..n).fold(false, |inside, k| {
         let (a, b) = (points[k], points[(k + 1) % n]);
-        let crosses = (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+        let crosses =
+            (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
         inside != crosses
     })
 }
@@ -128,13 +132,15 @@ fn inside_xy(points: &[Point], p: &Point) -> bool {
 /// edges themselves; `tolerance` keeps those touches from counting as crossings.
 fn chord_inside(points: &[Point], a: &Point, b: &Point, tolerance: f64) -> bool {
     let n = points.len();
-    let opposite = |x: f64, y: f64| (x > tolerance && y < -tolerance) || (x < -tolerance && y > tolerance);
+    let opposite =
+        |x: f64, y: f64| (x > tolerance && y < -tolerance) || (x < -tolerance && y > tolerance);
     let crosses_an_edge = (0..n).any(|k| {
         let (c, d) = (points[k], points[(k + 1) % n]);
         opposite(cross(a, b, &c), cross(a, b, &d)) && opposite(cross(&c, &d, a), cross(&c, &d, b))
     });
     const SAMPLES: usize = 64;
-    !crosses_an_edge && (1..SAMPLES).all(|j| inside_xy(points, &(a + (b - a) * (j as f64 / SAMPLES as f64))))
+    !crosses_an_edge
+        && (1..SAMPLES).all(|j| inside_xy(points, &(a + (b - a) * (j as f64 / SAMPLES as f64))))
 }
 
 /// A checked fold of a border: its mirror line, the side of it that folds (+1 left, −1
@@ -210,7 +216,7 @@ pub fn fold_border(points: &[Point], f1: f64, f2: f64, thickness: f64) -> Result
 mod tests {
     use super::*;
     use crate::dataset::shapes::{outline, shape, Shape};
-    use crate::rng::SplitMix64;
+    use close_core::rng::SplitMix64;
 
     const THICKNESS: f64 = 0.01;
 
@@ -225,7 +231,8 @@ mod tests {
     fn the_mirror_is_an_involution_that_keeps_z() {
         let mut rng = SplitMix64::new(11);
         for _ in 0..100 {
-            let mut point = || Point::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), rng.range(-1.0, 1.0));
+            let mut point =
+                || Point::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), rng.range(-1.0, 1.0));
             let (a, b, p) = (point(), point(), point());
             let m = Mirror::through(&a, &b).unwrap();
             let r = m.reflect(&p);
@@ -270,12 +277,18 @@ mod tests {
         assert_eq!(problem(fold_border(&napkin, f64::NAN, 3.0, THICKNESS)), FoldProblem::NotFinite);
         assert_eq!(problem(fold_border(&napkin, 1.0, 3.0, f64::INFINITY)), FoldProblem::NotFinite);
         assert_eq!(problem(fold_border(&napkin, 5.0, 5.5, THICKNESS)), FoldProblem::EmptyArc);
-        assert_eq!(problem(fold_border(&napkin[..2], 0.0, 1.0, THICKNESS)), FoldProblem::TooFewVertices);
+        assert_eq!(
+            problem(fold_border(&napkin[..2], 0.0, 1.0, THICKNESS)),
+            FoldProblem::TooFewVertices
+        );
         // Trousers: from the left hem to the right outseam the arc passes the crotch (above
         // the line) and the right hem (below it).
         let trousers = outline(Shape::Trousers);
         let (a, b) = (trousers.on_side(0, 0.5), trousers.on_side(4, 0.5));
-        assert_eq!(problem(fold_border(&trousers.points, a, b, THICKNESS)), FoldProblem::ArcCrossesLine);
+        assert_eq!(
+            problem(fold_border(&trousers.points, a, b, THICKNESS)),
+            FoldProblem::ArcCrossesLine
+        );
         // T-shirt: folding the V of the neck down along a line across the neck opening.
         let tshirt = outline(Shape::TShirt);
         let (a, b) = (tshirt.on_side(6, 0.5), tshirt.on_side(7, 0.5));
@@ -284,7 +297,12 @@ mod tests {
 
     #[test]
     fn border_points_and_arcs_of_the_generator() {
-        let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
+        let square = [
+            Point::new(0.0, 0.0, 0.0),
+            Point::new(1.0, 0.0, 0.0),
+            Point::new(1.0, 1.0, 0.0),
+            Point::new(0.0, 1.0, 0.0),
+        ];
         assert_eq!(border_point(&square, 0.25), Point::new(0.25, 0.0, 0.0));
         assert_eq!(border_point(&square, 3.5), Point::new(0.0, 0.5, 0.0));
         assert_eq!(border_point(&square, -0.5), Point::new(0.0, 0.5, 0.0));
@@ -299,7 +317,13 @@ mod tests {
         for _ in 0..200 {
             let (s1, s2) = (rng.range(-8.0, 16.0), rng.range(-8.0, 16.0));
             let (one, other) = (arc_vertices(8, s1, s2), arc_vertices(8, s2, s1));
-            let on_line = (0..8).filter(|&v| [s1, s2].iter().any(|s| modulo(v as f64 - s, 8.0).min(8.0 - modulo(v as f64 - s, 8.0)) <= ON_LINE)).count();
+            let on_line = (0..8)
+                .filter(|&v| {
+                    [s1, s2].iter().any(|s| {
+                        modulo(v as f64 - s, 8.0).min(8.0 - modulo(v as f64 - s, 8.0)) <= ON_LINE
+                    })
+                })
+                .count();
             assert_eq!(one.len() + other.len() + on_line, 8, "{s1} {s2}");
             assert!(one.iter().all(|v| !other.contains(v)));
         }
@@ -307,12 +331,23 @@ mod tests {
 
     #[test]
     fn chords_and_insides() {
-        let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
+        let square = [
+            Point::new(0.0, 0.0, 0.0),
+            Point::new(1.0, 0.0, 0.0),
+            Point::new(1.0, 1.0, 0.0),
+            Point::new(0.0, 1.0, 0.0),
+        ];
         assert!(inside_xy(&square, &Point::new(0.5, 0.5, 0.0)));
         assert!(!inside_xy(&square, &Point::new(1.5, 0.5, 0.0)));
-        assert!(chord_inside(&square, &Point::new(0.0, 0.5, 0.0), &Point::new(1.0, 0.5, 0.0), 1e-12));
+        assert!(chord_inside(
+            &square,
+            &Point::new(0.0, 0.5, 0.0),
+            &Point::new(1.0, 0.5, 0.0),
+            1e-12
+        ));
         // An L: the chord between the two arm tips cuts across the notch.
-        let l = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)].map(|(x, y)| Point::new(x, y, 0.0));
+        let l = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]
+            .map(|(x, y)| Point::new(x, y, 0.0));
         assert!(!chord_inside(&l, &Point::new(2.0, 0.5, 0.0), &Point::new(0.5, 2.0, 0.0), 1e-12));
         assert_eq!(cross(&square[0], &square[1], &square[3]), 1.0);
     }

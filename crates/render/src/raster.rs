@@ -13,7 +13,7 @@
 //!   cost of the blends alone.
 //!
 //! ```
-//! use close_render::render::raster::text_width;
+//! use close_render::raster::text_width;
 //! assert!(text_width("wide text", 20.0) > text_width("text", 20.0));
 //! ```
 
@@ -87,7 +87,14 @@ impl Canvas {
     /// The blends `draw` makes with strokes and text on a `width`×`height` canvas (a
     /// canvas without pixels: `draw` must not touch them otherwise).
     pub(crate) fn record(width: u32, height: u32, draw: impl FnOnce(&mut Canvas)) -> Recording {
-        let mut canvas = Canvas { width, height, rgb: Vec::new(), png_filter: png::FilterType::Sub, recording: Some(Recording::default()), vector: None };
+        let mut canvas = Canvas {
+            width,
+            height,
+            rgb: Vec::new(),
+            png_filter: png::FilterType::Sub,
+            recording: Some(Recording::default()),
+            vector: None,
+        };
         draw(&mut canvas);
         canvas.recording.unwrap_or_default()
     }
@@ -122,7 +129,10 @@ impl Canvas {
         // The pixels some segment reaches, each once: a ring reaches a few thousand of the
         // hundred thousand in its bounding box, so only these are blended.
         let mut reached = Vec::new();
-        let segments = points.windows(2).map(|w| (w[0], w[1])).chain((points.len() == 1).then_some((first, first)));
+        let segments = points
+            .windows(2)
+            .map(|w| (w[0], w[1]))
+            .chain((points.len() == 1).then_some((first, first)));
         for (a, b) in segments {
             let sx0 = clip(a.0.min(b.0) - reach, self.width).max(bx0);
             let sx1 = clip(a.0.max(b.0) + reach + 1.0, self.width).min(bx1);
@@ -130,7 +140,9 @@ impl Canvas {
             let sy1 = clip(a.1.max(b.1) + reach + 1.0, self.height).min(by1);
             for y in sy0..sy1 {
                 for x in sx0..sx1 {
-                    let c = (half + 0.5 - distance_to_segment((x as f64 + 0.5, y as f64 + 0.5), a, b)).clamp(0.0, 1.0);
+                    let c = (half + 0.5
+                        - distance_to_segment((x as f64 + 0.5, y as f64 + 0.5), a, b))
+                    .clamp(0.0, 1.0);
                     let k = (y - by0) as usize * stride + (x - bx0) as usize;
                     if c > coverage[k] {
                         if coverage[k] == 0.0 {
@@ -164,36 +176,53 @@ impl Canvas {
     /// `text` of `size` pixels anchored at `at` by (`h`, `v`); `VPos::Center` centres the
     /// capital height, which is what looks centred. Text lies on the paper: `colour` is
     /// darkened as far as AA contrast needs ([`super::readable`]).
-    pub(crate) fn text(&mut self, text: &str, at: (f64, f64), size: f64, colour: [u8; 3], (h, v): (HPos, VPos)) {
+    pub(crate) fn text(
+        &mut self,
+        text: &str,
+        at: (f64, f64),
+        size: f64,
+        colour: [u8; 3],
+        (h, v): (HPos, VPos),
+    ) {
         let Some(font) = font() else { return };
         let colour = super::readable(colour);
         let scaled = font.as_scaled(PxScale::from(size as f32));
         let (glyphs, width) = layout(font, text, size);
         let (ascent, descent) = (scaled.ascent() as f64, scaled.descent() as f64);
-        let left = at.0 - match h {
-            HPos::Left => 0.0,
-            HPos::Center => width / 2.0,
-            HPos::Right => width,
-        };
+        let left = at.0
+            - match h {
+                HPos::Left => 0.0,
+                HPos::Center => width / 2.0,
+                HPos::Right => width,
+            };
         // DejaVu Sans: cap height 0.73 em, ascent − descent 1.16 em.
         let cap = 0.63 * (ascent - descent);
-        let baseline = at.1 + match v {
-            VPos::Top => ascent,
-            VPos::Center => cap / 2.0,
-            VPos::Bottom => descent,
-        };
+        let baseline = at.1
+            + match v {
+                VPos::Top => ascent,
+                VPos::Center => cap / 2.0,
+                VPos::Bottom => descent,
+            };
         if let Some(vector) = &mut self.vector {
             return vector.text(text, (left, baseline), size, width, colour);
         }
         for (x, c) in glyphs {
             let glyph = scaled.scaled_glyph(c);
-            let glyph = ab_glyph::Glyph { position: ab_glyph::point(left as f32 + x, baseline as f32), ..glyph };
+            let glyph = ab_glyph::Glyph {
+                position: ab_glyph::point(left as f32 + x, baseline as f32),
+                ..glyph
+            };
             if let Some(outline) = scaled.outline_glyph(glyph) {
                 let bounds = outline.px_bounds();
                 let mut ink = Vec::new();
                 outline.draw(|gx, gy, c| ink.push((gx, gy, c)));
                 for (gx, gy, c) in ink {
-                    self.blend(bounds.min.x as i64 + gx as i64, bounds.min.y as i64 + gy as i64, colour, c as f64);
+                    self.blend(
+                        bounds.min.x as i64 + gx as i64,
+                        bounds.min.y as i64 + gy as i64,
+                        colour,
+                        c as f64,
+                    );
                 }
             }
         }
@@ -204,7 +233,11 @@ impl Canvas {
 fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 { (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
 }
 
@@ -244,7 +277,8 @@ mod tests {
                 }
             }
         };
-        let (mut drawn, mut replayed) = (Canvas::new(100, 80).unwrap(), Canvas::new(100, 80).unwrap());
+        let (mut drawn, mut replayed) =
+            (Canvas::new(100, 80).unwrap(), Canvas::new(100, 80).unwrap());
         under(&mut drawn);
         guides(&mut drawn);
         under(&mut replayed);
@@ -264,6 +298,11 @@ mod tests {
             .collect();
         let (xs, ys): (Vec<u32>, Vec<u32>) = inked.into_iter().unzip();
         let mid = |v: &[u32]| (v.iter().min().unwrap() + v.iter().max().unwrap()) as f64 / 2.0;
-        assert!((mid(&xs) - 100.0).abs() < 3.0 && (mid(&ys) - 30.0).abs() < 3.0, "{} {}", mid(&xs), mid(&ys));
+        assert!(
+            (mid(&xs) - 100.0).abs() < 3.0 && (mid(&ys) - 30.0).abs() < 3.0,
+            "{} {}",
+            mid(&xs),
+            mid(&ys)
+        );
     }
 }

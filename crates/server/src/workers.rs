@@ -14,7 +14,7 @@ use rayon::{ThreadPool, ThreadPoolBuilder};
 use tokio::sync::Semaphore;
 
 use super::{lock, ApiError};
-use crate::budget::Deadline;
+use close_core::budget::Deadline;
 
 /// A pool that could not be built (no thread could be spawned) is `None`: its jobs run on
 /// tokio's blocking threads and rayon's global pool instead.
@@ -48,11 +48,19 @@ impl Workers {
         let count = count.max(1);
         let pools = (0..count)
             .map(|w| {
-                let pool = ThreadPoolBuilder::new().num_threads(threads.max(1)).thread_name(move |t| format!("close-{name}-{w}.{t}")).build();
+                let pool = ThreadPoolBuilder::new()
+                    .num_threads(threads.max(1))
+                    .thread_name(move |t| format!("close-{name}-{w}.{t}"))
+                    .build();
                 pool.ok().map(Arc::new)
             })
             .collect();
-        Workers { permits: Arc::new(Semaphore::new(count)), idle_pools: Arc::new(Mutex::new(pools)), count, cancelled: Arc::default() }
+        Workers {
+            permits: Arc::new(Semaphore::new(count)),
+            idle_pools: Arc::new(Mutex::new(pools)),
+            count,
+            cancelled: Arc::default(),
+        }
     }
 
     /// Workers not busy now.
@@ -75,9 +83,15 @@ impl Workers {
         deadline: Deadline,
         work: impl FnOnce(&Deadline) -> Result<T, ApiError> + Send + 'static,
     ) -> Result<T, ApiError> {
-        let permit = self.permits.clone().acquire_owned().await.map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
+        let permit = self
+            .permits
+            .clone()
+            .acquire_owned()
+            .await
+            .map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
         // As many pools as permits: one is idle whenever a permit is free.
-        let lease = Lease { pool: lock(&self.idle_pools).pop().flatten(), home: self.idle_pools.clone() };
+        let lease =
+            Lease { pool: lock(&self.idle_pools).pop().flatten(), home: self.idle_pools.clone() };
         let pool = lease.pool.clone();
         let (answer, answered) = tokio::sync::oneshot::channel();
         let cancelled = self.cancelled.clone();
@@ -88,7 +102,7 @@ impl Workers {
                 work(&deadline)
             }))
             .unwrap_or_else(|_| Err(ApiError::Internal("the job failed unexpectedly".into())));
-            if matches!(result, Err(ApiError::Input(crate::error::Error::Cancelled))) {
+            if matches!(result, Err(ApiError::Input(close_core::error::Error::Cancelled))) {
                 cancelled.fetch_add(1, Ordering::Relaxed);
             }
             // The worker is free before its answer is sent (the pool back before the
@@ -102,7 +116,9 @@ impl Workers {
             Some(pool) => pool.spawn(job),
             None => drop(tokio::task::spawn_blocking(job)),
         }
-        answered.await.map_err(|_| ApiError::Internal("the job stopped without an answer".into()))?
+        answered
+            .await
+            .map_err(|_| ApiError::Internal("the job stopped without an answer".into()))?
     }
 }
 
@@ -113,7 +129,10 @@ mod tests {
     #[tokio::test]
     async fn jobs_run_on_their_workers_pool_and_give_it_back() {
         let workers = Workers::new("test", 2, 1);
-        let name = workers.run(Deadline::default(), |_| Ok(std::thread::current().name().map(str::to_string))).await.unwrap();
+        let name = workers
+            .run(Deadline::default(), |_| Ok(std::thread::current().name().map(str::to_string)))
+            .await
+            .unwrap();
         assert!(name.is_some_and(|n| n.starts_with("close-test-")));
         assert_eq!(workers.idle(), 2);
         assert_eq!(lock(&workers.idle_pools).len(), 2);
@@ -122,12 +141,15 @@ mod tests {
     #[tokio::test]
     async fn a_panic_is_an_error_and_an_expired_deadline_stops_before_starting() {
         let workers = Workers::new("test", 1, 1);
-        let panicked = workers.run(Deadline::default(), |_| -> Result<(), ApiError> { panic!("a bug") }).await;
+        let panicked =
+            workers.run(Deadline::default(), |_| -> Result<(), ApiError> { panic!("a bug") }).await;
         assert!(matches!(panicked, Err(ApiError::Internal(_))));
         let expired = Deadline::default();
         expired.cancel();
-        let stopped = workers.run(expired, |_| -> Result<(), ApiError> { unreachable!("never started") }).await;
-        assert!(matches!(stopped, Err(ApiError::Input(crate::error::Error::Cancelled))));
+        let stopped = workers
+            .run(expired, |_| -> Result<(), ApiError> { unreachable!("never started") })
+            .await;
+        assert!(matches!(stopped, Err(ApiError::Input(close_core::error::Error::Cancelled))));
         assert_eq!(workers.idle(), 1, "the worker is free again");
         assert_eq!(workers.cancelled(), 1);
     }

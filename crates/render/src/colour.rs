@@ -8,7 +8,7 @@
 //! - sequential: white (t = 0) → dark blue (t = 1), for non-negative values.
 //!
 //! ```
-//! use close_render::render::colour::{Scale, Ramp};
+//! use close_render::colour::{Scale, Ramp};
 //! let scale = Scale::of(&[0.0, 1.0, -2.0, 0.5]);
 //! assert_eq!(Ramp::Diverging.colour(scale.squash(0.0)), [255, 255, 255]);
 //! ```
@@ -35,15 +35,23 @@ impl Scale {
 
     /// One scale for several sets of values (panels that must share their colours).
     pub fn of_all(sets: &[&[f64]]) -> Scale {
-        let mut abs: Vec<f64> = sets.iter().flat_map(|v| v.iter()).filter(|v| v.is_finite()).map(|v| v.abs()).collect();
+        let mut abs: Vec<f64> =
+            sets.iter().flat_map(|v| v.iter()).filter(|v| v.is_finite()).map(|v| v.abs()).collect();
         if abs.is_empty() {
             return Scale { s: 1.0, max: 0.0 };
         }
         let k = ((abs.len() - 1) as f64 * SCALE_PERCENTILE).round() as usize;
-        let (_, &mut p, _) = abs.select_nth_unstable_by(k, |a, b| a.partial_cmp(b).unwrap_or(Ordering::Equal));
+        let (_, &mut p, _) =
+            abs.select_nth_unstable_by(k, |a, b| a.partial_cmp(b).unwrap_or(Ordering::Equal));
         let max = abs.iter().copied().fold(0.0, f64::max);
         // A flat disk has nothing to show: any positive scale leaves it white.
-        let s = if p > 0.0 { p } else if max > 0.0 { max } else { 1.0 };
+        let s = if p > 0.0 {
+            p
+        } else if max > 0.0 {
+            max
+        } else {
+            1.0
+        };
         Scale { s, max }
     }
 
@@ -78,15 +86,25 @@ pub enum Ramp {
 }
 
 /// ColorBrewer RdBu blues, from white outwards.
-const BLUES: [[u8; 3]; 6] = [[255, 255, 255], [209, 229, 240], [146, 197, 222], [67, 147, 195], [33, 102, 172], [5, 48, 97]];
+const BLUES: [[u8; 3]; 6] = [
+    [255, 255, 255],
+    [209, 229, 240],
+    [146, 197, 222],
+    [67, 147, 195],
+    [33, 102, 172],
+    [5, 48, 97],
+];
 /// ColorBrewer PuOr oranges, from white outwards.
-const ORANGES: [[u8; 3]; 6] = [[255, 255, 255], [254, 224, 182], [253, 184, 99], [224, 130, 20], [179, 88, 6], [127, 59, 8]];
+const ORANGES: [[u8; 3]; 6] =
+    [[255, 255, 255], [254, 224, 182], [253, 184, 99], [224, 130, 20], [179, 88, 6], [127, 59, 8]];
 /// ColorBrewer YlGnBu, white to dark.
-const SEQUENTIAL: [[u8; 3]; 6] = [[255, 255, 255], [237, 248, 177], [127, 205, 187], [44, 127, 184], [37, 52, 148], [8, 29, 88]];
+const SEQUENTIAL: [[u8; 3]; 6] =
+    [[255, 255, 255], [237, 248, 177], [127, 205, 187], [44, 127, 184], [37, 52, 148], [8, 29, 88]];
 
 /// Viridis, dark purple to yellow: every colour differs from the paper, and its lightness
 /// grows steadily, so heights read in order in grey too.
-const HEIGHT: [[u8; 3]; 6] = [[68, 1, 84], [65, 68, 135], [42, 120, 142], [34, 168, 132], [122, 209, 81], [253, 231, 37]];
+const HEIGHT: [[u8; 3]; 6] =
+    [[68, 1, 84], [65, 68, 135], [42, 120, 142], [34, 168, 132], [122, 209, 81], [253, 231, 37]];
 
 /// The colour of height t ∈ [0, 1] (low to high) in the mesh picture.
 pub fn height_colour(t: f64) -> [u8; 3] {

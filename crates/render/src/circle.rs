@@ -7,7 +7,7 @@
 //! which is the fold line. The values are written underneath.
 //!
 //! ```
-//! use close_render::render::circle::folded_arc;
+//! use close_render::circle::folded_arc;
 //! use std::f64::consts::PI;
 //! // The arc from 3π/2 to π/2 wraps through 0 and spans half the circle.
 //! let arc = folded_arc([1.5 * PI, 0.5 * PI], 5);
@@ -20,10 +20,13 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::raster::text_width;
-use super::{endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
-use crate::analysis::Analysis;
-use crate::angle;
-use crate::error::Result;
+use super::{
+    endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas, INK,
+    MUTED, MUTED_TEXT, PAPER,
+};
+use close_core::analysis::Analysis;
+use close_core::angle;
+use close_core::error::Result;
 
 /// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).
 pub const NUMBERED_CORNERS: usize = 20;
@@ -39,24 +42,42 @@ pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
 /// known, the found fold's angle errors against the true one (drawn as ○); a true fold not
 /// found gets its own line. Each line is wrapped to `width` (the corners and folds are named
 /// on the circle; the label sentence is the page's).
-fn caption(analysis: &Analysis, truth: &[[f64; 2]], size: f64, width: f64) -> Vec<(String, [u8; 3])> {
+fn caption(
+    analysis: &Analysis,
+    truth: &[[f64; 2]],
+    size: f64,
+    width: f64,
+) -> Vec<(String, [u8; 3])> {
     let mut lines = Vec::new();
     let count = analysis.folds.len();
     for (k, f) in analysis.folds.iter().enumerate() {
         let names = [endpoint_name(k, 0, count), endpoint_name(k, 1, count)];
         let error = truth.get(k).map_or_else(String::new, |t| {
-            format!(" · ○ {:.1}°, {:.1}° off", angle::distance(f[0], t[0]).to_degrees(), angle::distance(f[1], t[1]).to_degrees())
+            format!(
+                " · ○ {:.1}°, {:.1}° off",
+                angle::distance(f[0], t[0]).to_degrees(),
+                angle::distance(f[1], t[1]).to_degrees()
+            )
         });
-        lines.push((format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f[0], names[1], f[1]), fold_colour(k)));
+        lines.push((
+            format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f[0], names[1], f[1]),
+            fold_colour(k),
+        ));
     }
     if count == 0 {
         lines.push(("no fold detected".into(), MUTED_TEXT));
     }
     for (k, t) in truth.iter().enumerate().skip(count) {
-        lines.push((format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t[0], t[1]), fold_colour(k)));
+        lines.push((
+            format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t[0], t[1]),
+            fold_colour(k),
+        ));
     }
     let fits = |line: &str| text_width(line, size) <= width;
-    lines.into_iter().flat_map(|(text, colour)| wrap(&text, fits).into_iter().map(move |l| (l, colour))).collect()
+    lines
+        .into_iter()
+        .flat_map(|(text, colour)| wrap(&text, fits).into_iter().map(move |l| (l, colour)))
+        .collect()
 }
 
 /// Greedy word wrap: each line as long as `fits` allows (a longer word gets its own line).
@@ -136,13 +157,24 @@ fn label_box(frame: &Frame, rho: f64, theta: f64, (width, height): (f64, f64)) -
 /// a further ring, the least displacement first); a place must keep off the boxes placed
 /// before it and inside `bounds` [x0, y0, x1, y1]. With no free place, it takes the least
 /// crowded one.
-fn place_labels(labels: Vec<Label>, frame: &Frame, ring: f64, size: f64, bounds: [f64; 4]) -> Vec<Placed> {
+fn place_labels(
+    labels: Vec<Label>,
+    frame: &Frame,
+    ring: f64,
+    size: f64,
+    bounds: [f64; 4],
+) -> Vec<Placed> {
     let gap = 0.25 * size;
     let height = 0.8 * size;
     // Nudges (ring r, angle step k) by the distance they move a label, nearest first.
     let (along, out) = (0.4 * size, 1.2 * height);
-    let mut nudges: Vec<(usize, i32)> = (0..4).flat_map(|r| (-24..=24).map(move |k| (r, k))).collect();
-    nudges.sort_by(|a, b| (a.0 as f64 * out).hypot(a.1 as f64 * along).total_cmp(&(b.0 as f64 * out).hypot(b.1 as f64 * along)));
+    let mut nudges: Vec<(usize, i32)> =
+        (0..4).flat_map(|r| (-24..=24).map(move |k| (r, k))).collect();
+    nudges.sort_by(|a, b| {
+        (a.0 as f64 * out)
+            .hypot(a.1 as f64 * along)
+            .total_cmp(&(b.0 as f64 * out).hypot(b.1 as f64 * along))
+    });
     let mut placed: Vec<Placed> = Vec::new();
     for label in labels {
         let dims = (text_width(&label.text, size), height);
@@ -150,7 +182,8 @@ fn place_labels(labels: Vec<Label>, frame: &Frame, ring: f64, size: f64, bounds:
         for &(r, k) in &nudges {
             let rho = ring + r as f64 * out;
             let b = label_box(frame, rho, label.theta + k as f64 * along / rho.max(1.0), dims);
-            let inside = b[0] >= bounds[0] && b[1] >= bounds[1] && b[2] <= bounds[2] && b[3] <= bounds[3];
+            let inside =
+                b[0] >= bounds[0] && b[1] >= bounds[1] && b[2] <= bounds[2] && b[3] <= bounds[3];
             if !inside {
                 continue;
             }
@@ -164,7 +197,8 @@ fn place_labels(labels: Vec<Label>, frame: &Frame, ring: f64, size: f64, bounds:
                 best = Some((crowding, b, moved));
             }
         }
-        let (_, bounds_of, moved) = best.unwrap_or((0.0, label_box(frame, ring, label.theta, dims), false));
+        let (_, bounds_of, moved) =
+            best.unwrap_or((0.0, label_box(frame, ring, label.theta, dims), false));
         placed.push(Placed { label, bounds: bounds_of, moved });
     }
     placed
@@ -193,12 +227,23 @@ impl Layout {
         let widest = labels.iter().map(|l| text_width(&l.text, size)).fold(0.0, f64::max);
         let marker = (unit * 0.022).max(4.0);
         // Room for a ring of labels and a half above and below, a label and a nudge on the sides.
-        let (pad_x, pad_y) = (marker + 0.4 * size + widest + 0.3 * size, marker + 0.4 * size + 1.5 * 1.2 * 0.8 * size);
+        let (pad_x, pad_y) = (
+            marker + 0.4 * size + widest + 0.3 * size,
+            marker + 0.4 * size + 1.5 * 1.2 * 0.8 * size,
+        );
         let radius = ((w - 2.0 * pad_x) / 2.0).min((text_top - top - 2.0 * pad_y) / 2.0).max(4.0);
-        let frame = Frame { cx: w / 2.0, cy: top + pad_y + radius + ((text_top - top - 2.0 * pad_y) / 2.0 - radius).max(0.0), radius };
+        let frame = Frame {
+            cx: w / 2.0,
+            cy: top + pad_y + radius + ((text_top - top - 2.0 * pad_y) / 2.0 - radius).max(0.0),
+            radius,
+        };
         let ring = radius + marker + 0.3 * size;
         let placed = place_labels(labels, &frame, ring, size, [0.0, top, w, text_top]);
-        let caption = lines.into_iter().enumerate().map(|(k, (text, colour))| (text, colour, text_top + line_height * (k as f64 + 0.5))).collect();
+        let caption = lines
+            .into_iter()
+            .enumerate()
+            .map(|(k, (text, colour))| (text, colour, text_top + line_height * (k as f64 + 0.5)))
+            .collect();
         Layout { frame, size, note: note_size(unit), ring, labels: placed, caption }
     }
 }
@@ -208,11 +253,23 @@ impl Layout {
 fn labels(analysis: &Analysis) -> Vec<Label> {
     let count = analysis.folds.len();
     let folds = analysis.folds.iter().enumerate().flat_map(|(k, fold)| {
-        fold.iter().enumerate().map(move |(e, &f)| Label { text: endpoint_name(k, e, count), colour: fold_colour(k), theta: f })
+        fold.iter().enumerate().map(move |(e, &f)| Label {
+            text: endpoint_name(k, e, count),
+            colour: fold_colour(k),
+            theta: f,
+        })
     });
     let numbered = analysis.corners.len() <= NUMBERED_CORNERS;
-    let corners = analysis.corners.iter().enumerate().filter(|_| numbered).map(|(k, &theta)| Label { text: (k + 1).to_string(), colour: INK, theta });
-    folds.chain(corners).chain([Label { text: "0 rad".into(), colour: MUTED_TEXT, theta: 0.0 }]).collect()
+    let corners = analysis
+        .corners
+        .iter()
+        .enumerate()
+        .filter(|_| numbered)
+        .map(|(k, &theta)| Label { text: (k + 1).to_string(), colour: INK, theta });
+    folds
+        .chain(corners)
+        .chain([Label { text: "0 rad".into(), colour: MUTED_TEXT, theta: 0.0 }])
+        .collect()
 }
 
 /// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
@@ -225,7 +282,11 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     canvas.title("CloSE fold circle");
     canvas.ring((frame.cx, frame.cy), frame.radius, line_width(unit, 0.004), INK);
     // The tick where angles start, outwards.
-    canvas.stroke(&[frame.at(1.0, 0.0), (frame.cx + layout.ring, frame.cy)], line_width(unit, 0.003), INK);
+    canvas.stroke(
+        &[frame.at(1.0, 0.0), (frame.cx + layout.ring, frame.cy)],
+        line_width(unit, 0.003),
+        INK,
+    );
     draw_corners(canvas, &analysis.corners, &frame);
     draw_truth(canvas, truth, &frame);
     draw_folds(canvas, analysis, &frame);
@@ -237,10 +298,22 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
             let from = frame.at(layout.ring / frame.radius, placed.label.theta);
             canvas.stroke(&[from, (from.0.clamp(x0, x1), from.1.clamp(y0, y1))], 1.0, MUTED);
         }
-        canvas.text(&placed.label.text, centre, layout.size, placed.label.colour, (HPos::Center, VPos::Center));
+        canvas.text(
+            &placed.label.text,
+            centre,
+            layout.size,
+            placed.label.colour,
+            (HPos::Center, VPos::Center),
+        );
     }
     for (text, colour, y) in &layout.caption {
-        canvas.text(text, (0.5 * layout.size, *y), layout.note, *colour, (HPos::Left, VPos::Center));
+        canvas.text(
+            text,
+            (0.5 * layout.size, *y),
+            layout.note,
+            *colour,
+            (HPos::Left, VPos::Center),
+        );
     }
     Ok(())
 }
@@ -292,7 +365,8 @@ fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
     for (k, (&fold, arcs)) in analysis.folds.iter().zip(analysis.fold_arcs()).enumerate() {
         let colour = fold_colour(k);
         for &[a, b] in arcs {
-            let arc: Vec<(f64, f64)> = folded_arc([a, b], 361).into_iter().map(|t| frame.at(1.0, t)).collect();
+            let arc: Vec<(f64, f64)> =
+                folded_arc([a, b], 361).into_iter().map(|t| frame.at(1.0, t)).collect();
             canvas.stroke(&arc, line_width(unit, 0.014), colour);
             canvas.stroke(&[frame.at(1.0, a), frame.at(1.0, b)], line_width(unit, 0.005), colour);
         }
@@ -331,30 +405,65 @@ mod tests {
 
     /// The analysis of a built-in sample and its true folds.
     fn builtin(id: &str) -> (Analysis, Vec<[f64; 2]>) {
-        let entry = crate::dataset::Dataset::builtin().get(id).unwrap().clone();
-        let analysis = crate::analyze(&entry.sample.border_frames().unwrap(), crate::FrameRange::default()).unwrap();
+        let entry = close_io::dataset::Dataset::builtin().get(id).unwrap().clone();
+        let analysis = close_core::analyze(
+            &entry.sample.border_frames().unwrap(),
+            close_core::FrameRange::default(),
+        )
+        .unwrap();
         (analysis, entry.sample.truth.map(|t| t.folds).unwrap_or_default())
     }
 
     #[test]
     fn labels_keep_apart_off_the_circle_and_inside_the_picture() {
-        for (id, size) in [("tshirt__half_then_sleeve", 480), ("tshirt__half_then_sleeve", 1400), ("napkin__diagonal", 480), ("trousers__legs_up_then_half", 320)] {
+        for (id, size) in [
+            ("tshirt__half_then_sleeve", 480),
+            ("tshirt__half_then_sleeve", 1400),
+            ("napkin__diagonal", 480),
+            ("trousers__legs_up_then_half", 320),
+        ] {
             let (analysis, truth) = builtin(id);
             let layout = Layout::of(size, size, &analysis, &truth);
             let known = super::super::Known { truth: &truth, mesh: None };
-            let png = super::super::render_step(&analysis, super::super::Picture::Close, None, size, size, super::super::Format::Png, known).unwrap();
+            let png = super::super::render_step(
+                &analysis,
+                super::super::Picture::Close,
+                None,
+                size,
+                size,
+                super::super::Format::Png,
+                known,
+            )
+            .unwrap();
             super::super::tests::preview(&format!("circle_{id}_{size}.png"), &png);
             let labels = &layout.labels;
-            assert!(labels.len() > analysis.corners.len().min(NUMBERED_CORNERS), "{id}: every corner is named");
+            assert!(
+                labels.len() > analysis.corners.len().min(NUMBERED_CORNERS),
+                "{id}: every corner is named"
+            );
             for (k, a) in labels.iter().enumerate() {
                 let [x0, y0, x1, y1] = a.bounds;
-                assert!(x0 >= 0.0 && y0 >= 0.0 && x1 <= size as f64 && y1 <= size as f64, "{id}: {:?} leaves the picture", a.label.text);
+                assert!(
+                    x0 >= 0.0 && y0 >= 0.0 && x1 <= size as f64 && y1 <= size as f64,
+                    "{id}: {:?} leaves the picture",
+                    a.label.text
+                );
                 // Wholly outside the circle and its markers.
-                let (dx, dy) = (((x0 + x1) / 2.0 - layout.frame.cx).abs(), ((y0 + y1) / 2.0 - layout.frame.cy).abs());
-                let nearest = ((dx - (x1 - x0) / 2.0).max(0.0)).hypot((dy - (y1 - y0) / 2.0).max(0.0));
+                let (dx, dy) = (
+                    ((x0 + x1) / 2.0 - layout.frame.cx).abs(),
+                    ((y0 + y1) / 2.0 - layout.frame.cy).abs(),
+                );
+                let nearest =
+                    ((dx - (x1 - x0) / 2.0).max(0.0)).hypot((dy - (y1 - y0) / 2.0).max(0.0));
                 assert!(nearest >= layout.ring - 1e-9, "{id}: {:?} is on the circle", a.label.text);
                 for b in &labels[k + 1..] {
-                    assert_eq!(overlap_area(&a.bounds, &b.bounds, 0.0), 0.0, "{id} at {size}: {:?} and {:?} overlap", a.label.text, b.label.text);
+                    assert_eq!(
+                        overlap_area(&a.bounds, &b.bounds, 0.0),
+                        0.0,
+                        "{id} at {size}: {:?} and {:?} overlap",
+                        a.label.text,
+                        b.label.text
+                    );
                 }
             }
             // The caption starts under the lowest label.
@@ -362,7 +471,11 @@ mod tests {
             let first = layout.caption.first().map_or(f64::INFINITY, |c| c.2 - 0.5 * layout.note);
             assert!(lowest <= first, "{id}: labels run into the caption");
             // The circle has most of the picture.
-            assert!(layout.frame.radius >= 0.2 * size as f64, "{id} at {size}: radius {}", layout.frame.radius);
+            assert!(
+                layout.frame.radius >= 0.2 * size as f64,
+                "{id} at {size}: radius {}",
+                layout.frame.radius
+            );
         }
     }
 

@@ -45,14 +45,19 @@ impl<S> Socket<S> {
     }
 
     /// `poll` (a write or a flush), failing once it has not progressed for the write time-out.
-    fn timed<T>(&mut self, cx: &mut Context<'_>, poll: impl FnOnce(Pin<&mut S>, &mut Context<'_>) -> Poll<io::Result<T>>) -> Poll<io::Result<T>>
+    fn timed<T>(
+        &mut self,
+        cx: &mut Context<'_>,
+        poll: impl FnOnce(Pin<&mut S>, &mut Context<'_>) -> Poll<io::Result<T>>,
+    ) -> Poll<io::Result<T>>
     where
         S: Unpin,
     {
         match poll(Pin::new(&mut self.inner), cx) {
             Poll::Pending => {
                 let timeout = self.write_timeout;
-                let stalled = self.stalled.get_or_insert_with(|| Box::pin(tokio::time::sleep(timeout)));
+                let stalled =
+                    self.stalled.get_or_insert_with(|| Box::pin(tokio::time::sleep(timeout)));
                 match stalled.as_mut().poll(cx) {
                     Poll::Ready(()) => Poll::Ready(Err(io::Error::new(
                         io::ErrorKind::TimedOut,
@@ -118,33 +123,58 @@ fn json_answer(buf: &[u8]) -> Option<Vec<u8>> {
     let head = std::str::from_utf8(buf.strip_suffix(b"\r\n\r\n")?).ok()?;
     let mut lines = head.split("\r\n");
     let status_line = lines.next()?;
-    let code = status_line.strip_prefix("HTTP/1.1 ").or_else(|| status_line.strip_prefix("HTTP/1.0 "))?.get(..3)?;
-    let status = StatusCode::from_bytes(code.as_bytes()).ok().filter(StatusCode::is_client_error)?;
+    let code = status_line
+        .strip_prefix("HTTP/1.1 ")
+        .or_else(|| status_line.strip_prefix("HTTP/1.0 "))?
+        .get(..3)?;
+    let status =
+        StatusCode::from_bytes(code.as_bytes()).ok().filter(StatusCode::is_client_error)?;
     let headers: Vec<&str> = lines.collect();
-    let named = |name: &str| headers.iter().any(|h| h.split(':').next().is_some_and(|n| n.trim().eq_ignore_ascii_case(name)));
-    let empty = headers.iter().any(|h| h.split_once(':').is_some_and(|(n, v)| n.trim().eq_ignore_ascii_case("content-length") && v.trim() == "0"));
+    let named = |name: &str| {
+        headers
+            .iter()
+            .any(|h| h.split(':').next().is_some_and(|n| n.trim().eq_ignore_ascii_case(name)))
+    };
+    let empty = headers.iter().any(|h| {
+        h.split_once(':').is_some_and(|(n, v)| {
+            n.trim().eq_ignore_ascii_case("content-length") && v.trim() == "0"
+        })
+    });
     if !empty || named("content-type") {
         return None;
     }
     let body = serde_json::json!({ "error": message(status) }).to_string();
-    let kept = headers.iter().filter(|h| !h.split(':').next().is_some_and(|n| n.trim().eq_ignore_ascii_case("content-length")));
+    let kept = headers.iter().filter(|h| {
+        !h.split(':').next().is_some_and(|n| n.trim().eq_ignore_ascii_case("content-length"))
+    });
     let mut answer = format!("{status_line}\r\n");
     for h in kept {
         answer.push_str(h);
         answer.push_str("\r\n");
     }
-    answer.push_str(&format!("content-type: application/json\r\ncontent-length: {}\r\n\r\n{body}", body.len()));
+    answer.push_str(&format!(
+        "content-type: application/json\r\ncontent-length: {}\r\n\r\n{body}",
+        body.len()
+    ));
     Some(answer.into_bytes())
 }
 
 impl<S: AsyncRead + Unpin> AsyncRead for Socket<S> {
-    fn poll_read(mut self: Pin<&mut Self>, cx: &mut Context<'_>, buf: &mut ReadBuf<'_>) -> Poll<io::Result<()>> {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<io::Result<()>> {
         Pin::new(&mut self.inner).poll_read(cx, buf)
     }
 }
 
 impl<S: AsyncWrite + Unpin> AsyncWrite for Socket<S> {
-    fn poll_write(mut self: Pin<&mut Self>, cx: &mut Context<'_>, buf: &[u8]) -> Poll<io::Result<usize>> {
+    fn poll_write(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<io::Result<usize>> {
         ready!(self.poll_pending(cx))?;
         if self.rewrite(buf) {
             // Sent by the next flush at the latest.
@@ -156,7 +186,11 @@ impl<S: AsyncWrite + Unpin> AsyncWrite for Socket<S> {
         self.timed(cx, |inner, cx| inner.poll_write(cx, buf))
     }
 
-    fn poll_write_vectored(mut self: Pin<&mut Self>, cx: &mut Context<'_>, bufs: &[io::IoSlice<'_>]) -> Poll<io::Result<usize>> {
+    fn poll_write_vectored(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        bufs: &[io::IoSlice<'_>],
+    ) -> Poll<io::Result<usize>> {
         ready!(self.poll_pending(cx))?;
         // hyper's error answer is a head alone: one buffer.
         if let Some(first) = bufs.iter().find(|b| !b.is_empty()) {
@@ -195,7 +229,10 @@ mod tests {
         let answer = String::from_utf8(json_answer(hyper).expect("rewritten")).unwrap();
         let (head, body) = answer.split_once("\r\n\r\n").unwrap();
         assert!(head.starts_with("HTTP/1.1 431 Request Header Fields Too Large\r\n"), "{head}");
-        assert!(head.contains("date: Wed") && head.contains("content-type: application/json"), "{head}");
+        assert!(
+            head.contains("date: Wed") && head.contains("content-type: application/json"),
+            "{head}"
+        );
         assert!(head.contains(&format!("content-length: {}", body.len())), "{head}");
         let json: serde_json::Value = serde_json::from_str(body).unwrap();
         assert!(json["error"].as_str().unwrap().contains("head is too large"));

@@ -13,16 +13,18 @@ use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
-use crate::cache::content_key;
 use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
-use crate::analysis::{analyze_with, Analysis, FrameRange, Options};
-use crate::border::{to_xyz, BorderFrames};
-use crate::budget::{Budget, Deadline};
-use crate::error::{Error, Result};
-use crate::formats::{json::parse_sample, read_files, Sample, Truth};
-use crate::render::colour::Scale;
-use crate::render::mesh::MeshView;
-use crate::render::{disk_scaled, render_step, Format, Known, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE};
+use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
+use close_core::border::{to_xyz, BorderFrames};
+use close_core::budget::{Budget, Deadline};
+use close_core::error::{Error, Result};
+use close_io::cache::content_key;
+use close_io::formats::{json::parse_sample, read_files, Sample, Truth};
+use close_render::colour::Scale;
+use close_render::mesh_picture::MeshView;
+use close_render::{
+    disk_scaled, render_step, Format, Known, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE,
+};
 
 /// Thumbnail size in the sample list.
 const THUMBNAIL_SIZE: u32 = 160;
@@ -54,7 +56,15 @@ impl Drawing {
     fn weigh(a: &Analysis, truth: &[[f64; 2]]) -> usize {
         use std::mem::{size_of, size_of_val};
         let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
-        let steps: usize = a.steps.iter().map(|s| size_of_val(s) + size_of_val(s.detection.arcs.as_slice()) + size_of_val(s.detection.curves.as_slice())).sum();
+        let steps: usize = a
+            .steps
+            .iter()
+            .map(|s| {
+                size_of_val(s)
+                    + size_of_val(s.detection.arcs.as_slice())
+                    + size_of_val(s.detection.curves.as_slice())
+            })
+            .sum();
         let lists = size_of_val(a.corners.as_slice())
             + size_of_val(a.corner_vertices.as_slice())
             + size_of_val(a.border_indices.as_slice())
@@ -90,7 +100,9 @@ impl IntoResponse for JsonBytes {
 }
 
 fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
-    serde_json::to_vec(value).map(Bytes::from).map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))
+    serde_json::to_vec(value)
+        .map(Bytes::from)
+        .map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))
 }
 
 /// What a listed sample's analysis adds: its id, the sample itself, and where its
@@ -160,8 +172,16 @@ impl Loaded {
     /// cell budget before its border is prepared (a copy of every frame); otherwise (a frame
     /// range, a mesh's border shorter than its vertex list) the analysis checks the budget
     /// once the border is known.
-    pub(super) fn of(key: String, sample: &Sample, range: FrameRange, source: &str, listed: Option<Listed>, budget: &Budget) -> Result<Loaded, ApiError> {
-        if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), range) {
+    pub(super) fn of(
+        key: String,
+        sample: &Sample,
+        range: FrameRange,
+        source: &str,
+        listed: Option<Listed>,
+        budget: &Budget,
+    ) -> Result<Loaded, ApiError> {
+        if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), range)
+        {
             budget.analysis(sample.frames.len(), first.len())?;
         }
         Ok(Loaded {
@@ -174,7 +194,15 @@ impl Loaded {
             source: source.to_string(),
             truth: sample.truth.clone(),
             listed,
-            mesh: sample.mesh.as_ref().and_then(|m| MeshView::new(m, (range.start.unwrap_or(0), range.end.unwrap_or(m.frames.len().saturating_sub(1))))),
+            mesh: sample.mesh.as_ref().and_then(|m| {
+                MeshView::new(
+                    m,
+                    (
+                        range.start.unwrap_or(0),
+                        range.end.unwrap_or(m.frames.len().saturating_sub(1)),
+                    ),
+                )
+            }),
         })
     }
 
@@ -186,20 +214,31 @@ impl Loaded {
 
     /// Analyse, with the server's budget and the job's deadline, and write the response.
     fn analyze(self, state: &AppState, deadline: &Deadline) -> Result<Analyzed, ApiError> {
-        let options = Options { frames: self.range, budget: state.config().budget, deadline: deadline.clone(), ..Options::default() };
+        let options = Options {
+            frames: self.range,
+            budget: state.config().budget,
+            deadline: deadline.clone(),
+            ..Options::default()
+        };
         let analysis = analyze_with(&self.border, options)?;
         let key = self.key;
         // The view of other frames than the analysis's is no view of it.
         let mesh = self.mesh.filter(|m| m.frames == (analysis.start_frame, analysis.end_frame));
-        let listed_pictures = Picture::ALL.into_iter().chain(mesh.is_some().then_some(Picture::Mesh));
-        let images = listed_pictures.map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name()))).collect();
+        let listed_pictures =
+            Picture::ALL.into_iter().chain(mesh.is_some().then_some(Picture::Mesh));
+        let images = listed_pictures
+            .map(|p| (p.name(), format!("/api/images/{key}/{}.png?size={DEFAULT_SIZE}", p.name())))
+            .collect();
         let listed = match &self.listed {
             Some(Listed::Builtin(id)) => state.entry(id).map(|entry| ListedFields {
                 id: &entry.id,
                 sample: &entry.sample,
-                recording: cfg!(feature = "rerun").then(|| format!("/api/samples/{}/recording.rrd", entry.id)),
+                recording: cfg!(feature = "rerun")
+                    .then(|| format!("/api/samples/{}/recording.rrd", entry.id)),
             }),
-            Some(Listed::Dataset { id, sample }) => Some(ListedFields { id, sample, recording: None }),
+            Some(Listed::Dataset { id, sample }) => {
+                Some(ListedFields { id, sample, recording: None })
+            }
             None => None,
         };
         let response = to_json(&AnalyzeResponse {
@@ -284,7 +323,12 @@ enum Upload {
 
 impl Upload {
     async fn from_request(request: Request, state: &AppState) -> Result<Upload, ApiError> {
-        let content_type = request.headers().get(header::CONTENT_TYPE).and_then(|t| t.to_str().ok()).unwrap_or("").to_ascii_lowercase();
+        let content_type = request
+            .headers()
+            .get(header::CONTENT_TYPE)
+            .and_then(|t| t.to_str().ok())
+            .unwrap_or("")
+            .to_ascii_lowercase();
         let essence = content_type.split(';').next().unwrap_or("").trim();
         if essence == "application/json" || essence.ends_with("+json") {
             return Ok(Upload::Json(Bytes::from_request(request, state).await?));
@@ -311,9 +355,12 @@ impl Upload {
             };
             // A second part of the same name would silently replace the first.
             if slot.as_ref().is_some_and(|s| s.is_some()) {
-                return Err(ApiError::BadRequest(format!("the form holds two {name:?} files: send one")));
+                return Err(ApiError::BadRequest(format!(
+                    "the form holds two {name:?} files: send one"
+                )));
             }
-            let file = field.file_name().filter(|f| !f.is_empty()).unwrap_or(default_name).to_string();
+            let file =
+                field.file_name().filter(|f| !f.is_empty()).unwrap_or(default_name).to_string();
             let bytes = field.bytes().await?.to_vec();
             match slot {
                 Some(slot) => *slot = Some((file, bytes)),
@@ -322,10 +369,21 @@ impl Upload {
         }
         let files = match (samples.is_empty(), start, end) {
             (false, None, None) => samples,
-            (false, _, _) => return Err(ApiError::BadRequest("send either \"sample\" or \"start\"/\"end\" files, not both".into())),
+            (false, _, _) => {
+                return Err(ApiError::BadRequest(
+                    "send either \"sample\" or \"start\"/\"end\" files, not both".into(),
+                ))
+            }
             (true, Some(s), e) => std::iter::once(s).chain(e).collect(),
-            (true, None, Some(_)) => return Err(ApiError::BadRequest("an \"end\" file needs a \"start\" file".into())),
-            (true, None, None) => return Err(Error::Empty { what: "the form holds no file: send \"sample\", or \"start\" and \"end\"" }.into()),
+            (true, None, Some(_)) => {
+                return Err(ApiError::BadRequest("an \"end\" file needs a \"start\" file".into()))
+            }
+            (true, None, None) => {
+                return Err(Error::Empty {
+                    what: "the form holds no file: send \"sample\", or \"start\" and \"end\"",
+                }
+                .into())
+            }
         };
         Ok(Upload::Files(files))
     }
@@ -337,7 +395,9 @@ impl Upload {
             Upload::Json(bytes) => content_key(&[b"json", bytes, range.as_bytes()]),
             Upload::Files(files) => {
                 let mut parts: Vec<&[u8]> = vec![b"files", range.as_bytes()];
-                parts.extend(files.iter().flat_map(|(name, bytes)| [name.as_bytes(), bytes.as_slice()]));
+                parts.extend(
+                    files.iter().flat_map(|(name, bytes)| [name.as_bytes(), bytes.as_slice()]),
+                );
                 content_key(&parts)
             }
         }
@@ -351,12 +411,19 @@ impl Upload {
     }
 }
 
-pub async fn analyze(State(state): State<AppState>, AppQuery(range): AppQuery<RangeQuery>, request: Request) -> Result<JsonBytes, ApiError> {
+pub async fn analyze(
+    State(state): State<AppState>,
+    AppQuery(range): AppQuery<RangeQuery>,
+    request: Request,
+) -> Result<JsonBytes, ApiError> {
     let upload = Upload::from_request(request, &state).await?;
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
     let budget = state.config().budget;
-    let done = analysis(&state, key, move |key, _| Loaded::of(key, &upload.sample()?, frames, UPLOAD, None, &budget)).await?;
+    let done = analysis(&state, key, move |key, _| {
+        Loaded::of(key, &upload.sample()?, frames, UPLOAD, None, &budget)
+    })
+    .await?;
     Ok(JsonBytes(done.response.clone()))
 }
 
@@ -375,15 +442,15 @@ fn frame_count(sample: &Sample) -> usize {
 #[derive(Debug, Clone, Serialize)]
 pub(super) struct SampleRow {
     #[serde(flatten)]
-    pub entry: crate::catalog::Entry,
+    pub entry: close_io::catalog::Entry,
     /// URL of its small borders picture.
     pub thumbnail: String,
 }
 
 impl SampleRow {
-    fn builtin(e: &crate::dataset::Entry) -> SampleRow {
+    fn builtin(e: &close_io::dataset::BuiltinSample) -> SampleRow {
         let border = e.sample.border_frames();
-        SampleRow::dataset(&crate::catalog::Entry {
+        SampleRow::dataset(&close_io::catalog::Entry {
             id: e.id.clone(),
             name: e.sample.name.clone(),
             category: e.sample.category.clone(),
@@ -395,7 +462,7 @@ impl SampleRow {
         })
     }
 
-    fn dataset(e: &crate::catalog::Entry) -> SampleRow {
+    fn dataset(e: &close_io::catalog::Entry) -> SampleRow {
         SampleRow { entry: e.clone(), thumbnail: thumbnail(&e.id) }
     }
 }
@@ -415,7 +482,9 @@ pub(super) async fn sample_rows(state: &AppState) -> Result<Arc<Vec<SampleRow>>,
     let rows = state
         .run_cpu(Lane::Light, move |_| {
             let builtin = job.entries().iter().map(SampleRow::builtin);
-            Ok(builtin.chain(job.catalog().entries().iter().map(SampleRow::dataset)).collect::<Vec<_>>())
+            Ok(builtin
+                .chain(job.catalog().entries().iter().map(SampleRow::dataset))
+                .collect::<Vec<_>>())
         })
         .await?;
     Ok(state.0.sample_list.get_or_init(|| Arc::new(rows)).clone())
@@ -435,35 +504,72 @@ async fn sample_analysis(state: &AppState, id: &str) -> Result<Arc<Analyzed>, Ap
     analysis(state, format!("{SAMPLE_KEY}{id}"), move |key, deadline| {
         let budget = job.config().budget;
         match job.entry(&id) {
-            Some(entry) => Loaded::of(key, &entry.sample, FrameRange::default(), BUILTIN, Some(Listed::Builtin(id)), &budget),
+            Some(entry) => Loaded::of(
+                key,
+                &entry.sample,
+                FrameRange::default(),
+                BUILTIN,
+                Some(Listed::Builtin(id)),
+                &budget,
+            ),
             None => {
                 let sample = job.catalog().load(&id, deadline)?;
                 let source = job.catalog().get(&id).map_or(String::new(), |e| e.source.clone());
-                Loaded::of(key, &sample.clone(), FrameRange::default(), &source, Some(Listed::Dataset { id, sample }), &budget)
+                Loaded::of(
+                    key,
+                    &sample.clone(),
+                    FrameRange::default(),
+                    &source,
+                    Some(Listed::Dataset { id, sample }),
+                    &budget,
+                )
             }
         }
     })
     .await
 }
 
-pub async fn sample(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<JsonBytes, ApiError> {
+pub async fn sample(
+    State(state): State<AppState>,
+    AppPath(id): AppPath<String>,
+) -> Result<JsonBytes, ApiError> {
     Ok(JsonBytes(sample_analysis(&state, &id).await?.response.clone()))
 }
 
 /// `GET /api/samples/{id}/recording.rrd`: the sample's analysis as a Rerun recording.
 #[cfg(feature = "rerun")]
-pub async fn recording(State(state): State<AppState>, AppPath(id): AppPath<String>) -> Result<Response, ApiError> {
+pub async fn recording(
+    State(state): State<AppState>,
+    AppPath(id): AppPath<String>,
+) -> Result<Response, ApiError> {
     let analyzed = sample_analysis(&state, &id).await?;
     let job = state.clone();
     let sample_id = id.clone();
     let rrd = state
-        .cached_bytes(format!("{}/recording.rrd", analyzed.key), cells(&analyzed.drawing.analysis), move |_| {
-            let entry = job.entry(&sample_id).ok_or_else(|| unknown_sample(&sample_id))?;
-            Ok(crate::record::record(&analyzed.drawing.analysis, &entry.sample.border_frames()?)?)
-        })
+        .cached_bytes(
+            format!("{}/recording.rrd", analyzed.key),
+            cells(&analyzed.drawing.analysis),
+            move |_| {
+                let entry = job.entry(&sample_id).ok_or_else(|| unknown_sample(&sample_id))?;
+                Ok(close_render::record::record(
+                    &analyzed.drawing.analysis,
+                    &entry.sample.border_frames()?,
+                )?)
+            },
+        )
         .await?;
-    let disposition = format!("attachment; filename=\"{}.rrd\"", id.replace(|c: char| !c.is_ascii_alphanumeric() && c != '_' && c != '-', "_"));
-    Ok(([(header::CONTENT_TYPE, "application/octet-stream".to_string()), (header::CONTENT_DISPOSITION, disposition)], rrd).into_response())
+    let disposition = format!(
+        "attachment; filename=\"{}.rrd\"",
+        id.replace(|c: char| !c.is_ascii_alphanumeric() && c != '_' && c != '-', "_")
+    );
+    Ok((
+        [
+            (header::CONTENT_TYPE, "application/octet-stream".to_string()),
+            (header::CONTENT_DISPOSITION, disposition),
+        ],
+        rrd,
+    )
+        .into_response())
 }
 
 /// Without the `rerun` feature there is no recording to give: say why.
@@ -495,7 +601,9 @@ async fn drawing_by_key(state: &AppState, key: &str) -> Result<Arc<Drawing>, Api
     match (state.drawing(key), key.strip_prefix(SAMPLE_KEY)) {
         (Some(hit), _) => Ok(hit),
         (None, Some(id)) => Ok(sample_analysis(state, id).await?.drawing.clone()),
-        (None, None) => Err(ApiError::NotFound(format!("no analysis {key:?} (it may have expired): analyse the sample again"))),
+        (None, None) => Err(ApiError::NotFound(format!(
+            "no analysis {key:?} (it may have expired): analyse the sample again"
+        ))),
     }
 }
 
@@ -506,18 +614,32 @@ pub async fn image(
 ) -> Result<Response, ApiError> {
     let picture = file.strip_suffix(".png").and_then(Picture::from_name).ok_or_else(|| {
         let names: Vec<&str> = Picture::ALL.iter().map(|p| p.name()).collect();
-        ApiError::NotFound(format!("no picture {file:?}: expected one of {}.png", names.join(".png, ")))
+        ApiError::NotFound(format!(
+            "no picture {file:?}: expected one of {}.png",
+            names.join(".png, ")
+        ))
     })?;
     let drawing = drawing_by_key(&state, &key).await?;
     let (size, step, format) = (picture_size(query.size), query.step, query.format);
     let file = state
-        .cached_bytes(format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()), cells(&drawing.analysis), move |_| {
-            let known = Known { truth: &drawing.truth, mesh: drawing.mesh.as_ref() };
-            Ok(render_step(&drawing.analysis, picture, step, size, size, format, known)?)
-        })
+        .cached_bytes(
+            format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()),
+            cells(&drawing.analysis),
+            move |_| {
+                let known = Known { truth: &drawing.truth, mesh: drawing.mesh.as_ref() };
+                Ok(render_step(&drawing.analysis, picture, step, size, size, format, known)?)
+            },
+        )
         .await?;
     // The key names the content, so the picture never changes.
-    Ok(([(header::CONTENT_TYPE, format.content_type()), (header::CACHE_CONTROL, "public, max-age=86400, immutable")], file).into_response())
+    Ok((
+        [
+            (header::CONTENT_TYPE, format.content_type()),
+            (header::CACHE_CONTROL, "public, max-age=86400, immutable"),
+        ],
+        file,
+    )
+        .into_response())
 }
 
 #[derive(Debug, Deserialize)]
@@ -529,7 +651,7 @@ pub struct ReadoutQuery {
 
 /// `GET /api/readout/{key}?step=&size=`: what reading values off the disk pictures of that
 /// step (and marking edges on the border plot) takes, for pictures of that size
-/// ([`crate::render::readout`]).
+/// ([`close_render::readout`]).
 pub async fn readout(
     State(state): State<AppState>,
     AppPath(key): AppPath<String>,
@@ -538,9 +660,19 @@ pub async fn readout(
     let drawing = drawing_by_key(&state, &key).await?;
     let (size, step) = (picture_size(query.size), query.step);
     let answer = state
-        .cached_bytes(format!("{key}/readout/{size}/{step:?}"), cells(&drawing.analysis), move |_| {
-            Ok(to_json(&crate::render::readout::readout(&drawing.analysis, &drawing.truth, step, size)?)?.to_vec())
-        })
+        .cached_bytes(
+            format!("{key}/readout/{size}/{step:?}"),
+            cells(&drawing.analysis),
+            move |_| {
+                Ok(to_json(&close_render::readout::readout(
+                    &drawing.analysis,
+                    &drawing.truth,
+                    step,
+                    size,
+                )?)?
+                .to_vec())
+            },
+        )
         .await?;
     Ok(JsonBytes(answer))
 }
@@ -559,7 +691,7 @@ pub struct InterpolateRequest {
     reference: Option<Vec<[f64; 3]>>,
     /// Between two folds: `from` and `to`; or one fold turned over: its `arcs` (an analysis
     /// step's `arcs`) about `line` (its `line`; by default the line through the first arc's
-    /// start and the last arc's end). See [`crate::interpolate::Motion`].
+    /// start and the last arc's end). See [`close_core::interpolate::Motion`].
     #[serde(default)]
     from: Option<[f64; 2]>,
     #[serde(default)]
@@ -584,15 +716,26 @@ pub struct LineRequest {
     direction: [f64; 2],
 }
 
-pub async fn interpolate(State(state): State<AppState>, AppJson(req): AppJson<InterpolateRequest>) -> Result<Response, ApiError> {
+pub async fn interpolate(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<InterpolateRequest>,
+) -> Result<Response, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
-    let line = req.line.map(|l| crate::interpolate::Line { point: l.point, direction: l.direction });
-    let motion = crate::interpolate::Motion::of(req.from, req.to, req.arcs, line)?;
+    let line =
+        req.line.map(|l| close_core::interpolate::Line { point: l.point, direction: l.direction });
+    let motion = close_core::interpolate::Motion::of(req.from, req.to, req.arcs, line)?;
     // The answer's size is known now: reserved before it is built, not found after.
     let points = req.border.len().saturating_mul(req.steps.saturating_add(1));
     let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
     let answer = state
-        .run_cpu(Lane::Light, move |_| to_json(&crate::interpolate::interpolate_border(req.border, req.reference, &motion, req.steps)?))
+        .run_cpu(Lane::Light, move |_| {
+            to_json(&close_core::interpolate::interpolate_border(
+                req.border,
+                req.reference,
+                &motion,
+                req.steps,
+            )?)
+        })
         .await?;
     let mut response = JsonBytes(answer).into_response();
     response.extensions_mut().insert(reserved);
@@ -643,7 +786,12 @@ impl DiskPicture {
     /// The picture from its cache bytes ([`DiskPicture::into_bytes`]).
     fn from_bytes(cached: Bytes) -> DiskPicture {
         let head = Self::HEAD.min(cached.len());
-        let float = |k: usize| cached.get(8 * k..8 * k + 8).and_then(|b| b.try_into().ok()).map_or(0.0, f64::from_le_bytes);
+        let float = |k: usize| {
+            cached
+                .get(8 * k..8 * k + 8)
+                .and_then(|b| b.try_into().ok())
+                .map_or(0.0, f64::from_le_bytes)
+        };
         DiskPicture { scale: [float(0), float(1)], file: cached.slice(head..) }
     }
 
@@ -651,7 +799,15 @@ impl DiskPicture {
     /// the colour scale it used ("s max"), which a later request can send back as `scale`.
     fn into_response(self, format: Format) -> Response {
         let scale = format!("{} {}", self.scale[0], self.scale[1]);
-        ([(header::CONTENT_TYPE, format.content_type().to_string()), (header::CACHE_CONTROL, "no-store".to_string()), (DISK_SCALE, scale)], self.file).into_response()
+        (
+            [
+                (header::CONTENT_TYPE, format.content_type().to_string()),
+                (header::CACHE_CONTROL, "no-store".to_string()),
+                (DISK_SCALE, scale),
+            ],
+            self.file,
+        )
+            .into_response()
     }
 }
 
@@ -662,29 +818,54 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
     points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
 }
 
-pub async fn disk(State(state): State<AppState>, AppQuery(query): AppQuery<DiskQuery>, AppJson(req): AppJson<DiskRequest>) -> Result<Response, ApiError> {
+pub async fn disk(
+    State(state): State<AppState>,
+    AppQuery(query): AppQuery<DiskQuery>,
+    AppJson(req): AppJson<DiskRequest>,
+) -> Result<Response, ApiError> {
     let format = query.format;
     let size = picture_size(req.size);
     // Checked before the cache, which keys "with a reference" apart from "without": a
     // reference too short for a border is refused even when the border alone is cached.
-    if let Some(reference) = req.reference.as_deref().filter(|r| r.len() < crate::border::MIN_VERTICES) {
+    if let Some(reference) =
+        req.reference.as_deref().filter(|r| r.len() < close_core::border::MIN_VERTICES)
+    {
         return Err(ApiError::Rejected(
             axum::http::StatusCode::UNPROCESSABLE_ENTITY,
-            format!("\"reference\" has {} vertices: a border needs at least {}", reference.len(), crate::border::MIN_VERTICES),
+            format!(
+                "\"reference\" has {} vertices: a border needs at least {}",
+                reference.len(),
+                close_core::border::MIN_VERTICES
+            ),
         ));
     }
-    let reference = req.reference.as_deref().map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat()).unwrap_or_default();
+    let reference = req
+        .reference
+        .as_deref()
+        .map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat())
+        .unwrap_or_default();
     let scale = match req.scale {
-        Some(s) => Some(Scale::fixed(s.s, s.max).ok_or_else(|| ApiError::BadRequest("\"scale\" needs s > 0 and max ≥ 0, both finite".into()))?),
+        Some(s) => Some(Scale::fixed(s.s, s.max).ok_or_else(|| {
+            ApiError::BadRequest("\"scale\" needs s > 0 and max ≥ 0, both finite".into())
+        })?),
         None => None,
     };
-    let scale_bytes: Vec<u8> = scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
-    let key = content_key(&[b"disk", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes(), &scale_bytes, format.content_type().as_bytes()]);
+    let scale_bytes: Vec<u8> =
+        scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
+    let key = content_key(&[
+        b"disk",
+        &coordinate_bytes(&req.border),
+        &reference,
+        &size.to_le_bytes(),
+        &scale_bytes,
+        format.content_type().as_bytes(),
+    ]);
     let n = req.border.len() as u64;
     let cached = state
         .cached_bytes(key, n * n, move |deadline| {
-            let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
-            let (file, used) = disk_scaled(&disk, "dGLI disk · current state", scale, size, size, format)?;
+            let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
+            let (file, used) =
+                disk_scaled(&disk, "dGLI disk · current state", scale, size, size, format)?;
             Ok(DiskPicture { scale: [used.s, used.max], file: file.into() }.into_bytes())
         })
         .await?;
@@ -693,16 +874,28 @@ pub async fn disk(State(state): State<AppState>, AppQuery(query): AppQuery<DiskQ
 
 /// `POST /api/disk/cells`: the values of the disk `POST /api/disk` draws for the same
 /// request, and where its disk lies on a picture of that size (the `scale` is not needed).
-pub async fn disk_cells(State(state): State<AppState>, AppJson(req): AppJson<DiskRequest>) -> Result<JsonBytes, ApiError> {
+pub async fn disk_cells(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<DiskRequest>,
+) -> Result<JsonBytes, ApiError> {
     let size = picture_size(req.size);
-    let reference = req.reference.as_deref().map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat()).unwrap_or_default();
-    let key = content_key(&[b"disk cells", &coordinate_bytes(&req.border), &reference, &size.to_le_bytes()]);
+    let reference = req
+        .reference
+        .as_deref()
+        .map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat())
+        .unwrap_or_default();
+    let key = content_key(&[
+        b"disk cells",
+        &coordinate_bytes(&req.border),
+        &reference,
+        &size.to_le_bytes(),
+    ]);
     let n = req.border.len() as u64;
     let answer = state
         .cached_bytes(key, n * n, move |deadline| {
-            crate::render::readout::within_limit(1, req.border.len())?;
-            let disk = crate::disk::of_state(req.border, req.reference, deadline)?;
-            Ok(to_json(&crate::render::readout::DiskCells::of(&disk, size)?)?.to_vec())
+            close_render::readout::within_limit(1, req.border.len())?;
+            let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
+            Ok(to_json(&close_render::readout::DiskCells::of(&disk, size)?)?.to_vec())
         })
         .await?;
     Ok(JsonBytes(answer))
@@ -717,35 +910,50 @@ pub struct PlanRequest {
     goal: [f64; 2],
 }
 
-pub async fn plan(State(state): State<AppState>, AppJson(req): AppJson<PlanRequest>) -> Result<JsonBytes, ApiError> {
+pub async fn plan(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<PlanRequest>,
+) -> Result<JsonBytes, ApiError> {
     if req.goal.iter().any(|g| !g.is_finite()) {
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
     let raw = req.sample.get();
-    let drawing = match raw.trim_start().as_bytes().first() {
-        // An analysis still cached (an upload's "key") or a listed sample's id.
-        Some(b'"') => {
-            let id: String = serde_json::from_str(raw).map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
-            match state.drawing(&id) {
-                Some(hit) => hit,
-                None => sample_analysis(&state, &id).await?.drawing.clone(),
+    let drawing =
+        match raw.trim_start().as_bytes().first() {
+            // An analysis still cached (an upload's "key") or a listed sample's id.
+            Some(b'"') => {
+                let id: String = serde_json::from_str(raw)
+                    .map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
+                match state.drawing(&id) {
+                    Some(hit) => hit,
+                    None => sample_analysis(&state, &id).await?.drawing.clone(),
+                }
             }
-        }
-        Some(b'{') => {
-            let key = content_key(&[b"plan", raw.as_bytes()]);
-            let budget = state.config().budget;
-            analysis(&state, key, move |key, _| Loaded::of(key, &parse_sample(req.sample.get().as_bytes())?, FrameRange::default(), UPLOAD, None, &budget))
+            Some(b'{') => {
+                let key = content_key(&[b"plan", raw.as_bytes()]);
+                let budget = state.config().budget;
+                analysis(&state, key, move |key, _| {
+                    Loaded::of(
+                        key,
+                        &parse_sample(req.sample.get().as_bytes())?,
+                        FrameRange::default(),
+                        UPLOAD,
+                        None,
+                        &budget,
+                    )
+                })
                 .await?
                 .drawing
                 .clone()
-        }
-        _ => return Err(ApiError::BadRequest("\"sample\" must be a Sample JSON object, a listed sample id or an analysis key".into())),
-    };
+            }
+            _ => return Err(ApiError::BadRequest(
+                "\"sample\" must be a Sample JSON object, a listed sample id or an analysis key"
+                    .into(),
+            )),
+        };
     let goal = req.goal;
     let answer = state
-        .run_cpu(Lane::Light, move |_| {
-            to_json(&crate::plan::answer(&drawing.analysis, goal)?)
-        })
+        .run_cpu(Lane::Light, move |_| to_json(&close_core::plan::answer(&drawing.analysis, goal)?))
         .await?;
     Ok(JsonBytes(answer))
 }

@@ -1,4 +1,4 @@
-//! The sample list: built-in samples and the user's datasets ([`crate::catalog`], `close
+//! The sample list: built-in samples and the user's datasets ([`close_io::catalog`], `close
 //! serve --dataset PATH`) as one list of typed rows.
 //!
 //! `GET /api/samples?category=&q=&offset=&limit=` filters the rows of every source alike
@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use super::routes::{sample_rows, JsonBytes, SampleRow};
 use super::{ApiError, AppQuery, AppState};
-use crate::catalog;
+use close_io::catalog;
 
 /// A category and how many rows of the whole list it holds.
 #[derive(Serialize)]
@@ -45,12 +45,26 @@ fn categories(rows: &[SampleRow]) -> Vec<Category<'_>> {
     out
 }
 
-pub async fn samples(State(state): State<AppState>, AppQuery(query): AppQuery<catalog::Query>) -> Result<JsonBytes, ApiError> {
+pub async fn samples(
+    State(state): State<AppState>,
+    AppQuery(query): AppQuery<catalog::Query>,
+) -> Result<JsonBytes, ApiError> {
     let rows = sample_rows(&state).await?;
-    let matching: Vec<&SampleRow> = rows.iter().filter(|r| query.matches(&r.entry.id, &r.entry.name, &r.entry.category)).collect();
+    let matching: Vec<&SampleRow> = rows
+        .iter()
+        .filter(|r| query.matches(&r.entry.id, &r.entry.name, &r.entry.category))
+        .collect();
     let total = matching.len();
-    let page = matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
-    let list = SampleList { samples: page, total, offset: query.offset, limit: query.limit, categories: categories(&rows) };
-    let body = serde_json::to_vec(&list).map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))?;
+    let page =
+        matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
+    let list = SampleList {
+        samples: page,
+        total,
+        offset: query.offset,
+        limit: query.limit,
+        categories: categories(&rows),
+    };
+    let body = serde_json::to_vec(&list)
+        .map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))?;
     Ok(JsonBytes(body.into()))
 }

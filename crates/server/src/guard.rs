@@ -31,7 +31,7 @@
 //!   new clients out.
 //!
 //! ```
-//! use close_server::server::guard::host_name;
+//! use close_server::guard::host_name;
 //! assert_eq!(host_name("LocalHost:8080"), "localhost");
 //! assert_eq!(host_name("[::1]:80"), "::1");
 //! ```
@@ -43,14 +43,14 @@ use std::sync::Arc;
 use std::task::{Context, Poll};
 use std::time::Duration;
 
-use axum::extract::{Request, State};
 use axum::body::HttpBody;
+use axum::extract::{Request, State};
 use axum::http::{header, HeaderMap, Method, StatusCode};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 
-use super::ApiError;
+use super::error::{ApiError, BodyTooSlow};
 
 /// The local address a connection was accepted on, put on each request by the accept loop.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,7 +79,11 @@ pub fn host_name(authority: &str) -> String {
 /// `authority` with the default port of plain HTTP made explicit, for comparing.
 fn with_port(authority: &str) -> String {
     let authority = authority.trim().to_ascii_lowercase();
-    let has_port = authority.rsplit_once(':').is_some_and(|(h, p)| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()) && (!h.starts_with('[') || h.ends_with(']')));
+    let has_port = authority.rsplit_once(':').is_some_and(|(h, p)| {
+        !p.is_empty()
+            && p.bytes().all(|b| b.is_ascii_digit())
+            && (!h.starts_with('[') || h.ends_with(']'))
+    });
     if has_port {
         authority
     } else {
@@ -94,7 +98,8 @@ impl Doors {
         name == "localhost"
             || name.ends_with(".localhost")
             || ip.is_some_and(|ip| ip.is_loopback())
-            || served_at.is_some_and(|ServedAt(at)| !at.ip().is_unspecified() && ip == Some(at.ip()))
+            || served_at
+                .is_some_and(|ServedAt(at)| !at.ip().is_unspecified() && ip == Some(at.ip()))
             || self.hosts.iter().any(|h| host_name(h) == name)
     }
 
@@ -110,7 +115,12 @@ impl Doors {
     }
 
     /// Why `request` may not pass, if it may not.
-    fn refuse(&self, method: &Method, headers: &HeaderMap, served_at: Option<ServedAt>) -> Option<String> {
+    fn refuse(
+        &self,
+        method: &Method,
+        headers: &HeaderMap,
+        served_at: Option<ServedAt>,
+    ) -> Option<String> {
         let host = headers.get(header::HOST).map(|h| h.to_str().unwrap_or("(not text)"));
         if let Some(host) = host.filter(|h| !self.host_allowed(h, served_at)) {
             return Some(format!(
@@ -139,7 +149,11 @@ impl Doors {
 pub async fn doors(State(doors): State<Arc<Doors>>, request: Request, next: Next) -> Response {
     let served_at = request.extensions().get::<ServedAt>().copied();
     if request.headers().get_all(header::HOST).iter().nth(1).is_some() {
-        return ApiError::Rejected(StatusCode::BAD_REQUEST, "the request has more than one Host header".into()).into_response();
+        return ApiError::Rejected(
+            StatusCode::BAD_REQUEST,
+            "the request has more than one Host header".into(),
+        )
+        .into_response();
     }
     let target = request.uri().authority().map(|a| a.as_str().to_string());
     let foreign_target = target.filter(|t| !doors.host_allowed(t, served_at)).map(|t| {
@@ -168,8 +182,15 @@ const UPLOAD_ROUTE: &str = "/api/analyze";
 
 impl UploadBudget {
     pub fn new(bytes: usize, body_limit: usize, json_body_limit: usize) -> Self {
-        let total_kib = u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, Semaphore::MAX_PERMITS as u32);
-        UploadBudget { permits: Arc::new(Semaphore::new(total_kib as usize)), total_kib, body_limit, json_body_limit }
+        let total_kib = u32::try_from(bytes.div_ceil(1024))
+            .unwrap_or(u32::MAX)
+            .clamp(1, Semaphore::MAX_PERMITS as u32);
+        UploadBudget {
+            permits: Arc::new(Semaphore::new(total_kib as usize)),
+            total_kib,
+            body_limit,
+            json_body_limit,
+        }
     }
 
     /// The largest body the route at `path` takes.
@@ -189,7 +210,11 @@ impl UploadBudget {
 
 /// Middleware: hold the request's share of the budget until its answer is ready, then the
 /// answer's own share until it is written ([`hold_answer`]).
-pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Request, next: Next) -> Response {
+pub async fn upload_budget(
+    State(budget): State<Arc<UploadBudget>>,
+    request: Request,
+    next: Next,
+) -> Response {
     let response = if matches!(*request.method(), Method::GET | Method::HEAD | Method::OPTIONS) {
         next.run(request).await
     } else {
@@ -202,14 +227,30 @@ pub async fn upload_budget(State(budget): State<Arc<UploadBudget>>, request: Req
 
 /// Serve `request` holding permits for its announced length (its route's limit when it
 /// announces none); `Err` when it is refused, over the limit, or the budget is closed.
-async fn hold_request(budget: &UploadBudget, request: Request, next: Next) -> Result<Response, Response> {
-    let announced = request.headers().get(header::CONTENT_LENGTH).and_then(|l| l.to_str().ok()?.parse::<usize>().ok());
+async fn hold_request(
+    budget: &UploadBudget,
+    request: Request,
+    next: Next,
+) -> Result<Response, Response> {
+    let announced = request
+        .headers()
+        .get(header::CONTENT_LENGTH)
+        .and_then(|l| l.to_str().ok()?.parse::<usize>().ok());
     let limit = budget.limit_of(request.uri().path());
     if let Some(bytes) = announced.filter(|&bytes| bytes > limit) {
-        return Err(ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, format!("the body announces {bytes} bytes; this route takes at most {limit}")).into_response());
+        return Err(ApiError::Rejected(
+            StatusCode::PAYLOAD_TOO_LARGE,
+            format!("the body announces {bytes} bytes; this route takes at most {limit}"),
+        )
+        .into_response());
     }
     let kib = budget.kib(announced.unwrap_or(limit));
-    let held = budget.permits.clone().acquire_many_owned(kib).await.map_err(|_| closed().into_response())?;
+    let held = budget
+        .permits
+        .clone()
+        .acquire_many_owned(kib)
+        .await
+        .map_err(|_| closed().into_response())?;
     let response = next.run(request).await;
     drop(held);
     if kib >= RELEASE_AFTER_KIB {
@@ -250,7 +291,12 @@ impl UploadBudget {
     /// JSON body is taken, which the request may hold itself while it waits.
     pub async fn reserve(&self, bytes: usize) -> Result<Reserved, ApiError> {
         let most = self.total_kib.saturating_sub(self.kib(self.json_body_limit)).max(1);
-        let permits = self.permits.clone().acquire_many_owned(self.kib(bytes).min(most)).await.map_err(|_| closed())?;
+        let permits = self
+            .permits
+            .clone()
+            .acquire_many_owned(self.kib(bytes).min(most))
+            .await
+            .map_err(|_| closed())?;
         Ok(Reserved(Arc::new(std::sync::Mutex::new(Some(permits)))))
     }
 }
@@ -261,7 +307,8 @@ impl UploadBudget {
 /// budget, and further requests wait, instead of each keeping its answer in memory.
 async fn hold_answer(budget: &UploadBudget, mut response: Response) -> Response {
     let reserved = response.extensions_mut().remove::<Reserved>().and_then(|r| r.take());
-    let Some(bytes) = response.body().size_hint().exact().and_then(|b| usize::try_from(b).ok()) else {
+    let Some(bytes) = response.body().size_hint().exact().and_then(|b| usize::try_from(b).ok())
+    else {
         return match reserved {
             Some(permits) => response.map(|body| axum::body::Body::new(Held::new(body, permits))),
             None => response,
@@ -321,7 +368,10 @@ impl hyper::body::Body for Held {
     type Data = axum::body::Bytes;
     type Error = axum::Error;
 
-    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
+    fn poll_frame(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+    ) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
         let this = &mut *self;
         if !this.rest.is_empty() {
             return Poll::Ready(Some(Ok(this.slice())));
@@ -412,7 +462,13 @@ struct MinRate {
 impl MinRate {
     fn new(inner: axum::body::Body, rate: BodyRate) -> MinRate {
         let started = tokio::time::Instant::now();
-        let mut body = MinRate { inner, check: Box::pin(tokio::time::sleep_until(started)), started, rate, received: 0 };
+        let mut body = MinRate {
+            inner,
+            check: Box::pin(tokio::time::sleep_until(started)),
+            started,
+            rate,
+            received: 0,
+        };
         let first = body.next_check(started);
         body.check.as_mut().reset(first);
         body
@@ -420,7 +476,9 @@ impl MinRate {
 
     /// When the body must have arrived so far, with the grace that applies now.
     fn due(&self) -> tokio::time::Instant {
-        self.started + self.rate.grace() + Duration::from_secs_f64(self.received as f64 / MIN_BODY_RATE as f64)
+        self.started
+            + self.rate.grace()
+            + Duration::from_secs_f64(self.received as f64 / MIN_BODY_RATE as f64)
     }
 
     /// When to check next, from `now`: at the due time, or sooner to notice crowding.
@@ -433,7 +491,10 @@ impl hyper::body::Body for MinRate {
     type Data = axum::body::Bytes;
     type Error = axum::Error;
 
-    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
+    fn poll_frame(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+    ) -> Poll<Option<Result<hyper::body::Frame<Self::Data>, Self::Error>>> {
         let this = &mut *self;
         match Pin::new(&mut this.inner).poll_frame(cx) {
             Poll::Ready(Some(Ok(frame))) => {
@@ -448,7 +509,7 @@ impl hyper::body::Body for MinRate {
                 }
                 let now = tokio::time::Instant::now();
                 if now >= this.due() {
-                    return Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow))));
+                    return Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow(MIN_BODY_RATE)))));
                 }
                 let next = this.next_check(now);
                 this.check.as_mut().reset(next);
@@ -465,11 +526,6 @@ impl hyper::body::Body for MinRate {
         self.inner.size_hint()
     }
 }
-
-/// Why a body read failed: it arrived too slowly.
-#[derive(Debug, thiserror::Error)]
-#[error("the request body arrives slower than {MIN_BODY_RATE} bytes a second")]
-pub struct BodyTooSlow;
 
 /// Middleware: read every request body through [`MinRate`].
 pub async fn body_rate(State(rate): State<BodyRate>, request: Request, next: Next) -> Response {
@@ -498,17 +554,34 @@ mod tests {
     use super::*;
 
     fn headers(pairs: &[(&'static str, &'static str)]) -> HeaderMap {
-        pairs.iter().map(|(k, v)| (header::HeaderName::from_static(k), header::HeaderValue::from_static(v))).collect()
+        pairs
+            .iter()
+            .map(|(k, v)| (header::HeaderName::from_static(k), header::HeaderValue::from_static(v)))
+            .collect()
     }
 
     #[test]
     fn hosts_are_loopback_the_served_address_or_allowed() {
         let doors = Doors { hosts: vec!["Cloth.Lan".into()], origins: vec![] };
         let at = Some(ServedAt("192.168.1.5:8080".parse().unwrap()));
-        for ok in ["localhost:8080", "127.0.0.1", "127.3.4.5:1", "[::1]:8080", "app.localhost", "cloth.lan:80", "192.168.1.5:8080"] {
+        for ok in [
+            "localhost:8080",
+            "127.0.0.1",
+            "127.3.4.5:1",
+            "[::1]:8080",
+            "app.localhost",
+            "cloth.lan:80",
+            "192.168.1.5:8080",
+        ] {
             assert!(doors.refuse(&Method::GET, &headers(&[("host", ok)]), at).is_none(), "{ok}");
         }
-        for bad in ["evil.example", "evil.example:8080", "localhost.evil.example", "10.0.0.1", "192.168.1.5"] {
+        for bad in [
+            "evil.example",
+            "evil.example:8080",
+            "localhost.evil.example",
+            "10.0.0.1",
+            "192.168.1.5",
+        ] {
             let why = doors.refuse(&Method::GET, &headers(&[("host", bad)]), None).expect(bad);
             assert!(why.contains("--allow-host"), "{why}");
         }
@@ -520,19 +593,37 @@ mod tests {
     #[test]
     fn state_changing_requests_need_our_origin() {
         let doors = Doors { hosts: vec![], origins: vec!["https://tool.example".into()] };
-        let post = |h: &[(&'static str, &'static str)]| doors.refuse(&Method::POST, &headers(h), None);
+        let post =
+            |h: &[(&'static str, &'static str)]| doors.refuse(&Method::POST, &headers(h), None);
         assert!(post(&[("host", "localhost:8080"), ("origin", "http://localhost:8080")]).is_none());
         assert!(post(&[("host", "localhost"), ("origin", "http://localhost:80")]).is_none());
-        assert!(post(&[("host", "localhost:8080")]).is_none(), "no Origin: not a browser's cross-site request");
-        assert!(post(&[("host", "localhost:8080"), ("origin", "https://tool.example")]).is_none(), "--cors");
-        for evil in ["https://evil.example", "http://localhost:9999", "null", "https://localhost:8080"] {
+        assert!(
+            post(&[("host", "localhost:8080")]).is_none(),
+            "no Origin: not a browser's cross-site request"
+        );
+        assert!(
+            post(&[("host", "localhost:8080"), ("origin", "https://tool.example")]).is_none(),
+            "--cors"
+        );
+        for evil in
+            ["https://evil.example", "http://localhost:9999", "null", "https://localhost:8080"]
+        {
             let mut h = headers(&[("host", "localhost:8080")]);
             h.insert(header::ORIGIN, evil.parse().unwrap());
-            assert!(doors.refuse(&Method::POST, &h, None).is_some_and(|w| w.contains(evil)), "{evil}");
+            assert!(
+                doors.refuse(&Method::POST, &h, None).is_some_and(|w| w.contains(evil)),
+                "{evil}"
+            );
         }
         assert!(post(&[("host", "localhost:8080"), ("sec-fetch-site", "cross-site")]).is_some());
         // Reading is not refused for the origin (CORS decides whether the page may see it).
-        assert!(doors.refuse(&Method::GET, &headers(&[("host", "localhost"), ("origin", "https://evil.example")]), None).is_none());
+        assert!(doors
+            .refuse(
+                &Method::GET,
+                &headers(&[("host", "localhost"), ("origin", "https://evil.example")]),
+                None
+            )
+            .is_none());
     }
 
     #[test]

@@ -3,12 +3,12 @@
 //! draws.
 //!
 //! The web app shows the server's PNGs. To say which cell is under the pointer it needs the
-//! disk's centre and rim radius in the picture's pixels ([`super::disk::Layout`]); the cell
-//! of a point then follows from its polar coordinates ([`super::disk::sector_at`]: ring d
+//! disk's centre and rim radius in the picture's pixels ([`super::disk_picture::Layout`]); the cell
+//! of a point then follows from its polar coordinates ([`super::disk_picture::sector_at`]: ring d
 //! from the radius, first edge a from the angle). To mark a cell's two edges on the border
 //! plot it needs that plot's data → pixel map, which plotters works out while it lays out
 //! the axes: it is taken from a drawing of the plot at the same size. The values are the
-//! condensed pair vectors (pairs (i, j), i < j, row-major, [`crate::disk::condensed_index`])
+//! condensed pair vectors (pairs (i, j), i < j, row-major, [`close_core::disk::condensed_index`])
 //! of the two frames a step's pictures compare; the diffs follow from them as the pictures
 //! compute them (| |end| − |start| | and end − start). Values are sent as `f32`: seven
 //! significant digits, more than a readout shows, in half the JSON.
@@ -17,11 +17,11 @@
 
 use serde::Serialize;
 
-use super::disk::Layout;
+use super::disk_picture::Layout;
 use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
-use crate::analysis::Analysis;
-use crate::disk::Disk;
-use crate::error::{Error, Result};
+use close_core::analysis::Analysis;
+use close_core::disk::Disk;
+use close_core::error::{Error, Result};
 
 /// Most disk values one readout sends (about 10 MB of JSON): two disks of N = 1000.
 pub const MAX_VALUES: usize = 1_000_000;
@@ -94,10 +94,17 @@ pub struct Readout {
 /// The readout of the disk pictures of `analysis` for `step` (1-based; `None`: the whole
 /// analysis, as [`super::render_step`] takes it) drawn `size`×`size`, its border plot
 /// drawn with the `truth` folds.
-pub fn readout(analysis: &Analysis, truth: &[[f64; 2]], step: Option<usize>, size: u32) -> Result<Readout> {
+pub fn readout(
+    analysis: &Analysis,
+    truth: &[[f64; 2]],
+    step: Option<usize>,
+    size: u32,
+) -> Result<Readout> {
     let span = StepSpan::of(analysis, step)?;
     within_limit(2, analysis.n)?;
-    let disk_of = |k: usize| analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")));
+    let disk_of = |k: usize| {
+        analysis.disk(k).ok_or_else(|| Error::Render(format!("analysed frame {k} does not exist")))
+    };
     let (start, end) = (disk_of(span.from)?, disk_of(span.to)?);
     Ok(Readout {
         n: start.n(),
@@ -125,7 +132,12 @@ impl DiskCells {
     /// The cells of `disk` drawn `size`×`size`; refused over [`MAX_VALUES`].
     pub fn of(disk: &Disk, size: u32) -> Result<DiskCells> {
         within_limit(1, disk.n())?;
-        Ok(DiskCells { n: disk.n(), size: size.clamp(MIN_SIZE, MAX_SIZE), disk: DiskGeometry::of(size), values: single(disk) })
+        Ok(DiskCells {
+            n: disk.n(),
+            size: size.clamp(MIN_SIZE, MAX_SIZE),
+            disk: DiskGeometry::of(size),
+            values: single(disk),
+        })
     }
 }
 
@@ -136,11 +148,11 @@ fn single(disk: &Disk) -> Vec<f32> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{decode, folded_square};
     use super::super::colour::{Ramp, Scale};
+    use super::super::tests::{decode, folded_square};
     use super::super::{render_png, render_step_png, Picture};
     use super::*;
-    use crate::disk::{condensed_index, position};
+    use close_core::disk::{condensed_index, position};
     use std::f64::consts::PI;
 
     #[test]
@@ -150,7 +162,10 @@ mod tests {
         let readout = readout(&analysis, &[], Some(1), size).unwrap();
         let (start, end) = (analysis.disk(0).unwrap(), analysis.disk(1).unwrap());
         assert_eq!((readout.n, readout.from_frame, readout.to_frame), (32, 0, 1));
-        let close = |a: &[f32], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(&x, &y)| (x as f64 - y).abs() <= 1e-6 * y.abs().max(1e-3));
+        let close = |a: &[f32], b: &[f64]| {
+            a.len() == b.len()
+                && a.iter().zip(b).all(|(&x, &y)| (x as f64 - y).abs() <= 1e-6 * y.abs().max(1e-3))
+        };
         assert!(close(&readout.start, start.values()) && close(&readout.end, end.values()));
         // The signed diff's picture paints the cell of the largest |Δ| in that value's colour
         // at the point the geometry gives for the middle of that cell.
@@ -167,11 +182,14 @@ mod tests {
         let cell = position(n, at.0, at.1);
         let r = cell.radius - 0.5 / (n / 2) as f64;
         let g = readout.disk;
-        let (x, y) = (g.cx + g.radius * r * cell.angle.cos(), g.cy - g.radius * r * cell.angle.sin());
-        let (_, _, rgb) = decode(&render_step_png(&analysis, Picture::SignedDiff, Some(1), size, size).unwrap());
+        let (x, y) =
+            (g.cx + g.radius * r * cell.angle.cos(), g.cy - g.radius * r * cell.angle.sin());
+        let (_, _, rgb) =
+            decode(&render_step_png(&analysis, Picture::SignedDiff, Some(1), size, size).unwrap());
         let pixel = &rgb[(y as usize * size as usize + x as usize) * 3..][..3];
         let diff = start.signed_diff(&end);
-        let want = Ramp::Diverging.colour(Scale::of(diff.values()).squash(diff.values()[condensed_index(n, at.0, at.1)]));
+        let want = Ramp::Diverging
+            .colour(Scale::of(diff.values()).squash(diff.values()[condensed_index(n, at.0, at.1)]));
         assert_eq!(pixel, want, "cell {at:?}");
     }
 
@@ -183,7 +201,10 @@ mod tests {
         let (_, _, rgb) = decode(&render_png(&analysis, Picture::Borders, size, size).unwrap());
         let p = analysis.start_border()[0];
         let (x, y) = (t.x[0] * p.x + t.x[1], t.y[0] * p.y + t.y[1]);
-        assert!(t.y[0] < 0.0 && (0.0..size as f64).contains(&x) && (0.0..size as f64).contains(&y), "({x}, {y})");
+        assert!(
+            t.y[0] < 0.0 && (0.0..size as f64).contains(&x) && (0.0..size as f64).contains(&y),
+            "({x}, {y})"
+        );
         // Vertex 0 carries a filled disc: ink, not paper.
         let pixel = &rgb[(y as usize * size as usize + x as usize) * 3..][..3];
         assert!(pixel.iter().any(|&c| c < 200), "vertex 0 at ({x}, {y}) is {pixel:?}");

@@ -2,7 +2,7 @@
 //!
 //! Pair (a, a + d) sits on ring d counted from the rim, between radii (L − d)/L and
 //! (L − d + 1)/L (L = ⌊N/2⌋), one edge wide (2π/N) and centred at its angle
-//! θ = π(2a + d + 1)/N ([`crate::disk::position`]); angle 0 points right (+x) and angles grow
+//! θ = π(2a + d + 1)/N ([`close_core::disk::position`]); angle 0 points right (+x) and angles grow
 //! anticlockwise. Every ring has N sectors, so for even N the d = N/2 pairs show at θ and
 //! θ + π. The sectors are rasterised by inverse mapping — each pixel finds its (ring, sector)
 //! from its polar coordinates — which is exact, leaves no seams between neighbouring
@@ -14,14 +14,14 @@
 //! Over a diff disk the fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
 //! coordinates, with the fold points marked on the rim: the curves of the fold the step
 //! reports, fitted with the paper's loss through its fold points
-//! ([`crate::fold::fit::curves_through`]), and
+//! ([`close_core::fold::fit::curves_through`]), and
 //! only on the disk of the two frames of that step. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
 //! Geometric Shape-Agnostic Cloth State Representation" (the dGLI disk and the fold-curve
 //! fit on the diff disk). A ruler under the disk names the rings by pair distance d; the
 //! colour bar says its transform (tanh, see [`super::colour`]) and its scale.
 //!
 //! ```
-//! use close_render::render::disk::Layout;
+//! use close_render::disk_picture::Layout;
 //! let layout = Layout::of(480, 480);
 //! // The centre of the disk is its own pixel; the rim is `radius` pixels away.
 //! let (x, y) = layout.pixel(0.0, 0.0);
@@ -37,11 +37,14 @@ use super::colour::{Ramp, Scale};
 use super::raster::Recording;
 pub use super::sector_map::sector_at;
 use super::sector_map::SectorMap;
-use super::{endpoint_name, fold_colour, label_size, line_width, note_size, outward, title_size, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
-use crate::cache::Lru;
-use crate::disk::Disk;
-use crate::fold::Curve;
-use crate::error::Result;
+use super::{
+    endpoint_name, fold_colour, label_size, line_width, note_size, outward, title_size, Canvas,
+    INK, MUTED, MUTED_TEXT, PAPER,
+};
+use close_core::disk::Disk;
+use close_core::error::Result;
+use close_core::fold::Curve;
+use close_io::cache::Lru;
 
 /// Height of the ring ruler's band under the disk, in label sizes.
 const RULER_BAND: f64 = 2.4;
@@ -76,7 +79,12 @@ impl Layout {
         let (cx, cy) = (pad + room_x.max(radius), top + pad + room_y.max(radius));
         let bar_left = (w - band + label) as i32;
         // Room under the bar for the transform, the scale and N.
-        let bar = [bar_left, (cy - 0.85 * radius) as i32, bar_left + bar_width as i32, (cy + 0.45 * radius) as i32];
+        let bar = [
+            bar_left,
+            (cy - 0.85 * radius) as i32,
+            bar_left + bar_width as i32,
+            (cy + 0.45 * radius) as i32,
+        ];
         Layout { cx, cy, radius, bar }
     }
 
@@ -84,7 +92,6 @@ impl Layout {
     pub fn pixel(&self, r: f64, theta: f64) -> (f64, f64) {
         (self.cx + self.radius * r * theta.cos(), self.cy - self.radius * r * theta.sin())
     }
-
 }
 
 /// What is drawn over a diff disk: fold points on the rim and the fold curves.
@@ -101,13 +108,21 @@ pub(crate) struct Marks {
 
 /// Draw `disk` with `ramp` and colour `scale` under `title`; with `marks`, fold points and
 /// curves on top.
-pub(crate) fn draw(canvas: &mut Canvas, disk: &Disk, title: &str, ramp: Ramp, scale: &Scale, marks: Option<&Marks>) -> Result<()> {
+pub(crate) fn draw(
+    canvas: &mut Canvas,
+    disk: &Disk,
+    title: &str,
+    ramp: Ramp,
+    scale: &Scale,
+    marks: Option<&Marks>,
+) -> Result<()> {
     let layout = Layout::of(canvas.width, canvas.height);
     // Most rows of a disk repeat the row above: with the Up filter they encode as runs of
     // zeros, about 30 % faster and 8 % smaller than with Sub (480 px, N = 76).
     canvas.png_filter = png::FilterType::Up;
     let template = Template::of(canvas.width, canvas.height, disk.n());
-    let colours: Vec<[u8; 3]> = disk.values().iter().map(|&v| ramp.colour(scale.squash(v))).collect();
+    let colours: Vec<[u8; 3]> =
+        disk.values().iter().map(|&v| ramp.colour(scale.squash(v))).collect();
     template.sectors.paint(canvas, &colours);
     let t_range = bar_range(ramp, scale);
     paint_bar(canvas, ramp, t_range, &layout);
@@ -154,14 +169,21 @@ impl Template {
         // Made outside the lock: two threads may make the same template, neither waits.
         let template = Arc::new(Template::new(width, height, n));
         let bytes = template.sectors.bytes() + template.guides.bytes();
-        kept().get_or_insert_with(|| Lru::new(KEPT_TEMPLATES, KEPT_BYTES)).insert(key, template.clone(), bytes);
+        kept().get_or_insert_with(|| Lru::new(KEPT_TEMPLATES, KEPT_BYTES)).insert(
+            key,
+            template.clone(),
+            bytes,
+        );
         template
     }
 
     fn new(width: u32, height: u32, n: usize) -> Template {
         let layout = Layout::of(width, height);
         let guides = Canvas::record(width, height, |canvas| draw_guides(canvas, &layout, n));
-        Template { sectors: SectorMap::new(width, height, (layout.cx, layout.cy), layout.radius, n), guides }
+        Template {
+            sectors: SectorMap::new(width, height, (layout.cx, layout.cy), layout.radius, n),
+            guides,
+        }
     }
 }
 
@@ -207,7 +229,11 @@ fn draw_frame(canvas: &mut Canvas, layout: &Layout) {
 /// Outline, ticks and value labels of the colour bar: 0, ±s (the robust scale) and ±max.
 fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi): (f64, f64)) {
     let [left, top, right, bottom] = layout.bar.map(|v| v as f64);
-    canvas.stroke(&[(left, top), (right, top), (right, bottom), (left, bottom), (left, top)], 1.0, MUTED);
+    canvas.stroke(
+        &[(left, top), (right, top), (right, bottom), (left, bottom), (left, top)],
+        1.0,
+        MUTED,
+    );
     let size = label_size(canvas.unit());
     let y_of = |t: f64| top + (hi - t) / (hi - lo) * (bottom - top);
     let mut ticks = vec![(hi, scale.max)];
@@ -224,7 +250,13 @@ fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi):
     for (t, value) in ticks {
         let y = y_of(t);
         canvas.stroke(&[(right, y), (right + 0.4 * size, y)], 1.0, INK);
-        canvas.text(&format_value(value), (right + 0.6 * size, y), size, INK, (HPos::Left, VPos::Center));
+        canvas.text(
+            &format_value(value),
+            (right + 0.6 * size, y),
+            size,
+            INK,
+            (HPos::Left, VPos::Center),
+        );
     }
 }
 
@@ -233,10 +265,21 @@ fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi):
 fn draw_bar_notes(canvas: &mut Canvas, layout: &Layout, scale: &Scale, n: usize) {
     let size = note_size(canvas.unit());
     let [left, _, _, bottom] = layout.bar.map(|v| v as f64);
-    let lines = ["colour =".to_string(), "tanh(v/s)".to_string(), format!("s = {}", format_value(scale.s)), format!("N = {n}")];
+    let lines = [
+        "colour =".to_string(),
+        "tanh(v/s)".to_string(),
+        format!("s = {}", format_value(scale.s)),
+        format!("N = {n}"),
+    ];
     for (k, line) in lines.iter().enumerate() {
         let y = bottom + (1.6 + 1.4 * k as f64) * size;
-        canvas.text(line, (left - 0.3 * size, y), size, if k < 2 { INK } else { MUTED_TEXT }, (HPos::Left, VPos::Center));
+        canvas.text(
+            line,
+            (left - 0.3 * size, y),
+            size,
+            if k < 2 { INK } else { MUTED_TEXT },
+            (HPos::Left, VPos::Center),
+        );
     }
 }
 
@@ -246,12 +289,18 @@ fn draw_ring_ruler(canvas: &mut Canvas, layout: &Layout, layers: usize) {
     let size = note_size(canvas.unit());
     let l = layers.max(1);
     let y = layout.cy + layout.radius + 1.6 * label_size(canvas.unit()) + 0.4 * size;
-    let x_of = |d: usize| layout.cx - layout.radius * (l - d) as f64 / l as f64 - 0.5 * layout.radius / l as f64;
+    let x_of = |d: usize| {
+        layout.cx - layout.radius * (l - d) as f64 / l as f64 - 0.5 * layout.radius / l as f64
+    };
     canvas.stroke(&[(layout.cx - layout.radius, y), (layout.cx, y)], 1.0, MUTED);
     // Ticks at d = 1, L and round steps between, no closer than four labels' width.
     let room = (layout.radius / (3.0 * size)).max(1.0);
-    let step = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000].into_iter().find(|&s| (l / s) as f64 <= room).unwrap_or(l);
-    let mut ticks: Vec<usize> = (0..=l).step_by(step).filter(|&d| d > 1 && d + step / 2 < l).collect();
+    let step = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000]
+        .into_iter()
+        .find(|&s| (l / s) as f64 <= room)
+        .unwrap_or(l);
+    let mut ticks: Vec<usize> =
+        (0..=l).step_by(step).filter(|&d| d > 1 && d + step / 2 < l).collect();
     ticks.insert(0, 1);
     if l > 1 {
         ticks.push(l);
@@ -261,7 +310,13 @@ fn draw_ring_ruler(canvas: &mut Canvas, layout: &Layout, layers: usize) {
         canvas.stroke(&[(x, y - 0.3 * size), (x, y + 0.3 * size)], 1.0, MUTED);
         canvas.text(&d.to_string(), (x, y + 0.5 * size), size, INK, (HPos::Center, VPos::Top));
     }
-    canvas.text("← ring: pair distance", (layout.cx + 0.4 * size, y), size, MUTED_TEXT, (HPos::Left, VPos::Center));
+    canvas.text(
+        "← ring: pair distance",
+        (layout.cx + 0.4 * size, y),
+        size,
+        MUTED_TEXT,
+        (HPos::Left, VPos::Center),
+    );
 }
 
 /// A value with about three significant digits.
@@ -314,7 +369,7 @@ mod tests {
     use super::super::tests::{colours, decode, folded_square, preview};
     use super::super::{disk_png, render_png, Picture};
     use super::*;
-    use crate::disk::{condensed_index, position};
+    use close_core::disk::{condensed_index, position};
 
     /// The colour of the pixel at polar point (r, θ) of a decoded picture.
     fn sample(rgb: &[u8], width: u32, layout: &Layout, r: f64, theta: f64) -> [u8; 3] {
@@ -340,7 +395,10 @@ mod tests {
     #[test]
     fn templates_are_kept_and_shared() {
         let a = Template::of(77, 66, 10);
-        assert!(Arc::ptr_eq(&a, &Template::of(77, 66, 10)), "the second call finds the first template");
+        assert!(
+            Arc::ptr_eq(&a, &Template::of(77, 66, 10)),
+            "the second call finds the first template"
+        );
         assert_eq!(*a, Template::new(77, 66, 10));
         assert!(!Arc::ptr_eq(&a, &Template::of(77, 66, 12)));
         // The largest canvas's template fits in the budget, so every template can be kept.
@@ -364,7 +422,8 @@ mod tests {
 
     #[test]
     fn zero_cells_are_white_and_large_cells_coloured() {
-        let analysis = folded_square(8, [std::f64::consts::FRAC_PI_4, 5.0 * std::f64::consts::FRAC_PI_4]);
+        let analysis =
+            folded_square(8, [std::f64::consts::FRAC_PI_4, 5.0 * std::f64::consts::FRAC_PI_4]);
         let disk = &analysis.disk(0).unwrap();
         let n = disk.n();
         let (w, h) = (400, 360);
@@ -428,8 +487,15 @@ mod tests {
             preview(&format!("large_{}.png", picture.name()), &png);
         }
         let big = folded_square(25, [1.0, 4.0]);
-        let (start, diff) = (render_png(&big, Picture::DiskStart, 480, 480).unwrap(), render_png(&big, Picture::Diff, 480, 480).unwrap());
-        assert_ne!(decode(&start).2, decode(&diff).2, "the diff disk of a fold is not its start disk");
+        let (start, diff) = (
+            render_png(&big, Picture::DiskStart, 480, 480).unwrap(),
+            render_png(&big, Picture::Diff, 480, 480).unwrap(),
+        );
+        assert_ne!(
+            decode(&start).2,
+            decode(&diff).2,
+            "the diff disk of a fold is not its start disk"
+        );
         preview("n100_disk_start.png", &start);
         preview("n100_diff.png", &diff);
     }

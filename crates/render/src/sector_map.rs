@@ -11,7 +11,7 @@
 use std::f64::consts::{PI, TAU};
 
 use super::Canvas;
-use crate::disk::condensed_index;
+use close_core::disk::condensed_index;
 
 /// The (ring d, first edge a) of the sector holding polar point (r ≤ 1, θ) on an N-edge disk.
 pub fn sector_at(n: usize, r: f64, theta: f64) -> (usize, usize) {
@@ -24,7 +24,7 @@ pub fn sector_at(n: usize, r: f64, theta: f64) -> (usize, usize) {
 }
 
 /// The cell of every disk pixel of a `width`×`height` canvas, the disk centred at pixel
-/// point (cx, cy) with rim radius `radius` (as [`super::disk::Layout`] places it), for N
+/// point (cx, cy) with rim radius `radius` (as [`super::disk_picture::Layout`] places it), for N
 /// edges.
 #[derive(Debug, PartialEq)]
 pub(crate) struct SectorMap {
@@ -50,10 +50,18 @@ struct RimPixel {
 impl SectorMap {
     /// Classify every pixel of the disk's bounding box by [`sector_at`]; the rim covers a
     /// pixel by clamp(radius + 1/2 − distance of its centre, 0, 1), a smooth edge.
-    pub(crate) fn new(width: u32, height: u32, (cx, cy): (f64, f64), radius: f64, n: usize) -> SectorMap {
+    pub(crate) fn new(
+        width: u32,
+        height: u32,
+        (cx, cy): (f64, f64),
+        radius: f64,
+        n: usize,
+    ) -> SectorMap {
         let mut map = SectorMap { runs: Vec::new(), cells: Vec::new(), rim: Vec::new() };
-        let y_range = ((cy - radius - 1.0).max(0.0) as u32)..((cy + radius + 2.0).min(height as f64) as u32);
-        let x_range = ((cx - radius - 1.0).max(0.0) as u32)..((cx + radius + 2.0).min(width as f64) as u32);
+        let y_range =
+            ((cy - radius - 1.0).max(0.0) as u32)..((cy + radius + 2.0).min(height as f64) as u32);
+        let x_range =
+            ((cx - radius - 1.0).max(0.0) as u32)..((cx + radius + 2.0).min(width as f64) as u32);
         for y in y_range {
             for x in x_range.clone() {
                 let (dx, dy) = (x as f64 + 0.5 - cx, cy - (y as f64 + 0.5));
@@ -83,7 +91,9 @@ impl SectorMap {
 
     /// Bytes the map holds.
     pub(crate) fn bytes(&self) -> usize {
-        size_of_val(self.runs.as_slice()) + size_of_val(self.cells.as_slice()) + size_of_val(self.rim.as_slice())
+        size_of_val(self.runs.as_slice())
+            + size_of_val(self.cells.as_slice())
+            + size_of_val(self.rim.as_slice())
     }
 
     /// Paint each disk pixel of `canvas` (white, of the map's size) with its cell's colour,
@@ -93,7 +103,9 @@ impl SectorMap {
         for &(start, len) in &self.runs {
             let (start, len) = (start as usize, len as usize);
             let (run, rest) = cells.split_at(len);
-            for (pixel, &cell) in canvas.rgb[3 * start..3 * (start + len)].chunks_exact_mut(3).zip(run) {
+            for (pixel, &cell) in
+                canvas.rgb[3 * start..3 * (start + len)].chunks_exact_mut(3).zip(run)
+            {
                 pixel.copy_from_slice(&colours[cell as usize]);
             }
             cells = rest;
@@ -112,7 +124,8 @@ mod tests {
     fn pixels(map: &SectorMap, width: u32) -> Vec<(u32, u32, u32, f64)> {
         let mut cells = map.cells.iter();
         let inside = map.runs.iter().flat_map(|&(start, len)| start..start + len);
-        let mut all: Vec<_> = inside.map(|p| (p % width, p / width, *cells.next().unwrap(), 1.0)).collect();
+        let mut all: Vec<_> =
+            inside.map(|p| (p % width, p / width, *cells.next().unwrap(), 1.0)).collect();
         assert!(cells.next().is_none(), "one cell per pixel of the runs");
         all.extend(map.rim.iter().map(|p| (p.x, p.y, p.cell, p.coverage)));
         all
@@ -121,16 +134,28 @@ mod tests {
     #[test]
     fn the_map_agrees_with_sector_at_on_every_pixel() {
         // Disks inside their canvas, and one whose rim runs off it.
-        for (width, height, (cx, cy), radius, n) in [(120, 100, (52.5, 55.0), 40.0, 8), (100, 140, (50.0, 61.3), 33.7, 13), (64, 64, (30.0, 34.0), 20.0, 4), (90, 90, (45.0, 45.0), 50.0, 1000)] {
+        for (width, height, (cx, cy), radius, n) in [
+            (120, 100, (52.5, 55.0), 40.0, 8),
+            (100, 140, (50.0, 61.3), 33.7, 13),
+            (64, 64, (30.0, 34.0), 20.0, 4),
+            (90, 90, (45.0, 45.0), 50.0, 1000),
+        ] {
             let map = SectorMap::new(width, height, (cx, cy), radius, n);
             let mut seen = vec![false; (width * height) as usize];
             for (x, y, cell, coverage) in pixels(&map, width) {
-                assert!(!std::mem::replace(&mut seen[(y * width + x) as usize], true), "pixel ({x}, {y}) twice");
+                assert!(
+                    !std::mem::replace(&mut seen[(y * width + x) as usize], true),
+                    "pixel ({x}, {y}) twice"
+                );
                 let (dx, dy) = (x as f64 + 0.5 - cx, cy - (y as f64 + 0.5));
                 let dist = dx.hypot(dy);
                 let (d, a) = sector_at(n, (dist / radius).min(1.0), dy.atan2(dx).rem_euclid(TAU));
                 let pair = (a.min((a + d) % n), a.max((a + d) % n));
-                assert_eq!(cell as usize, condensed_index(n, pair.0, pair.1), "({x}, {y}), N = {n}");
+                assert_eq!(
+                    cell as usize,
+                    condensed_index(n, pair.0, pair.1),
+                    "({x}, {y}), N = {n}"
+                );
                 assert!(coverage > 0.0);
                 assert_eq!(coverage, (radius + 0.5 - dist).min(1.0), "({x}, {y})");
             }

@@ -9,7 +9,7 @@
 //! only actions whose release it saw).
 //!
 //! ```
-//! use close_io::vrfolding::cut::actions;
+//! use close_io::vrfolding::bifold::actions;
 //! // idle, grip, grip, release, grip, release
 //! let grips = [false, true, true, false, true, false];
 //! let a = actions(&grips);

@@ -9,8 +9,8 @@
 //! stays text.
 //!
 //! ```
-//! use close_render::render::{render_step, Format, Picture};
-//! # let analysis = close_render::analyze(&close_render::border::prepare(vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]; 2]).unwrap(), Default::default()).unwrap();
+//! use close_render::{render_step, Format, Picture};
+//! # let analysis = close_core::analyze(&close_core::border::prepare(vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]; 2]).unwrap(), Default::default()).unwrap();
 //! let svg = String::from_utf8(render_step(&analysis, Picture::Close, None, 300, 300, Format::Svg, Default::default()).unwrap()).unwrap();
 //! assert!(svg.starts_with("<svg") && svg.contains("<text"));
 //! ```
@@ -40,10 +40,16 @@ impl Vector {
         match points {
             [] => {}
             [(x, y)] => {
-                let _ = write!(self.0, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="{}"/>"#, width / 2.0, hex(colour));
+                let _ = write!(
+                    self.0,
+                    r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="{}"/>"#,
+                    width / 2.0,
+                    hex(colour)
+                );
             }
             _ => {
-                let list: Vec<String> = points.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+                let list: Vec<String> =
+                    points.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
                 let _ = write!(
                     self.0,
                     r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="{width:.2}" stroke-linejoin="round" stroke-linecap="round"/>"#,
@@ -56,7 +62,14 @@ impl Vector {
 
     /// `text` of `size` px with its left end at `left` and its baseline at `baseline`,
     /// `width` px long as the PNG lays it out.
-    pub(crate) fn text(&mut self, text: &str, (left, baseline): (f64, f64), size: f64, width: f64, colour: [u8; 3]) {
+    pub(crate) fn text(
+        &mut self,
+        text: &str,
+        (left, baseline): (f64, f64),
+        size: f64,
+        width: f64,
+        colour: [u8; 3],
+    ) {
         let _ = write!(
             self.0,
             r#"<text x="{left:.2}" y="{baseline:.2}" font-size="{size:.2}" textLength="{width:.2}" lengthAdjust="spacingAndGlyphs" fill="{}">{}</text>"#,

@@ -11,7 +11,7 @@
 //! angle errors |f1 − t1|, |f2 − t2| (on the circle).
 //!
 //! ```
-//! use close_render::render::borders::equal_aspect;
+//! use close_render::borders::equal_aspect;
 //! // A 2×1 box shown in a square plot gets a y range as wide as its x range.
 //! let (x, y) = equal_aspect((0.0, 2.0), (0.0, 1.0), (100, 100));
 //! assert_eq!((x, y), ((0.0, 2.0), (-0.5, 1.5)));
@@ -21,13 +21,16 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::raster::text_width;
-use super::{fold_colour, label_size, line_width, note_size, plot, text_style, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
-use crate::analysis::Analysis;
-use crate::angle;
-use crate::border::Point;
-use crate::error::Result;
-use crate::fold::reflect::{apply_fold_line, fold_line};
-use crate::fold::Line;
+use super::{
+    fold_colour, label_size, line_width, note_size, plot, text_style, Canvas, INK, MUTED,
+    MUTED_TEXT, PAPER,
+};
+use close_core::analysis::Analysis;
+use close_core::angle;
+use close_core::border::Point;
+use close_core::error::Result;
+use close_core::fold::reflect::{apply_fold_line, fold_line};
+use close_core::fold::Line;
 
 /// One border to draw: vertices (x, y, z), colour, line width in pixels, legend name.
 struct Trace {
@@ -59,7 +62,11 @@ fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
 /// The line of each fold of `folds` across the cloth it folds: fold k on `start` with folds
 /// 0…k−1 applied, along `lines[k]` when given (the found folds' lines), else through its two
 /// fold points; `None` for a fold whose points coincide and has no line.
-fn fold_segments(start: &[Point], folds: &[[f64; 2]], lines: &[Option<Line>]) -> Vec<Option<[[f64; 2]; 2]>> {
+fn fold_segments(
+    start: &[Point],
+    folds: &[[f64; 2]],
+    lines: &[Option<Line>],
+) -> Vec<Option<[[f64; 2]; 2]>> {
     let mut state = start.to_vec();
     folds
         .iter()
@@ -75,22 +82,44 @@ fn fold_segments(start: &[Point], folds: &[[f64; 2]], lines: &[Option<Line>]) ->
 
 /// The found folds' lines, and the true folds' beside them with the found fold's angle errors.
 fn fold_marks(analysis: &Analysis, truth: &[[f64; 2]]) -> Vec<FoldMark> {
-    let numbered = |what: &str, k: usize, count: usize| if count > 1 { format!("{what} {}", k + 1) } else { what.to_string() };
+    let numbered = |what: &str, k: usize, count: usize| {
+        if count > 1 {
+            format!("{what} {}", k + 1)
+        } else {
+            what.to_string()
+        }
+    };
     let found = fold_segments(analysis.start_border(), &analysis.folds, &analysis.fold_lines());
     let true_lines = fold_segments(analysis.start_border(), truth, &[]);
     let mut marks = Vec::new();
     for (k, segment) in found.into_iter().enumerate() {
         if let Some(ends) = segment {
-            marks.push(FoldMark { ends, truth: false, colour: fold_colour(k), name: numbered("fold", k, analysis.folds.len()) });
+            marks.push(FoldMark {
+                ends,
+                truth: false,
+                colour: fold_colour(k),
+                name: numbered("fold", k, analysis.folds.len()),
+            });
         }
     }
     for (k, (segment, t)) in true_lines.into_iter().zip(truth).enumerate() {
         let error = analysis.folds.get(k).map_or_else(
             || "not found".to_string(),
-            |f| format!("{:.1}°, {:.1}° off", angle::distance(f[0], t[0]).to_degrees(), angle::distance(f[1], t[1]).to_degrees()),
+            |f| {
+                format!(
+                    "{:.1}°, {:.1}° off",
+                    angle::distance(f[0], t[0]).to_degrees(),
+                    angle::distance(f[1], t[1]).to_degrees()
+                )
+            },
         );
         if let Some(ends) = segment {
-            marks.push(FoldMark { ends, truth: true, colour: fold_colour(k), name: format!("{} ({error})", numbered("true fold", k, truth.len())) });
+            marks.push(FoldMark {
+                ends,
+                truth: true,
+                colour: fold_colour(k),
+                name: format!("{} ({error})", numbered("true fold", k, truth.len())),
+            });
         }
     }
     marks
@@ -109,7 +138,7 @@ pub fn equal_aspect(x: (f64, f64), y: (f64, f64), pixels: (u32, u32)) -> ((f64, 
 
 /// The borders of `analysis` that exist, bottom to top.
 fn traces(analysis: &Analysis, unit: f64) -> Vec<Trace> {
-    let array = |p: &crate::border::Point| [p.x, p.y, p.z];
+    let array = |p: &close_core::border::Point| [p.x, p.y, p.z];
     let mut traces = vec![Trace {
         points: analysis.start_border().iter().map(array).collect(),
         colour: [160, 160, 160],
@@ -137,7 +166,8 @@ fn traces(analysis: &Analysis, unit: f64) -> Vec<Trace> {
 
 /// The smallest box holding every point of `traces`, padded by 6 %; a unit box when empty.
 fn bounds(traces: &[Trace]) -> ((f64, f64), (f64, f64)) {
-    let points = traces.iter().flat_map(|t| &t.points).filter(|p| p[0].is_finite() && p[1].is_finite());
+    let points =
+        traces.iter().flat_map(|t| &t.points).filter(|p| p[0].is_finite() && p[1].is_finite());
     let (mut x, mut y) = ((f64::INFINITY, f64::NEG_INFINITY), (f64::INFINITY, f64::NEG_INFINITY));
     for p in points {
         x = (x.0.min(p[0]), x.1.max(p[0]));
@@ -175,7 +205,11 @@ impl Mapping {
 
 /// Draw the border plot of `analysis`, with the `truth` folds (when known) beside the found
 /// ones; gives how it mapped data to pixels.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]]) -> Result<Mapping> {
+pub(crate) fn draw(
+    canvas: &mut Canvas,
+    analysis: &Analysis,
+    truth: &[[f64; 2]],
+) -> Result<Mapping> {
     let unit = canvas.unit();
     let traces = traces(analysis, unit);
     let marks = fold_marks(analysis, truth);
@@ -184,11 +218,30 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     let note = note_size(unit);
     let top = canvas.title_band();
     let (w, h) = (canvas.width as f64, canvas.height as f64);
-    let mut entries: Vec<Entry> = traces.iter().map(|t| Entry { colour: t.colour, width: t.width, dashed: false, text: t.name.to_string() }).collect();
-    entries.extend(marks.iter().map(|m| Entry { colour: m.colour, width: fold_width(unit, m.truth), dashed: m.truth, text: m.name.clone() }));
+    let mut entries: Vec<Entry> = traces
+        .iter()
+        .map(|t| Entry {
+            colour: t.colour,
+            width: t.width,
+            dashed: false,
+            text: t.name.to_string(),
+        })
+        .collect();
+    entries.extend(marks.iter().map(|m| Entry {
+        colour: m.colour,
+        width: fold_width(unit, m.truth),
+        dashed: m.truth,
+        text: m.name.clone(),
+    }));
     // The metrics and the vertex-0 key: one line where it fits, else two.
     let notes = match &analysis.metrics {
-        Some(m) => vec![format!("RMSE {:.3} · Fréchet {:.3} · aligned {:.3} (normalised)", m.rmse, m.frechet, m.aligned_rmse), "● vertex 0".to_string()],
+        Some(m) => vec![
+            format!(
+                "RMSE {:.3} · Fréchet {:.3} · aligned {:.3} (normalised)",
+                m.rmse, m.frechet, m.aligned_rmse
+            ),
+            "● vertex 0".to_string(),
+        ],
         None => vec!["● vertex 0".to_string()],
     };
     let joined = notes.join(" · ");
@@ -198,14 +251,16 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
     let row = 1.5 * note;
     let bottom = row * (legend.rows + notes.len()) as f64 + 0.6 * note;
     let mapping = canvas.draw(|area| {
-        let body = area.margin(top as i32, bottom as i32, (0.6 * label) as i32, (1.2 * label) as i32);
+        let body =
+            area.margin(top as i32, bottom as i32, (0.6 * label) as i32, (1.2 * label) as i32);
         let builder = || {
             let mut b = ChartBuilder::on(&body);
             b.x_label_area_size((1.9 * note) as u32).y_label_area_size((3.4 * note) as u32);
             b
         };
         // The plot's pixel size is known only once built: build once to measure, then for real.
-        let pixels = builder().build_cartesian_2d(x.0..x.1, y.0..y.1)?.plotting_area().dim_in_pixel();
+        let pixels =
+            builder().build_cartesian_2d(x.0..x.1, y.0..y.1)?.plotting_area().dim_in_pixel();
         let (x, y) = equal_aspect(x, y, pixels);
         let mut chart = builder().build_cartesian_2d(x.0..x.1, y.0..y.1)?;
         chart
@@ -218,7 +273,12 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
             .y_labels(5)
             .draw()?;
         let (px, py) = chart.plotting_area().get_pixel_range();
-        Ok(Mapping { x, y, px: (px.start as f64, px.end as f64), py: (py.start as f64, py.end as f64) })
+        Ok(Mapping {
+            x,
+            y,
+            px: (px.start as f64, px.end as f64),
+            py: (py.start as f64, py.end as f64),
+        })
     })?;
     canvas.title("Borders (XY)");
     for trace in &traces {
@@ -246,11 +306,19 @@ fn fold_width(unit: f64, truth: bool) -> f64 {
 /// A line from `ends[0]` to `ends[1]` (pixels): solid with a white halo, or dashed (dashes
 /// and gaps of four widths) in `colour` darkened, without a halo, so a line under it shows
 /// between the dashes.
-fn draw_line(canvas: &mut Canvas, [a, b]: [(f64, f64); 2], width: f64, colour: [u8; 3], dashed: bool) {
+fn draw_line(
+    canvas: &mut Canvas,
+    [a, b]: [(f64, f64); 2],
+    width: f64,
+    colour: [u8; 3],
+    dashed: bool,
+) {
     if dashed {
         let length = (b.0 - a.0).hypot(b.1 - a.1).max(1e-9);
         let period = 8.0 * width.max(1.5);
-        let at = |t: f64| (a.0 + (b.0 - a.0) * t.min(length) / length, a.1 + (b.1 - a.1) * t.min(length) / length);
+        let at = |t: f64| {
+            (a.0 + (b.0 - a.0) * t.min(length) / length, a.1 + (b.1 - a.1) * t.min(length) / length)
+        };
         let dark = colour.map(|c| (c as f64 * 0.55).round() as u8);
         for t in (0..(length / period).ceil() as usize).map(|k| k as f64 * period) {
             canvas.stroke(&[at(t), at(t + period / 2.0)], width, dark);
@@ -286,7 +354,10 @@ impl Legend {
         let mut places = Vec::with_capacity(entries.len());
         let (mut row, mut x) = (0, left);
         for entry in entries {
-            let wide = Self::SWATCH * size + entry.width.max(2.0) + 0.4 * size + text_width(&entry.text, size);
+            let wide = Self::SWATCH * size
+                + entry.width.max(2.0)
+                + 0.4 * size
+                + text_width(&entry.text, size);
             if x > left && x + wide > right {
                 (row, x) = (row + 1, left);
             }
@@ -303,7 +374,13 @@ impl Legend {
             let y = top + r as f64 * row;
             // A wide line's round caps reach half its width past its ends.
             let cap = entry.width.max(2.0) / 2.0;
-            draw_line(canvas, [(x + cap, y), (x + cap + Self::SWATCH * size, y)], entry.width.max(2.0), entry.colour, entry.dashed);
+            draw_line(
+                canvas,
+                [(x + cap, y), (x + cap + Self::SWATCH * size, y)],
+                entry.width.max(2.0),
+                entry.colour,
+                entry.dashed,
+            );
             let text_x = x + Self::SWATCH * size + 2.0 * cap + 0.4 * size;
             canvas.text(&entry.text, (text_x, y), size, INK, (HPos::Left, VPos::Center));
         }
@@ -339,7 +416,8 @@ pub(crate) fn draw_thumbnail(canvas: &mut Canvas, analysis: &Analysis) {
 fn draw_trace(canvas: &mut Canvas, trace: &Trace, mapping: &Mapping) {
     let n = trace.points.len();
     let z = |k: usize| (trace.points[k][2] + trace.points[(k + 1) % n][2]) / 2.0;
-    let (lo, hi) = (0..n).map(z).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) =
+        (0..n).map(z).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
     let raised = |k: usize| hi - lo > 1e-9 * (1.0 + hi.abs()) && z(k) > (lo + hi) / 2.0;
     let at = |v: usize| mapping.pixel(&trace.points[v % n]);
     for run in runs(n, |k| !raised(k)) {
@@ -393,28 +471,46 @@ mod tests {
 
     #[test]
     fn true_folds_are_drawn_beside_the_found_ones_with_their_errors() {
-        let entry = crate::dataset::Dataset::builtin().get("napkin__half_then_half").unwrap().clone();
-        let analysis = crate::analyze(&entry.sample.border_frames().unwrap(), crate::FrameRange::default()).unwrap();
+        let entry =
+            close_io::dataset::Dataset::builtin().get("napkin__half_then_half").unwrap().clone();
+        let analysis = close_core::analyze(
+            &entry.sample.border_frames().unwrap(),
+            close_core::FrameRange::default(),
+        )
+        .unwrap();
         let truth = entry.sample.truth.as_ref().unwrap().folds.clone();
         assert_eq!((analysis.folds.len(), truth.len()), (2, 2));
         let marks = fold_marks(&analysis, &truth);
-        let (found, true_ones): (Vec<&FoldMark>, Vec<&FoldMark>) = marks.iter().partition(|m| !m.truth);
+        let (found, true_ones): (Vec<&FoldMark>, Vec<&FoldMark>) =
+            marks.iter().partition(|m| !m.truth);
         assert_eq!((found.len(), true_ones.len()), (2, 2));
         let size = bounds(&traces(&analysis, 480.0)).0;
         let size = size.1 - size.0;
         for (k, (f, t)) in found.iter().zip(&true_ones).enumerate() {
-            let off = |e: usize| crate::angle::distance(analysis.folds[k][e], truth[k][e]).to_degrees();
+            let off = |e: usize| {
+                close_core::angle::distance(analysis.folds[k][e], truth[k][e]).to_degrees()
+            };
             let errors = format!("{:.1}°, {:.1}° off", off(0), off(1));
             assert!(t.name.contains(&errors), "{} lacks {errors}", t.name);
             assert_eq!(f.colour, t.colour, "fold {k} and its truth share a colour");
             // Found right, so each true line runs where the found one does (either way round).
             let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
-            let apart = (d(f.ends[0], t.ends[0]) + d(f.ends[1], t.ends[1])).min(d(f.ends[0], t.ends[1]) + d(f.ends[1], t.ends[0]));
+            let apart = (d(f.ends[0], t.ends[0]) + d(f.ends[1], t.ends[1]))
+                .min(d(f.ends[0], t.ends[1]) + d(f.ends[1], t.ends[0]));
             assert!(apart < 0.1 * size, "fold {k}: the true line is {apart} away");
         }
         let picture = |truth: &[[f64; 2]]| {
             let known = super::super::Known { truth, mesh: None };
-            super::super::render_step(&analysis, super::super::Picture::Borders, None, 480, 480, super::super::Format::Png, known).unwrap()
+            super::super::render_step(
+                &analysis,
+                super::super::Picture::Borders,
+                None,
+                480,
+                480,
+                super::super::Format::Png,
+                known,
+            )
+            .unwrap()
         };
         let (with, without) = (picture(&truth), picture(&[]));
         assert_ne!(with, without, "the truth draws nothing");

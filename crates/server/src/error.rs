@@ -13,8 +13,7 @@ use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde_json::json;
 
-use crate::error::Error;
-use super::guard::BodyTooSlow;
+use close_core::error::Error;
 
 /// Why a request failed.
 #[derive(Debug)]
@@ -48,8 +47,13 @@ impl ApiError {
     pub fn message(&self) -> String {
         match self {
             ApiError::Input(e) => e.to_string(),
-            ApiError::UnsupportedMediaType(m) | ApiError::NotFound(m) | ApiError::BadRequest(m) | ApiError::Internal(m) => m.clone(),
-            ApiError::Rejected(status, m) if *status == StatusCode::PAYLOAD_TOO_LARGE => format!("request body too large: {m}"),
+            ApiError::UnsupportedMediaType(m)
+            | ApiError::NotFound(m)
+            | ApiError::BadRequest(m)
+            | ApiError::Internal(m) => m.clone(),
+            ApiError::Rejected(status, m) if *status == StatusCode::PAYLOAD_TOO_LARGE => {
+                format!("request body too large: {m}")
+            }
             ApiError::Rejected(_, m) => m.clone(),
         }
     }
@@ -58,13 +62,18 @@ impl ApiError {
 /// The status of a library error (no catch-all: a new variant must be given its status).
 fn input_status(e: &Error) -> StatusCode {
     match e {
-        Error::Parse { .. } | Error::Empty { .. } | Error::InvalidArgument(_) | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
+        Error::Parse { .. }
+        | Error::Empty { .. }
+        | Error::InvalidArgument(_)
+        | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
         Error::TooLarge { .. } | Error::OverBudget { .. } => StatusCode::PAYLOAD_TOO_LARGE,
         // The request's time ran out (its answer is usually the time-out layer's 408).
         Error::Cancelled => StatusCode::REQUEST_TIMEOUT,
-        Error::TooFewVertices { .. } | Error::NonFinite { .. } | Error::FrameSizeMismatch { .. } | Error::Degenerate { .. } | Error::Mesh(_) => {
-            StatusCode::UNPROCESSABLE_ENTITY
-        }
+        Error::TooFewVertices { .. }
+        | Error::NonFinite { .. }
+        | Error::FrameSizeMismatch { .. }
+        | Error::Degenerate { .. }
+        | Error::Mesh(_) => StatusCode::UNPROCESSABLE_ENTITY,
         // A user's dataset file that cannot be read is bad input; an unknown id is a 404.
         Error::Store { .. } => StatusCode::UNPROCESSABLE_ENTITY,
         Error::UnknownSample { .. } => StatusCode::NOT_FOUND,
@@ -127,11 +136,15 @@ impl From<MultipartError> for ApiError {
         let mut source: Option<&dyn std::error::Error> = Some(&e);
         while let Some(s) = source {
             if s.to_string().contains("length limit exceeded") {
-                return ApiError::Rejected(StatusCode::PAYLOAD_TOO_LARGE, "the form is larger than the limit".into());
+                return ApiError::Rejected(
+                    StatusCode::PAYLOAD_TOO_LARGE,
+                    "the form is larger than the limit".into(),
+                );
             }
             source = s.source();
         }
-        let status = if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
+        let status =
+            if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
         ApiError::Rejected(status, format!("could not read the form: {}", e.body_text()))
     }
 }
@@ -143,14 +156,34 @@ mod tests {
     #[test]
     fn input_errors_are_4xx_and_our_failures_5xx() {
         let status = |e: Error| ApiError::from(e).status();
-        assert_eq!(status(Error::parse(crate::error::Format::Text, "x")), StatusCode::BAD_REQUEST);
-        assert_eq!(status(Error::too_large("frames", 2000, 1000).in_file("a.json")), StatusCode::PAYLOAD_TOO_LARGE);
-        assert_eq!(status(Error::Mesh(crate::error::MeshError::NoFaces)), StatusCode::UNPROCESSABLE_ENTITY);
+        assert_eq!(
+            status(Error::parse(close_core::error::Format::Text, "x")),
+            StatusCode::BAD_REQUEST
+        );
+        assert_eq!(
+            status(Error::too_large("frames", 2000, 1000).in_file("a.json")),
+            StatusCode::PAYLOAD_TOO_LARGE
+        );
+        assert_eq!(
+            status(Error::Mesh(close_core::error::MeshError::NoFaces)),
+            StatusCode::UNPROCESSABLE_ENTITY
+        );
         assert_eq!(status(Error::UnknownSample { id: "x".into() }), StatusCode::NOT_FOUND);
-        assert_eq!(status(Error::OverBudget { what: "cells", got: 2, limit: 1 }), StatusCode::PAYLOAD_TOO_LARGE);
+        assert_eq!(
+            status(Error::OverBudget { what: "cells", got: 2, limit: 1 }),
+            StatusCode::PAYLOAD_TOO_LARGE
+        );
         assert_eq!(status(Error::Cancelled), StatusCode::REQUEST_TIMEOUT);
-        assert_eq!(status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }), StatusCode::UNPROCESSABLE_ENTITY);
+        assert_eq!(
+            status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }),
+            StatusCode::UNPROCESSABLE_ENTITY
+        );
         assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);
         assert_eq!(status(Error::Recording("encoder".into())), StatusCode::INTERNAL_SERVER_ERROR);
     }
 }
+
+/// Why a body read failed: it arrived slower than the minimum rate (bytes a second).
+#[derive(Debug, thiserror::Error)]
+#[error("the request body arrives slower than {0} bytes a second")]
+pub struct BodyTooSlow(pub u64);
