@@ -522,7 +522,8 @@ fn export_stores(_: &[PathBuf], _: &(dyn Fn(&str, &Sample) -> CliResult + Sync))
 }
 
 /// Analyse the sample, then plan from its start border, corners and folds to `goal`;
-/// vertices are reported as input indices.
+/// vertices are reported as input indices. `--json` prints the plan as the server and Python
+/// give it (schema/plan.json).
 fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     let &[g1, g2] = goal else {
         return Err(CliError::Usage(format!(
@@ -533,7 +534,8 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     let sample = load_sample(files)?;
     let frames = sample.border_frames()?;
     let analysis = analyze(&frames, FrameRange::default())?;
-    let plan = close::plan::plan_for(&analysis, close::Fold::new(g1, g2))?;
+    // The answer of `POST /api/plan` and Python's `close.plan`: the plan and its start.
+    let plan = close::plan::answer(&analysis, close::Fold::new(g1, g2))?;
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }

@@ -2,14 +2,19 @@
 
 Angles are radians in [0, 2π), vertex k of N at 2πk/N; a fold (f1, f2) has its folded side
 anticlockwise from f1 to f2. Arrays are numpy float64.
+
+The dicts the package returns are the JSON answers of the `close` command line and server,
+typed below: each `TypedDict` names the schema it follows (`schema/*.json` of the repository,
+generated from the Rust types), and `tests/it/schema.rs` checks their keys against it.
 """
 
 import os
 from concurrent.futures import Executor
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import NotRequired, TypedDict
 
 from . import vrfolding as vrfolding
 
@@ -19,13 +24,267 @@ PathLike = Union[str, os.PathLike[str]]
 Frames = Union[npt.ArrayLike, Sequence[npt.ArrayLike]]
 FloatArray = npt.NDArray[np.float64]
 
+# The analysis (`Analysis.to_dict()`, `close analyze --json`): schema/analysis.json.
+
+Pair = List[float]
+Point3 = List[float]
+
+class LineDict(TypedDict):
+    """A fold line in XY (schema/analysis.json#/$defs/Line)."""
+
+    point: Pair
+    direction: Pair
+
+class MetricsDict(TypedDict):
+    """Errors of a predicted border (schema/analysis.json#/$defs/Metrics)."""
+
+    rmse: float
+    frechet: float
+    aligned_rmse: float
+
+class CloseDict(TypedDict):
+    """The CloSE value (schema/analysis.json#/$defs/Close)."""
+
+    corners: List[float]
+    folds: List[Pair]
+
+class SideFoldDict(TypedDict):
+    """schema/analysis.json#/$defs/SideFold"""
+
+    from_corner: int
+    to_corner: int
+    folded_percent: float
+
+class FoldedCornerDict(TypedDict):
+    """schema/analysis.json#/$defs/FoldedCorner"""
+
+    corner: int
+    vertex: int
+    before: SideFoldDict
+    after: SideFoldDict
+
+FoldClass = Literal[
+    "folded_in_half",
+    "diagonally_folded_in_half",
+    "one_side_folded",
+    "folded_in_half_askew",
+    "one_side_askew",
+    "corner_folded",
+    "folded",
+]
+
+# The label of one fold ("class" is a Python keyword: the call form).
+# schema/analysis.json#/$defs/FoldLabel
+FoldLabelDict = TypedDict(
+    "FoldLabelDict",
+    {
+        "class": FoldClass,
+        "folded_corners": List[int],
+        "corners_on_fold_line": List[int],
+        "corner_sides": List[FoldedCornerDict],
+        "cut_sides": List[SideFoldDict],
+        "folded_percent": float,
+        "border_degrees": Pair,
+        "text": str,
+    },
+)
+
+class LabelDict(TypedDict):
+    """The semantic label (schema/analysis.json#/$defs/Label)."""
+
+    text: str
+    corners: int
+    circular: bool
+    folds: List[FoldLabelDict]
+
+class CurveDict(TypedDict):
+    """A fold curve θ = a0 + a1·r on the diff disk (schema/analysis.json#/$defs/Curve)."""
+
+    a0: float
+    a1: float
+    loss: float
+    rim: float
+
+class CutDict(TypedDict):
+    """schema/analysis.json#/$defs/Cut"""
+
+    p1: float
+    p2: float
+    residual: float
+    same_to_cross: float
+    inside_edge: List[bool]
+
+class OrientationDict(TypedDict):
+    """schema/analysis.json#/$defs/Orientation"""
+
+    flip_forward: float
+    flip_backward: float
+    tie_break: bool
+    swapped: bool
+
+class SynthesisDict(TypedDict):
+    """The refinement by synthesis, in border parameters (schema/analysis.json#/$defs/Synthesis)."""
+
+    s: Pair
+    arcs: List[Pair]
+    direction: Optional[Pair]
+    mismatch: float
+    unfolded_mismatch: float
+
+class StepDict(TypedDict):
+    """`steps[k]`: frame k−1 → k (schema/analysis.json#/$defs/Step)."""
+
+    from_frame: int
+    to_frame: int
+    fold: Optional[Pair]
+    arcs: List[Pair]
+    curves: List[CurveDict]
+    cut: Optional[CutDict]
+    orientation: Optional[OrientationDict]
+    synthesis: Optional[SynthesisDict]
+    line: Optional[LineDict]
+    metrics: MetricsDict
+    predicted: List[Point3]
+
+class AnalysisDict(TypedDict):
+    """What `close analyze --json` prints (schema/analysis.json)."""
+
+    n: int
+    corners: List[float]
+    corner_vertices: List[int]
+    corner_threshold: float
+    folds: List[Pair]
+    close: CloseDict
+    label: LabelDict
+    border_indices: List[int]
+    border_source: str
+    reversed: bool
+    warnings: List[str]
+    start_frame: int
+    end_frame: int
+    steps: List[StepDict]
+    predicted_end: List[Point3]
+    metrics: Optional[MetricsDict]
+
+# The plan (`close.plan`, `POST /api/plan`, `close plan --json`): schema/plan.json.
+
+# schema/plan.json#/$defs/Pick
+PickDict = TypedDict("PickDict", {"vertex": int, "angle": float, "from": Point3, "to": Point3})
+
+class PlanStepDict(TypedDict):
+    """schema/plan.json#/$defs/PlanStep"""
+
+    action: Literal["fold", "unfold"]
+    fold: Pair
+    corners: List[int]
+    picks: List[PickDict]
+
+class PlanDict(TypedDict):
+    """How to reach a goal fold (schema/plan.json)."""
+
+    case: Literal["fold", "direct", "unfold_then_fold", "already_there"]
+    steps: List[PlanStepDict]
+    goal: Pair
+    folds: List[Pair]
+    lines: List[Optional[LineDict]]
+    corners: List[float]
+    start_border: List[Point3]
+    border_indices: List[int]
+
+# The evaluation (`close.evaluate`, `close eval --json`): schema/evaluation.json.
+
+class StatDict(TypedDict):
+    """Mean and population variance (schema/evaluation.json#/$defs/Stat)."""
+
+    mean: float
+    var: float
+
+class FoldSummaryDict(TypedDict):
+    """schema/evaluation.json#/$defs/FoldSummary"""
+
+    fold: int
+    count: int
+    found: int
+    rmse: Optional[StatDict]
+    frechet: Optional[StatDict]
+    aligned_rmse: Optional[StatDict]
+    f1_error: Optional[StatDict]
+    f2_error: Optional[StatDict]
+
+class SummaryDict(TypedDict):
+    """One row of the table (schema/evaluation.json#/$defs/Summary)."""
+
+    category: str
+    count: int
+    rmse: Optional[StatDict]
+    frechet: Optional[StatDict]
+    aligned_rmse: Optional[StatDict]
+    fold_count_misses: int
+    errors: int
+    dropped: int
+    f1_error: Optional[StatDict]
+    f2_error: Optional[StatDict]
+    by_fold: NotRequired[List[FoldSummaryDict]]
+
+class StepResultDict(TypedDict):
+    """schema/evaluation.json#/$defs/StepResult"""
+
+    fold_found: bool
+    rmse: float
+    frechet: float
+    aligned_rmse: Optional[float]
+    angle_error: Optional[Pair]
+
+class SampleResultDict(TypedDict):
+    """schema/evaluation.json#/$defs/SampleResult"""
+
+    name: str
+    category: str
+    folds: int
+    expected_folds: int
+    rmse: Optional[float]
+    frechet: Optional[float]
+    aligned_rmse: Optional[float]
+    angle_error: Optional[Pair]
+    error: Optional[str]
+    dropped: NotRequired[str]
+    steps: List[StepResultDict]
+
+class EvaluationDict(TypedDict):
+    """What `close eval --json` prints (schema/evaluation.json)."""
+
+    categories: List[SummaryDict]
+    overall: SummaryDict
+    samples: List[SampleResultDict]
+
+# A sample's parts (`Sample.truth`, `Sample.mesh`, `Sample.meta`).
+
+class TruthDict(TypedDict):
+    """The known folds (schema/sample.json#/$defs/Truth)."""
+
+    folds: List[Pair]
+    folded_vertices: NotRequired[List[int]]
+
+class MeshDict(TypedDict):
+    """A mesh sample's mesh: faces and (F, V, 3) vertex frames."""
+
+    faces: List[List[int]]
+    frames: FloatArray
+
+class MetaDict(TypedDict, total=False):
+    """Where a sample came from: a VR-Folding action's video, category and fold."""
+
+    video_id: str
+    category: str
+    fold: int
+
 class CloseError(ValueError):
     """Bad input, with the message the `close` command line prints."""
 
 class Sample:
     """A cloth sample: border frames (or a mesh), frame 0 the flat start."""
 
-    def __init__(self, frames: Frames, *, name: str = "", category: str = "", truth: Optional[Dict[str, Any]] = None) -> None: ...
+    def __init__(self, frames: Frames, *, name: str = "", category: str = "", truth: Optional[TruthDict] = None) -> None: ...
     @property
     def name(self) -> str: ...
     @property
@@ -34,11 +293,11 @@ class Sample:
     def frames(self) -> FloatArray:
         """(F, N, 3) vertex positions per frame (a mesh sample: its vertex frames)."""
     @property
-    def truth(self) -> Optional[Dict[str, Any]]: ...
+    def truth(self) -> Optional[TruthDict]: ...
     @property
-    def mesh(self) -> Optional[Dict[str, Any]]: ...
+    def mesh(self) -> Optional[MeshDict]: ...
     @property
-    def meta(self) -> Dict[str, Any]: ...
+    def meta(self) -> MetaDict: ...
     def to_json(self) -> str: ...
 
 class Analysis:
@@ -51,16 +310,16 @@ class Analysis:
     @property
     def folds(self) -> List[Tuple[float, float]]: ...
     @property
-    def close(self) -> Dict[str, Any]: ...
+    def close(self) -> CloseDict: ...
     @property
     def label(self) -> str: ...
     @property
     def predicted_end(self) -> FloatArray: ...
     @property
-    def metrics(self) -> Optional[Dict[str, float]]: ...
+    def metrics(self) -> Optional[MetricsDict]: ...
     @property
     def border_indices(self) -> npt.NDArray[np.int64]: ...
-    def to_dict(self) -> Dict[str, Any]:
+    def to_dict(self) -> AnalysisDict:
         """The object `close analyze --json` prints, key for key."""
     def to_json(self) -> str: ...
 
@@ -93,7 +352,7 @@ def interpolate(
     """(steps, N, 3) borders of the folding motion from fold `from_` to fold `to`, or of a
     fold's `arcs` turned over about `line` (an analysis step's `arcs` and `line`)."""
 
-def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> Dict[str, Any]:
+def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> PlanDict:
     """The `POST /api/plan` answer: how to reach the goal fold from the sample's state."""
 
 def evaluate(
@@ -102,5 +361,5 @@ def evaluate(
     threads: Optional[int] = None,
     executor: Optional[Executor] = None,
     method: str = "default",
-) -> Dict[str, Any]:
+) -> EvaluationDict:
     """The object `close eval --json` prints; `executor`: any concurrent.futures.Executor."""

@@ -23,7 +23,6 @@ use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{IntoPyDict, PyList, PyTuple};
 use rayon::prelude::*;
-use serde_json::Value;
 
 pyo3::create_exception!(
     close,
@@ -63,7 +62,7 @@ fn method(name: &str) -> PyResult<FoldMethod> {
     if name == "default" {
         return Ok(FoldMethod::default());
     }
-    serde_json::from_value(Value::String(name.into())).map_err(|_| {
+    serde_json::from_value(serde_json::Value::String(name.into())).map_err(|_| {
         invalid(format!("unknown method {name:?}: expected \"default\", \"cut\" or \"paper\""))
     })
 }
@@ -179,13 +178,26 @@ fn read(path: &PathBuf) -> PyResult<(String, Vec<u8>)> {
 #[pyclass(frozen, module = "close", name = "Sample")]
 struct PySample {
     sample: Arc<Sample>,
-    /// Where the sample came from (a VR-Folding action: video_id, category, fold).
-    meta: Value,
+    /// Where the sample came from.
+    meta: Meta,
+}
+
+/// `Sample.meta`: for a VR-Folding action its video, category and fold; empty otherwise.
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+struct Meta {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    video_id: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    category: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fold: Option<usize>,
 }
 
 impl PySample {
-    fn state(&self) -> (String, String) {
-        (close_io::formats::json::to_json(&self.sample), self.meta.to_string())
+    fn state(&self) -> PyResult<(String, String)> {
+        let meta = serde_json::to_string(&self.meta)
+            .map_err(|e| invalid(format!("could not write JSON: {e}")))?;
+        Ok((close_io::formats::json::to_json(&self.sample), meta))
     }
 }
 
@@ -201,7 +213,7 @@ impl PySample {
     ) -> PyResult<Self> {
         let mut sample = Sample::from_frames(name, category, crate::frames(frames)?);
         sample.truth = truth.map(|t| from_python(t, "truth")).transpose()?;
-        Ok(PySample { sample: Arc::new(sample), meta: Value::Object(Default::default()) })
+        Ok(PySample { sample: Arc::new(sample), meta: Meta::default() })
     }
 
     #[getter]
@@ -263,7 +275,7 @@ impl PySample {
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
-        Ok((slf.get_type().getattr("_from_state")?, slf.get().state()))
+        Ok((slf.get_type().getattr("_from_state")?, slf.get().state()?))
     }
 
     /// Rebuild a pickled sample from its Sample JSON and meta JSON.
@@ -293,26 +305,14 @@ fn sample_of(obj: &Bound<'_, PyAny>) -> PyResult<Arc<Sample>> {
 /// `close analyze --json` prints, key for key.
 #[pyclass(frozen, module = "close", name = "Analysis")]
 struct PyAnalysis {
-    /// `close analyze --json`'s object.
-    value: Value,
-    /// The analysis itself, for `close.plan`; `None` once pickled and loaded again.
-    analysis: Option<Arc<Analysis>>,
+    /// The analysis, whose fields the getters read. One read back from its JSON (pickled
+    /// and loaded again) has no frames, so it cannot be planned from.
+    analysis: Arc<Analysis>,
 }
 
 impl PyAnalysis {
-    fn of(analysis: Analysis) -> Result<Self, close_core::Error> {
-        let value = serde_json::to_value(&analysis).map_err(|e| {
-            close_core::Error::InvalidArgument(format!("could not write JSON: {e}"))
-        })?;
-        Ok(PyAnalysis { value, analysis: Some(Arc::new(analysis)) })
-    }
-
-    fn field(&self, key: &str) -> &Value {
-        &self.value[key]
-    }
-
-    fn floats(value: &Value) -> Vec<f64> {
-        value.as_array().map(|a| a.iter().filter_map(Value::as_f64).collect()).unwrap_or_default()
+    fn of(analysis: Analysis) -> Self {
+        PyAnalysis { analysis: Arc::new(analysis) }
     }
 }
 
@@ -321,74 +321,62 @@ impl PyAnalysis {
     /// Border vertex count N.
     #[getter]
     fn n(&self) -> usize {
-        self.field("n").as_u64().unwrap_or_default() as usize
+        self.analysis.n
     }
 
     /// Corner angles θ_1 < … < θ_n (radians; vertex k at 2πk/N).
     #[getter]
     fn corners(&self) -> Vec<f64> {
-        Self::floats(self.field("corners"))
+        self.analysis.corners.clone()
     }
 
     /// One (f1, f2) per detected fold, in order; the folded side runs anticlockwise from f1 to f2.
     #[getter]
     fn folds(&self) -> Vec<(f64, f64)> {
-        let pairs = self.field("folds").as_array().cloned().unwrap_or_default();
-        pairs
-            .iter()
-            .map(Self::floats)
-            .filter_map(|f| (f.len() == 2).then(|| (f[0], f[1])))
-            .collect()
+        self.analysis.folds.iter().map(|f| (f.f1, f.f2)).collect()
     }
 
     /// The CloSE value, {"corners": [...], "folds": [[f1, f2], ...]}.
     #[getter]
     fn close<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_python(py, self.field("close"))
+        to_python(py, &self.analysis.close)
     }
 
     /// The semantic label as a sentence (the structured fields are in `to_dict()["label"]`).
     #[getter]
     fn label(&self) -> String {
-        self.field("label")["text"].as_str().unwrap_or_default().to_string()
+        self.analysis.label.text.clone()
     }
 
     /// The start border with the folds applied in order, (N, 3), input coordinates, in
     /// `border_indices` order.
     #[getter]
     fn predicted_end<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let rows = self.field("predicted_end").as_array().cloned().unwrap_or_default();
-        let points: Vec<[f64; 3]> =
-            rows.iter().map(Self::floats).filter_map(|p| p.try_into().ok()).collect();
-        points_array(py, &points)
+        points_array(py, &self.analysis.predicted_end)
     }
 
     /// {"rmse", "frechet", "aligned_rmse"} of `predicted_end` against the end frame (XY, normalised
     /// units; `aligned_rmse` once `predicted_end` is moved rigidly onto the end), or None.
     #[getter]
     fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let metrics = self.field("metrics");
-        if metrics.is_null() {
-            return Ok(None);
-        }
-        to_python(py, metrics).map(Some)
+        self.analysis.metrics.as_ref().map(|m| to_python(py, m)).transpose()
     }
 
     /// For each border vertex, its index in the input frames (a mesh vertex for a mesh).
     #[getter]
     fn border_indices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        let indices = self.field("border_indices").as_array().cloned().unwrap_or_default();
-        Array1::from_iter(indices.iter().filter_map(Value::as_i64)).into_pyarray(py)
+        Array1::from_iter(self.analysis.border_indices.iter().map(|&k| k as i64)).into_pyarray(py)
     }
 
     /// The object `close analyze --json` prints, key for key.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_python(py, &self.value)
+        to_python(py, &*self.analysis)
     }
 
     /// `close analyze --json`'s output.
-    fn to_json(&self) -> String {
-        self.value.to_string()
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&*self.analysis)
+            .map_err(|e| invalid(format!("could not write JSON: {e}")))
     }
 
     fn __repr__(&self) -> String {
@@ -402,15 +390,15 @@ impl PyAnalysis {
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
-        Ok((slf.get_type().getattr("_from_state")?, (slf.get().to_json(),)))
+        Ok((slf.get_type().getattr("_from_state")?, (slf.get().to_json()?,)))
     }
 
-    /// Rebuild a pickled analysis from its JSON.
+    /// Rebuild a pickled analysis from its JSON (without its frames).
     #[classmethod]
     fn _from_state(_cls: &Bound<'_, pyo3::types::PyType>, json: &str) -> PyResult<Self> {
-        let value =
+        let analysis: Analysis =
             serde_json::from_str(json).map_err(|e| invalid(format!("analysis JSON: {e}")))?;
-        Ok(PyAnalysis { value, analysis: None })
+        Ok(PyAnalysis::of(analysis))
     }
 }
 
@@ -429,7 +417,7 @@ fn analysis_of(sample: &Sample, options: &Options) -> Result<Analysis, close_cor
 
 /// What `close.analyze` does with the GIL released.
 fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, close_core::Error> {
-    PyAnalysis::of(analysis_of(sample, options)?)
+    analysis_of(sample, options).map(PyAnalysis::of)
 }
 
 fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyResult<Options> {
@@ -509,7 +497,7 @@ fn analyze_many(
 fn load(paths: Vec<PathBuf>) -> PyResult<PySample> {
     let files = paths.iter().map(read).collect::<PyResult<Vec<_>>>()?;
     let sample = close_io::formats::read_files(&files).map_err(close_error)?;
-    Ok(PySample { sample: Arc::new(sample), meta: Value::Object(Default::default()) })
+    Ok(PySample { sample: Arc::new(sample), meta: Meta::default() })
 }
 
 /// The dGLI disk of one border state ((N, 3) array) as the condensed pair vector of
@@ -608,9 +596,10 @@ fn plan<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let goal = Fold::new(goal.0, goal.1);
     let analysis = match sample_or_analysis.cast::<PyAnalysis>() {
-        Ok(a) => a.get().analysis.clone().ok_or_else(|| {
-            invalid("this Analysis was unpickled: plan from its Sample instead".into())
-        })?,
+        Ok(a) if a.get().analysis.frames.is_empty() => {
+            return Err(invalid("this Analysis was unpickled: plan from its Sample instead".into()))
+        }
+        Ok(a) => a.get().analysis.clone(),
         Err(_) => {
             let sample = sample_of(sample_or_analysis)?;
             let options = options("default", None, None)?;
@@ -799,8 +788,11 @@ fn vrfolding_open(py: Python<'_>, store: PathBuf) -> PyResult<PyStore> {
     for (video, folds) in &read {
         for k in 1..=folds.usable() {
             let Some(sample) = folds.sample(video, k) else { continue };
-            let meta =
-                serde_json::json!({ "video_id": video.id, "category": video.category, "fold": k });
+            let meta = Meta {
+                video_id: Some(video.id.clone()),
+                category: Some(video.category.clone()),
+                fold: Some(k),
+            };
             actions.push(Py::new(py, PySample { sample: Arc::new(sample), meta })?);
         }
     }

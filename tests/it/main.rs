@@ -26,5 +26,6 @@ mod properties;
 mod readme;
 mod record;
 mod reference;
+mod schema;
 mod unseen;
 mod vrfolding;

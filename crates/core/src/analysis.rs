@@ -5,7 +5,7 @@
 //! (frame k−1 → k) gives at most one fold. The predicted end applies the folds in order to
 //! the start border, in the input's coordinates.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
 use crate::budget::{Budget, Deadline};
@@ -38,7 +38,8 @@ pub struct Options {
 }
 
 /// One step between consecutive frames.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Step {
     pub from_frame: usize,
     pub to_frame: usize,
@@ -70,7 +71,8 @@ impl Step {
 }
 
 /// Everything `close analyze` reports.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Analysis {
     /// Border vertex count.
     pub n: usize,

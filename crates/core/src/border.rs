@@ -84,6 +84,13 @@ pub struct Normalisation {
     pub radius: f64,
 }
 
+impl Default for Normalisation {
+    /// The identity: no shift, no scale.
+    fn default() -> Self {
+        Normalisation { centroid: Vector3::zeros(), radius: 1.0 }
+    }
+}
+
 impl Normalisation {
     /// The normalisation of `points`, taken as a start frame (errors name frame 0):
     /// degenerate when every vertex coincides or the coordinates overflow.

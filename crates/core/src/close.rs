@@ -46,7 +46,7 @@
 //! assert!(corners(&Disk::of_border(&circle), &circle).vertices.is_empty());
 //! ```
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::angle::{param_to_angle, wrap_pi};
 use crate::border::Point;
@@ -177,7 +177,8 @@ fn turn(border: &[Point], v: usize, reach: &[(usize, usize)]) -> f64 {
 }
 
 /// The CloSE of one state: corners and the folds that led to it, in order.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Close {
     pub corners: Vec<f64>,
     pub folds: Vec<Fold>,

@@ -45,6 +45,7 @@ pub type Vector2 = nalgebra::Vector2<f64>;
 /// A fold (f1, f2) on the border circle, radians: the border walked anticlockwise from f1
 /// to f2 is the side folded over. Serialised as `[f1, f2]`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(from = "[f64; 2]", into = "[f64; 2]")]
 pub struct Fold {
     pub f1: f64,
@@ -54,6 +55,7 @@ pub struct Fold {
 /// An arc [a, b] of the border circle, radians, walked anticlockwise from a to b: a side a
 /// fold turns over. Serialised as `[a, b]`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(from = "[f64; 2]", into = "[f64; 2]")]
 pub struct Arc {
     pub a: f64,
@@ -175,9 +177,12 @@ impl From<Arc> for [f64; 2] {
 /// A fold line in the XY plane: a point and a unit direction. Serialised as
 /// `{"point": [x, y], "direction": [dx, dy]}`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct Line {
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 2]"))]
     pub point: Point2,
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 2]"))]
     pub direction: Vector2,
 }
 
@@ -209,6 +214,7 @@ impl Line {
 /// One fold as it is made: where it lies on the border circle, the arcs it turns over, and
 /// the line it is made along. Serialised as `{"fold", "arcs", "line"}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Folding {
     /// The fold; for several arcs, the pair that spans them.
     pub fold: Fold,

@@ -43,7 +43,7 @@
 
 use std::f64::consts::PI;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::angle::{wrap_pi, wrap_tau, TAU};
 use crate::border::{prepare, to_xyz};
@@ -92,7 +92,8 @@ impl Motion {
 }
 
 /// The folds of a motion and the border folded by each.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Interpolation {
     /// Each state's fold: the fold on the circle, or for a turned fold the pair that spans
     /// its arcs (the first arc's start, the last arc's end), the same in every state.

@@ -21,7 +21,7 @@
 //! assert_eq!(l.folds[0].folded_corners, vec![2]);
 //! ```
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::angle::{angle_to_param, wrap_tau, ON_LINE_EDGES};
 use crate::geometry::{Arc, Fold, Folding};
@@ -39,7 +39,8 @@ const EVEN_PERCENT: f64 = 10.0;
 const HALF_PERCENT: f64 = 12.0;
 
 /// The kind of fold, as a person would say it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum FoldClass {
     FoldedInHalf,
@@ -67,7 +68,8 @@ impl FoldClass {
 }
 
 /// The share of one side (corner to next corner) that lies on the folded arc.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct SideFold {
     /// 1-based corner numbers at the side's ends.
     pub from_corner: usize,
@@ -76,7 +78,8 @@ pub struct SideFold {
 }
 
 /// One folded corner and the folded share of its two sides.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FoldedCorner {
     pub corner: usize,
     pub vertex: usize,
@@ -85,7 +88,8 @@ pub struct FoldedCorner {
 }
 
 /// The label of one fold.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FoldLabel {
     pub class: FoldClass,
     /// 1-based numbers of the corners strictly inside the folded arc.
@@ -103,7 +107,8 @@ pub struct FoldLabel {
 }
 
 /// The label of a whole CloSE state.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Label {
     pub text: String,
     pub corners: usize,

@@ -24,13 +24,14 @@
 //! assert!(aligned_rmse_xy(&a, &slid) < 1e-12);
 //! ```
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::border::{Normalisation, Point};
 use crate::geometry::{Point2, Vector2};
 
 /// Error of a predicted end border against the true one.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Metrics {
     pub rmse: f64,
     pub frechet: f64,

@@ -37,7 +37,7 @@
 
 use std::collections::BTreeSet;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::analysis::Analysis;
 use crate::angle::{angle_to_param, distance, edge, param_to_angle, ON_LINE_EDGES};
@@ -47,7 +47,8 @@ use crate::fold::apply;
 use crate::geometry::{Arc, Fold, Folding, Line};
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Pick {
     /// Border vertex index ([`plan_for`] maps it to the input's index through
     /// `border_indices`).
@@ -59,7 +60,8 @@ pub struct Pick {
 }
 
 /// What a step does with its fold.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Action {
     /// `"fold"`: fold along it.
@@ -69,7 +71,8 @@ pub enum Action {
 }
 
 /// How the plan reaches the goal (see the module's doc).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Case {
     /// `"fold"`: one fold of the flat cloth.
@@ -105,7 +108,8 @@ impl Case {
 }
 
 /// One manipulation: fold along `fold`, or undo it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct PlanStep {
     pub action: Action,
     /// The fold (f1, f2) in angles.
@@ -117,7 +121,8 @@ pub struct PlanStep {
 }
 
 /// The plan from the current state to the goal fold.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Plan {
     pub case: Case,
     pub steps: Vec<PlanStep>,
@@ -350,32 +355,33 @@ pub fn plan_for(analysis: &Analysis, goal: Fold) -> Result<Plan> {
 }
 
 /// `POST /api/plan`'s answer (and Python's `close.plan`): the plan, and the state it starts from.
-#[derive(Debug, Clone, Serialize)]
-pub struct Answer<'a> {
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Answer {
     pub case: Case,
     pub steps: Vec<PlanStep>,
     /// In [0, 2π), as the plan's steps.
     pub goal: Fold,
-    pub folds: &'a [Fold],
+    pub folds: Vec<Fold>,
     /// The line each current fold was made along (as the analysis's `steps[k].line`).
     pub lines: Vec<Option<Line>>,
-    pub corners: &'a [f64],
+    pub corners: Vec<f64>,
     pub start_border: Vec<[f64; 3]>,
-    pub border_indices: &'a [usize],
+    pub border_indices: Vec<usize>,
 }
 
 /// [`plan_for`] with the analysed state it starts from: the answer of `POST /api/plan`.
-pub fn answer(analysis: &Analysis, goal: Fold) -> Result<Answer<'_>> {
+pub fn answer(analysis: &Analysis, goal: Fold) -> Result<Answer> {
     let plan = plan_for(analysis, goal)?;
     Ok(Answer {
         case: plan.case,
         steps: plan.steps,
         goal: goal.wrapped(),
-        folds: &analysis.folds,
+        folds: analysis.folds.clone(),
         lines: analysis.foldings().iter().map(|f| f.line).collect(),
-        corners: &analysis.corners,
+        corners: analysis.corners.clone(),
         start_border: analysis.start_border().iter().map(to_xyz).collect(),
-        border_indices: &analysis.border_indices,
+        border_indices: analysis.border_indices.clone(),
     })
 }
 

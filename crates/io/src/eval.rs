@@ -26,6 +26,7 @@ use close_core::geometry::Fold;
 /// The outcome for one sample. Rows scored elsewhere (another process, another machine)
 /// come back as JSON and are reported as they were.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct SampleResult {
     pub name: String,
     pub category: String,
@@ -52,6 +53,7 @@ pub struct SampleResult {
 
 /// How one step of a sample went.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct StepResult {
     pub fold_found: bool,
     pub rmse: f64,
@@ -93,6 +95,7 @@ impl SampleResult {
 
 /// Mean and population variance.
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Stat {
     pub mean: f64,
     pub var: f64,
@@ -111,6 +114,7 @@ impl Stat {
 
 /// One row of the table.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Summary {
     pub category: String,
     pub count: usize,
@@ -133,6 +137,7 @@ pub struct Summary {
 
 /// The k-th fold of every multi-step sample of a category.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FoldSummary {
     pub fold: usize,
     pub count: usize,
@@ -148,6 +153,7 @@ pub struct FoldSummary {
 
 /// The whole evaluation.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Report {
     pub categories: Vec<Summary>,
     pub overall: Summary,

@@ -11,8 +11,8 @@ use axum::extract::rejection::{BytesRejection, JsonRejection, PathRejection, Que
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::Json;
-use serde_json::json;
 
+use crate::answer::ErrorBody;
 use close_core::error::Error;
 
 /// Why a request failed.
@@ -90,7 +90,7 @@ impl IntoResponse for ApiError {
         if status.is_server_error() {
             tracing::error!(error = %self.message(), "request failed");
         }
-        (status, Json(json!({ "error": self.message() }))).into_response()
+        (status, Json(ErrorBody { error: self.message() })).into_response()
     }
 }
 

@@ -28,6 +28,7 @@
 //! let app = close_server::app(close_server::AppState::new());
 //! ```
 
+pub mod answer;
 mod assets;
 mod datasets;
 mod error;

@@ -2,7 +2,6 @@
 //! worker (with the request's deadline and the server's budget), and writes a typed response
 //! there too, so the async threads only move bytes.
 
-use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use axum::body::Bytes;
@@ -13,6 +12,7 @@ use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
+use super::answer::{AnalyzeAnswer, ListedFields};
 use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
 use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
 use close_core::border::{to_xyz, BorderFrames};
@@ -106,16 +106,6 @@ fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
         .map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))
 }
 
-/// What a listed sample's analysis adds: its id, the sample itself, and where its
-/// recording is (built-in samples with the `rerun` feature).
-#[derive(Serialize)]
-struct ListedFields<'a> {
-    id: &'a str,
-    sample: &'a Sample,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    recording: Option<String>,
-}
-
 /// A sample that `GET /api/samples` lists, by id: built-in, or from one of the user's
 /// datasets (`--dataset`). Both are answered, pictured and planned alike.
 pub(super) enum Listed {
@@ -127,30 +117,6 @@ pub(super) enum Listed {
 /// folder or store, or `"upload"`.
 pub(super) const BUILTIN: &str = "builtin";
 const UPLOAD: &str = "upload";
-
-/// `POST /api/analyze` and `GET /api/samples/{id}`: the CLI's analysis JSON plus what the
-/// app draws.
-#[derive(Serialize)]
-struct AnalyzeResponse<'a> {
-    key: &'a str,
-    name: &'a str,
-    category: &'a str,
-    /// Frames of the sample (all of them, not only the analysed range).
-    frames: usize,
-    #[serde(flatten)]
-    analysis: &'a Analysis,
-    start_border: Vec<[f64; 3]>,
-    end_border: Vec<[f64; 3]>,
-    /// Picture name → URL of its PNG.
-    images: BTreeMap<&'static str, String>,
-    /// Provenance: `"builtin"`, the dataset's folder or store, or `"upload"`.
-    source: &'a str,
-    /// The sample's known folds, when it carries them (any source, uploads too).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    truth: Option<&'a Truth>,
-    #[serde(flatten)]
-    listed: Option<ListedFields<'a>>,
-}
 
 /// A sample read and validated, ready to be analysed.
 pub(super) struct Loaded {
@@ -242,7 +208,7 @@ impl Loaded {
             }
             None => None,
         };
-        let response = to_json(&AnalyzeResponse {
+        let response = to_json(&AnalyzeAnswer {
             key: &key,
             name: &self.name,
             category: &self.category,

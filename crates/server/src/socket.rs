@@ -143,7 +143,8 @@ fn json_answer(buf: &[u8]) -> Option<Vec<u8>> {
     if !empty || named("content-type") {
         return None;
     }
-    let body = serde_json::json!({ "error": message(status) }).to_string();
+    let body = serde_json::to_string(&crate::answer::ErrorBody { error: message(status) })
+        .unwrap_or_default();
     let kept = headers.iter().filter(|h| {
         !h.split(':').next().is_some_and(|n| n.trim().eq_ignore_ascii_case("content-length"))
     });

@@ -25,7 +25,8 @@ use crate::disk::{condensed_index, Disk};
 const TIE: f64 = 1e-7;
 
 /// The best cut found: positions in vertex units on the half-edge grid, both in [0, N).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Cut {
     pub p1: f64,
     pub p2: f64,

@@ -38,7 +38,8 @@ const RIM_SEARCH_EDGES: f64 = 2.0;
 const A1_BOUND: f64 = PI;
 
 /// A fitted fold curve θ̂ = a0 + a1·r.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Curve {
     pub a0: f64,
     pub a1: f64,

@@ -21,7 +21,7 @@ pub mod orientation;
 pub mod reflect;
 pub mod synth;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub use cut::Cut;
 pub use fit::Curve;
@@ -46,6 +46,7 @@ pub const FLAT_HEIGHT: f64 = 1e-9;
 
 /// How the two fold points are chosen.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum FoldMethod {
     /// The cut of least same-side change ([`cut`]), placed within its edges by synthesis
@@ -57,7 +58,8 @@ pub enum FoldMethod {
 }
 
 /// What one step's fold detection found, with the evidence for drawing and debugging.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FoldDetection {
     /// (f1, f2) in [0, 2π), the folded side anticlockwise from f1; `None` without a fold.
     /// For a fold of several arcs, the pair that spans them (the first point of the first

@@ -22,7 +22,8 @@ use crate::geometry::{Arc, Fold};
 pub const TIE_MARGIN: f64 = 0.1;
 
 /// How the orientation was decided.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Orientation {
     /// Flip score of the arc anticlockwise from the first to the second fold point as given.
     pub flip_forward: f64,

@@ -24,7 +24,7 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::angle::ArcVertices;
 use crate::border::{point_at, Point};
@@ -252,7 +252,8 @@ fn sampled_edges(n: usize, samples: usize) -> Vec<usize> {
 }
 
 /// A fold found by synthesis: the border parameters of its points and the line used.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Synthesis {
     /// Border parameters (fractional vertex indices) of the two fold points, in [0, N); the
     /// folded side runs anticlockwise from the first. For a fold of several arcs, the first
@@ -264,6 +265,7 @@ pub struct Synthesis {
     pub arcs: Vec<[f64; 2]>,
     /// The direction found on the disks when the fold points coincide (a unit vector);
     /// `None` when the line runs through the two fold points.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<[f64; 2]>"))]
     pub direction: Option<Vector2>,
     /// Mean probe mismatch of the best candidate.
     pub mismatch: f64,

@@ -80,6 +80,7 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
 
 /// Known fold of a sample (ground truth), angles in the border convention (vertex k at 2πk/N).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Truth {
     #[serde(default, deserialize_with = "json::truth_folds")]
     pub folds: Vec<Fold>,
@@ -100,6 +101,7 @@ pub struct MeshFrame {
 
 /// One cloth sample: border frames (or a mesh), frame 0 the flat start.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Sample {
     #[serde(default)]
     pub name: String,

@@ -56,6 +56,7 @@ pub const LEVEL: f64 = 1e-4;
 /// Sample JSON's `"mesh"`; read back through [`crate::formats::json`], whose lists are
 /// bounded while reading.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct MeshFrames {
     pub faces: Vec<Vec<usize>>,
     pub frames: Vec<Vec<[f64; 3]>>,
