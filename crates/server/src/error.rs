@@ -28,6 +28,8 @@ pub enum ApiError {
     BadRequest(String),
     /// Rejected by an extractor or a layer before reaching the handler.
     Rejected(StatusCode, String),
+    /// A multipart form ran past the body's length limit while it was read.
+    FormTooLarge,
     /// The server failed (a worker panicked or the pool shut down).
     Internal(String),
 }
@@ -40,6 +42,7 @@ impl ApiError {
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::BadRequest(_) => StatusCode::BAD_REQUEST,
             ApiError::Rejected(status, _) => *status,
+            ApiError::FormTooLarge => StatusCode::PAYLOAD_TOO_LARGE,
             ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
     }
@@ -55,6 +58,9 @@ impl ApiError {
                 format!("request body too large: {m}")
             }
             ApiError::Rejected(_, m) => m.clone(),
+            ApiError::FormTooLarge => {
+                "request body too large: the form is larger than the limit".into()
+            }
         }
     }
 }
@@ -126,22 +132,29 @@ macro_rules! from_rejection {
 
 from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection);
 
+/// True when the body's length limit (axum's `DefaultBodyLimit`, tower-http's limit layer:
+/// both `http_body_util::Limited`) is among the error's sources.
+fn over_length_limit(error: &(dyn std::error::Error + 'static)) -> bool {
+    let mut source = Some(error);
+    while let Some(s) = source {
+        if s.is::<http_body_util::LengthLimitError>() {
+            return true;
+        }
+        source = s.source();
+    }
+    false
+}
+
 /// A form that could not be read is the client's doing: a body too slow (408) or over the
-/// limit (413, found in the error's sources), or a malformed form (400), never a server fault.
+/// limit (413, found by type in the error's sources), or a malformed form (400), never a
+/// server fault.
 impl From<MultipartError> for ApiError {
     fn from(e: MultipartError) -> Self {
         if let Some(slow) = too_slow(&e) {
             return slow;
         }
-        let mut source: Option<&dyn std::error::Error> = Some(&e);
-        while let Some(s) = source {
-            if s.to_string().contains("length limit exceeded") {
-                return ApiError::Rejected(
-                    StatusCode::PAYLOAD_TOO_LARGE,
-                    "the form is larger than the limit".into(),
-                );
-            }
-            source = s.source();
+        if over_length_limit(&e) {
+            return ApiError::FormTooLarge;
         }
         let status =
             if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
@@ -180,6 +193,18 @@ mod tests {
         );
         assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);
         assert_eq!(status(Error::Recording("encoder".into())), StatusCode::INTERNAL_SERVER_ERROR);
+    }
+
+    #[tokio::test]
+    async fn a_body_over_its_length_limit_is_found_by_its_type_not_its_text() {
+        use http_body_util::{BodyExt, Full, Limited};
+        let body = Limited::new(Full::new(axum::body::Bytes::from_static(b"too long")), 3);
+        let limited = body.collect().await.expect_err("over the limit");
+        let wrapped = std::io::Error::other(limited);
+        assert!(over_length_limit(&wrapped));
+        // The same words in another error are not the limit.
+        assert!(!over_length_limit(&std::io::Error::other("length limit exceeded")));
+        assert_eq!(ApiError::FormTooLarge.status(), StatusCode::PAYLOAD_TOO_LARGE);
     }
 }
 

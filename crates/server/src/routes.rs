@@ -13,7 +13,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
 use super::answer::{AnalyzeAnswer, ListedFields};
-use super::{ApiError, AppJson, AppPath, AppQuery, AppState, Lane};
+use super::{ApiError, AppJson, AppPath, AppQuery};
+use crate::state::{AppState, Lane};
 use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
 use close_core::border::{to_xyz, BorderFrames};
 use close_core::budget::{Budget, Deadline};

@@ -13,7 +13,8 @@ use std::sync::{Arc, Mutex};
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use tokio::sync::Semaphore;
 
-use super::{lock, ApiError};
+use crate::error::ApiError;
+use crate::state::lock;
 use close_core::budget::Deadline;
 
 /// A pool that could not be built (no thread could be spawned) is `None`: its jobs run on
