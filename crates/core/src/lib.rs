@@ -40,6 +40,7 @@ pub mod border;
 pub mod budget;
 pub mod close;
 pub mod disk;
+pub mod distance;
 pub mod error;
 pub mod fold;
 pub mod gli;
