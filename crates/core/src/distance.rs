@@ -286,9 +286,11 @@ impl<'a> FoldBatch<'a> {
             (a, b) if a == b => a,
             (1, b) => b,
             (a, 1) => a,
-            (a, b) => return Err(Error::InvalidArgument(format!(
+            (a, b) => {
+                return Err(Error::InvalidArgument(format!(
                 "batches of {a} and {b} fold sequences: pair them one to one, or give one sequence"
-            ))),
+            )))
+            }
         };
         Ok(Pairs { a: self, b: other, count })
     }

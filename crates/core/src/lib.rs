@@ -53,3 +53,4 @@ pub mod rng;
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use error::{Error, Result};
 pub use fold::FoldMethod;
+pub mod verify;
