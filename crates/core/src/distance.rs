@@ -330,43 +330,53 @@ pub fn fold_distances(a: &FoldBatch<'_>, b: &FoldBatch<'_>) -> Result<Vec<f64>> 
 /// (a fold through stacked layers): the line through them is no guide.
 const COINCIDE_EDGES: f64 = 0.5;
 
-/// The line fold `fold` of state `before` is made along: `given`, or through its two fold
-/// points; or, when those coincide, through their midpoint in the direction of `fallback`
-/// (its own points are where the line passes; only the direction is borrowed). `None` when
-/// the points coincide and neither is given.
-pub fn fold_line(
-    before: &[Point],
-    fold: [f64; 2],
-    given: Option<Line>,
-    fallback: Option<Line>,
-) -> Option<Line> {
-    if given.is_some() {
-        return given;
-    }
+/// How the line of a fold is found in the state before it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LineOf {
+    /// Through its two fold points (unless they lie on top of each other).
+    #[default]
+    Points,
+    /// Through the midpoint of its two fold points in this XY direction (a fold through
+    /// stacked layers, whose direction the disks gave).
+    Direction([f64; 2]),
+    /// This line.
+    Given(Line),
+}
+
+/// The line fold `fold` of state `before` is made along (see [`LineOf`]); `None` when its
+/// two points lie on top of each other and no direction is given.
+pub fn fold_line(before: &[Point], fold: [f64; 2], how: LineOf) -> Option<Line> {
     let n = before.len();
-    let (p, q) = (
-        point_at(before, angle_to_param(fold[0], n)),
-        point_at(before, angle_to_param(fold[1], n)),
-    );
-    let perimeter: f64 = (0..n).map(|k| (before[(k + 1) % n].xy() - before[k].xy()).norm()).sum();
-    if (q.xy() - p.xy()).norm() > COINCIDE_EDGES * perimeter / n as f64 {
-        return Line::through(&p, &q);
+    let at = |f: f64| point_at(before, angle_to_param(f, n));
+    let (p, q) = (at(fold[0]), at(fold[1]));
+    match how {
+        LineOf::Given(line) => Some(line),
+        LineOf::Direction([x, y]) => {
+            let length = x.hypot(y);
+            (length > 0.0 && length.is_finite()).then(|| Line {
+                point: [(p.x + q.x) / 2.0, (p.y + q.y) / 2.0],
+                direction: [x / length, y / length],
+            })
+        }
+        LineOf::Points => {
+            let perimeter: f64 =
+                (0..n).map(|k| (before[(k + 1) % n].xy() - before[k].xy()).norm()).sum();
+            ((q.xy() - p.xy()).norm() > COINCIDE_EDGES * perimeter / n as f64)
+                .then(|| Line::through(&p, &q))
+                .flatten()
+        }
     }
-    fallback.map(|l| Line { point: [(p.x + q.x) / 2.0, (p.y + q.y) / 2.0], direction: l.direction })
 }
 
 /// The predicted state of `folds` (angles of the start border) made in turn on the start
 /// border `flat`: each fold's arc reflected across its line in the state before it
-/// ([`fold_line`] of `lines[k]`, or of the line through its points), z kept. An error names
-/// a fold whose two points coincide in the state before it when no line is given for it.
-pub fn fold_state(
-    flat: &[Point],
-    folds: &[[f64; 2]],
-    lines: &[Option<Line>],
-) -> Result<Vec<Point>> {
+/// ([`fold_line`] as `lines[k]` says; through its points where `lines` has no entry), z
+/// kept. An error names a fold whose two points lie on top of each other in the state
+/// before it when no direction is given for it.
+pub fn fold_state(flat: &[Point], folds: &[[f64; 2]], lines: &[LineOf]) -> Result<Vec<Point>> {
     let mut state = flat.to_vec();
     for (k, &fold) in folds.iter().enumerate() {
-        let Some(line) = fold_line(&state, fold, lines.get(k).copied().flatten(), None) else {
+        let Some(line) = fold_line(&state, fold, lines.get(k).copied().unwrap_or_default()) else {
             return Err(Error::InvalidArgument(format!(
                 "fold {} ({:.4}, {:.4}): its two points lie on top of each other in the state before it, so they do not give its line: give the line",
                 k + 1,
@@ -684,9 +694,13 @@ mod tests {
         let error = fold_state(&sq, &quarters, &[]).unwrap_err().to_string();
         assert!(error.contains("fold 2") && error.contains("give the line"), "{error}");
         let line = Line { point: [-0.5, 0.0], direction: [1.0, 0.0] };
-        let state = fold_state(&sq, &quarters, &[None, Some(line)]).unwrap();
+        let state = fold_state(&sq, &quarters, &[LineOf::Points, LineOf::Given(line)]).unwrap();
         // Every vertex ends in the bottom-left quarter.
         assert!(state.iter().all(|p| p.x <= 1e-9 && p.y <= 1e-9), "{state:?}");
+        // A direction alone is enough: the line runs through the points.
+        let by_direction =
+            fold_state(&sq, &quarters, &[LineOf::Points, LineOf::Direction([-2.0, 0.0])]).unwrap();
+        assert!(state.iter().zip(&by_direction).all(|(p, q)| (p - q).norm() < 1e-12));
     }
 
     #[test]

@@ -13,12 +13,15 @@
 //! observed fold folds over than the goal's (negative: more).
 //!
 //! The goal is **reached** when every goal fold is found, none is extra, and the predicted
-//! borders are close: the aligned XY RMSE between the goal's predicted state and the
-//! observed one ([`crate::distance`]'s geometric distance) is at most
-//! [`Tolerance::aligned_rmse`] (normalised units). A goal fold whose two points meet in the
-//! state before it (a fold through stacked layers) and has no line of its own takes the
-//! direction of the observed fold matched to it; without one the shape is not compared
-//! (`distance.geometric` is `None`) and the folds alone decide.
+//! shapes are close: the aligned XY RMSE between the goal's predicted state and the observed
+//! one ([`crate::distance`]'s geometric distance) is at most [`Tolerance::aligned_rmse`]
+//! (normalised units). Both states are predicted alike from their folds on the start border
+//! ([`crate::distance::fold_state`]), so that the same folds are at 0 whatever the cloth's
+//! slide: a fold through its points, or, for an observed fold made through stacked layers,
+//! in the direction the disks gave, which the goal fold matched to it takes too (through
+//! its own points). A fold of several arcs counts as the fold that spans them. A goal fold
+//! whose points lie on top of each other with no line to go by leaves the shape uncompared
+//! (`distance.geometric` is `None`): the folds alone decide.
 //!
 //! The plan is [`crate::plan::plan_for`] from the observed state to the goal, for a goal of
 //! one fold (plans of sequences come with the sequence planner); `text` says the outcome in
@@ -53,10 +56,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::analysis::Analysis;
 use crate::angle::{edge, wrap_pi};
-use crate::border::{from_xyz, Point};
-use crate::distance::{align, check_folds, fold_line, share, Distance, Edit, MAX_BATCH_FOLDS};
+use crate::distance::{
+    align, check_folds, fold_state, share, Distance, Edit, LineOf, MAX_BATCH_FOLDS,
+};
 use crate::error::{Error, Result};
-use crate::fold::reflect::apply_arcs;
 use crate::fold::Line;
 use crate::metrics::aligned_rmse_xy;
 use crate::plan::{plan_for, Action, Plan};
@@ -167,22 +170,28 @@ fn check_tolerance(t: &Tolerance) -> Result<()> {
     Ok(())
 }
 
-/// The goal's predicted state on the start border (input coordinates): each goal fold along
-/// its own line, through its points, or, where those meet, in the direction of the observed
-/// fold matched to it (`borrowed[k]`). `None` when a fold has none of these.
-fn goal_state(flat: &[Point], goal: &Goal, borrowed: &[Option<Line>]) -> Option<Vec<Point>> {
-    let mut state = flat.to_vec();
-    for (k, &fold) in goal.folds.iter().enumerate() {
-        let line = fold_line(&state, fold, goal.lines.get(k).copied().flatten(), borrowed[k])?;
-        state = apply_arcs(&state, &[fold], &line);
-    }
-    Some(state)
+/// How each observed fold's line was found: in the direction the disks gave where its
+/// points lie on top of each other (a fold through stacked layers), through its points
+/// otherwise; as the analysis made its `predicted_end`.
+fn observed_lines(observed: &Analysis) -> Vec<LineOf> {
+    observed
+        .steps
+        .iter()
+        .filter(|s| s.detection.fold.is_some())
+        .map(|s| {
+            let from_disks = s.detection.synthesis.as_ref().is_some_and(|x| x.direction.is_some());
+            match s.line {
+                Some(line) if from_disks => LineOf::Direction(line.direction),
+                _ => LineOf::Points,
+            }
+        })
+        .collect()
 }
 
-/// Verify the `observed` state against the `goal`: see the module's doc.
-pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<Verification> {
-    check_tolerance(&tolerance)?;
-    let n = observed.n;
+/// Checks a goal before any work: at most [`MAX_BATCH_FOLDS`] folds, finite, their points
+/// more than an edge apart on a border of `n` vertices (when known), no more lines than
+/// folds, each line finite with a direction.
+pub fn check_goal(goal: &Goal, n: Option<usize>) -> Result<()> {
     if goal.folds.len() > MAX_BATCH_FOLDS {
         return Err(Error::too_large("goal folds", goal.folds.len(), MAX_BATCH_FOLDS));
     }
@@ -193,7 +202,25 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
             goal.folds.len()
         )));
     }
-    check_folds("the goal", &goal.folds, edge(n))?;
+    for (k, line) in goal.lines.iter().enumerate() {
+        if let Some(Line { point, direction }) = line {
+            let finite = point.iter().chain(direction).all(|v| v.is_finite());
+            if !finite || direction[0].hypot(direction[1]) == 0.0 {
+                return Err(Error::InvalidArgument(format!(
+                    "the goal's line {}: a finite point and a non-zero direction are needed",
+                    k + 1
+                )));
+            }
+        }
+    }
+    check_folds("the goal", &goal.folds, n.map_or(0.0, edge))
+}
+
+/// Verify the `observed` state against the `goal`: see the module's doc.
+pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<Verification> {
+    check_tolerance(&tolerance)?;
+    let n = observed.n;
+    check_goal(goal, Some(n))?;
     let goal_folds: Vec<[f64; 2]> =
         goal.folds.iter().map(|f| f.map(crate::angle::wrap_tau)).collect();
     let alignment = align(&goal_folds, &observed.folds);
@@ -212,8 +239,18 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
         })
         .collect();
     let mut extra = Vec::new();
-    let lines = observed.fold_lines();
-    let mut borrowed = vec![None; goal_folds.len()];
+    let observed_lines = observed_lines(observed);
+    // Each goal fold's line: its own; or, matched to an observed fold made through stacked
+    // layers, that fold's direction through the goal's own points; or through its points.
+    let mut goal_lines: Vec<LineOf> = (0..goal_folds.len())
+        .map(|k| match goal.lines.get(k).copied().flatten() {
+            Some(Line { point, direction }) => {
+                let length = direction[0].hypot(direction[1]);
+                LineOf::Given(Line { point, direction: direction.map(|d| d / length) })
+            }
+            None => LineOf::Points,
+        })
+        .collect();
     for edit in &alignment.edits {
         match *edit {
             Edit::Matched { a, b } => {
@@ -234,7 +271,11 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
                     other_side,
                     ..folds[a]
                 };
-                borrowed[a] = lines.get(b).copied().flatten();
+                if let (LineOf::Points, Some(&LineOf::Direction(d))) =
+                    (goal_lines[a], observed_lines.get(b))
+                {
+                    goal_lines[a] = LineOf::Direction(d);
+                }
             }
             Edit::OnlyA { .. } => {}
             Edit::OnlyB { b } => extra.push(ExtraFold {
@@ -244,11 +285,16 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
             }),
         }
     }
-    let geometric = goal_state(observed.start_border(), goal, &borrowed).map(|state| {
-        let predicted: Vec<Point> = observed.predicted_end.iter().map(from_xyz).collect();
-        let norm = &observed.normalisation;
-        aligned_rmse_xy(&norm.apply_all(&state), &norm.apply_all(&predicted))
-    });
+    // Both states predicted alike from their folds (so that the same folds are at 0), and
+    // normalised by the start border's transform.
+    let start = observed.start_border();
+    let geometric = fold_state(start, &goal_folds, &goal_lines)
+        .and_then(|g| Ok((g, fold_state(start, &observed.folds, &observed_lines)?)))
+        .ok()
+        .map(|(g, o)| {
+            let norm = &observed.normalisation;
+            aligned_rmse_xy(&norm.apply_all(&g), &norm.apply_all(&o))
+        });
     let reached = folds.iter().all(|f| f.status == Status::Found)
         && extra.is_empty()
         && geometric.is_none_or(|g| g <= tolerance.aligned_rmse);
@@ -366,7 +412,7 @@ fn sentence(
 mod tests {
     use super::*;
     use crate::angle::param_to_angle;
-    use crate::border::prepare;
+    use crate::border::{prepare, Point};
     use crate::{analyze, FrameRange};
     use std::f64::consts::PI;
 
@@ -395,9 +441,12 @@ mod tests {
         let mut state = sq.to_vec();
         for (k, f) in folds.iter().enumerate() {
             let fold = f.map(|s| param_to_angle(s, n));
-            let next =
-                crate::distance::fold_state(&state, &[fold], &[lines.get(k).copied().flatten()])
-                    .unwrap();
+            let next = crate::distance::fold_state(
+                &state,
+                &[fold],
+                &[lines.get(k).copied().flatten().map_or(LineOf::Points, LineOf::Given)],
+            )
+            .unwrap();
             state = next
                 .iter()
                 .zip(&state)
@@ -548,5 +597,8 @@ mod tests {
         assert!(message(Goal::folds(vec![[0.0, PI]]), bad).contains("tolerance edges"));
         let lines = Goal { folds: vec![[0.0, PI]], lines: vec![None, None] };
         assert!(message(lines, ok).contains("2 lines for 1 folds"));
+        let flat = Line { point: [0.0, 0.0], direction: [0.0, 0.0] };
+        let lines = Goal { folds: vec![[0.0, PI]], lines: vec![Some(flat)] };
+        assert!(message(lines, ok).contains("non-zero direction"));
     }
 }
