@@ -234,25 +234,24 @@ pub struct FoldBatch<'a> {
 impl<'a> FoldBatch<'a> {
     /// The batch of `values` (count × width × 2 numbers), checked: finite folds, padding
     /// only at the end of a sequence, both angles of a padding row NaN.
-    pub fn new(values: &'a [f64], width: usize) -> Result<FoldBatch<'a>> {
+    pub fn new(values: &'a [f64], count: usize, width: usize) -> Result<FoldBatch<'a>> {
         if width > MAX_BATCH_FOLDS {
             return Err(Error::too_large("folds per sequence", width, MAX_BATCH_FOLDS));
         }
-        let (folds, rest) = values.as_chunks::<2>();
-        if !rest.is_empty() || (width == 0 && !folds.is_empty()) || folds.len() % width.max(1) != 0
-        {
+        let (folds, _) = values.as_chunks::<2>();
+        if count.checked_mul(2 * width) != Some(values.len()) {
             return Err(Error::InvalidArgument(format!(
-                "a batch of fold sequences is (count, {width}, 2) numbers: {} is not a multiple of {}",
-                values.len(),
-                2 * width
+                "a batch of {count} fold sequences of {width} is {count} × {width} × 2 numbers, not {}",
+                values.len()
             )));
         }
-        let lengths = folds
-            .chunks(width.max(1))
-            .enumerate()
-            .map(|(s, rows)| {
+        let lengths = (0..count)
+            .map(|s| {
+                let rows = &folds[s * width..(s + 1) * width];
                 let length = rows.iter().take_while(|f| !f[0].is_nan() || !f[1].is_nan()).count();
-                if let Some(k) = rows[length..].iter().position(|f| !(f[0].is_nan() && f[1].is_nan())) {
+                if let Some(k) =
+                    rows[length..].iter().position(|f| !(f[0].is_nan() && f[1].is_nan()))
+                {
                     return Err(Error::InvalidArgument(format!(
                         "sequence {s}, row {}: a fold after the padding (rows of NaN end a sequence)",
                         length + k
@@ -607,39 +606,42 @@ mod tests {
             .iter()
             .flat_map(|s| (0..width).flat_map(|k| s.get(k).copied().unwrap_or([f64::NAN; 2])))
             .collect();
-        let batch = FoldBatch::new(&flat, width).unwrap();
+        let batch = FoldBatch::new(&flat, 1000, width).unwrap();
         assert_eq!(batch.len(), 1000);
         let goal = [0.1, 3.0, f64::NAN, f64::NAN];
-        let one = FoldBatch::new(&goal, 2).unwrap();
+        let one = FoldBatch::new(&goal, 1, 2).unwrap();
         let d = fold_distances(&batch, &one).unwrap();
         for (k, s) in seqs.iter().enumerate() {
             assert_eq!(d[k], fold_distance(s, &[[0.1, 3.0]]));
         }
         let rolled: Vec<f64> =
             flat[2 * width..].iter().chain(&flat[..2 * width]).copied().collect();
-        let other = FoldBatch::new(&rolled, width).unwrap();
+        let other = FoldBatch::new(&rolled, 1000, width).unwrap();
         let d = fold_distances(&batch, &other).unwrap();
         assert_eq!(d[0], fold_distance(&seqs[0], &seqs[1]));
     }
 
     #[test]
     fn bad_batches_are_named() {
-        let message =
-            |values: &[f64], width| FoldBatch::new(values, width).unwrap_err().to_string();
-        assert!(message(&[0.0, 1.0, 2.0], 1).contains("multiple of 2"));
+        let message = |values: &[f64], width: usize| {
+            let count = values.len() / (2 * width).max(1);
+            FoldBatch::new(values, count, width).unwrap_err().to_string()
+        };
+        assert!(message(&[0.0, 1.0, 2.0], 1).contains("not 3"));
         assert!(message(&[f64::NAN, f64::NAN, 0.0, 1.0], 2).contains("after the padding"));
         assert!(message(&[f64::NAN, 1.0], 1).contains("not finite"));
         assert!(message(&[f64::INFINITY, 1.0], 1).contains("not finite"));
         assert!(message(&vec![0.0; 2 * 65], 65).contains("too large"));
         let (a, b) = (
-            FoldBatch::new(&[0.0, 1.0, 0.0, 2.0], 1).unwrap(),
-            FoldBatch::new(&[0.0, 1.0, 0.0, 2.0, 0.0, 3.0], 1).unwrap(),
+            FoldBatch::new(&[0.0, 1.0, 0.0, 2.0], 2, 1).unwrap(),
+            FoldBatch::new(&[0.0, 1.0, 0.0, 2.0, 0.0, 3.0], 3, 1).unwrap(),
         );
         assert!(fold_distances(&a, &b).unwrap_err().to_string().contains("2 and 3"));
-        // Empty batches are empty answers.
-        assert!(fold_distances(&FoldBatch::new(&[], 2).unwrap(), &FoldBatch::new(&[], 2).unwrap())
-            .unwrap()
-            .is_empty());
+        // Empty batches are empty answers; one empty sequence (the flat cloth) is a sequence.
+        let none = FoldBatch::new(&[], 0, 2).unwrap();
+        assert!(fold_distances(&none, &none).unwrap().is_empty());
+        let flat = FoldBatch::new(&[], 1, 0).unwrap();
+        assert_eq!(fold_distances(&flat, &b).unwrap(), vec![1.0 / TAU, 2.0 / TAU, 3.0 / TAU]);
     }
 
     /// A square of `4·per_side` vertices, side 1, centred.

@@ -56,6 +56,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::analysis::Analysis;
 use crate::angle::{edge, wrap_pi};
+use crate::border::to_xyz;
 use crate::distance::{
     align, check_folds, fold_state, share, Distance, Edit, LineOf, MAX_BATCH_FOLDS,
 };
@@ -156,6 +157,10 @@ pub struct Verification {
     /// The goal's folds and the observed ones, in [0, 2π).
     pub goal: Vec<[f64; 2]>,
     pub observed: Vec<[f64; 2]>,
+    /// The goal's predicted state: the start border with the goal's folds made in turn
+    /// (input coordinates, border order), as the shapes were compared; `None` where a goal
+    /// fold has no line to go by.
+    pub goal_border: Option<Vec<[f64; 3]>>,
 }
 
 /// Checks a tolerance: finite and not negative.
@@ -288,12 +293,13 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
     // Both states predicted alike from their folds (so that the same folds are at 0), and
     // normalised by the start border's transform.
     let start = observed.start_border();
-    let geometric = fold_state(start, &goal_folds, &goal_lines)
-        .and_then(|g| Ok((g, fold_state(start, &observed.folds, &observed_lines)?)))
-        .ok()
+    let goal_state = fold_state(start, &goal_folds, &goal_lines).ok();
+    let geometric = goal_state
+        .as_ref()
+        .and_then(|g| Some((g, fold_state(start, &observed.folds, &observed_lines).ok()?)))
         .map(|(g, o)| {
             let norm = &observed.normalisation;
-            aligned_rmse_xy(&norm.apply_all(&g), &norm.apply_all(&o))
+            aligned_rmse_xy(&norm.apply_all(g), &norm.apply_all(&o))
         });
     let reached = folds.iter().all(|f| f.status == Status::Found)
         && extra.is_empty()
@@ -315,6 +321,7 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
         n,
         goal: goal_folds,
         observed: observed.folds.clone(),
+        goal_border: goal_state.map(|g| g.iter().map(to_xyz).collect()),
     })
 }
 
