@@ -22,7 +22,7 @@ bending stiffness and hysteresis (a limp cloth of inextensible edges); perceptio
 the simulator's vertex positions, exactly, with no occlusion or noise: a camera would see
 only the top layer).
 
-usage: python examples/fold_loop.py [--out DIR] [--tries 2] [--cells 10] [--quick]
+usage: python examples/fold_loop.py [--out DIR] [--tries 2] [--cells 12] [--quick]
        [--only NAME...]
 
 Writes DIR/<goal>.png per goal (start, goal prediction, result) and DIR/results.json, and
@@ -126,7 +126,8 @@ def towel(cells):
 
 
 def tshirt(cells):
-    """A T-shirt outline: a body 0.36 wide and 0.42 tall, sleeves 0.12 out, a square neck."""
+    """A T-shirt outline: a body 0.36 wide and 0.40 tall, sleeves 0.09 out, a square neck (all
+    to the grid's cells)."""
     width, height = 0.60, 0.45
     def keep(x, y):
         body = abs(x) < 0.18 and y < 0.20
@@ -159,11 +160,13 @@ def goals(cloth):
     (x0, y0), (x1, y1) = v.min(axis=0), v.max(axis=0)
     xm, ym = (x0 + x1) / 2, (y0 + y1) / 2
     if cloth.name == "tshirt":
+        # The body spans |x| ≤ ~0.18 up to the shoulders, the sleeves y ≈ 0.05 … 0.18.
+        body, sleeve = 0.185, 0.05
         return {
-            "half_bottom_up": [fold(cloth, (x1, ym - 0.05), (x0, ym - 0.05))],
-            "left_side_in": [fold(cloth, (-0.06, 1.0), (-0.06, y0))],
-            "right_sleeve_in": [fold(cloth, (0.16, y1), (0.16, 0.05))],
-            "corner": [fold(cloth, (x1 - 0.30 + 0.10, y0), (0.18, y0 + 0.10))],
+            "top_down": [fold(cloth, (body, -0.05), (-body, -0.05))],
+            "left_side_in": [fold(cloth, (-0.06, y1), (-0.06, y0))],
+            "right_sleeve_in": [fold(cloth, (body, sleeve), (body, y1))],
+            "corner": [fold(cloth, (body - 0.09, y0), (body, y0 + 0.09))],
         }
     return {
         "half": [fold(cloth, (xm, y0), (xm, y1))],
@@ -339,7 +342,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default="fold_loop_out")
     parser.add_argument("--tries", type=int, default=2)
-    parser.add_argument("--cells", type=int, default=10, help="grid cells across the napkin")
+    parser.add_argument("--cells", type=int, default=12, help="grid cells across the napkin")
     parser.add_argument("--quick", action="store_true", help="one goal, coarse cloth (the test)")
     parser.add_argument("--only", nargs="*", help="cloth/goal names to run (e.g. napkin/half)")
     args = parser.parse_args(argv)
