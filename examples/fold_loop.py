@@ -134,7 +134,7 @@ def tshirt(cells):
         sleeves = abs(x) < 0.30 and 0.05 < y < 0.20
         neck = abs(x) < 0.06 and y > 0.16
         return (body or sleeves) and not neck
-    return grid_cloth("tshirt", width, height, cells * 4 // 3, cells)
+    return grid_cloth("tshirt", width, height, cells * 4 // 3, cells, keep)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -246,13 +246,12 @@ class Scene:
         """Carry the grippers from `starts` to `ends` over arcs, set them down, let go."""
         starts, ends = np.asarray(starts), np.asarray(ends)
         lift = 0.5 * np.max(np.linalg.norm(ends[:, :2] - starts[:, :2], axis=1))
-        rest = RADIUS + 0.004
 
         def along(t):
             s = t * t * t * (10 - 15 * t + 6 * t * t)  # minimum jerk
             for k in range(len(starts)):
                 p = starts[k] + s * (ends[k] - starts[k])
-                p[2] = rest + (starts[k][2] - rest) * (1 - s) + lift * math.sin(math.pi * s)
+                p[2] += lift * math.sin(math.pi * s)
                 self.data.mocap_pos[k] = p
 
         self.run(CARRY_S, along)
@@ -274,9 +273,8 @@ def make_step(scene, step, to_mesh):
     vertices = [to_mesh[p["vertex"]] for p in picks]
     scene.grasp(vertices)
     starts = [scene.data.xpos[scene.vertex_body[v]].copy() for v in vertices]
-    ends = [np.array(p["to"], dtype=float) for p in picks]
-    for e in ends:
-        e[2] = RADIUS
+    # Set down where the plan says, one layer of cloth up (a folded corner lands on the cloth).
+    ends = [np.array(p["to"], dtype=float) + (0, 0, 2 * RADIUS) for p in picks]
     scene.carry(starts, ends)
 
 
