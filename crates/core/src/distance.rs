@@ -64,8 +64,8 @@ use crate::analysis::Analysis;
 use crate::angle::{angle_to_param, distance as circular, wrap_tau, TAU};
 use crate::border::{point_at, Normalisation, Point};
 use crate::error::{Error, Result};
-use crate::fold::reflect::apply_arcs;
-use crate::fold::Line;
+use crate::fold::reflect::apply;
+use crate::geometry::{Fold, Folding, Line, Point2, Vector2};
 use crate::metrics::aligned_rmse_xy;
 
 /// The distance between two states of one cloth.
@@ -353,8 +353,8 @@ pub fn fold_line(before: &[Point], fold: [f64; 2], how: LineOf) -> Option<Line> 
         LineOf::Direction([x, y]) => {
             let length = x.hypot(y);
             (length > 0.0 && length.is_finite()).then(|| Line {
-                point: [(p.x + q.x) / 2.0, (p.y + q.y) / 2.0],
-                direction: [x / length, y / length],
+                point: Point2::new((p.x + q.x) / 2.0, (p.y + q.y) / 2.0),
+                direction: Vector2::new(x / length, y / length),
             })
         }
         LineOf::Points => {
@@ -383,7 +383,8 @@ pub fn fold_state(flat: &[Point], folds: &[[f64; 2]], lines: &[LineOf]) -> Resul
                 fold[1]
             )));
         };
-        state = apply_arcs(&state, &[fold], &line);
+        let fold = Fold::from(fold);
+        state = apply(&state, &Folding { fold, arcs: vec![fold.arc()], line: Some(line) });
     }
     Ok(state)
 }
@@ -416,6 +417,11 @@ pub fn geometric_distances(
         .collect()
 }
 
+/// Folds as the `[f1, f2]` pairs this module computes on.
+pub(crate) fn pairs(folds: &[Fold]) -> Vec<[f64; 2]> {
+    folds.iter().map(|&f| f.into()).collect()
+}
+
 /// Both distances between two analyses of one cloth (the same border vertex count): their
 /// folds, and their predicted end borders (each normalised by its own start border).
 pub fn between(a: &Analysis, b: &Analysis) -> Result<Distance> {
@@ -430,7 +436,7 @@ pub fn between(a: &Analysis, b: &Analysis) -> Result<Distance> {
         x.normalisation.apply_all(&points)
     };
     Ok(Distance {
-        folds: fold_distance(&a.folds, &b.folds),
+        folds: fold_distance(&pairs(&a.folds), &pairs(&b.folds)),
         geometric: Some(aligned_rmse_xy(&predicted(a), &predicted(b))),
     })
 }
@@ -695,7 +701,7 @@ mod tests {
         let quarters = [[at(5.0), at(25.0)], [at(15.0), at(35.0)]];
         let error = fold_state(&sq, &quarters, &[]).unwrap_err().to_string();
         assert!(error.contains("fold 2") && error.contains("give the line"), "{error}");
-        let line = Line { point: [-0.5, 0.0], direction: [1.0, 0.0] };
+        let line = Line { point: Point2::new(-0.5, 0.0), direction: Vector2::new(1.0, 0.0) };
         let state = fold_state(&sq, &quarters, &[LineOf::Points, LineOf::Given(line)]).unwrap();
         // Every vertex ends in the bottom-left quarter.
         assert!(state.iter().all(|p| p.x <= 1e-9 && p.y <= 1e-9), "{state:?}");
@@ -718,8 +724,8 @@ mod tests {
         };
         let n = sq.len();
         let at = |s: f64| crate::angle::param_to_angle(s, n);
-        let fold_a = crate::fold::reflect::apply_fold(&sq, [at(5.0), at(25.0)]);
-        let fold_b = crate::fold::reflect::apply_fold(&sq, [at(0.0), at(20.0)]);
+        let fold_a = fold_state(&sq, &[[at(5.0), at(25.0)]], &[]).unwrap();
+        let fold_b = fold_state(&sq, &[[at(0.0), at(20.0)]], &[]).unwrap();
         let a = analyze(&prepare(vec![xyz(&sq), lifted(&fold_a)]).unwrap(), FrameRange::default())
             .unwrap();
         let b = analyze(&prepare(vec![xyz(&sq), lifted(&fold_b)]).unwrap(), FrameRange::default())

@@ -61,7 +61,7 @@ use crate::distance::{
     align, check_folds, fold_state, share, Distance, Edit, LineOf, MAX_BATCH_FOLDS,
 };
 use crate::error::{Error, Result};
-use crate::fold::Line;
+use crate::geometry::Line;
 use crate::metrics::aligned_rmse_xy;
 use crate::plan::{plan_for, Action, Plan};
 
@@ -90,9 +90,10 @@ pub struct Goal {
 }
 
 impl Goal {
-    /// A goal of folds alone, each made along the line through its points.
-    pub fn folds(folds: Vec<[f64; 2]>) -> Goal {
-        Goal { folds, lines: Vec::new() }
+    /// A goal of folds alone (`Fold`s or `[f1, f2]` pairs), each made along the line
+    /// through its points.
+    pub fn folds<F: Into<[f64; 2]>>(folds: impl IntoIterator<Item = F>) -> Goal {
+        Goal { folds: folds.into_iter().map(Into::into).collect(), lines: Vec::new() }
     }
 }
 
@@ -186,7 +187,7 @@ fn observed_lines(observed: &Analysis) -> Vec<LineOf> {
         .map(|s| {
             let from_disks = s.detection.synthesis.as_ref().is_some_and(|x| x.direction.is_some());
             match s.line {
-                Some(line) if from_disks => LineOf::Direction(line.direction),
+                Some(line) if from_disks => LineOf::Direction([line.direction.x, line.direction.y]),
                 _ => LineOf::Points,
             }
         })
@@ -209,8 +210,8 @@ pub fn check_goal(goal: &Goal, n: Option<usize>) -> Result<()> {
     }
     for (k, line) in goal.lines.iter().enumerate() {
         if let Some(Line { point, direction }) = line {
-            let finite = point.iter().chain(direction).all(|v| v.is_finite());
-            if !finite || direction[0].hypot(direction[1]) == 0.0 {
+            let finite = [point.x, point.y, direction.x, direction.y].iter().all(|v| v.is_finite());
+            if !finite || direction.norm() == 0.0 {
                 return Err(Error::InvalidArgument(format!(
                     "the goal's line {}: a finite point and a non-zero direction are needed",
                     k + 1
@@ -228,7 +229,8 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
     check_goal(goal, Some(n))?;
     let goal_folds: Vec<[f64; 2]> =
         goal.folds.iter().map(|f| f.map(crate::angle::wrap_tau)).collect();
-    let alignment = align(&goal_folds, &observed.folds);
+    let observed_folds = crate::distance::pairs(&observed.folds);
+    let alignment = align(&goal_folds, &observed_folds);
     let to_edges = |delta: f64| delta / edge(n);
     let mut folds: Vec<GoalFold> = goal_folds
         .iter()
@@ -250,8 +252,7 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
     let mut goal_lines: Vec<LineOf> = (0..goal_folds.len())
         .map(|k| match goal.lines.get(k).copied().flatten() {
             Some(Line { point, direction }) => {
-                let length = direction[0].hypot(direction[1]);
-                LineOf::Given(Line { point, direction: direction.map(|d| d / length) })
+                LineOf::Given(Line { point, direction: direction / direction.norm() })
             }
             None => LineOf::Points,
         })
@@ -259,7 +260,7 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
     for edit in &alignment.edits {
         match *edit {
             Edit::Matched { a, b } => {
-                let (g, o) = (goal_folds[a], observed.folds[b]);
+                let (g, o) = (goal_folds[a], observed_folds[b]);
                 let error = [to_edges(wrap_pi(o[0] - g[0])), to_edges(wrap_pi(o[1] - g[1]))];
                 let within = |e: f64| e.abs() <= tolerance.edges;
                 let other_side = !(within(error[0]) && within(error[1]))
@@ -285,8 +286,8 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
             Edit::OnlyA { .. } => {}
             Edit::OnlyB { b } => extra.push(ExtraFold {
                 observed: b,
-                fold: observed.folds[b],
-                share: share(observed.folds[b]),
+                fold: observed_folds[b],
+                share: share(observed_folds[b]),
             }),
         }
     }
@@ -296,7 +297,7 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
     let goal_state = fold_state(start, &goal_folds, &goal_lines).ok();
     let geometric = goal_state
         .as_ref()
-        .and_then(|g| Some((g, fold_state(start, &observed.folds, &observed_lines).ok()?)))
+        .and_then(|g| Some((g, fold_state(start, &observed_folds, &observed_lines).ok()?)))
         .map(|(g, o)| {
             let norm = &observed.normalisation;
             aligned_rmse_xy(&norm.apply_all(g), &norm.apply_all(&o))
@@ -305,7 +306,7 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
         && extra.is_empty()
         && geometric.is_none_or(|g| g <= tolerance.aligned_rmse);
     let plan = match goal_folds[..] {
-        [only] => Some(plan_for(observed, only)?),
+        [only] => Some(plan_for(observed, only.into())?),
         _ => None,
     };
     let distance = Distance { folds: alignment.distance, geometric };
@@ -320,7 +321,7 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
         plan,
         n,
         goal: goal_folds,
-        observed: observed.folds.clone(),
+        observed: observed_folds,
         goal_border: goal_state.map(|g| g.iter().map(to_xyz).collect()),
     })
 }
@@ -420,6 +421,7 @@ mod tests {
     use super::*;
     use crate::angle::param_to_angle;
     use crate::border::{prepare, Point};
+    use crate::geometry::{Point2, Vector2};
     use crate::{analyze, FrameRange};
     use std::f64::consts::PI;
 
@@ -465,7 +467,7 @@ mod tests {
     }
 
     fn goal(n: usize, folds: &[[f64; 2]]) -> Goal {
-        Goal::folds(folds.iter().map(|f| f.map(|s| param_to_angle(s, n))).collect())
+        Goal::folds(folds.iter().map(|f| f.map(|s| param_to_angle(s, n))))
     }
 
     #[test]
@@ -584,7 +586,7 @@ mod tests {
         let quarters = [[5.0, 25.0], [15.0, 35.0]];
         // The second fold's points (the middles of the right and left sides) meet at
         // (0, 0.5) after the first: it is made along y = 0.5.
-        let line = Line { point: [0.0, 0.5], direction: [1.0, 0.0] };
+        let line = Line { point: Point2::new(0.0, 0.5), direction: Vector2::new(1.0, 0.0) };
         let made = observed_along(&sq, &quarters, &[None, Some(line)]);
         assert_eq!(made.folds.len(), 2, "{:?}", made.folds);
         let answer = verify(&made, &goal(40, &quarters), Tolerance::default()).unwrap();
@@ -604,7 +606,7 @@ mod tests {
         assert!(message(Goal::folds(vec![[0.0, PI]]), bad).contains("tolerance edges"));
         let lines = Goal { folds: vec![[0.0, PI]], lines: vec![None, None] };
         assert!(message(lines, ok).contains("2 lines for 1 folds"));
-        let flat = Line { point: [0.0, 0.0], direction: [0.0, 0.0] };
+        let flat = Line { point: Point2::new(0.0, 0.0), direction: Vector2::new(0.0, 0.0) };
         let lines = Goal { folds: vec![[0.0, PI]], lines: vec![Some(flat)] };
         assert!(message(lines, ok).contains("non-zero direction"));
     }
