@@ -28,4 +28,5 @@ mod record;
 mod reference;
 mod schema;
 mod unseen;
+mod verify;
 mod vrfolding;
