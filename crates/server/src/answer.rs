@@ -57,3 +57,13 @@ pub struct ListedFields<'a> {
 pub struct ErrorBody {
     pub error: String,
 }
+
+/// One row of `GET /api/samples`: the same fields for a built-in sample and a dataset's (a
+/// catalog entry, `source` `"builtin"` for the built-in ones), and its thumbnail's URL.
+#[derive(Debug, Clone, Serialize)]
+pub struct SampleRow {
+    #[serde(flatten)]
+    pub entry: close_io::catalog::Entry,
+    /// URL of its small borders picture.
+    pub thumbnail: String,
+}

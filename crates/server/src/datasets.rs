@@ -10,7 +10,8 @@
 use axum::extract::State;
 use serde::Serialize;
 
-use super::routes::{sample_rows, JsonBytes, SampleRow};
+use super::answer::SampleRow;
+use super::routes::{sample_rows, JsonBytes};
 use super::{ApiError, AppQuery, AppState};
 use close_io::catalog;
 

@@ -62,8 +62,7 @@ use tower_http::trace::TraceLayer;
 
 pub use error::ApiError;
 pub use extract::{AppJson, AppPath, AppQuery};
-pub use routes::{Analyzed, Drawing};
-pub use state::{AppState, Config};
+pub use state::{Analyzed, AppState, Config, Drawing};
 
 use guard::{Doors, ServedAt};
 use socket::Socket;

@@ -12,9 +12,9 @@ use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
-use super::answer::{AnalyzeAnswer, ListedFields};
+use super::answer::{AnalyzeAnswer, ListedFields, SampleRow};
 use super::{ApiError, AppJson, AppPath, AppQuery};
-use crate::state::{AppState, Lane};
+use crate::state::{Analyzed, AppState, Drawing, Lane};
 use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
 use close_core::border::{to_xyz, BorderFrames};
 use close_core::budget::{Budget, Deadline};
@@ -32,65 +32,6 @@ use close_render::{
 const THUMBNAIL_SIZE: u32 = 160;
 /// Cache keys of built-in samples start with this; uploads are hex digests.
 const SAMPLE_KEY: &str = "sample:";
-
-/// What an analysis's pictures and plans need: the analysis and the sample's known folds,
-/// without the JSON answer. It outlives its [`Analyzed`] in the server's drawings cache, so
-/// the image URLs of an answer stay reachable after the analysis cache let it go.
-pub struct Drawing {
-    pub analysis: Analysis,
-    /// The sample's known folds (empty when it carries none), drawn beside the found ones.
-    pub truth: Vec<Fold>,
-    /// A mesh sample's mesh at the analysed frames, for its mesh picture.
-    pub mesh: Option<MeshView>,
-    /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
-    pub bytes: usize,
-}
-
-impl Drawing {
-    fn new(analysis: Analysis, truth: Vec<Fold>, mesh: Option<MeshView>) -> Drawing {
-        let bytes = Self::weigh(&analysis, &truth) + mesh.as_ref().map_or(0, MeshView::bytes);
-        Drawing { analysis, truth, mesh, bytes }
-    }
-
-    /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
-    /// (O(frames·N), the bulk), its index and angle lists, its steps with their arcs and
-    /// curves, and its texts.
-    fn weigh(a: &Analysis, truth: &[Fold]) -> usize {
-        use std::mem::{size_of, size_of_val};
-        let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
-        let steps: usize = a
-            .steps
-            .iter()
-            .map(|s| {
-                size_of_val(s)
-                    + size_of_val(s.detection.arcs.as_slice())
-                    + size_of_val(s.detection.curves.as_slice())
-            })
-            .sum();
-        let lists = size_of_val(a.corners.as_slice())
-            + size_of_val(a.corner_vertices.as_slice())
-            + size_of_val(a.border_indices.as_slice())
-            + size_of_val(a.folds.as_slice())
-            + size_of_val(a.predicted_end.as_slice())
-            + size_of_val(truth);
-        let texts = a.border_source.len() + a.warnings.iter().map(String::len).sum::<usize>();
-        size_of::<Drawing>() + frames + steps + lists + texts
-    }
-}
-
-/// An analysis, with the response JSON already written (a cache hit costs a copy).
-pub struct Analyzed {
-    pub key: String,
-    pub drawing: Arc<Drawing>,
-    pub response: Bytes,
-}
-
-impl Analyzed {
-    /// Roughly the memory it holds: the drawing and the response.
-    pub fn bytes(&self) -> usize {
-        self.drawing.bytes + self.response.len()
-    }
-}
 
 /// A JSON answer already serialised (on a worker, not on the async runtime).
 pub struct JsonBytes(pub(super) Bytes);
@@ -403,16 +344,6 @@ fn cells(analysis: &Analysis) -> u64 {
 /// Frames of a border or mesh sample.
 fn frame_count(sample: &Sample) -> usize {
     sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len())
-}
-
-/// One row of `GET /api/samples`: the same fields for a built-in sample and a dataset's (a
-/// catalog entry, `source` `"builtin"` for the built-in ones), and its thumbnail's URL.
-#[derive(Debug, Clone, Serialize)]
-pub(super) struct SampleRow {
-    #[serde(flatten)]
-    pub entry: close_io::catalog::Entry,
-    /// URL of its small borders picture.
-    pub thumbnail: String,
 }
 
 impl SampleRow {

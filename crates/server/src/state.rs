@@ -3,19 +3,22 @@
 //! pictures, the CPU workers and the memory and connection budgets. The routes
 //! ([`crate::routes`]) read and fill it; nothing here knows HTTP.
 
-use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Duration;
 
 use axum::body::Bytes;
 use tokio::sync::Semaphore;
 
+use crate::answer::SampleRow;
 use crate::error::ApiError;
 use crate::guard::UploadBudget;
-use crate::routes::{self, Analyzed, Drawing};
-use crate::workers::Workers;
+use crate::workers::{lock, Workers};
+use close_core::analysis::Analysis;
 use close_core::budget::{Budget, Deadline};
+use close_core::geometry::Fold;
 use close_io::cache::Lru;
 use close_io::dataset::{BuiltinSample, Dataset};
+use close_render::mesh_picture::MeshView;
 
 /// Limits and sizes of a server.
 #[derive(Debug, Clone)]
@@ -84,6 +87,65 @@ impl Default for Config {
     }
 }
 
+/// What an analysis's pictures and plans need: the analysis and the sample's known folds,
+/// without the JSON answer. It outlives its [`Analyzed`] in the server's drawings cache, so
+/// the image URLs of an answer stay reachable after the analysis cache let it go.
+pub struct Drawing {
+    pub analysis: Analysis,
+    /// The sample's known folds (empty when it carries none), drawn beside the found ones.
+    pub truth: Vec<Fold>,
+    /// A mesh sample's mesh at the analysed frames, for its mesh picture.
+    pub mesh: Option<MeshView>,
+    /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
+    pub bytes: usize,
+}
+
+impl Drawing {
+    pub(crate) fn new(analysis: Analysis, truth: Vec<Fold>, mesh: Option<MeshView>) -> Drawing {
+        let bytes = Self::weigh(&analysis, &truth) + mesh.as_ref().map_or(0, MeshView::bytes);
+        Drawing { analysis, truth, mesh, bytes }
+    }
+
+    /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
+    /// (O(frames·N), the bulk), its index and angle lists, its steps with their arcs and
+    /// curves, and its texts.
+    fn weigh(a: &Analysis, truth: &[Fold]) -> usize {
+        use std::mem::{size_of, size_of_val};
+        let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
+        let steps: usize = a
+            .steps
+            .iter()
+            .map(|s| {
+                size_of_val(s)
+                    + size_of_val(s.detection.arcs.as_slice())
+                    + size_of_val(s.detection.curves.as_slice())
+            })
+            .sum();
+        let lists = size_of_val(a.corners.as_slice())
+            + size_of_val(a.corner_vertices.as_slice())
+            + size_of_val(a.border_indices.as_slice())
+            + size_of_val(a.folds.as_slice())
+            + size_of_val(a.predicted_end.as_slice())
+            + size_of_val(truth);
+        let texts = a.border_source.len() + a.warnings.iter().map(String::len).sum::<usize>();
+        size_of::<Drawing>() + frames + steps + lists + texts
+    }
+}
+
+/// An analysis, with the response JSON already written (a cache hit costs a copy).
+pub struct Analyzed {
+    pub key: String,
+    pub drawing: Arc<Drawing>,
+    pub response: Bytes,
+}
+
+impl Analyzed {
+    /// Roughly the memory it holds: the drawing and the response.
+    pub fn bytes(&self) -> usize {
+        self.drawing.bytes + self.response.len()
+    }
+}
+
 pub(crate) struct Inner {
     pub(crate) config: Config,
     pub(crate) analyses: Mutex<Lru<Arc<Analyzed>>>,
@@ -98,7 +160,7 @@ pub(crate) struct Inner {
     /// Bytes of bodies and answers in flight ([`guard::upload_budget`]).
     pub(crate) memory: Arc<UploadBudget>,
     /// The rows of `GET /api/samples`, built once: the datasets never change.
-    pub(crate) sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
+    pub(crate) sample_list: OnceLock<Arc<Vec<SampleRow>>>,
     /// The user's datasets, listed at start.
     pub(crate) catalog: Arc<close_io::catalog::Catalog>,
     /// Connection slots: [`Config::max_connections`] permits, one held by each open
@@ -130,11 +192,6 @@ impl Lane {
             Lane::Light
         }
     }
-}
-
-/// A poisoned lock only means a worker panicked mid-insert; the map itself is still valid.
-pub(crate) fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
-    m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Cancels a job's deadline when the request that waits for it is dropped (or done).

@@ -8,14 +8,18 @@
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use tokio::sync::Semaphore;
 
 use crate::error::ApiError;
-use crate::state::lock;
 use close_core::budget::Deadline;
+
+/// A poisoned lock only means a worker panicked mid-insert; the map itself is still valid.
+pub(crate) fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// A pool that could not be built (no thread could be spawned) is `None`: its jobs run on
 /// tokio's blocking threads and rayon's global pool instead.
