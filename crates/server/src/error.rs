@@ -28,8 +28,6 @@ pub enum ApiError {
     BadRequest(String),
     /// Rejected by an extractor or a layer before reaching the handler.
     Rejected(StatusCode, String),
-    /// A multipart form ran past the body's length limit while it was read.
-    FormTooLarge,
     /// The server failed (a worker panicked or the pool shut down).
     Internal(String),
 }
@@ -42,7 +40,6 @@ impl ApiError {
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::BadRequest(_) => StatusCode::BAD_REQUEST,
             ApiError::Rejected(status, _) => *status,
-            ApiError::FormTooLarge => StatusCode::PAYLOAD_TOO_LARGE,
             ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
     }
@@ -58,9 +55,6 @@ impl ApiError {
                 format!("request body too large: {m}")
             }
             ApiError::Rejected(_, m) => m.clone(),
-            ApiError::FormTooLarge => {
-                "request body too large: the form is larger than the limit".into()
-            }
         }
     }
 }
@@ -132,29 +126,13 @@ macro_rules! from_rejection {
 
 from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection);
 
-/// True when the body's length limit (axum's `DefaultBodyLimit`, tower-http's limit layer:
-/// both `http_body_util::Limited`) is among the error's sources.
-fn over_length_limit(error: &(dyn std::error::Error + 'static)) -> bool {
-    let mut source = Some(error);
-    while let Some(s) = source {
-        if s.is::<http_body_util::LengthLimitError>() {
-            return true;
-        }
-        source = s.source();
-    }
-    false
-}
-
 /// A form that could not be read is the client's doing: a body too slow (408) or over the
-/// limit (413, found by type in the error's sources), or a malformed form (400), never a
-/// server fault.
+/// limit (413: axum finds the body's `LengthLimitError` by type among the error's sources),
+/// or a malformed form (400), never a server fault.
 impl From<MultipartError> for ApiError {
     fn from(e: MultipartError) -> Self {
         if let Some(slow) = too_slow(&e) {
             return slow;
-        }
-        if over_length_limit(&e) {
-            return ApiError::FormTooLarge;
         }
         let status =
             if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
@@ -196,15 +174,35 @@ mod tests {
     }
 
     #[tokio::test]
-    async fn a_body_over_its_length_limit_is_found_by_its_type_not_its_text() {
-        use http_body_util::{BodyExt, Full, Limited};
-        let body = Limited::new(Full::new(axum::body::Bytes::from_static(b"too long")), 3);
-        let limited = body.collect().await.expect_err("over the limit");
-        let wrapped = std::io::Error::other(limited);
-        assert!(over_length_limit(&wrapped));
-        // The same words in another error are not the limit.
-        assert!(!over_length_limit(&std::io::Error::other("length limit exceeded")));
-        assert_eq!(ApiError::FormTooLarge.status(), StatusCode::PAYLOAD_TOO_LARGE);
+    async fn a_form_over_the_body_limit_is_413_found_by_the_errors_type() {
+        use axum::extract::{DefaultBodyLimit, Multipart};
+        use tower::ServiceExt;
+        async fn read(mut form: Multipart) -> Result<(), ApiError> {
+            while let Some(field) = form.next_field().await? {
+                field.bytes().await?;
+            }
+            Ok(())
+        }
+        let app = axum::Router::new()
+            .route("/", axum::routing::post(read))
+            .layer(DefaultBodyLimit::max(64));
+        let form = |size: usize| {
+            let body = format!(
+                "--b\r\nContent-Disposition: form-data; name=\"f\"\r\n\r\n{}\r\n--b--\r\n",
+                "x".repeat(size)
+            );
+            axum::http::Request::post("/")
+                .header("content-type", "multipart/form-data; boundary=b")
+                .body(axum::body::Body::from(body))
+                .expect("request")
+        };
+        let small = app.clone().oneshot(form(4)).await.expect("answer");
+        assert_eq!(small.status(), StatusCode::OK);
+        let large = app.oneshot(form(1000)).await.expect("answer");
+        assert_eq!(large.status(), StatusCode::PAYLOAD_TOO_LARGE);
+        let body = axum::body::to_bytes(large.into_body(), 1 << 16).await.expect("body");
+        let text = String::from_utf8_lossy(&body);
+        assert!(text.starts_with(r#"{"error":"request body too large: "#), "{text}");
     }
 }
 
