@@ -16,8 +16,8 @@
 //! - a fold missing or extra costs w(a) = wrap(a2 − a1) / 2π, the share of the border it
 //!   folds over (anticlockwise from a1 to a2).
 //!
-//! The DP d[i][j] = min(d[i−1][j] + w(a_i), d[i][j−1] + w(b_j), d[i−1][j−1] + c(a_i, b_j))
-//! over (m+1)(n+1) cells gives D(A, B) = d[m][n]; [`align`] also gives the edit that
+//! The DP `d[i][j] = min(d[i−1][j] + w(a_i), d[i][j−1] + w(b_j), d[i−1][j−1] + c(a_i, b_j))`
+//! over (m+1)(n+1) cells gives `D(A, B) = d[m][n]`; [`align`] also gives the edit that
 //! reaches it (which fold matches which, which are missing and extra).
 //!
 //! Properties (tested below): D(A, A) = 0 and D(A, B) > 0 for A ≠ B; D(A, B) = D(B, A)

@@ -3,7 +3,7 @@
 //!
 //! **High level.** The corners a fold moves are the corners strictly inside its folded arc
 //! (anticlockwise from f1 to f2), more than half an edge from its ends
-//! ([`crate::angle::folds_vertex`]). If the goal fold (g1, g2) moves the same corners as the
+//! ([`crate::geometry::Arc::folds_vertex`]). If the goal fold (g1, g2) moves the same corners as the
 //! current folds together, one step moves them straight to the goal (`"direct"`);
 //! otherwise the current folds are undone, last first, and the goal is folded from the
 //! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`. When the

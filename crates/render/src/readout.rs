@@ -55,8 +55,8 @@ impl DiskGeometry {
     }
 }
 
-/// The border plot's map from data (x, y) to its pixels: pixel x = x[0]·x + x[1], pixel
-/// y = y[0]·y + y[1] (y[0] < 0: pixels grow downwards).
+/// The border plot's map from data (x, y) to its pixels: pixel x = `x[0]·x + x[1]`, pixel
+/// y = `y[0]·y + y[1]` (`y[0] < 0`: pixels grow downwards).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PlotTransform {
     pub x: [f64; 2],

@@ -20,7 +20,7 @@
 //!   OS. A body announced over its route's own limit (uploads to `/api/analyze`: the body
 //!   limit; the JSON routes: the JSON limit) is refused at once, holding nothing. Answers
 //!   count too: an answer of 64 KiB or more holds permits for its length until it is
-//!   written or its connection dropped (at the write time-out of [`super::socket`] when its
+//!   written or its connection dropped (at the write time-out of the server's socket module when its
 //!   client does not read), and an answer whose size is known beforehand (an
 //!   interpolation's) is reserved before it is built.
 //! - **Body rate**: a body must keep arriving. After a grace of the header time-out (of
@@ -209,7 +209,7 @@ impl UploadBudget {
 }
 
 /// Middleware: hold the request's share of the budget until its answer is ready, then the
-/// answer's own share until it is written ([`hold_answer`]).
+/// answer's own share until it is written (`hold_answer`).
 pub async fn upload_budget(
     State(budget): State<Arc<UploadBudget>>,
     request: Request,
@@ -268,7 +268,7 @@ fn closed() -> ApiError {
 const COUNTED_ANSWER: usize = 64 * 1024;
 
 /// Permits a handler took for the answer it is about to build ([`UploadBudget::reserve`]),
-/// put in the answer's extensions: [`hold_answer`] keeps them, resized to the answer's
+/// put in the answer's extensions: `hold_answer` keeps them, resized to the answer's
 /// length, until the answer is written.
 #[derive(Clone)]
 pub struct Reserved(Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>>);
@@ -415,7 +415,7 @@ impl Drop for Held {
 /// upload may take about an hour, and a trickle of a byte now and then is cut.
 pub const MIN_BODY_RATE: u64 = 16 * 1024;
 
-/// The grace of a body while the server is crowded ([`BodyRate::crowded`]): trickled bodies
+/// The grace of a body while the server is crowded (`BodyRate::crowded`): trickled bodies
 /// that hold the connection slots are then cut within a second or two, so new clients (a
 /// `/healthz`, a normal analysis) get in instead of waiting out the header time-out.
 pub const CROWDED_GRACE: Duration = Duration::from_secs(1);
@@ -527,7 +527,7 @@ impl hyper::body::Body for MinRate {
     }
 }
 
-/// Middleware: read every request body through [`MinRate`].
+/// Middleware: read every request body through `MinRate`.
 pub async fn body_rate(State(rate): State<BodyRate>, request: Request, next: Next) -> Response {
     let request = request.map(|body| axum::body::Body::new(MinRate::new(body, rate)));
     next.run(request).await

@@ -16,8 +16,8 @@
 //! without its JSON answer) is kept in a third, longer cache, so an answer's image URLs
 //! still draw once the analysis cache has let the analysis go.
 //!
-//! Bounded work: each CPU job is estimated first (a [`Budget`]: analysed frames × N² dGLI
-//! cells, interpolated points; 413 over the limit) and carries a [`Deadline`] that is
+//! Bounded work: each CPU job is estimated first (a [`close_core::budget::Budget`]: analysed frames × N² dGLI
+//! cells, interpolated points; 413 over the limit) and carries a [`close_core::budget::Deadline`] that is
 //! cancelled when its request is dropped (the 408 of the time-out, a closed connection), so
 //! its loops stop and its worker permit is freed. Bodies in flight share one byte budget;
 //! connections are capped and closed when their headers do not arrive in time (which also
@@ -196,7 +196,7 @@ pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
 /// the listen queue); a connection that does not send a request's headers within
 /// [`Config::header_timeout`], first or between keep-alive requests, is closed; one whose
 /// answer is not read for [`Config::write_timeout`] is dropped. hyper's own answers to heads
-/// it cannot read get the JSON error body too ([`socket`]).
+/// it cannot read get the JSON error body too (the server's socket module).
 pub async fn serve_with(
     listener: TcpListener,
     state: AppState,

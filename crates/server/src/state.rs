@@ -96,7 +96,7 @@ pub struct Drawing {
     pub truth: Vec<Fold>,
     /// A mesh sample's mesh at the analysed frames, for its mesh picture.
     pub mesh: Option<MeshView>,
-    /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
+    /// Roughly the memory it holds (`Drawing::weigh`), counted once when it is made.
     pub bytes: usize,
 }
 

@@ -504,11 +504,11 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 ///
 /// When an earlier fold has stacked layers, a pair of edges on the same side of the new fold
 /// can change a lot (the layers slide, and the dGLI of stacked edges grows like 1/height),
-/// so the cut ([`super::cut`]) loses its footing. We try lines instead: [`2·DIRECTIONS`]
+/// so the cut ([`super::cut`]) loses its footing. We try lines instead: 2·`DIRECTIONS`
 /// directions and offsets one mean edge apart across the state; each turns over one arc of
 /// the border that lies to its left (a fold may turn the top layer only). The line whose
 /// synthesised disks match the measured `end` disk best (on a strided sample of all pairs)
-/// give the candidates, best first: [`CANDIDATES`] distinct arcs, each with the points
+/// give the candidates, best first: `CANDIDATES` distinct arcs, each with the points
 /// where the border crosses its line, and the line's direction. None of them when no line
 /// beats leaving the state as it was by [`MAX_MISMATCH_RATIO`]. The exact optimum is
 /// needle sharp on stacked layers, so the caller refines each ([`refine`]).

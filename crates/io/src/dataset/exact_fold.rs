@@ -70,7 +70,7 @@ pub fn border_point(points: &[Point], s: f64) -> Point {
 
 /// The vertices strictly inside the anticlockwise arc from border parameter `s1` to `s2`
 /// of an `n`-vertex border, in walking order: vertex v is inside when its anticlockwise
-/// offset (v − s1) mod n lies in (ε, span − ε), span = (s2 − s1) mod n, ε = [`ON_LINE`].
+/// offset (v − s1) mod n lies in (ε, span − ε), span = (s2 − s1) mod n, ε = `ON_LINE`.
 pub fn arc_vertices(n: usize, s1: f64, s2: f64) -> Vec<usize> {
     let nf = n as f64;
     let span = modulo(s2 - s1, nf);

@@ -6,11 +6,11 @@
 //! `garment_name`, `sample_id` and `scale`, with the arrays `mesh/cloth_verts` (float [V, 3],
 //! world positions), `mesh/cloth_faces_tri` (int [F, 3], the same in every frame of a
 //! video), `mesh/cloth_nocs_verts` (float [V, 3], canonical positions) and
-//! `grip_vertex_id/{left,right}_grip_vertex_id` (int [k], `[-1]` while a hand holds nothing).
+//! `grip_vertex_id/{left,right}_grip_vertex_id` (int `[k]`, `[-1]` while a hand holds nothing).
 //! Chunks are Blosc-compressed; `zarrs` reads them.
 //!
 //! A video's frames (sorted by `sample_id`) are cut into fold actions by BiFold's rule
-//! ([`cut`]); an action whose start or end mesh fails BiFold's broken-mesh test
+//! ([`Store::cut`], [`bifold`]); an action whose start or end mesh fails BiFold's broken-mesh test
 //! ([`broken`]) is dropped. The border is the paper's silhouette border (zenithal depth mask,
 //! ε-cover with ε = [`crate::mesh::silhouette::EPSILON`]) of the video's first frame,
 //! followed through the frames by mesh vertex. Fold 1 compares the start of action 1 with
