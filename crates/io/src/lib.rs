@@ -1,5 +1,5 @@
 //! CloSE readers: the files a user brings, the built-in dataset and the evaluation table,
-//! over [`close_core`] (re-exported whole, so `close_core::border` is `close_core::border`).
+//! over [`close_core`] (named by its own paths: nothing is re-exported).
 //!
 //! [`formats`] (Sample JSON, text/CSV, OBJ, PLY, MATLAB v5) → [`mesh`] (a mesh's border) →
 //! [`dataset`] (the built-in samples) → [`eval`] (the evaluation table) → [`vrfolding`]
