@@ -126,13 +126,33 @@ macro_rules! from_rejection {
 
 from_rejection!(JsonRejection, BytesRejection, PathRejection, QueryRejection, MultipartRejection);
 
+/// True when the body's length limit (axum's `DefaultBodyLimit`, tower-http's limit layer:
+/// both `http_body_util::Limited`) is among the error's sources: found by its type.
+fn over_length_limit(error: &(dyn std::error::Error + 'static)) -> bool {
+    let mut source = Some(error);
+    while let Some(s) = source {
+        if s.is::<http_body_util::LengthLimitError>() {
+            return true;
+        }
+        source = s.source();
+    }
+    false
+}
+
 /// A form that could not be read is the client's doing: a body too slow (408) or over the
-/// limit (413: axum finds the body's `LengthLimitError` by type among the error's sources),
-/// or a malformed form (400), never a server fault.
+/// limit (413: the body's `LengthLimitError`, found by type among the error's sources; axum's
+/// own status misses tower-http's limit layer), or a malformed form (400), never a server
+/// fault.
 impl From<MultipartError> for ApiError {
     fn from(e: MultipartError) -> Self {
         if let Some(slow) = too_slow(&e) {
             return slow;
+        }
+        if over_length_limit(&e) {
+            return ApiError::Rejected(
+                StatusCode::PAYLOAD_TOO_LARGE,
+                "request body too large: the form is larger than the limit".into(),
+            );
         }
         let status =
             if e.status().is_client_error() { e.status() } else { StatusCode::BAD_REQUEST };
