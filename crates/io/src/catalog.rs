@@ -178,6 +178,16 @@ fn extension(path: &Path) -> String {
     path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default()
 }
 
+/// Most characters of a listed name or category.
+const MAX_LISTED_CHARS: usize = 256;
+/// Most characters of an id's stem (its prefix and a number keep it unique).
+const MAX_ID_STEM: usize = 96;
+
+/// `text`, cut to its first `chars` characters.
+fn clipped(text: &str, chars: usize) -> String {
+    text.char_indices().nth(chars).map_or(text, |(cut, _)| &text[..cut]).to_string()
+}
+
 /// `text` made safe for a URL path segment.
 fn slug(text: &str) -> String {
     text.chars()
@@ -473,11 +483,15 @@ impl Catalog {
     /// Add an entry under a unique id `<prefix>-<slug of stem>`. A sequence (more than two
     /// frames: a fold after a fold) is filed under `<category>_second_fold`, as the built-in
     /// sequences are.
+    /// A name or category longer than [`MAX_LISTED_CHARS`] (a sample's own name may be
+    /// megabytes) is cut, and so is the id's stem at [`MAX_ID_STEM`] characters.
     fn push_named(&mut self, prefix: &str, stem: &str, mut entry: Entry, origin: Origin) {
+        entry.name = clipped(&entry.name, MAX_LISTED_CHARS);
+        entry.category = clipped(&entry.category, MAX_LISTED_CHARS);
         if entry.frames > 2 && !entry.category.ends_with(SECOND_FOLD) {
             entry.category.push_str(SECOND_FOLD);
         }
-        let base = format!("{prefix}-{}", slug(stem));
+        let base = format!("{prefix}-{}", clipped(&slug(stem), MAX_ID_STEM));
         let mut id = base.clone();
         let mut k = 1;
         while self.index.contains_key(&id) {

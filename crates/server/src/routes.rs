@@ -732,7 +732,7 @@ impl InterpolateRequest {
             let length = line.direction[0].hypot(line.direction[1]);
             if !length.is_finite() || length == 0.0 {
                 return Err(Error::InvalidArgument(format!(
-                    "\"line\": the direction needs finite coordinates and some length, got {:?}",
+                    "\"line\": the direction has no length, or not a finite one: {:?}",
                     line.direction
                 ))
                 .into());
