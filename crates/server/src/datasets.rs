@@ -183,7 +183,7 @@ mod tests {
         let entry = |k: usize| close_io::catalog::Entry {
             id: format!("d0-row{k}"),
             name: format!("row {k}"),
-            category: if k % 2 == 0 { "even" } else { "odd" }.into(),
+            category: if k.is_multiple_of(2) { "even" } else { "odd" }.into(),
             n: Some(4),
             frames: 2,
             mesh: false,

@@ -286,7 +286,7 @@ pub struct Pace {
 }
 
 /// Middleware: hold the request's share of the budget until its answer is ready, then the
-/// answer's own share until it is written ([`hold_answer`]).
+/// answer's own share until it is written (`hold_answer`).
 pub async fn upload_budget(
     State(budget): State<Arc<UploadBudget>>,
     request: Request,
@@ -344,13 +344,16 @@ fn closed() -> ApiError {
 const COUNTED_ANSWER: usize = 64 * 1024;
 
 /// Permits a handler took for the answer it is about to build ([`UploadBudget::reserve`]),
-/// put in the answer's extensions: [`hold_answer`] keeps them, resized to the answer's
+/// put in the answer's extensions: `hold_answer` keeps them, resized to the answer's
 /// length, until the answer is written.
 #[derive(Clone)]
-pub struct Reserved(Arc<Mutex<Option<(OwnedSemaphorePermit, Arc<Pool>)>>>);
+pub struct Reserved(Arc<Mutex<Option<Hold>>>);
+
+/// Permits held, and the pool they are of.
+type Hold = (OwnedSemaphorePermit, Arc<Pool>);
 
 impl Reserved {
-    fn take(&self) -> Option<(OwnedSemaphorePermit, Arc<Pool>)> {
+    fn take(&self) -> Option<Hold> {
         self.0.lock().unwrap_or_else(|e| e.into_inner()).take()
     }
 }
@@ -374,7 +377,7 @@ impl UploadBudget {
 }
 
 /// Which pool a connection's answer holds while it is written, if any: shared by the
-/// answer's body ([`Held`]) and the connection's socket, which drops a stalled answer
+/// answer's body (`Held`) and the connection's socket, which drops a stalled answer
 /// early when others wait for that pool ([`AnswerWatch::crowded`]).
 #[derive(Clone, Debug, Default)]
 pub struct AnswerWatch(Arc<Mutex<Option<Arc<Pool>>>>);
@@ -532,7 +535,7 @@ impl Drop for Held {
 /// a byte now and then is cut.
 pub const MIN_BODY_RATE: u64 = 16 * 1024;
 
-/// The grace of a body while the server is crowded ([`BodyRate::crowded`]) or its pool is
+/// The grace of a body while the server is crowded (fewer than an eighth of the connection slots free) or its pool is
 /// waited for, and how long an answer may go unread while its pool is waited for: trickled
 /// bodies and unread answers that hold what others need are then cut within a second or
 /// two, so new clients (a `/healthz`, a normal analysis) get in instead of waiting.
@@ -658,7 +661,7 @@ impl hyper::body::Body for MinRate {
     }
 }
 
-/// Middleware: read every request body through [`MinRate`], at the pace of what it holds
+/// Middleware: read every request body through `MinRate`, at the pace of what it holds
 /// of the budget ([`Pace`]).
 pub async fn body_rate(State(rate): State<BodyRate>, request: Request, next: Next) -> Response {
     let held = request.extensions().get::<Pace>().cloned();

@@ -318,12 +318,7 @@ impl Store {
     /// most `max_rows` rows, chunks of at most as many elements and at most
     /// [`MAX_ARRAY_CHUNKS`] of them. Only its metadata is read. Returns the array, its row
     /// count and its data type's name ("float32", "int64", …).
-    fn open_array(
-        &self,
-        path: &str,
-        width: Option<u64>,
-        max_rows: usize,
-    ) -> Result<(Array<StoreFiles>, usize, String)> {
+    fn open_array(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<Opened> {
         let array = Array::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
             .map_err(|e| self.error(path, format!("missing or unreadable array: {e}")))?;
         let rows = match (array.shape(), width) {
@@ -459,11 +454,7 @@ impl Store {
     }
 
     /// The integers of an open array (any width, signed or not) as i64.
-    fn ints(
-        &self,
-        (array, _, kind): &(Array<StoreFiles>, usize, String),
-        path: &str,
-    ) -> Result<Vec<i64>> {
+    fn ints(&self, (array, _, kind): &Opened, path: &str) -> Result<Vec<i64>> {
         Ok(match kind.as_str() {
             "int8" => self.widen::<i8>(array, path)?,
             "int16" => self.widen::<i16>(array, path)?,
@@ -492,11 +483,7 @@ impl Store {
     /// The mesh's vertex count (from frame 0's `cloth_verts` metadata) and the grip arrays
     /// of every frame of `video`, both hands, opened (metadata only): a hand holds at most
     /// every vertex. With what reading them would read.
-    #[allow(clippy::type_complexity)]
-    fn grip_arrays(
-        &self,
-        video: &Video,
-    ) -> Result<(usize, Vec<[(Array<StoreFiles>, usize, String); 2]>, CutWork)> {
+    fn grip_arrays(&self, video: &Video) -> Result<(usize, Vec<[Opened; 2]>, CutWork)> {
         let Some(first) = video.frames.first() else {
             return Err(self.error(&video.id, "the video has no frame"));
         };
@@ -603,12 +590,7 @@ impl Store {
 
     /// Whether the hand whose grip array is `path` (opened) grips; its vertex ids are
     /// checked against the mesh's `vertices`.
-    fn grip(
-        &self,
-        path: &str,
-        array: &(Array<StoreFiles>, usize, String),
-        vertices: usize,
-    ) -> Result<bool> {
+    fn grip(&self, path: &str, array: &Opened, vertices: usize) -> Result<bool> {
         let ids = self.ints(array, path)?;
         if let Some(&bad) = ids.iter().find(|&&v| v < -1 || v >= vertices as i64) {
             return Err(self.error(path, format!("gripped vertex {bad} is out of range: the mesh has {vertices} vertices (ids 0…{}, or -1 for none)", vertices.saturating_sub(1))));
@@ -709,6 +691,9 @@ impl Store {
         Ok(ids.chunks_exact(3).map(|c| [c[0] as usize, c[1] as usize, c[2] as usize]).collect())
     }
 }
+
+/// An array opened ([`Store::open_array`]): the array, its row count, its data type's name.
+type Opened = (Array<StoreFiles>, usize, String);
 
 /// The grip array of `hand` ("left" or "right") in frame group `frame`.
 fn grip_path(frame: &str, hand: &str) -> String {
