@@ -1030,8 +1030,10 @@ async fn eventually(case: &str, mut holds: impl FnMut() -> bool) {
 // Issue 18 item 8: an answer nobody reads holds its length of the memory budget while it
 // waits, and its connection is dropped at the write time-out (here 1 s), which frees it.
 async fn an_unread_answer_is_counted_then_dropped() {
+    // A request time-out far past `HANG`: building the answer (seconds) never races it.
     let state = AppState::with_config(Config {
         write_timeout: Duration::from_secs(1),
+        timeout: Duration::from_secs(300),
         ..Config::default()
     });
     let server = Server::start_with(state.clone()).await;
@@ -1413,6 +1415,7 @@ async fn unread_answers_give_way_to_a_waiting_request() {
     let state = AppState::with_config(Config {
         upload_budget: 168 << 20,
         write_timeout: Duration::from_secs(300),
+        timeout: Duration::from_secs(300),
         ..Config::default()
     });
     let server = Server::start_with(state.clone()).await;
