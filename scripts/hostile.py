@@ -6,6 +6,10 @@
     scripts/hostile.py serve DIR [BIN] [SECS]    `close serve --dataset DIR` with attackers
                                                  running beside a normal load for SECS
                                                  (default 60; 600 for the soak)
+    scripts/hostile.py crowd DIR [BIN]           item 11: a dataset of 100,000 rows (written
+                                                 into DIR when missing), 64 full sample lists
+                                                 at once, then 64 /api/disk bodies of 8 MiB;
+                                                 peak RSS and /healthz meanwhile
 
 BIN defaults to target/release/close. Run from the repository root (the fixture store of
 tests/fixtures/vrfolding is copied and broken). The folder holds: good Sample JSON files, a
@@ -423,6 +427,59 @@ def serve(root, binary, seconds):
             os.rename(victim, os.path.join(root, "victim.txt"))
 
 
+def crowd(root, binary):
+    if not os.path.exists(root):
+        os.makedirs(root)
+        for k in range(100_000):
+            with open(os.path.join(root, f"{k:06}.csv"), "w") as f:
+                f.write(f"0,0,0\n1,0,0\n1,1,0\n0,1,{k * 1e-6}\n")
+    port = 20000 + (os.getpid() + 1) % 20000
+    t0 = time.time()
+    server = subprocess.Popen([binary, "serve", "--addr", f"127.0.0.1:{port}", "--dataset", root],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        while True:
+            try:
+                request(port, "GET", "/healthz", timeout=1)
+                break
+            except OSError:
+                time.sleep(0.05)
+        print(f"100,000 rows: first /healthz after {time.time() - t0:.1f} s, RSS {rss(server.pid, 'VmRSS')} MiB")
+        status, text = request(port, "GET", "/api/samples")
+        print(f"one full list: {status}, {len(text) / 1e6:.1f} MB; peak RSS so far {rss(server.pid, 'VmHWM')} MiB")
+
+        def burst(name, work, count):
+            before = rss(server.pid, "VmRSS")
+            with open(f"/proc/{server.pid}/clear_refs", "w") as f:
+                f.write("5")  # reset the peak
+            results, health = [], []
+            threads = [threading.Thread(target=lambda: results.append(work())) for _ in range(count)]
+            t = time.time()
+            for th in threads:
+                th.start()
+            while any(th.is_alive() for th in threads):
+                h = time.time()
+                try:
+                    request(port, "GET", "/healthz", timeout=30)
+                    health.append(time.time() - h)
+                except OSError:
+                    health.append(float("inf"))
+                time.sleep(0.05)
+            for th in threads:
+                th.join()
+            codes = {}
+            for status in results:
+                codes[status] = codes.get(status, 0) + 1
+            print(f"{name}: {codes} in {time.time() - t:.1f} s, RSS {before} MiB before, peak {rss(server.pid, 'VmHWM')} MiB, /healthz worst {max(health) * 1000:.0f} ms over {len(health)} probes")
+
+        burst("64 full lists at once", lambda: request(port, "GET", "/api/samples", timeout=300)[0], 64)
+        body = (json.dumps({"border": circle(76)}) + " " * (8 * (1 << 20) - 4096)).encode()
+        burst("64 /api/disk bodies of 8 MiB", lambda: request(port, "POST", "/api/disk", body, timeout=300)[0], 64)
+    finally:
+        server.terminate()
+        server.wait(timeout=60)
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
@@ -434,6 +491,8 @@ def main():
         run_eval(root, binary)
     elif command == "serve":
         serve(root, binary, float(sys.argv[4]) if len(sys.argv) > 4 else 60)
+    elif command == "crowd":
+        crowd(root, binary)
     else:
         sys.exit(__doc__)
 
