@@ -619,6 +619,19 @@ fn peak_rss_kib() -> usize {
         .unwrap_or(0)
 }
 
+/// Whether `answer` holds a whole HTTP answer: its head and as many body bytes as its
+/// `content-length` says (an answer without one ends when the server closes).
+fn answer_is_whole(answer: &[u8]) -> bool {
+    let Some(end) = answer.windows(4).position(|w| w == b"\r\n\r\n") else {
+        return false;
+    };
+    let head = String::from_utf8_lossy(&answer[..end]).to_ascii_lowercase();
+    head.lines()
+        .find_map(|l| l.strip_prefix("content-length:"))
+        .and_then(|l| l.trim().parse::<usize>().ok())
+        .is_some_and(|length| answer.len() >= end + 4 + length)
+}
+
 /// A real server on an ephemeral loopback port; stopped when dropped.
 struct Server {
     addr: SocketAddr,
@@ -641,15 +654,25 @@ impl Server {
         Server { addr, stop: Some(stop) }
     }
 
-    /// Send raw bytes, then read the answer until the server closes: (status, whole answer).
+    /// Send raw bytes, then read the answer until its announced length has come or the
+    /// server closes: (status, whole answer). No clock but [`HANG`]: building a large
+    /// answer on a loaded machine may take many seconds.
     async fn raw(&self, request: &[u8]) -> (u16, String) {
         let mut stream = TcpStream::connect(self.addr).await.expect("connect");
         // A server that refuses an oversized head answers and closes before it has read it
         // all, so the rest may not be sent: the answer is what counts.
         let _ = stream.write_all(request).await;
         let mut answer = Vec::new();
-        let _ =
-            tokio::time::timeout(Duration::from_secs(10), stream.read_to_end(&mut answer)).await;
+        let _ = tokio::time::timeout(HANG, async {
+            let mut chunk = vec![0u8; 1 << 16];
+            while let Ok(read @ 1..) = stream.read(&mut chunk).await {
+                answer.extend_from_slice(&chunk[..read]);
+                if answer_is_whole(&answer) {
+                    break;
+                }
+            }
+        })
+        .await;
         let text = String::from_utf8_lossy(&answer).into_owned();
         let status = text.split_whitespace().nth(1).and_then(|s| s.parse().ok()).unwrap_or(0);
         (status, text)
