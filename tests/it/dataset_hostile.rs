@@ -494,6 +494,15 @@ mod stores {
             "{failed:#?}"
         );
         assert!(failed.iter().any(|e| e.contains("not a regular file")), "{failed:#?}");
+        // Both folds of the video whose mesh is sparse are error rows, as the server lists
+        // both (eval gave fold 1's alone, and fold 2 was missing).
+        let sparse_rows = failed
+            .iter()
+            .filter(|e| e.contains("1099511627776") && e.contains("cloth_verts"))
+            .count();
+        assert_eq!(sparse_rows, 2, "{failed:#?}");
+        let rows = report["samples"].as_array().unwrap().len();
+        assert_eq!(rows, catalog.entries().len(), "eval has a row for each listed entry");
 
         // The server lists the store and answers the fold with its error.
         let runtime = tokio::runtime::Runtime::new().unwrap();
