@@ -30,9 +30,11 @@ function noCloth() {
 const clothOf = (result) => (result.id ? { kind: "sample", id: result.id } : { kind: "upload", id: result.key });
 
 const resultActions = {
-  interpolate(result) {
-    store.set({ cloth: clothOf(result) });
-    router.go("interpolate");
+  /** Interpolate `result`'s fold `fold` (1-based, or "all": the sequence), as shown. */
+  interpolate(result, fold) {
+    const cloth = clothOf(result);
+    store.set({ cloth });
+    router.go("interpolate", null, new URLSearchParams({ cloth: `${cloth.kind}:${cloth.id}`, step: String(fold) }));
   },
   plan(result) {
     store.set({ cloth: clothOf(result) });

@@ -4,66 +4,14 @@
 
 import { imageUrl, readout } from "./api.js";
 import { deg, el, fmtFold, row } from "./format.js";
-import { condensedIndex, edgeOverlay, readable } from "./readout.js";
-
-/**
- * Limits past which a fold's evidence is weak. The cut's same-to-cross ratio is 0 for an
- * exact fold and about 1 for change with no side (the detector gives up at 2.5); its
- * residual is the share of the change the cut leaves unexplained; the orientation's flip
- * scores say which side turned over, and close scores are a guess. The step's RMSE compares
- * the prediction with the frame observed after the step: the disks can agree with a wrong
- * fold, and the observed frame then says so. Measured on the built-in set (150 fold steps,
- * GET /api/samples/{id}): same-to-cross at most 0.38, residual at most 0.52 (noisy samples,
- * predictions still right, RMSE ≤ 0.03), flip margin at least 0.75, no tie-break; RMSE at
- * most 0.073 except `trousers__legs_up_then_half` step 2 (0.227, visibly wrong), the one
- * step these limits flag. On a stacked start (a step without an orientation) the synthesis's
- * mismatch over the unfolded state's says how much of the change the line it found explains:
- * measured at most 0.49 on the physics and MuJoCo second folds, 0.73 and more for the wrong
- * lines found before the stacked probe scale was mended (a step past 0.8 has no fold).
- */
-export const WEAK = { sameToCross: 1.0, residual: 0.6, flipMargin: 0.25, rmse: 0.1, unexplained: 0.6 };
-
-/**
- * Why analysis step `step` is doubtful ([] when its evidence is strong): a fold's weak
- * evidence, or a step with no fold whose observed frame is far from the unchanged one (the
- * cloth changed beyond noise, but no fold explains it).
- */
-export function doubts(step) {
-  const out = [];
-  const { cut, orientation, metrics, synthesis } = step;
-  if (!step.fold) {
-    if (metrics && shapeError(metrics) > WEAK.rmse) out.push(`changed, but no fold found (the observed frame is ${shapeError(metrics).toFixed(3)} RMSE from the unchanged one once moved onto it, > ${WEAK.rmse})`);
-    return out;
-  }
-  if (synthesis && !orientation && synthesis.unfolded_mismatch > 0) {
-    const ratio = synthesis.mismatch / synthesis.unfolded_mismatch;
-    if (ratio > WEAK.unexplained) out.push(`the synthesised fold leaves ${(100 * ratio).toFixed(0)}% of the disks' mismatch unexplained (> ${100 * WEAK.unexplained}%)`);
-  }
-  if (cut && cut.same_to_cross > WEAK.sameToCross) out.push(`same-to-cross ratio ${cut.same_to_cross.toFixed(2)} > ${WEAK.sameToCross}`);
-  if (cut && cut.residual > WEAK.residual) out.push(`cut residual ${cut.residual.toFixed(2)} > ${WEAK.residual}`);
-  if (orientation) {
-    const margin = flipMargin(orientation);
-    if (orientation.tie_break) out.push("orientation decided by the tie-break");
-    else if (margin < WEAK.flipMargin) out.push(`orientation scores close (margin ${margin.toFixed(2)} < ${WEAK.flipMargin})`);
-  }
-  if (metrics && shapeError(metrics) > WEAK.rmse) out.push(`prediction ${shapeError(metrics).toFixed(3)} RMSE from the frame observed after the step, once moved onto it (> ${WEAK.rmse})`);
-  return out;
-}
+import { edgeOverlay, readable } from "./readout.js";
 
 /**
  * The error a step's disks can answer for: the RMSE once the prediction is moved rigidly
  * onto the observed frame (`aligned_rmse`). CloSE does not change when the whole cloth
  * slides across the table, so a slide is no evidence against the fold.
  */
-function shapeError(metrics) {
-  return metrics.aligned_rmse ?? metrics.rmse;
-}
-
-/** Relative gap between the two orientation flip scores (0: a tie, 1: one side only). */
-export function flipMargin(o) {
-  const [a, b] = [Math.abs(o.flip_forward), Math.abs(o.flip_backward)];
-  return Math.abs(a - b) / Math.max(a, b, 1e-12);
-}
+const shapeError = (metrics) => metrics.aligned_rmse ?? metrics.rmse;
 
 const PICTURES = [
   ["disk_start", "dGLI disk, start frame"],
@@ -184,7 +132,7 @@ function cellReader(result) {
   let plot = null;
   const load = (step) => {
     if (!spans.has(step)) {
-      const got = readout(result.key, step).then((r) => ({ ...r, values: (i, j) => ({ start: r.start[condensedIndex(r.n, i, j)], end: r.end[condensedIndex(r.n, i, j)] }) }));
+      const got = readout(result.key, step).then((r) => ({ ...r, values: (k) => ({ start: r.start[k], end: r.end[k] }) }));
       got.catch(() => spans.delete(step));
       spans.set(step, got);
     }
@@ -279,9 +227,10 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
     if (s.cut) parts.push(`cut residual ${s.cut.residual.toFixed(3)}`, `same/cross ${s.cut.same_to_cross.toFixed(2)}`);
     if (s.orientation) parts.push(`flip scores ${s.orientation.flip_forward.toFixed(2)} / ${s.orientation.flip_backward.toFixed(2)}${s.orientation.tie_break ? " (tie-break)" : ""}`);
     if (s.metrics) parts.push(`RMSE ${s.metrics.rmse.toFixed(3)} (aligned ${shapeError(s.metrics).toFixed(3)})`);
-    const why = doubts(s);
+    // The server judges each step (close_core::confidence): its doubts, in words.
+    const why = (s.confidence?.doubts || []).map((d) => d.text);
     const tr = row(evidence, name, parts.join(" · ") || "—");
-    if (why.length) {
+    if (s.confidence?.level === "low") {
       flagged.push(`step ${k + 1}: ${why.join("; ")}`);
       tr.cells[0].append(el("span", { className: "badge low", textContent: "low confidence" }));
     }
@@ -314,7 +263,12 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   $(".warnings").textContent = (result.warnings || []).join(" ");
   const interp = $(".interp-this");
   interp.hidden = result.folds.length === 0;
-  interp.addEventListener("click", () => actions.interpolate(result));
+  // The fold of the step whose pictures are shown (the sequence for all of them).
+  interp.addEventListener("click", () => {
+    const shown = Number(node.querySelector(".segmented input:checked")?.dataset.step || 1);
+    const folds = (result.steps || []).slice(0, shown || result.steps.length).filter((s) => s.fold).length;
+    actions.interpolate(result, shown === 0 && result.folds.length > 1 ? "all" : Math.max(1, folds));
+  });
   $(".plan-this").addEventListener("click", () => actions.plan(result));
   slot.replaceChildren(node);
 }

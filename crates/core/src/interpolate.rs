@@ -24,7 +24,8 @@
 //! made along the line through the border points at the first arc's start and the last
 //! arc's end, as the analysis makes it ([`fold_line`]).
 //!
-//! `web/fold.mjs` implements the same rules for the browser (a test checks parity).
+//! The web app draws the states the server computes with these functions (`POST
+//! /api/interpolate`, at any fractions of the way: [`motion_at`]); it has no copy of them.
 //!
 //! A border given by a user goes through [`interpolate_border`]: it is validated and
 //! oriented by [`crate::border::prepare`], exactly as an analysis's start frame, so a border
@@ -126,20 +127,28 @@ pub fn displacements(from: [f64; 2], to: [f64; 2]) -> [f64; 2] {
     [best, best + span_change]
 }
 
+/// The fold at fraction `tau` of the way from `from` to `to`, in [0, 2π): τ ≤ 0 gives
+/// `from` and τ ≥ 1 gives `to` exactly.
+pub fn fold_at(from: [f64; 2], to: [f64; 2], tau: f64) -> [f64; 2] {
+    if tau <= 0.0 {
+        return [wrap_tau(from[0]), wrap_tau(from[1])];
+    }
+    if tau >= 1.0 {
+        return [wrap_tau(to[0]), wrap_tau(to[1])];
+    }
+    let [d1, d2] = displacements(from, to);
+    [wrap_tau(from[0] + tau * d1), wrap_tau(from[1] + tau * d2)]
+}
+
+/// The fractions of `steps` evenly spaced states, t/(steps − 1), both ends included.
+pub fn fractions(steps: usize) -> Vec<f64> {
+    let last = steps.saturating_sub(1).max(1) as f64;
+    (0..steps).map(|t| t as f64 / last).collect()
+}
+
 /// `steps` folds from `from` to `to` (both included), each in [0, 2π).
 pub fn fold_path(from: [f64; 2], to: [f64; 2], steps: usize) -> Vec<[f64; 2]> {
-    let [d1, d2] = displacements(from, to);
-    let last = steps.saturating_sub(1).max(1) as f64;
-    (0..steps)
-        .map(|t| match t {
-            0 => [wrap_tau(from[0]), wrap_tau(from[1])],
-            t if t + 1 == steps => [wrap_tau(to[0]), wrap_tau(to[1])],
-            t => {
-                let tau = t as f64 / last;
-                [wrap_tau(from[0] + tau * d1), wrap_tau(from[1] + tau * d2)]
-            }
-        })
-        .collect()
+    fractions(steps).into_iter().map(|tau| fold_at(from, to, tau)).collect()
 }
 
 /// `p` turned about the XY `line` (unit direction) by the fraction `turn` of a half turn,
@@ -189,6 +198,11 @@ fn check(border: &[Point], steps: usize) -> Result<()> {
             STEPS.end()
         )));
     }
+    check_border(border)
+}
+
+/// The checks every motion makes of its border.
+fn check_border(border: &[Point]) -> Result<()> {
     if border.len() < MIN_VERTICES {
         return Err(Error::TooFewVertices { got: border.len(), min: MIN_VERTICES });
     }
@@ -199,6 +213,24 @@ fn check(border: &[Point], steps: usize) -> Result<()> {
         return Err(Error::NonFinite { frame: 0, vertex: v });
     }
     Ok(())
+}
+
+/// The states asked for by their fractions `at`: as many as [`STEPS`] allows (one at
+/// least), each in [0, 1].
+fn check_fractions(at: &[f64]) -> Result<()> {
+    if at.is_empty() || at.len() > *STEPS.end() {
+        return Err(Error::InvalidArgument(format!(
+            "`at` must hold 1 to {} fractions, got {}",
+            STEPS.end(),
+            at.len()
+        )));
+    }
+    match at.iter().find(|t| !(0.0..=1.0).contains(*t)) {
+        Some(bad) => Err(Error::InvalidArgument(format!(
+            "`at` holds fractions of the motion, from 0 to 1: got {bad}"
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Angles must be finite; `what` names them in the error.
@@ -221,8 +253,13 @@ pub fn interpolate(
     steps: usize,
 ) -> Result<Interpolation> {
     check(border, steps)?;
+    between(border, from, to, &fractions(steps))
+}
+
+/// The states of the motion between two folds at fractions `at` of the way.
+fn between(border: &[Point], from: [f64; 2], to: [f64; 2], at: &[f64]) -> Result<Interpolation> {
     finite_angles(from.iter().chain(&to), "fold angles")?;
-    let folds = fold_path(from, to, steps);
+    let folds: Vec<[f64; 2]> = at.iter().map(|&tau| fold_at(from, to, tau)).collect();
     let borders =
         folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
     Ok(Interpolation {
@@ -244,6 +281,16 @@ pub fn turn_arcs(
     steps: usize,
 ) -> Result<Interpolation> {
     check(border, steps)?;
+    turned(border, arcs, line, &fractions(steps))
+}
+
+/// The states of the fold that turns `arcs` over, turned by each of `turns`.
+fn turned(
+    border: &[Point],
+    arcs: &[[f64; 2]],
+    line: Option<Line>,
+    turns: &[f64],
+) -> Result<Interpolation> {
     if arcs.is_empty() {
         return Err(Error::InvalidArgument("a fold to turn over needs at least one arc".into()));
     }
@@ -261,8 +308,6 @@ pub fn turn_arcs(
         arcs.iter().flat_map(|&arc| folded_vertices(border.len(), arc)).collect();
     moved.sort_unstable();
     moved.dedup();
-    let last = (steps - 1) as f64;
-    let turns: Vec<f64> = (0..steps).map(|t| t as f64 / last).collect();
     let borders = turns
         .iter()
         .map(|&turn| {
@@ -281,8 +326,8 @@ pub fn turn_arcs(
         .collect();
     let span = [wrap_tau(arcs[0][0]), wrap_tau(arcs[arcs.len() - 1][1])];
     Ok(Interpolation {
-        folds: vec![span; steps],
-        turns: Some(turns),
+        folds: vec![span; turns.len()],
+        turns: Some(turns.to_vec()),
         line: Some(line),
         borders,
         border_indices: (0..border.len()).collect(),
@@ -295,9 +340,29 @@ pub fn interpolate_motion(
     motion: &Motion,
     steps: usize,
 ) -> Result<Interpolation> {
+    check(border, steps)?;
+    motion_at(border, motion, &fractions(steps))
+}
+
+/// The states of `motion` on `border` (taken as [`interpolate`] takes it) at fractions `at`
+/// of the way (each in [0, 1]: 0 the start, 1 the end exactly), in the order given.
+///
+/// ```
+/// use close_core::border::Point;
+/// use close_core::interpolate::{interpolate_motion, motion_at, Motion};
+/// let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+///     .iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
+/// let motion = Motion::Between { from: [0.0, 3.1], to: [0.5, 3.6] };
+/// let three = interpolate_motion(&square, &motion, 3).unwrap();
+/// let middle = motion_at(&square, &motion, &[0.5]).unwrap();
+/// assert_eq!(middle.borders[0], three.borders[1]);
+/// ```
+pub fn motion_at(border: &[Point], motion: &Motion, at: &[f64]) -> Result<Interpolation> {
+    check_border(border)?;
+    check_fractions(at)?;
     match motion {
-        Motion::Between { from, to } => interpolate(border, *from, *to, steps),
-        Motion::Turn { arcs, line } => turn_arcs(border, arcs, *line, steps),
+        Motion::Between { from, to } => between(border, *from, *to, at),
+        Motion::Turn { arcs, line } => turned(border, arcs, *line, at),
     }
 }
 
@@ -484,6 +549,24 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("`line`"));
+    }
+
+    #[test]
+    fn states_at_any_fractions_are_the_evenly_spaced_ones_there() {
+        let (legs, arcs) = two_legs();
+        for motion in [between(), Motion::Turn { arcs, line: None }] {
+            let even = interpolate_motion(&legs, &motion, 9).unwrap();
+            let at = motion_at(&legs, &motion, &[0.5, 0.0, 1.0, 0.125]).unwrap();
+            for (k, t) in [4, 0, 8, 1].into_iter().enumerate() {
+                assert_eq!(at.borders[k], even.borders[t], "{motion:?} at state {t}");
+                assert_eq!(at.folds[k], even.folds[t]);
+            }
+        }
+        for (bad, says) in [(&[][..], "1 to 1000"), (&[0.5, 1.5][..], "from 0 to 1"), (&[f64::NAN][..], "from 0 to 1")] {
+            let err = motion_at(&legs, &between(), bad).unwrap_err().to_string();
+            assert!(err.contains(says), "{bad:?}: {err}");
+        }
+        assert!(motion_at(&legs, &between(), &vec![0.5; 1001]).is_err());
     }
 
     #[test]

@@ -23,6 +23,7 @@
 
 pub mod borders;
 pub mod circle;
+pub mod cloth;
 pub mod colour;
 pub mod disk_picture;
 pub mod mesh_picture;

@@ -4,8 +4,9 @@
 //! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
 //! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state; `?format=svg`: SVG),
-//! `POST /api/disk/cells` and `GET /api/readout/{key}` (a disk's values and where the
-//! pictures draw them, for reading values off them: [`close_render::readout`]),
+//! `POST /api/disk/cells`, `GET /api/readout/{key}` and `GET /api/cells.png` (a disk's
+//! values and which cell each pixel of its picture shows, for reading values off the
+//! pictures: [`close_render::readout`]),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
 //! 5xx) with `{"error": "..."}`. Analyses, renders and large answers run on CPU workers
@@ -422,6 +423,7 @@ pub fn app(state: AppState) -> Router {
         .route("/assets/{file}", get(assets::asset))
         .route("/healthz", get(routes::healthz))
         .route("/api/analyze", post(routes::analyze))
+        .route("/api/analyses/{key}", get(routes::analysis_by_key))
         .route("/api/samples", get(datasets::samples))
         .route("/api/samples/{id}", get(routes::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
@@ -430,6 +432,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/disk", post(routes::disk).layer(small_bodies))
         .route("/api/disk/cells", post(routes::disk_cells).layer(small_bodies))
         .route("/api/readout/{key}", get(routes::readout))
+        .route("/api/cells.png", get(routes::cell_picture))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))

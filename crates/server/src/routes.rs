@@ -427,6 +427,23 @@ pub async fn analyze(
     Ok(JsonBytes(done.response.clone()))
 }
 
+/// `GET /api/analyses/{key}`: an analysis still kept, by the `key` its answer gave (an
+/// upload's, so that a link to it outlives the page that uploaded it).
+pub async fn analysis_by_key(
+    State(state): State<AppState>,
+    AppPath(key): AppPath<String>,
+) -> Result<JsonBytes, ApiError> {
+    if let Some(id) = key.strip_prefix(SAMPLE_KEY) {
+        return Ok(JsonBytes(sample_analysis(&state, id).await?.response.clone()));
+    }
+    match state.cached_analysis(&key) {
+        Some(hit) => Ok(JsonBytes(hit.response.clone())),
+        None => Err(ApiError::NotFound(format!(
+            "no analysis {key:?}: the server no longer keeps it (it restarted, or newer uploads took its place): upload the sample again"
+        ))),
+    }
+}
+
 /// dGLI cells of the pictures of `analysis` (two disks at most).
 fn cells(analysis: &Analysis) -> u64 {
     2 * (analysis.n as u64).pow(2)
@@ -677,8 +694,34 @@ pub async fn readout(
     Ok(JsonBytes(answer))
 }
 
-fn default_steps() -> usize {
-    60
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CellsQuery {
+    /// The disk's edge count N.
+    n: usize,
+    size: Option<u32>,
+}
+
+/// `GET /api/cells.png?n=&size=`: which cell each pixel of a disk picture of N = `n` and that
+/// size shows ([`close_render::readout::cell_picture`]); the same for every disk of that N.
+pub async fn cell_picture(
+    State(state): State<AppState>,
+    AppQuery(query): AppQuery<CellsQuery>,
+) -> Result<Response, ApiError> {
+    let (n, size) = (query.n, picture_size(query.size));
+    let file = state
+        .cached_bytes(format!("cells/{n}/{size}"), u64::from(size).pow(2), move |_| {
+            Ok(close_render::readout::cell_picture(n, size)?)
+        })
+        .await?;
+    Ok((
+        [
+            (header::CONTENT_TYPE, "image/png"),
+            (header::CACHE_CONTROL, "public, max-age=86400, immutable"),
+        ],
+        file,
+    )
+        .into_response())
 }
 
 #[derive(Debug, Deserialize)]
@@ -700,13 +743,35 @@ pub struct InterpolateRequest {
     arcs: Option<Vec<[f64; 2]>>,
     #[serde(default)]
     line: Option<LineRequest>,
-    #[serde(default = "default_steps")]
-    steps: usize,
+    /// States evenly spaced from the start to the end, both included (60 by default)…
+    #[serde(default)]
+    steps: Option<usize>,
+    /// …or the states at these fractions of the way (each in [0, 1]), in this order.
+    #[serde(default)]
+    at: Option<Vec<f64>>,
+    /// Folds made on `border` (then the flat cloth) before the motion, in order, each as an
+    /// analysis step reports it (`arcs`, `line`): the motion starts from the state they leave,
+    /// and the cloth's layers are drawn from the flat cloth through them.
+    #[serde(default)]
+    prior: Option<Vec<PriorFold>>,
 }
 
+/// A fold made before the motion: an analysis step's `arcs` and `line`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PriorFold {
+    arcs: Vec<[f64; 2]>,
+    #[serde(default)]
+    line: Option<LineRequest>,
+}
+
+/// States of an interpolation when the request names none.
+const DEFAULT_STEPS: usize = 60;
+
 /// Bytes an interpolation's answer may take per point while it is built: the point (24)
-/// and its JSON, three floats of at most 24 characters with their brackets and commas (80).
-const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
+/// and its JSON, three floats of at most 24 characters with their brackets and commas (80),
+/// and its height and its share of the layers drawn (about as much again).
+const INTERPOLATED_POINT_BYTES: usize = 2 * (24 + 80);
 
 /// A fold line as an analysis reports it (`steps[k].line`): a point and a direction, XY.
 #[derive(Debug, Deserialize)]
@@ -716,25 +781,85 @@ pub struct LineRequest {
     direction: [f64; 2],
 }
 
+impl LineRequest {
+    fn line(&self) -> close_core::interpolate::Line {
+        close_core::interpolate::Line { point: self.point, direction: self.direction }
+    }
+}
+
+/// `POST /api/interpolate`'s answer: the states of the motion (core's [`Interpolation`]) and
+/// each as the web app draws it ([`close_render::cloth`]).
+///
+/// [`Interpolation`]: close_core::interpolate::Interpolation
+#[derive(Serialize)]
+struct InterpolateAnswer {
+    #[serde(flatten)]
+    interpolation: close_core::interpolate::Interpolation,
+    states: Vec<close_render::cloth::Drawn>,
+}
+
 pub async fn interpolate(
     State(state): State<AppState>,
     AppJson(req): AppJson<InterpolateRequest>,
 ) -> Result<Response, ApiError> {
-    state.config().budget.interpolation(req.border.len(), req.steps)?;
-    let line =
-        req.line.map(|l| close_core::interpolate::Line { point: l.point, direction: l.direction });
-    let motion = close_core::interpolate::Motion::of(req.from, req.to, req.arcs, line)?;
+    let at = match (req.steps, req.at) {
+        (Some(_), Some(_)) => {
+            return Err(ApiError::BadRequest(
+                "give `steps` (evenly spaced states) or `at` (fractions of the way), not both"
+                    .into(),
+            ))
+        }
+        (_, Some(at)) => at,
+        (steps, None) => {
+            let steps = steps.unwrap_or(DEFAULT_STEPS);
+            if !close_core::interpolate::STEPS.contains(&steps) {
+                return Err(Error::InvalidArgument(format!(
+                    "steps must be in {}..={}, got {steps}",
+                    close_core::interpolate::STEPS.start(),
+                    close_core::interpolate::STEPS.end()
+                ))
+                .into());
+            }
+            close_core::interpolate::fractions(steps)
+        }
+    };
+    if req.prior.is_some() && req.reference.is_some() {
+        return Err(ApiError::BadRequest(
+            "with `prior` folds, `border` is the flat cloth: send no `reference`".into(),
+        ));
+    }
+    state.config().budget.interpolation(req.border.len(), at.len())?;
+    let motion = close_core::interpolate::Motion::of(
+        req.from,
+        req.to,
+        req.arcs,
+        req.line.as_ref().map(LineRequest::line),
+    )?;
+    let prior: Vec<close_render::cloth::Prior> = req
+        .prior
+        .unwrap_or_default()
+        .into_iter()
+        .map(|p| close_render::cloth::Prior { arcs: p.arcs, line: p.line.as_ref().map(LineRequest::line) })
+        .collect();
     // The answer's size is known now: reserved before it is built, not found after.
-    let points = req.border.len().saturating_mul(req.steps.saturating_add(1));
+    let points = req.border.len().saturating_mul(at.len().saturating_add(1));
     let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
+    let (border, reference) = (req.border, req.reference);
     let answer = state
         .run_cpu(Lane::Light, move |_| {
-            to_json(&close_core::interpolate::interpolate_border(
-                req.border,
-                req.reference,
-                &motion,
-                req.steps,
-            )?)
+            let frames = match reference {
+                Some(reference) => vec![reference, border],
+                None => vec![border],
+            };
+            let prepared = close_core::border::prepare(frames)?;
+            // The state to fold is the last frame; without prior folds it is drawn as it lies.
+            let given = prepared.frames.last().map_or(&[][..], Vec::as_slice);
+            let (base, made) = close_render::cloth::make(given, &prior)?;
+            let mut interpolation = close_core::interpolate::motion_at(&base, &motion, &at)?;
+            interpolation.border_indices = prepared.border_indices;
+            let states =
+                close_render::cloth::motion_states(given, &made, &base, &motion, &interpolation);
+            to_json(&InterpolateAnswer { interpolation, states })
         })
         .await?;
     let mut response = JsonBytes(answer).into_response();
@@ -910,6 +1035,15 @@ pub struct PlanRequest {
     goal: [f64; 2],
 }
 
+/// `POST /api/plan`'s answer: the plan ([`close_core::plan::Answer`]) and the states it goes
+/// through as the web app draws them ([`close_render::cloth::plan_states`]).
+#[derive(Serialize)]
+struct PlanAnswer<'a> {
+    #[serde(flatten)]
+    answer: close_core::plan::Answer<'a>,
+    states: Vec<close_render::cloth::Pictured>,
+}
+
 pub async fn plan(
     State(state): State<AppState>,
     AppJson(req): AppJson<PlanRequest>,
@@ -953,7 +1087,12 @@ pub async fn plan(
         };
     let goal = req.goal;
     let answer = state
-        .run_cpu(Lane::Light, move |_| to_json(&close_core::plan::answer(&drawing.analysis, goal)?))
+        .run_cpu(Lane::Light, move |_| {
+            let answer = close_core::plan::answer(&drawing.analysis, goal)?;
+            let states =
+                close_render::cloth::plan_states(&drawing.analysis, answer.case, &answer.steps)?;
+            to_json(&PlanAnswer { answer, states })
+        })
         .await?;
     Ok(JsonBytes(answer))
 }
