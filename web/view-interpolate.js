@@ -194,7 +194,7 @@ function current() {
 /** The request for the states at fractions `at` of `motion`. */
 function request(motion, at) {
   const { prior, ...rest } = motion;
-  return { border: view.border, ...(prior.length ? { prior } : {}), ...rest, at };
+  return { border: view.border, ...(prior.length ? { prior } : {}), ...rest, at, drawn: true };
 }
 
 /** What the motion says it is, in words. */

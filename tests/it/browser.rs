@@ -782,7 +782,12 @@ async fn the_app_works_in_a_real_browser() {
     )
     .await;
     // The last state drawn is the second fold's, turned all the way.
-    until(&client, "the last state drawn", "(f => f && f.t === 1 && f.now.fold === 2)(window.closeApp.interpolate.state().frame)").await;
+    until(
+        &client,
+        "the last state drawn",
+        "(f => f && f.t === 1 && f.now.fold === 2)(window.closeApp.interpolate.state().frame)",
+    )
+    .await;
     let readout = text(&client, "document.getElementById('interp-readout').textContent").await;
     assert!(readout.contains("fold 2 of 2"), "{readout}");
     // The sequence ends on the analysis's predicted end: the second fold, through two
@@ -1336,7 +1341,8 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
         "the cell is not outlined"
     );
     // Its two edges are marked on the border plot, on the start and end borders, and nowhere else.
-    let truth = entry.sample.truth.as_ref().map(|t| t.folds.clone()).unwrap_or_default();
+    let truth =
+        entry.sample.truth.as_ref().map(close::render::truth::Truth::of).unwrap_or_default();
     let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, 480)
         .expect("the plot's map");
     let mid = |border: &[close::border::Point], e: usize| {

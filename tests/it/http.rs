@@ -633,7 +633,8 @@ async fn interpolation_turns_a_folds_arcs_over() {
 #[tokio::test]
 async fn interpolation_after_prior_folds_at_any_fraction_comes_with_its_layers() {
     let app = test_app();
-    let entry = dataset::Dataset::builtin().get("napkin__half_then_half").expect("a second fold").clone();
+    let entry =
+        dataset::Dataset::builtin().get("napkin__half_then_half").expect("a second fold").clone();
     let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
     let start: Vec<[f64; 3]> = analysis.start_border().iter().map(close::border::to_xyz).collect();
     let steps = serde_json::to_value(&analysis.steps).unwrap();
@@ -644,6 +645,7 @@ async fn interpolation_after_prior_folds_at_any_fraction_comes_with_its_layers()
         "arcs": second["arcs"],
         "line": second["line"],
         "at": [1.0, 0.0, 0.5],
+        "drawn": true,
     });
     let v = post_json(&app, "/api/interpolate", &body).await.json();
     let borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(v["borders"].clone()).unwrap();
@@ -658,7 +660,12 @@ async fn interpolation_after_prior_folds_at_any_fraction_comes_with_its_layers()
     assert_eq!(states.len(), 3);
     // Folded twice: four layers at the end, two (base and flap) at its start.
     let flips = |k: usize| -> Vec<u64> {
-        states[k]["layers"].as_array().unwrap().iter().map(|l| l["flips"].as_u64().unwrap()).collect()
+        states[k]["layers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|l| l["flips"].as_u64().unwrap())
+            .collect()
     };
     assert_eq!(flips(0).len(), 4, "{:?}", flips(0));
     assert_eq!(flips(1), [0, 1]);
@@ -666,18 +673,30 @@ async fn interpolation_after_prior_folds_at_any_fraction_comes_with_its_layers()
     assert_eq!(heights.len(), analysis.n);
     assert!(heights.iter().any(|&h| h > 0.0), "turned layers lie above the table");
     assert!(states[2]["segment"].is_array(), "the fold's line: {}", states[2]["segment"]);
+    // Not asked to draw, the answer is the motion's alone.
+    let mut plain = body.clone();
+    plain.as_object_mut().unwrap().remove("drawn");
+    let plain = post_json(&app, "/api/interpolate", &plain).await.json();
+    assert!(plain.get("states").is_none() && plain["borders"] == v["borders"]);
     for (body, words) in [
-        (json!({"border": start, "from": [0, 1], "to": [1, 2], "steps": 3, "at": [0.5]}), "not both"),
+        (
+            json!({"border": start, "from": [0, 1], "to": [1, 2], "steps": 3, "at": [0.5]}),
+            "not both",
+        ),
         (json!({"border": start, "from": [0, 1], "to": [1, 2], "at": [1.5]}), "from 0 to 1"),
         (json!({"border": start, "from": [0, 1], "to": [1, 2], "at": []}), "fractions"),
-        (json!({"border": start, "reference": start, "prior": [], "from": [0, 1], "to": [1, 2]}), "`reference`"),
+        (
+            json!({"border": start, "reference": start, "prior": [], "from": [0, 1], "to": [1, 2]}),
+            "`reference`",
+        ),
         (json!({"border": start, "prior": [{"arcs": []}], "from": [0, 1], "to": [1, 2]}), "no arc"),
     ] {
         let error = post_json(&app, "/api/interpolate", &body).await.error(StatusCode::BAD_REQUEST);
         assert!(error.contains(words), "{error:?} should name {words:?}");
     }
     // A plan comes with the states it goes through as drawn: now, then one per step.
-    let plan = post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [0.3, 3.4]})).await.json();
+    let plan =
+        post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [0.3, 3.4]})).await.json();
     let states = plan["states"].as_array().expect("plan states");
     assert_eq!(states.len(), plan["steps"].as_array().unwrap().len() + 1);
     let now: Vec<[f64; 3]> = serde_json::from_value(states[0]["border"].clone()).unwrap();
@@ -795,13 +814,14 @@ async fn the_disk_of_any_border_state_is_a_png() {
             .await;
     assert_eq!(
         end,
-        close::render::disk_png(
+        close::render::render_disk(
             &analysis.disk(analysis.frames.len() - 1).unwrap(),
             "dGLI disk · current state",
-            200,
-            200
+            None,
+            &close::render::Output::png(200)
         )
         .unwrap()
+        .0
     );
     // The disk does not depend on where the cloth lies, but does on the picture's size.
     let shifted: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] + 3.0, p[1] - 1.0, p[2]]).collect();
@@ -1107,7 +1127,10 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
         let got: Vec<f64> = serde_json::from_value(got.clone()).expect("numbers");
         let want = close::render::readout::rings(want);
         got.len() == want.len()
-            && got.iter().zip(&want).all(|(a, &b)| (a - b as f64).abs() <= 1e-6 * (b as f64).abs().max(1e-3))
+            && got
+                .iter()
+                .zip(&want)
+                .all(|(a, &b)| (a - b as f64).abs() <= 1e-6 * (b as f64).abs().max(1e-3))
     };
     // Step 2 compares analysed frames 1 and 2; the whole span, the first and the last.
     for (step, (from, to)) in [("&step=2", (1, 2)), ("", (0, 2))] {

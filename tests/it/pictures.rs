@@ -317,3 +317,41 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
     assert!(steps > 150, "only {steps} fold steps");
     assert!(misses.is_empty(), "{misses:#?}");
 }
+
+/// Issue 28 item 2: a fold of several arcs (a leg folded over the other) is compared with its
+/// truth by its line and the vertices it folds, not by its two points, which two folds
+/// along one line may name in another order.
+#[test]
+fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/physics-mujoco/border/trousers_q1_leg_over_leg_then_half.json");
+    let sample = close::formats::json::parse_sample(&std::fs::read(path).expect("the fixture"))
+        .expect("a sample");
+    let analysis = close::analyze(&sample.border_frames().expect("frames"), Default::default())
+        .expect("analysed");
+    let truth = close::render::truth::Truth::of(sample.truth.as_ref().expect("its truth"));
+    assert!(analysis.fold_arcs().iter().any(|arcs| arcs.len() > 1), "a multi-arc fold is found");
+    let lines = close::render::truth::true_lines(&analysis, &truth);
+    for k in 0..truth.folds.len() {
+        let agreement = close::render::truth::agreement(&analysis, &truth, k, lines[k].0.as_ref())
+            .expect("compared");
+        println!("fold {}: {agreement}", k + 1);
+        if analysis.fold_arcs()[k].len() > 1 {
+            let close::render::truth::Agreement::Line { angle, offset, shared } = agreement else {
+                panic!("fold {}: compared by its points: {agreement}", k + 1);
+            };
+            assert!(angle < 5.0 && offset < 0.05, "fold {}: {agreement}", k + 1);
+            assert!(shared.is_some_and(|s| s > 0.9), "fold {}: {agreement}", k + 1);
+        }
+    }
+    // The legend says so.
+    let svg = close::render::render(
+        &analysis,
+        &close::render::View::whole(close::render::Picture::Borders),
+        &close::render::Output::svg(480),
+        close::render::Known { truth: &truth, mesh: None },
+    )
+    .expect("the border plot");
+    let svg = String::from_utf8(svg).expect("text");
+    assert!(svg.contains("true fold 2 (line"), "{}", &svg[svg.len().saturating_sub(3000)..]);
+}

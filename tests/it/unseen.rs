@@ -88,7 +88,11 @@ fn random_sample(rng: &mut SplitMix64, index: usize) -> Sample {
     };
     let mut sample =
         Sample::from_frames(format!("unseen_{index}"), "unseen", vec![place(start), place(end)]);
-    sample.truth = Some(Truth { folds: vec![[TAU * f1 / n, TAU * f2 / n]], folded_vertices: None });
+    sample.truth = Some(Truth {
+        folds: vec![[TAU * f1 / n, TAU * f2 / n]],
+        folded_vertices: None,
+        folded_vertices_per_fold: None,
+    });
     sample
 }
 

@@ -243,7 +243,12 @@ mod tests {
     }
 
     fn oriented(forward: f64, backward: f64, tie_break: bool) -> Option<Orientation> {
-        Some(Orientation { flip_forward: forward, flip_backward: backward, tie_break, swapped: false })
+        Some(Orientation {
+            flip_forward: forward,
+            flip_backward: backward,
+            tie_break,
+            swapped: false,
+        })
     }
 
     const GOOD: Metrics = Metrics { rmse: 0.02, frechet: 0.03, aligned_rmse: 0.02 };
@@ -255,18 +260,22 @@ mod tests {
         let reasons = |d: &FoldDetection, m: &Metrics| -> Vec<Reason> {
             judge(d, m).doubts.iter().map(|d| d.reason).collect()
         };
-        assert_eq!(reasons(&found(cut(0.7, 0.2), oriented(5.0, 0.5, false)), &GOOD), [
-            Reason::Residual
-        ]);
-        assert_eq!(reasons(&found(cut(0.1, 1.5), oriented(5.0, 0.5, false)), &GOOD), [
-            Reason::SameToCross
-        ]);
-        assert_eq!(reasons(&found(cut(0.1, 0.2), oriented(5.0, 4.5, false)), &GOOD), [
-            Reason::FlipMargin
-        ]);
-        assert_eq!(reasons(&found(cut(0.1, 0.2), oriented(5.0, 5.0, true)), &GOOD), [
-            Reason::TieBreak
-        ]);
+        assert_eq!(
+            reasons(&found(cut(0.7, 0.2), oriented(5.0, 0.5, false)), &GOOD),
+            [Reason::Residual]
+        );
+        assert_eq!(
+            reasons(&found(cut(0.1, 1.5), oriented(5.0, 0.5, false)), &GOOD),
+            [Reason::SameToCross]
+        );
+        assert_eq!(
+            reasons(&found(cut(0.1, 0.2), oriented(5.0, 4.5, false)), &GOOD),
+            [Reason::FlipMargin]
+        );
+        assert_eq!(
+            reasons(&found(cut(0.1, 0.2), oriented(5.0, 5.0, true)), &GOOD),
+            [Reason::TieBreak]
+        );
         let far = Metrics { aligned_rmse: 0.2, ..GOOD };
         let judged = judge(&strong, &far);
         assert_eq!(judged.level, Level::Low);

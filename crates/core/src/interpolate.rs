@@ -562,7 +562,11 @@ mod tests {
                 assert_eq!(at.folds[k], even.folds[t]);
             }
         }
-        for (bad, says) in [(&[][..], "1 to 1000"), (&[0.5, 1.5][..], "from 0 to 1"), (&[f64::NAN][..], "from 0 to 1")] {
+        for (bad, says) in [
+            (&[][..], "1 to 1000"),
+            (&[0.5, 1.5][..], "from 0 to 1"),
+            (&[f64::NAN][..], "from 0 to 1"),
+        ] {
             let err = motion_at(&legs, &between(), bad).unwrap_err().to_string();
             assert!(err.contains(says), "{bad:?}: {err}");
         }

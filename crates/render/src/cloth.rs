@@ -152,7 +152,10 @@ pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
     }
     let layers = stack
         .into_iter()
-        .map(|(piece, flips)| Layer { points: piece.iter().map(|c| [c.at.x, c.at.y]).collect(), flips })
+        .map(|(piece, flips)| Layer {
+            points: piece.iter().map(|c| [c.at.x, c.at.y]).collect(),
+            flips,
+        })
         .collect();
     Layers { layers, heights, lines, border }
 }
@@ -233,7 +236,11 @@ pub fn motion_states(
             let moving = match motion {
                 Motion::Between { .. } => {
                     let fold = interpolation.folds[k];
-                    fold_line(base, fold, None).map(|line| Made { line, arcs: vec![fold], turn: 1.0 })
+                    fold_line(base, fold, None).map(|line| Made {
+                        line,
+                        arcs: vec![fold],
+                        turn: 1.0,
+                    })
                 }
                 Motion::Turn { arcs, .. } => interpolation.line.map(|line| Made {
                     line,
@@ -370,7 +377,9 @@ fn split(piece: &[Corner], line: &Line) -> Vec<(Piece, bool)> {
         }
     }
     // Crossings in order along the line; consecutive ones bound a chord inside.
-    let along = |p: &Point| (p.x - line.point[0]) * line.direction[0] + (p.y - line.point[1]) * line.direction[1];
+    let along = |p: &Point| {
+        (p.x - line.point[0]) * line.direction[0] + (p.y - line.point[1]) * line.direction[1]
+    };
     let mut crossings: Vec<usize> = (0..nodes.len()).filter(|&k| nodes[k].1.is_none()).collect();
     crossings.sort_by(|&a, &b| along(&nodes[a].0.at).total_cmp(&along(&nodes[b].0.at)));
     let mut partner = vec![usize::MAX; nodes.len()];
@@ -532,7 +541,16 @@ mod tests {
         // A U: two legs joined at the bottom; the line y = 1.5 crosses both legs. Only the
         // right leg's top (its arc) turns over: the left leg's top stays where it is.
         let u = outline(
-            &[[0.0, 0.0], [3.0, 0.0], [3.0, 3.0], [2.0, 3.0], [2.0, 1.0], [1.0, 1.0], [1.0, 3.0], [0.0, 3.0]],
+            &[
+                [0.0, 0.0],
+                [3.0, 0.0],
+                [3.0, 3.0],
+                [2.0, 3.0],
+                [2.0, 1.0],
+                [1.0, 1.0],
+                [1.0, 3.0],
+                [0.0, 3.0],
+            ],
             4,
         );
         let n = u.len();
@@ -548,7 +566,10 @@ mod tests {
         // down over the bottom, inside x ∈ [2, 3], y ∈ [0, 1.5].
         let total: f64 = out.layers.iter().map(|l| area(&l.points).abs()).sum();
         assert!((total - 7.0).abs() < 1e-9, "the layers keep the cloth's area: {total}");
-        assert!(flipped[0].points.iter().all(|p| (2.0 - 1e-9..=3.0 + 1e-9).contains(&p[0]) && p[1] <= 1.5 + 1e-9));
+        assert!(flipped[0]
+            .points
+            .iter()
+            .all(|p| (2.0 - 1e-9..=3.0 + 1e-9).contains(&p[0]) && p[1] <= 1.5 + 1e-9));
         assert!(kept.iter().any(|l| inside([0.5, 2.5], &l.points)), "the left leg's top stays");
         // The outline agrees: the analysis's own border after the fold has the left leg's
         // top corner (0, 3) where it was, and the right leg's (3, 3) at (3, 0).
@@ -557,7 +578,11 @@ mod tests {
         assert!(border.iter().any(|p| (p.x - 3.0).abs() < 1e-12 && p.y.abs() < 1e-12));
         // Every piece lies inside the drawing's bounds: nothing spills off.
         for layer in &out.layers {
-            assert!(layer.points.iter().all(|p| (-1e-9..=3.0 + 1e-9).contains(&p[0]) && (-1e-9..=3.0 + 1e-9).contains(&p[1])));
+            assert!(layer
+                .points
+                .iter()
+                .all(|p| (-1e-9..=3.0 + 1e-9).contains(&p[0])
+                    && (-1e-9..=3.0 + 1e-9).contains(&p[1])));
         }
     }
 

@@ -23,6 +23,7 @@ use serde::Serialize;
 use std::f64::consts::TAU;
 
 use super::disk_picture::{sector_at, Layout};
+use super::truth::Truth;
 use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
 use close_core::analysis::Analysis;
 use close_core::disk::Disk;
@@ -70,7 +71,7 @@ pub struct PlotTransform {
 impl PlotTransform {
     /// The map of the border plot of `analysis` drawn `size`×`size` (clamped as pictures are),
     /// with the `truth` folds it draws (they take legend rows, so they move the plot).
-    pub fn of_borders(analysis: &Analysis, truth: &[[f64; 2]], size: u32) -> Result<PlotTransform> {
+    pub fn of_borders(analysis: &Analysis, truth: &Truth, size: u32) -> Result<PlotTransform> {
         let mut canvas = Canvas::new(size, size)?;
         let (x, y) = borders::draw(&mut canvas, analysis, truth)?.affine();
         Ok(PlotTransform { x, y })
@@ -97,11 +98,11 @@ pub struct Readout {
 }
 
 /// The readout of the disk pictures of `analysis` for `step` (1-based; `None`: the whole
-/// analysis, as [`super::render_step`] takes it) drawn `size`×`size`, its border plot
+/// analysis, as [`super::View`] takes it) drawn `size`×`size`, its border plot
 /// drawn with the `truth` folds.
 pub fn readout(
     analysis: &Analysis,
-    truth: &[[f64; 2]],
+    truth: &Truth,
     step: Option<usize>,
     size: u32,
 ) -> Result<Readout> {
@@ -197,15 +198,15 @@ pub fn cell_picture(n: usize, size: u32) -> Result<Vec<u8>> {
 #[cfg(test)]
 mod tests {
     use super::super::colour::{Ramp, Scale};
-    use super::super::tests::{decode, folded_square};
-    use super::super::{render_png, Picture};
+    use super::super::tests::{decode, disk_png, folded_square, png};
+    use super::super::Picture;
     use super::*;
     use std::f64::consts::PI;
 
     #[test]
     fn the_values_are_the_step_disks_ring_by_ring() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
-        let readout = readout(&analysis, &[], Some(1), 400).unwrap();
+        let readout = readout(&analysis, &Truth::default(), Some(1), 400).unwrap();
         let (start, end) = (analysis.disk(0).unwrap(), analysis.disk(1).unwrap());
         assert_eq!((readout.n, readout.from_frame, readout.to_frame), (32, 0, 1));
         let n = readout.n;
@@ -225,9 +226,10 @@ mod tests {
     fn the_cell_picture_names_the_cell_each_pixel_is_painted_with() {
         for (n, size) in [(32, 400), (13, 300), (200, 480)] {
             // Every pair of its own value: a pixel's colour names its cell.
-            let disk = Disk::from_values(n, (0..n * (n - 1) / 2).map(|k| k as f64).collect()).unwrap();
+            let disk =
+                Disk::from_values(n, (0..n * (n - 1) / 2).map(|k| k as f64).collect()).unwrap();
             let scale = Scale::of(disk.values());
-            let (_, _, painted) = decode(&super::super::disk_png(&disk, "", size, size).unwrap());
+            let (_, _, painted) = decode(&disk_png(&disk, "", (size, size)));
             let (_, _, cells) = decode(&cell_picture(n, size).unwrap());
             let values = rings(&disk);
             let layout = Layout::of(size, size);
@@ -258,8 +260,8 @@ mod tests {
     fn the_border_transform_puts_vertex_0_on_its_mark() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
         let size = 360;
-        let t = PlotTransform::of_borders(&analysis, &[], size).unwrap();
-        let (_, _, rgb) = decode(&render_png(&analysis, Picture::Borders, size, size).unwrap());
+        let t = PlotTransform::of_borders(&analysis, &Truth::default(), size).unwrap();
+        let (_, _, rgb) = decode(&png(&analysis, Picture::Borders, None, (size, size)).unwrap());
         let p = analysis.start_border()[0];
         let (x, y) = (t.x[0] * p.x + t.x[1], t.y[0] * p.y + t.y[1]);
         assert!(
@@ -281,6 +283,9 @@ mod tests {
     #[test]
     fn a_step_that_does_not_exist_is_refused() {
         let analysis = folded_square(4, [0.0, PI]);
-        assert!(matches!(readout(&analysis, &[], Some(2), 200), Err(Error::InvalidArgument(_))));
+        assert!(matches!(
+            readout(&analysis, &Truth::default(), Some(2), 200),
+            Err(Error::InvalidArgument(_))
+        ));
     }
 }

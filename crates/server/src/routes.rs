@@ -23,7 +23,7 @@ use close_io::formats::{json::parse_sample, read_files, Sample, Truth};
 use close_render::colour::Scale;
 use close_render::mesh_picture::MeshView;
 use close_render::{
-    disk_scaled, render_step, Format, Known, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE,
+    render, render_disk, Format, Known, Output, Picture, View, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE,
 };
 
 /// Thumbnail size in the sample list.
@@ -37,7 +37,7 @@ const SAMPLE_KEY: &str = "sample:";
 pub struct Drawing {
     pub analysis: Analysis,
     /// The sample's known folds (empty when it carries none), drawn beside the found ones.
-    pub truth: Vec<[f64; 2]>,
+    pub truth: close_render::truth::Truth,
     /// A mesh sample's mesh at the analysed frames, for its mesh picture.
     pub mesh: Option<MeshView>,
     /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
@@ -45,7 +45,11 @@ pub struct Drawing {
 }
 
 impl Drawing {
-    fn new(analysis: Analysis, truth: Vec<[f64; 2]>, mesh: Option<MeshView>) -> Drawing {
+    fn new(
+        analysis: Analysis,
+        truth: close_render::truth::Truth,
+        mesh: Option<MeshView>,
+    ) -> Drawing {
         let bytes = Self::weigh(&analysis, &truth) + mesh.as_ref().map_or(0, MeshView::bytes);
         Drawing { analysis, truth, mesh, bytes }
     }
@@ -53,7 +57,7 @@ impl Drawing {
     /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
     /// (O(frames·N), the bulk), its index and angle lists, its steps with their arcs and
     /// curves, and its texts.
-    fn weigh(a: &Analysis, truth: &[[f64; 2]]) -> usize {
+    fn weigh(a: &Analysis, truth: &close_render::truth::Truth) -> usize {
         use std::mem::{size_of, size_of_val};
         let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
         let steps: usize = a
@@ -70,7 +74,8 @@ impl Drawing {
             + size_of_val(a.border_indices.as_slice())
             + size_of_val(a.folds.as_slice())
             + size_of_val(a.predicted_end.as_slice())
-            + size_of_val(truth);
+            + size_of_val(truth.folds.as_slice())
+            + truth.folded.iter().flatten().map(|f| size_of_val(f.as_slice())).sum::<usize>();
         let texts = a.border_source.len() + a.warnings.iter().map(String::len).sum::<usize>();
         size_of::<Drawing>() + frames + steps + lists + texts
     }
@@ -254,7 +259,7 @@ impl Loaded {
             truth: self.truth.as_ref(),
             listed,
         })?;
-        let truth = self.truth.map(|t| t.folds).unwrap_or_default();
+        let truth = self.truth.as_ref().map(close_render::truth::Truth::of).unwrap_or_default();
         Ok(Analyzed { key, drawing: Arc::new(Drawing::new(analysis, truth, mesh)), response })
     }
 }
@@ -644,7 +649,8 @@ pub async fn image(
             cells(&drawing.analysis),
             move |_| {
                 let known = Known { truth: &drawing.truth, mesh: drawing.mesh.as_ref() };
-                Ok(render_step(&drawing.analysis, picture, step, size, size, format, known)?)
+                let output = Output { format, ..Output::png(size) };
+                Ok(render(&drawing.analysis, &View { picture, step }, &output, known)?)
             },
         )
         .await?;
@@ -754,6 +760,10 @@ pub struct InterpolateRequest {
     /// and the cloth's layers are drawn from the flat cloth through them.
     #[serde(default)]
     prior: Option<Vec<PriorFold>>,
+    /// Also give each state as the web app draws it (`states`: the cloth's layers, each
+    /// vertex's height and the fold's line).
+    #[serde(default)]
+    drawn: bool,
 }
 
 /// A fold made before the motion: an analysis step's `arcs` and `line`.
@@ -769,9 +779,9 @@ pub struct PriorFold {
 const DEFAULT_STEPS: usize = 60;
 
 /// Bytes an interpolation's answer may take per point while it is built: the point (24)
-/// and its JSON, three floats of at most 24 characters with their brackets and commas (80),
-/// and its height and its share of the layers drawn (about as much again).
-const INTERPOLATED_POINT_BYTES: usize = 2 * (24 + 80);
+/// and its JSON, three floats of at most 24 characters with their brackets and commas (80);
+/// drawn, its height and its share of the layers (about as much again).
+const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
 
 /// A fold line as an analysis reports it (`steps[k].line`): a point and a direction, XY.
 #[derive(Debug, Deserialize)]
@@ -787,15 +797,16 @@ impl LineRequest {
     }
 }
 
-/// `POST /api/interpolate`'s answer: the states of the motion (core's [`Interpolation`]) and
-/// each as the web app draws it ([`close_render::cloth`]).
+/// `POST /api/interpolate`'s answer: the states of the motion (core's [`Interpolation`]) and,
+/// when asked (`drawn`), each as the web app draws it ([`close_render::cloth`]).
 ///
 /// [`Interpolation`]: close_core::interpolate::Interpolation
 #[derive(Serialize)]
 struct InterpolateAnswer {
     #[serde(flatten)]
     interpolation: close_core::interpolate::Interpolation,
-    states: Vec<close_render::cloth::Drawn>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    states: Option<Vec<close_render::cloth::Drawn>>,
 }
 
 pub async fn interpolate(
@@ -839,12 +850,16 @@ pub async fn interpolate(
         .prior
         .unwrap_or_default()
         .into_iter()
-        .map(|p| close_render::cloth::Prior { arcs: p.arcs, line: p.line.as_ref().map(LineRequest::line) })
+        .map(|p| close_render::cloth::Prior {
+            arcs: p.arcs,
+            line: p.line.as_ref().map(LineRequest::line),
+        })
         .collect();
     // The answer's size is known now: reserved before it is built, not found after.
     let points = req.border.len().saturating_mul(at.len().saturating_add(1));
-    let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
-    let (border, reference) = (req.border, req.reference);
+    let per_point = INTERPOLATED_POINT_BYTES * if req.drawn { 2 } else { 1 };
+    let reserved = state.0.memory.reserve(points.saturating_mul(per_point)).await?;
+    let (border, reference, drawn) = (req.border, req.reference, req.drawn);
     let answer = state
         .run_cpu(Lane::Light, move |_| {
             let frames = match reference {
@@ -857,8 +872,9 @@ pub async fn interpolate(
             let (base, made) = close_render::cloth::make(given, &prior)?;
             let mut interpolation = close_core::interpolate::motion_at(&base, &motion, &at)?;
             interpolation.border_indices = prepared.border_indices;
-            let states =
-                close_render::cloth::motion_states(given, &made, &base, &motion, &interpolation);
+            let states = drawn.then(|| {
+                close_render::cloth::motion_states(given, &made, &base, &motion, &interpolation)
+            });
             to_json(&InterpolateAnswer { interpolation, states })
         })
         .await?;
@@ -989,8 +1005,12 @@ pub async fn disk(
     let cached = state
         .cached_bytes(key, n * n, move |deadline| {
             let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
-            let (file, used) =
-                disk_scaled(&disk, "dGLI disk · current state", scale, size, size, format)?;
+            let (file, used) = render_disk(
+                &disk,
+                "dGLI disk · current state",
+                scale,
+                &Output { format, ..Output::png(size) },
+            )?;
             Ok(DiskPicture { scale: [used.s, used.max], file: file.into() }.into_bytes())
         })
         .await?;

@@ -118,6 +118,7 @@ fn border_sample(name: String, category: &str, varied: Varied) -> Sample {
         truth: Some(Truth {
             folds: varied.folds.iter().map(|f| f.map(|s| param_to_angle(s, n))).collect(),
             folded_vertices: Some(varied.folded),
+            folded_vertices_per_fold: None,
         }),
     }
 }
@@ -197,6 +198,7 @@ fn mesh_samples() -> Result<Vec<Sample>> {
                 truth: Some(Truth {
                     folds: vec![[param_to_angle(f1, n), param_to_angle(f2, n)]],
                     folded_vertices: Some(moved(grid.vertices(), &folded)),
+                    folded_vertices_per_fold: None,
                 }),
                 mesh: Some(MeshFrames::new(
                     grid.faces().to_vec(),
