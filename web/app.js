@@ -40,6 +40,10 @@ const resultActions = {
     store.set({ cloth: clothOf(result) });
     router.go("plan");
   },
+  /** Compare states `a` and `b` ("id", "name" or "…@k"). */
+  compare(a, b) {
+    router.go("compare", [a, b]);
+  },
 };
 
 let pendingGoal = null;
@@ -64,7 +68,7 @@ function show({ view, id, ids, params }) {
       document.title = router.title("samples", $("#browse-result .result-name")?.textContent || "");
     }
   } else if (view === "upload") {
-    document.title = router.title("upload", upload.titleName());
+    upload.shown(params);
   } else if (view === "interpolate") {
     interpolate.shown(params);
   } else if (view === "plan") {
@@ -74,6 +78,14 @@ function show({ view, id, ids, params }) {
     compare.shown(ids, showError);
   }
 }
+
+// The skip link moves the focus to the view on screen without touching the hash route.
+document.querySelector(".skip-link").addEventListener("click", (e) => {
+  e.preventDefault();
+  const view = document.querySelector(".view:not([hidden])");
+  const first = view?.querySelector("input, select, button, a[href], [tabindex='0']");
+  (first || $("#main")).focus();
+});
 
 browse.setup(resultActions);
 upload.setup(resultActions, showError);

@@ -93,19 +93,25 @@ export function bowedArrow(ctx, v, p, q, centre, color) {
   if (!inside(mx + bow * nx, my + bow * ny)) [nx, ny] = [-nx, -ny];
   // The control point stands twice the bow off: a quadratic's middle is halfway to it.
   const [cx, cy] = [mx + 2 * bow * nx, my + 2 * bow * ny];
-  ctx.beginPath();
-  ctx.moveTo(x1, y1);
-  ctx.quadraticCurveTo(cx, cy, x2, y2);
-  ctx.strokeStyle = color;
-  ctx.lineWidth = 2.5;
-  ctx.stroke();
+  // A white halo keeps the arrow apart from the outline and the fills it crosses.
+  for (const [stroke, width] of [["#fff", 7], [color, 3]]) {
+    ctx.beginPath();
+    ctx.moveTo(x1, y1);
+    ctx.quadraticCurveTo(cx, cy, x2, y2);
+    ctx.strokeStyle = stroke;
+    ctx.lineWidth = width;
+    ctx.stroke();
+  }
   // The head along the curve's end tangent (from the control point to q).
   const ang = Math.atan2(y2 - cy, x2 - cx);
   ctx.beginPath();
   ctx.moveTo(x2, y2);
-  ctx.lineTo(x2 - 14 * Math.cos(ang - 0.4), y2 - 14 * Math.sin(ang - 0.4));
-  ctx.lineTo(x2 - 14 * Math.cos(ang + 0.4), y2 - 14 * Math.sin(ang + 0.4));
+  ctx.lineTo(x2 - 18 * Math.cos(ang - 0.4), y2 - 18 * Math.sin(ang - 0.4));
+  ctx.lineTo(x2 - 18 * Math.cos(ang + 0.4), y2 - 18 * Math.sin(ang + 0.4));
   ctx.closePath();
+  ctx.strokeStyle = "#fff";
+  ctx.lineWidth = 3;
+  ctx.stroke();
   ctx.fillStyle = color;
   ctx.fill();
   ctx.beginPath();

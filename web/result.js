@@ -51,25 +51,71 @@ function figure(key, name, caption, step, stem, enhance = null) {
   return node;
 }
 
-/** Where a result comes from, in words: built in, which dataset, or an upload. */
+/** Where a result comes from, in words: built in, which dataset (its folder or store, and the sample's id there), or an upload. */
 export function provenance(result) {
   if (result.source === "builtin") return "built-in sample";
   if (result.source === "upload" || !result.source) return "your upload";
-  return `dataset ${result.source}`;
+  return `dataset ${result.source} (sample ${result.id})`;
 }
 
-/** The exact calls that return this analysis from code: curl and Python. */
-function codePanel(result, stem) {
+/** `text` quoted for a POSIX shell. */
+const shellQuote = (text) => `'${String(text).replace(/'/g, "'\\''")}'`;
+
+/**
+ * Calls that run as they are, from a shell (curl) and from Python (its standard library
+ * alone): the analysis (a listed sample by its id; an upload from its files, `files`), a plan,
+ * an interpolation and a picture of it.
+ */
+function codePanel(result, files) {
   const origin = location.origin;
   const listed = Boolean(result.id);
-  const url = listed ? `${origin}/api/samples/${encodeURIComponent(result.id)}` : `${origin}/api/analyze`;
-  const curl = listed ? `curl -s ${url}` : `curl -s -F sample=@${stem || "sample.json"} ${url}`;
-  const python = listed
-    ? `import requests\nanalysis = requests.get("${url}").json()\nprint(analysis["label"]["text"], analysis["close"])`
-    : `import requests\nwith open("${stem || "sample.json"}", "rb") as f:\n    analysis = requests.post("${url}", files={"sample": f}).json()\nprint(analysis["label"]["text"], analysis["close"])`;
+  const analysisUrl = listed ? `${origin}/api/samples/${encodeURIComponent(result.id)}` : `${origin}/api/analyses/${encodeURIComponent(result.key)}`;
+  const goal = result.folds[0] || [0.5, 3.6];
+  const goalText = `[${goal.map((g) => g.toFixed(4)).join(", ")}]`;
+  const planBody = JSON.stringify({ sample: listed ? result.id : result.key, goal: goal.map((g) => Number(g.toFixed(4))) });
+  const picture = `${origin}${imageUrl(result.key, "diff", { size: 1400 })}`;
+  const upload = (files || []).map((f) => `-F sample=@${shellQuote(f)}`).join(" ");
+  const curl = [
+    "# The analysis (the JSON of `close analyze --json`, with its picture URLs)",
+    listed || !files?.length ? `curl -s ${shellQuote(analysisUrl)}` : `curl -s ${upload} ${shellQuote(`${origin}/api/analyze`)}`,
+    "# A plan to reach a goal fold (radians)",
+    `curl -s -H 'content-type: application/json' -d ${shellQuote(planBody)} ${shellQuote(`${origin}/api/plan`)}`,
+    "# A picture: the |diff| disk as PNG, and as SVG",
+    `curl -s -o diff.png ${shellQuote(picture)}`,
+    `curl -s -o diff.svg ${shellQuote(`${picture}&format=svg`)}`,
+  ].join("\n");
+  const python = [
+    "import json, urllib.request",
+    "",
+    `BASE = ${JSON.stringify(origin)}`,
+    "",
+    "def call(path, body=None):",
+    "    data = None if body is None else json.dumps(body).encode()",
+    '    request = urllib.request.Request(BASE + path, data=data, headers={"content-type": "application/json"})',
+    "    with urllib.request.urlopen(request) as answer:",
+    "        return json.load(answer)",
+    "",
+    `analysis = call(${JSON.stringify(analysisUrl.slice(origin.length))})`,
+    'print(analysis["label"]["text"], analysis["close"])',
+    "# The first fold turning over about its line, in 5 states",
+    'step = next((s for s in analysis["steps"] if s["fold"]), None)',
+    "if step:",
+    '    motion = call("/api/interpolate", {"border": analysis["start_border"], "arcs": step["arcs"], "line": step["line"], "steps": 5})',
+    '    print(len(motion["borders"]), "states")',
+    `plan = call("/api/plan", {"sample": analysis.get("id") or analysis["key"], "goal": ${goalText}})`,
+    'print(plan["case"], len(plan["steps"]), "steps")',
+    'urllib.request.urlretrieve(BASE + analysis["images"]["diff"], "diff.png")',
+  ].join("\n");
   const block = (lang, text) => el("pre", { className: `code code-${lang}` }, el("code", { textContent: text }));
   const details = el("details", { className: "use-code" }, el("summary", { textContent: "Use from code" }));
-  details.append(el("p", { className: "muted small", textContent: "The same JSON as `close analyze --json`, from the running server:" }), block("curl", curl), block("python", python));
+  const where = listed ? "" : files?.length ? " (run the shell lines where your files are)" : "";
+  details.append(
+    el("p", { className: "muted small", textContent: `The same JSON as \`close analyze --json\`, a plan, an interpolation and a picture, from the running server${where}:` }),
+    el("h3", { className: "code-title", textContent: "Shell (curl)" }),
+    block("curl", curl),
+    el("h3", { className: "code-title", textContent: "Python (standard library)" }),
+    block("python", python),
+  );
   return details;
 }
 
@@ -187,8 +233,10 @@ function stepPictures(result, stem, cells, { step: wanted = null, onStep = null 
 }
 
 /**
- * Render `result` into `slot`; `actions` {interpolate(result), plan(result)} for its buttons;
- * `options` {step, onStep(step)}: the step pictures to show first, and who hears of a change.
+ * Render `result` into `slot`; `actions` {interpolate(result, fold), plan(result), compare(a, b)}
+ * for its buttons;
+ * `options` {step, onStep(step), files}: the step pictures to show first, who hears of a
+ * change, and an upload's file names (for its snippets).
  */
 export function renderResult(slot, result, displayName, actions, options = {}) {
   // The previous result's JSON download is no longer reachable.
@@ -251,7 +299,7 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem, name === "borders" ? cells.plot : null))));
   const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
-  images.append(el("p", { className: "small" }, jsonLink), codePanel(result, displayName));
+  images.append(el("p", { className: "small" }, jsonLink), codePanel(result, options.files));
 
   if (result.recording) {
     const file = `${result.id || "sample"}.rrd`;
@@ -270,5 +318,19 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
     actions.interpolate(result, shown === 0 && result.folds.length > 1 ? "all" : Math.max(1, folds));
   });
   $(".plan-this").addEventListener("click", () => actions.plan(result));
+  // Compare with another sample: this one's state after the step shown (or its last).
+  const compareWith = $(".compare-with");
+  const compareThis = $(".compare-this");
+  compareThis.hidden = !result.id;
+  compareThis.addEventListener("click", () => {
+    compareWith.hidden = !compareWith.hidden;
+    compareThis.setAttribute("aria-expanded", String(!compareWith.hidden));
+    if (!compareWith.hidden) compareWith.querySelector("input").focus();
+  });
+  compareWith.addEventListener("submit", (e) => {
+    e.preventDefault();
+    const shown = Number(node.querySelector(".segmented input:checked")?.dataset.step || 0);
+    actions.compare(shown ? `${result.id}@${shown}` : result.id, compareWith.querySelector("input").value.trim());
+  });
   slot.replaceChildren(node);
 }

@@ -159,7 +159,7 @@ const view = {
   /** The motion's outline (OUTLINE_AT states), once it came: {motion, ends}. */
   outline: null,
   /** How the drag of a handle went: states wanted and drawn, each drawn one's wait (ms). */
-  stats: { wanted: 0, drawn: 0, waits: [] },
+  stats: { asked: 0, shown: 0, waits: [] },
 };
 
 /** The steps that found a fold, in order: fold k of the analysis is `folded()[k]`. */
@@ -358,7 +358,7 @@ function draw() {
   const now = current();
   drawCircle(now);
   const key = `${motionKey()}|${now.t}`;
-  view.stats.wanted += 1;
+  view.stats.asked += 1;
   frames.want(key, { key, now, wanted: performance.now() });
 }
 
@@ -366,7 +366,7 @@ function draw() {
 async function fetchFrame({ key, now, wanted }, signal) {
   const answer = await api.json(null, "/api/interpolate", request(now.motion, [now.t]), signal);
   view.frame = { key, t: now.t, fold: answer.folds[0], border: answer.borders[0], state: answer.states[0], now };
-  view.stats.drawn += 1;
+  view.stats.shown += 1;
   view.stats.waits.push(performance.now() - wanted);
   paint();
 }
@@ -530,6 +530,17 @@ export function shown(params = null) {
     paint();
     keepUrl();
   } else document.title = router.title("interpolate");
+}
+
+/**
+ * How the view follows what is asked of it: the state wanted now and the one drawn (equal
+ * once it caught up), and the counts since `reset`: states asked for, shown, and each shown
+ * one's wait in ms.
+ */
+export function following(reset = false) {
+  if (reset) view.stats = { asked: 0, shown: 0, waits: [] };
+  const now = view.border ? `${motionKey()}|${current().t}` : null;
+  return { wanted: now, drawn: view.frame?.key || null, ...view.stats };
 }
 
 // For tests and the console.

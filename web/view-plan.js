@@ -21,17 +21,32 @@ let showError = () => {};
 const view = { cloth: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], cornerVertices: [], name: "" };
 let inputs = null;
 
-/** What a plan step does, in words; `cornerOf(vertex)` numbers a corner vertex. */
-function stepText(step, cornerOf) {
-  const moved = step.corners.length ? `moves corner${step.corners.length > 1 ? "s" : ""} ${step.corners.join(" and ")}` : "moves no corner";
+/** "a", "a and b", "a, b and c". */
+const listed = (items) => (items.length > 1 ? `${items.slice(0, -1).join(", ")} and ${items[items.length - 1]}` : items.join(""));
+
+/**
+ * What a plan step does, in words; `cornerOf(vertex)` numbers a corner vertex, `size` is the
+ * cloth's size (a grasp that moves a point less than 1 % of it moves nothing).
+ */
+function stepText(step, cornerOf, extent) {
+  const verb = ACTIONS[step.action] || step.action;
+  const moves = (p) => Math.hypot(p.to[0] - p.from[0], p.to[1] - p.from[1]) > 0.01 * size;
+  if (!step.corners.length && !step.picks.some(moves)) {
+    return `${verb} along ${fmtDeg(step.fold)}: this fold turns no part of the cloth over (its two points lie together or along an edge): nothing to do.`;
+  }
+  const grasped = [];
   const picks = step.picks.map((p) => {
     const corner = cornerOf(p.vertex);
+    if (corner) grasped.push(corner);
     const what = corner ? `corner ${corner} (vertex ${p.vertex})` : `vertex ${p.vertex}`;
     return step.action === "unfold" ? `grasp ${what} at ${fmtPoint(p.from)} and put it back at ${fmtPoint(p.to)}` : `grasp ${what} at ${fmtPoint(p.from)} and place it at ${fmtPoint(p.to)}`;
   });
+  const followers = step.corners.filter((c) => !grasped.includes(c));
+  const moved = step.corners.length ? `moves corner${step.corners.length > 1 ? "s" : ""} ${listed(step.corners)}` : "moves no corner";
+  const follow = followers.length ? `; corner${followers.length > 1 ? "s" : ""} ${listed(followers)} ${followers.length > 1 ? "follow" : "follows"} with the cloth` : "";
   // Points are the sample's own (x, y) coordinates, in whatever unit its file uses.
   const where = picks.length ? ` (x, y in the sample's units)` : "";
-  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${where}.`;
+  return `${verb} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${follow}${where}.`;
 }
 
 function fillCloths() {
@@ -121,6 +136,8 @@ function stepCards(res, list) {
   const flat = res.start_border;
   const n = flat.length;
   const bounds = boundsOf([flat, ...res.states.flatMap((s) => [s.border, ...s.layers.map((l) => l.points)]), ...res.steps.flatMap((s) => s.picks.map((p) => [p.from, p.to]))]);
+  const flatBounds = boundsOf([flat]);
+  const extent = Math.hypot(flatBounds.x1 - flatBounds.x0, flatBounds.y1 - flatBounds.y0);
   // Input vertex (what picks name) → 1-based corner number.
   const cornerOf = (vertex) => {
     const border = res.border_indices ? res.border_indices.indexOf(vertex) : vertex;
@@ -132,7 +149,7 @@ function stepCards(res, list) {
     const canvas = el("canvas", { width: 520, height: 420 });
     canvas.setAttribute("role", "img");
     const title = el("h3", { textContent: step ? `Step ${k} · ${ACTIONS[step.action] || step.action}` : "Now" });
-    const words = el("p", { textContent: step ? stepText(step, cornerOf) : res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat." });
+    const words = el("p", { textContent: step ? stepText(step, cornerOf, extent) : res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat." });
     canvas.setAttribute("aria-label", words.textContent);
     const li = el("li", { className: "plan-step" }, canvas, el("div", {}, title, words));
     if (step) li.dataset.picks = step.picks.length;

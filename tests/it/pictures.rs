@@ -355,3 +355,53 @@ fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
     let svg = String::from_utf8(svg).expect("text");
     assert!(svg.contains("true fold 2 (line"), "{}", &svg[svg.len().saturating_sub(3000)..]);
 }
+
+/// Compare's pictures: a disk titled as asked, and the difference of two states' disks.
+#[tokio::test]
+async fn a_disk_takes_a_title_and_a_state_to_subtract() {
+    let app = app(AppState::new());
+    let flat = square();
+    let moved: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] * 1.1, p[1], p[2]]).collect();
+    let svg = |body: Value| {
+        let app = app.clone();
+        async move {
+            let request = Request::builder()
+                .method(Method::POST)
+                .uri("/api/disk?format=svg")
+                .header(header::CONTENT_TYPE, "application/json")
+                .body(Body::from(body.to_string()))
+                .unwrap();
+            let (status, _, _, body) = send_typed(&app, request).await;
+            (status, String::from_utf8_lossy(&body).into_owned())
+        }
+    };
+    let (status, titled) = svg(json!({"border": flat, "title": "A · napkin after step 1"})).await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(titled.contains("A · napkin after step 1"), "the title is not drawn");
+    // The difference of a state with itself is zero everywhere; with another, it is not.
+    let cells = |minus: &[[f64; 3]]| {
+        let app = app.clone();
+        let body = json!({"border": flat, "minus": {"border": minus}, "size": 120});
+        async move {
+            let request = Request::builder()
+                .method(Method::POST)
+                .uri("/api/disk/cells")
+                .header(header::CONTENT_TYPE, "application/json")
+                .body(Body::from(body.to_string()))
+                .unwrap();
+            let (status, _, body) = send(&app, request).await;
+            assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&body));
+            let v: Value = serde_json::from_slice(&body).unwrap();
+            serde_json::from_value::<Vec<f64>>(v["values"].clone()).unwrap()
+        }
+    };
+    assert!(cells(&flat).await.iter().all(|&v| v == 0.0));
+    assert!(cells(&moved).await.iter().any(|&v| v.abs() > 1e-3));
+    let (status, error) =
+        svg(json!({"border": flat, "minus": {"border": &flat[..flat.len() - 1]}})).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(error.contains("as many vertices"), "{error}");
+    let (status, error) = svg(json!({"border": flat, "title": "x".repeat(121)})).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(error.contains("at most 120"), "{error}");
+}

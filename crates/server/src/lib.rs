@@ -36,6 +36,7 @@ mod extract;
 pub mod guard;
 mod routes;
 mod socket;
+mod uploads;
 mod workers;
 
 use std::future::Future;
@@ -111,6 +112,13 @@ pub struct Config {
     pub cors_origins: Vec<String>,
     /// The user's own datasets (`--dataset`): folders of samples or VR-Folding stores.
     pub datasets: Vec<std::path::PathBuf>,
+    /// Where uploads are kept on disk (`--data-dir`), so their links outlive a restart;
+    /// none: uploads live in the caches alone.
+    pub data_dir: Option<std::path::PathBuf>,
+    /// Uploads kept in the data folder at most, and their largest total size in bytes; past
+    /// either, the oldest go first.
+    pub kept_uploads: usize,
+    pub kept_upload_bytes: u64,
 }
 
 impl Default for Config {
@@ -134,6 +142,9 @@ impl Default for Config {
             allowed_hosts: Vec::new(),
             cors_origins: Vec::new(),
             datasets: Vec::new(),
+            data_dir: None,
+            kept_uploads: 1000,
+            kept_upload_bytes: 1 << 30,
         }
     }
 }
@@ -155,6 +166,8 @@ struct Inner {
     sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
     /// The user's datasets, listed at start.
     catalog: Arc<close_io::catalog::Catalog>,
+    /// The uploads kept on disk, with `--data-dir`.
+    uploads: Option<uploads::Uploads>,
     /// Connection slots: [`Config::max_connections`] permits, one held by each open
     /// connection ([`serve_with`]); their crowding shortens a body's grace ([`guard::BodyRate`]).
     connections: Arc<Semaphore>,
@@ -222,6 +235,9 @@ impl AppState {
             )),
             catalog: Arc::new(close_io::catalog::Catalog::open(&config.datasets)),
             connections: Arc::new(Semaphore::new(config.max_connections.max(1))),
+            uploads: config.data_dir.as_deref().map(|dir| {
+                uploads::Uploads::new(dir, config.kept_uploads, config.kept_upload_bytes)
+            }),
             config,
         }))
     }
@@ -290,6 +306,27 @@ impl AppState {
             Lane::Heavy => &self.0.heavy,
         };
         workers.run(deadline, work).await
+    }
+
+    /// The uploads kept on disk, with `--data-dir`.
+    fn uploads(&self) -> Option<&uploads::Uploads> {
+        self.0.uploads.as_ref()
+    }
+
+    /// Keep upload `key` (its `sample`, the `frames` analysed) on disk, with `--data-dir`.
+    /// An upload that cannot be kept is still analysed: the failure is logged.
+    fn keep_upload(
+        &self,
+        key: &str,
+        frames: close_core::FrameRange,
+        sample: close_io::formats::Sample,
+    ) {
+        if let Some(uploads) = self.uploads() {
+            let stored = uploads::Stored { start: frames.start, end: frames.end, sample };
+            if let Err(e) = uploads.save(key, &stored) {
+                tracing::warn!("could not keep upload {key} in {}: {e}", uploads.dir().display());
+            }
+        }
     }
 
     /// Pictures (and recordings) in the cache now.

@@ -425,11 +425,51 @@ pub async fn analyze(
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
     let budget = state.config().budget;
+    let job = state.clone();
     let done = analysis(&state, key, move |key, _| {
-        Loaded::of(key, &upload.sample()?, frames, UPLOAD, None, &budget)
+        let sample = upload.sample()?;
+        let loaded = Loaded::of(key, &sample, frames, UPLOAD, None, &budget)?;
+        job.keep_upload(&loaded.key, frames, sample);
+        Ok(loaded)
     })
     .await?;
     Ok(JsonBytes(done.response.clone()))
+}
+
+/// Why upload `key` cannot be found: the server keeps uploads in memory only, or its data
+/// folder no longer holds this one.
+fn upload_gone(state: &AppState, key: &str) -> ApiError {
+    ApiError::NotFound(match state.uploads() {
+        Some(uploads) => {
+            let (files, bytes) = uploads.bounds();
+            format!(
+                "the upload {key:?} is gone: this server keeps its {files} most recent uploads (at most {} MB) in {}, and newer ones took its place. Upload the sample again.",
+                bytes >> 20,
+                uploads.dir().display()
+            )
+        }
+        None => format!(
+            "no analysis {key:?}: this server keeps uploads in memory only, and no longer has this one (it restarted, or newer analyses took its place; `close serve --data-dir DIR` keeps uploads on disk). Upload the sample again."
+        ),
+    })
+}
+
+/// The analysis of upload `key`: cached, or analysed again from the data folder.
+async fn kept_analysis(state: &AppState, key: &str) -> Result<Arc<Analyzed>, ApiError> {
+    if let Some(hit) = state.cached_analysis(key) {
+        return Ok(hit);
+    }
+    if state.uploads().is_none() {
+        return Err(upload_gone(state, key));
+    }
+    let job = state.clone();
+    analysis(state, key.to_string(), move |key, _| {
+        let stored =
+            job.uploads().and_then(|u| u.load(&key)).ok_or_else(|| upload_gone(&job, &key))?;
+        let frames = FrameRange { start: stored.start, end: stored.end };
+        Loaded::of(key, &stored.sample, frames, UPLOAD, None, &job.config().budget)
+    })
+    .await
 }
 
 /// `GET /api/analyses/{key}`: an analysis still kept, by the `key` its answer gave (an
@@ -441,12 +481,7 @@ pub async fn analysis_by_key(
     if let Some(id) = key.strip_prefix(SAMPLE_KEY) {
         return Ok(JsonBytes(sample_analysis(&state, id).await?.response.clone()));
     }
-    match state.cached_analysis(&key) {
-        Some(hit) => Ok(JsonBytes(hit.response.clone())),
-        None => Err(ApiError::NotFound(format!(
-            "no analysis {key:?}: the server no longer keeps it (it restarted, or newer uploads took its place): upload the sample again"
-        ))),
-    }
+    Ok(JsonBytes(kept_analysis(&state, &key).await?.response.clone()))
 }
 
 /// dGLI cells of the pictures of `analysis` (two disks at most).
@@ -623,9 +658,7 @@ async fn drawing_by_key(state: &AppState, key: &str) -> Result<Arc<Drawing>, Api
     match (state.drawing(key), key.strip_prefix(SAMPLE_KEY)) {
         (Some(hit), _) => Ok(hit),
         (None, Some(id)) => Ok(sample_analysis(state, id).await?.drawing.clone()),
-        (None, None) => Err(ApiError::NotFound(format!(
-            "no analysis {key:?} (it may have expired): analyse the sample again"
-        ))),
+        (None, None) => Ok(kept_analysis(state, key).await?.drawing.clone()),
     }
 }
 
@@ -797,16 +830,15 @@ impl LineRequest {
     }
 }
 
-/// `POST /api/interpolate`'s answer: the states of the motion (core's [`Interpolation`]) and,
-/// when asked (`drawn`), each as the web app draws it ([`close_render::cloth`]).
+/// `POST /api/interpolate`'s answer when asked to draw (`drawn`): the states of the motion
+/// (core's [`Interpolation`]) and each as the web app draws it ([`close_render::cloth`]).
 ///
 /// [`Interpolation`]: close_core::interpolate::Interpolation
 #[derive(Serialize)]
 struct InterpolateAnswer {
     #[serde(flatten)]
     interpolation: close_core::interpolate::Interpolation,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    states: Option<Vec<close_render::cloth::Drawn>>,
+    states: Vec<close_render::cloth::Drawn>,
 }
 
 pub async fn interpolate(
@@ -872,9 +904,11 @@ pub async fn interpolate(
             let (base, made) = close_render::cloth::make(given, &prior)?;
             let mut interpolation = close_core::interpolate::motion_at(&base, &motion, &at)?;
             interpolation.border_indices = prepared.border_indices;
-            let states = drawn.then(|| {
-                close_render::cloth::motion_states(given, &made, &base, &motion, &interpolation)
-            });
+            if !drawn {
+                return to_json(&interpolation);
+            }
+            let states =
+                close_render::cloth::motion_states(given, &made, &base, &motion, &interpolation);
             to_json(&InterpolateAnswer { interpolation, states })
         })
         .await?;
@@ -898,7 +932,27 @@ pub struct DiskRequest {
     /// an earlier answer gave it; by default the disk's own.
     #[serde(default)]
     scale: Option<Scale>,
+    /// The picture's title (at most [`MAX_TITLE`] characters); by default "dGLI disk ·
+    /// current state".
+    #[serde(default)]
+    title: Option<String>,
+    /// Another state of a border of as many vertices: the picture is then the difference of
+    /// the two disks, this one's minus that one's.
+    #[serde(default)]
+    minus: Option<StateRequest>,
 }
+
+/// One border state: a border and the flat border whose normalisation applies to it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StateRequest {
+    border: Vec<[f64; 3]>,
+    #[serde(default)]
+    reference: Option<Vec<[f64; 3]>>,
+}
+
+/// Longest title a disk picture takes, in characters.
+const MAX_TITLE: usize = 120;
 
 /// `POST /api/disk?format=svg`: the disk as SVG, as any picture URL takes it.
 #[derive(Debug, Deserialize)]
@@ -959,6 +1013,33 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
     points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
 }
 
+/// The cache key's part for a state subtracted from a disk (none: empty).
+fn minus_key(minus: Option<&StateRequest>) -> Vec<u8> {
+    minus.map_or_else(Vec::new, |m| {
+        let reference = m.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
+        [&b"minus"[..], &coordinate_bytes(&m.border), &b"reference"[..], &reference].concat()
+    })
+}
+
+/// The disk of `border` (normalised as `reference`), or its difference with the disk of
+/// `minus`: this one's minus that one's.
+fn state_disk(
+    border: Vec<[f64; 3]>,
+    reference: Option<Vec<[f64; 3]>>,
+    minus: Option<StateRequest>,
+    deadline: &Deadline,
+) -> Result<close_core::disk::Disk> {
+    let disk = close_core::disk::of_state(border, reference, deadline)?;
+    Ok(match minus {
+        Some(minus) => {
+            let other = close_core::disk::of_state(minus.border, minus.reference, deadline)?;
+            // signed_diff(end) is end − start.
+            other.signed_diff(&disk)
+        }
+        None => disk,
+    })
+}
+
 pub async fn disk(
     State(state): State<AppState>,
     AppQuery(query): AppQuery<DiskQuery>,
@@ -993,6 +1074,26 @@ pub async fn disk(
     };
     let scale_bytes: Vec<u8> =
         scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
+    let title = req.title.unwrap_or_else(|| "dGLI disk · current state".into());
+    if title.chars().count() > MAX_TITLE {
+        return Err(ApiError::BadRequest(format!(
+            "\"title\" has {} characters: at most {MAX_TITLE}",
+            title.chars().count()
+        )));
+    }
+    if let Some(minus) = &req.minus {
+        if minus.border.len() != req.border.len() {
+            return Err(ApiError::Rejected(
+                axum::http::StatusCode::UNPROCESSABLE_ENTITY,
+                format!(
+                    "a difference of two disks needs two borders of as many vertices: {} and {}",
+                    req.border.len(),
+                    minus.border.len()
+                ),
+            ));
+        }
+    }
+    let minus_bytes = minus_key(req.minus.as_ref());
     let key = content_key(&[
         b"disk",
         &coordinate_bytes(&req.border),
@@ -1000,17 +1101,16 @@ pub async fn disk(
         &size.to_le_bytes(),
         &scale_bytes,
         format.content_type().as_bytes(),
+        title.as_bytes(),
+        &minus_bytes,
     ]);
     let n = req.border.len() as u64;
+    let cells = n * n * if req.minus.is_some() { 2 } else { 1 };
     let cached = state
-        .cached_bytes(key, n * n, move |deadline| {
-            let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
-            let (file, used) = render_disk(
-                &disk,
-                "dGLI disk · current state",
-                scale,
-                &Output { format, ..Output::png(size) },
-            )?;
+        .cached_bytes(key, cells, move |deadline| {
+            let disk = state_disk(req.border, req.reference, req.minus, deadline)?;
+            let output = Output { format, ..Output::png(size) };
+            let (file, used) = render_disk(&disk, &title, scale, &output)?;
             Ok(DiskPicture { scale: [used.s, used.max], file: file.into() }.into_bytes())
         })
         .await?;
@@ -1029,17 +1129,19 @@ pub async fn disk_cells(
         .as_deref()
         .map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat())
         .unwrap_or_default();
+    let minus_bytes = minus_key(req.minus.as_ref());
     let key = content_key(&[
         b"disk cells",
         &coordinate_bytes(&req.border),
         &reference,
         &size.to_le_bytes(),
+        &minus_bytes,
     ]);
     let n = req.border.len() as u64;
     let answer = state
         .cached_bytes(key, n * n, move |deadline| {
             close_render::readout::within_limit(1, req.border.len())?;
-            let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
+            let disk = state_disk(req.border, req.reference, req.minus, deadline)?;
             Ok(to_json(&close_render::readout::DiskCells::of(&disk, size)?)?.to_vec())
         })
         .await?;
@@ -1080,6 +1182,14 @@ pub async fn plan(
                     .map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
                 match state.drawing(&id) {
                     Some(hit) => hit,
+                    None if state.entry(&id).is_some() || state.catalog().get(&id).is_some() => {
+                        sample_analysis(&state, &id).await?.drawing.clone()
+                    }
+                    None if state.uploads().is_some()
+                        && state.uploads().and_then(|u| u.load(&id)).is_some() =>
+                    {
+                        kept_analysis(&state, &id).await?.drawing.clone()
+                    }
                     None => sample_analysis(&state, &id).await?.drawing.clone(),
                 }
             }
