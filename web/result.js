@@ -243,7 +243,9 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   for (const a of slot.querySelectorAll("a.download-analysis")) URL.revokeObjectURL(a.href);
   const node = document.getElementById("result-template").content.firstElementChild.cloneNode(true);
   const $ = (sel) => node.querySelector(sel);
-  $(".result-name").textContent = displayName || result.name || "(unnamed)";
+  // A long name wraps after its underscores and dots, never inside a word.
+  const name = displayName || result.name || "(unnamed)";
+  name.split(/(?<=[_.])(?=[^_.])/).forEach((part, k) => $(".result-name").append(...(k ? [el("wbr"), part] : [part])));
   const reversed = result.reversed ? " · given clockwise, walked anticlockwise" : "";
   const source = result.border_source === "border" ? "border given" : `border from the ${result.border_source}`;
   $(".result-meta").textContent = `${provenance(result)} · ${result.category || "upload"} · N = ${result.n} vertices (${source}) · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
