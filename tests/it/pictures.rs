@@ -279,13 +279,13 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
             let Some(fold) = step.detection.fold else { continue };
             steps += 1;
             let curves = &step.detection.curves;
-            if curves.len() != fold.len() {
+            if curves.len() != fold.ends().len() {
                 misses.push(format!(
                     "{} step {}: {} curves for {} fold points",
                     entry.id,
                     k + 1,
                     curves.len(),
-                    fold.len()
+                    fold.ends().len()
                 ));
             }
             for c in curves.iter().filter(|c| c.loss.is_nan() || c.loss >= 0.0) {
@@ -297,7 +297,7 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
                     c.loss
                 ));
             }
-            for f in fold {
+            for f in fold.ends() {
                 let nearest = curves
                     .iter()
                     .map(|c| close::angle::distance(c.a0 + c.a1, f))
@@ -330,13 +330,13 @@ fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
     let analysis = close::analyze(&sample.border_frames().expect("frames"), Default::default())
         .expect("analysed");
     let truth = close::render::truth::Truth::of(sample.truth.as_ref().expect("its truth"));
-    assert!(analysis.fold_arcs().iter().any(|arcs| arcs.len() > 1), "a multi-arc fold is found");
+    assert!(analysis.foldings().iter().any(|f| f.arcs.len() > 1), "a multi-arc fold is found");
     let lines = close::render::truth::true_lines(&analysis, &truth);
     for k in 0..truth.folds.len() {
         let agreement = close::render::truth::agreement(&analysis, &truth, k, lines[k].0.as_ref())
             .expect("compared");
         println!("fold {}: {agreement}", k + 1);
-        if analysis.fold_arcs()[k].len() > 1 {
+        if analysis.foldings()[k].arcs.len() > 1 {
             let close::render::truth::Agreement::Line { angle, offset, shared } = agreement else {
                 panic!("fold {}: compared by its points: {agreement}", k + 1);
             };

@@ -229,8 +229,8 @@ mod tests {
 
     fn found(cut: Cut, orientation: Option<Orientation>) -> FoldDetection {
         FoldDetection {
-            fold: Some([0.0, 3.0]),
-            arcs: vec![[0.0, 3.0]],
+            fold: Some(crate::geometry::Fold::new(0.0, 3.0)),
+            arcs: vec![crate::geometry::Arc::new(0.0, 3.0)],
             curves: vec![],
             cut: Some(cut),
             orientation,

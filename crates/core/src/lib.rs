@@ -15,7 +15,7 @@
 //! binary are crates of their own above it.
 //!
 //! The modules import one way; each uses only those to its left: [`border`] (validation,
-//! normalisation) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates, a fold
+//! normalisation) → [`geometry`] (fold, arc, line) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates, a fold
 //! applied) → [`close`] (corners, the CloSE value) / [`label`] / [`metrics`] / [`confidence`] /
 //! [`interpolate`] → [`analysis`] (the whole pipeline) → [`plan`]. Below them all: [`angle`],
 //! [`error`], [`budget`], [`rng`].
@@ -41,15 +41,19 @@ pub mod budget;
 pub mod close;
 pub mod confidence;
 pub mod disk;
+pub mod distance;
 pub mod error;
 pub mod fold;
+pub mod geometry;
 pub mod gli;
 pub mod interpolate;
 pub mod label;
 pub mod metrics;
 pub mod plan;
 pub mod rng;
+pub mod verify;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use error::{Error, Result};
 pub use fold::FoldMethod;
+pub use geometry::{Arc, Fold, Folding, Line};

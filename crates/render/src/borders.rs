@@ -20,7 +20,7 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::cloth::{across, layers, make, Prior};
+use super::cloth::{across, layers, make};
 use super::raster::text_width;
 use super::truth::{agreement, true_lines, Truth};
 use super::{
@@ -58,18 +58,13 @@ fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
         }
     };
     // Each found fold's line across the state it folded, as the analysis made it.
-    let prior: Vec<Prior> = analysis
-        .fold_arcs()
-        .into_iter()
-        .zip(analysis.fold_lines())
-        .map(|(arcs, line)| Prior { arcs: arcs.to_vec(), line })
-        .collect();
-    let found: Vec<Option<[[f64; 2]; 2]>> = match make(analysis.start_border(), &prior) {
-        Ok((_, made)) => {
-            layers(analysis.start_border(), &made).lines.into_iter().map(Some).collect()
-        }
-        Err(_) => Vec::new(),
-    };
+    let found: Vec<Option<[[f64; 2]; 2]>> =
+        match make(analysis.start_border(), &analysis.foldings()) {
+            Ok((_, made)) => {
+                layers(analysis.start_border(), &made).lines.into_iter().map(Some).collect()
+            }
+            Err(_) => Vec::new(),
+        };
     let true_lines = true_lines(analysis, truth);
     let true_segments: Vec<Option<[[f64; 2]; 2]>> =
         true_lines.iter().map(|(line, state)| line.as_ref().map(|l| across(state, l))).collect();
@@ -458,7 +453,9 @@ mod tests {
         let size = size.1 - size.0;
         for (k, (f, t)) in found.iter().zip(&true_ones).enumerate() {
             let off = |e: usize| {
-                close_core::angle::distance(analysis.folds[k][e], truth.folds[k][e]).to_degrees()
+                let pair = |f: close_core::geometry::Fold| [f.f1, f.f2];
+                close_core::angle::distance(pair(analysis.folds[k])[e], pair(truth.folds[k])[e])
+                    .to_degrees()
             };
             let errors = format!("{:.1}°, {:.1}° off", off(0), off(1));
             assert!(t.name.contains(&errors), "{} lacks {errors}", t.name);

@@ -7,10 +7,11 @@
 //! which is the fold line. The values are written underneath.
 //!
 //! ```
+//! use close_core::geometry::Arc;
 //! use close_render::circle::folded_arc;
 //! use std::f64::consts::PI;
 //! // The arc from 3π/2 to π/2 wraps through 0 and spans half the circle.
-//! let arc = folded_arc([1.5 * PI, 0.5 * PI], 5);
+//! let arc = folded_arc(Arc::new(1.5 * PI, 0.5 * PI), 5);
 //! assert!((arc[2] - 2.0 * PI).abs() < 1e-12);
 //! ```
 
@@ -27,12 +28,13 @@ use super::{
 };
 use close_core::analysis::Analysis;
 use close_core::error::Result;
+use close_core::geometry::{Arc, Fold};
 
 /// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).
 pub const NUMBERED_CORNERS: usize = 20;
 
 /// `points` angles from f1 anticlockwise to f2 (unwrapped: increasing from f1).
-pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
+pub fn folded_arc(Arc { a: f1, b: f2 }: Arc, points: usize) -> Vec<f64> {
     let span = (f2 - f1).rem_euclid(TAU);
     let last = points.max(2) - 1;
     (0..=last).map(|k| f1 + span * k as f64 / last as f64).collect()
@@ -53,7 +55,7 @@ fn caption(analysis: &Analysis, truth: &Truth, size: f64, width: f64) -> Vec<(St
         let error =
             agreement(analysis, truth, k, line).map_or_else(String::new, |a| format!(" · ○ {a}"));
         lines.push((
-            format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f[0], names[1], f[1]),
+            format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f.f1, names[1], f.f2),
             fold_colour(k),
         ));
     }
@@ -62,7 +64,7 @@ fn caption(analysis: &Analysis, truth: &Truth, size: f64, width: f64) -> Vec<(St
     }
     for (k, t) in truth.folds.iter().enumerate().skip(count) {
         lines.push((
-            format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t[0], t[1]),
+            format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t.f1, t.f2),
             fold_colour(k),
         ));
     }
@@ -246,7 +248,7 @@ impl Layout {
 fn labels(analysis: &Analysis) -> Vec<Label> {
     let count = analysis.folds.len();
     let folds = analysis.folds.iter().enumerate().flat_map(|(k, fold)| {
-        fold.iter().enumerate().map(move |(e, &f)| Label {
+        [fold.f1, fold.f2].into_iter().enumerate().map(move |(e, f)| Label {
             text: endpoint_name(k, e, count),
             colour: fold_colour(k),
             theta: f,
@@ -314,8 +316,8 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
 /// The folded side of each fold, between each of its arcs and its chord, lightly shaded.
 fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -> Result<()> {
     canvas.draw(|area| {
-        for (k, arcs) in analysis.fold_arcs().into_iter().enumerate() {
-            for &fold in arcs {
+        for (k, folding) in analysis.foldings().iter().enumerate() {
+            for &fold in &folding.arcs {
                 let arc: Vec<(i32, i32)> = folded_arc(fold, 361)
                     .into_iter()
                     .map(|t| frame.at(1.0, t))
@@ -338,13 +340,13 @@ fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) {
 }
 
 /// Each true fold: its chord thin, its two points as hollow rings in its fold's colour.
-fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
+fn draw_truth(canvas: &mut Canvas, truth: &[Fold], frame: &Frame) {
     let unit = canvas.unit();
     let marker = (unit * 0.022).max(4.0);
     for (k, t) in truth.iter().enumerate() {
         let colour = fold_colour(k);
-        canvas.stroke(&[frame.at(1.0, t[0]), frame.at(1.0, t[1])], line_width(unit, 0.003), MUTED);
-        for &a in t {
+        canvas.stroke(&[frame.at(1.0, t.f1), frame.at(1.0, t.f2)], line_width(unit, 0.003), MUTED);
+        for a in [t.f1, t.f2] {
             canvas.ring(frame.at(1.0, a), marker, line_width(unit, 0.004), colour);
         }
     }
@@ -355,15 +357,16 @@ fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
 fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
     let unit = canvas.unit();
     let marker = (unit * 0.016).max(3.0);
-    for (k, (&fold, arcs)) in analysis.folds.iter().zip(analysis.fold_arcs()).enumerate() {
-        let colour = fold_colour(k);
-        for &[a, b] in arcs {
+    for (k, folding) in analysis.foldings().iter().enumerate() {
+        let (colour, fold) = (fold_colour(k), folding.fold);
+        for &arc in &folding.arcs {
+            let Arc { a, b } = arc;
             let arc: Vec<(f64, f64)> =
-                folded_arc([a, b], 361).into_iter().map(|t| frame.at(1.0, t)).collect();
+                folded_arc(arc, 361).into_iter().map(|t| frame.at(1.0, t)).collect();
             canvas.stroke(&arc, line_width(unit, 0.014), colour);
             canvas.stroke(&[frame.at(1.0, a), frame.at(1.0, b)], line_width(unit, 0.005), colour);
         }
-        for &f in &fold {
+        for f in [fold.f1, fold.f2] {
             canvas.disc(frame.at(1.0, f), marker + 1.5, PAPER);
             canvas.disc(frame.at(1.0, f), marker, colour);
         }
@@ -376,7 +379,7 @@ mod tests {
 
     #[test]
     fn folded_arc_runs_anticlockwise_from_f1_to_f2() {
-        let arc = folded_arc([1.0, 0.5], 3);
+        let arc = folded_arc(Arc::new(1.0, 0.5), 3);
         assert_eq!(arc[0], 1.0);
         assert!((arc[2] - (0.5 + TAU)).abs() < 1e-12);
         assert!(arc.windows(2).all(|w| w[1] >= w[0]));

@@ -23,13 +23,13 @@
 //!
 //! ```
 //! use close_core::border::Point;
-//! use close_core::fold::Line;
+//! use close_core::geometry::{Arc, Line, Point2, Vector2};
 //! use close_render::cloth::{layers, Made};
 //! // A square folded in half along x = 0.5: vertices 1 and 2 (x = 1) turn over.
 //! let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
 //!     .iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
-//! let line = Line { point: [0.5, 0.0], direction: [0.0, 1.0] };
-//! let arcs = vec![[0.5 * std::f64::consts::FRAC_PI_2, 2.5 * std::f64::consts::FRAC_PI_2]];
+//! let line = Line { point: Point2::new(0.5, 0.0), direction: Vector2::new(0.0, 1.0) };
+//! let arcs = vec![Arc::new(0.5 * std::f64::consts::FRAC_PI_2, 2.5 * std::f64::consts::FRAC_PI_2)];
 //! let folded = layers(&square, &[Made { line, arcs, turn: 1.0 }]);
 //! assert_eq!(folded.layers.iter().map(|l| l.flips).collect::<Vec<_>>(), [0, 1]);
 //! assert!(folded.heights[1] > 0.0 && folded.heights[0] == 0.0);
@@ -40,8 +40,8 @@ use serde::Serialize;
 use close_core::analysis::Analysis;
 use close_core::border::{to_xyz, Point};
 use close_core::error::{Error, Result};
-use close_core::fold::reflect::{apply_arcs, fold_line, folded_vertices};
-use close_core::fold::Line;
+use close_core::fold::apply;
+use close_core::geometry::{Arc, Fold, Folding, Line, Vector2};
 use close_core::interpolate::{turn_about, Interpolation, Motion};
 use close_core::plan::{Action, Case, PlanStep};
 
@@ -50,8 +50,8 @@ use close_core::plan::{Action, Case, PlanStep};
 pub struct Made {
     /// The line it folds along (XY, unit direction).
     pub line: Line,
-    /// The arcs it turns over (angles, each folded anticlockwise from its first to its second).
-    pub arcs: Vec<[f64; 2]>,
+    /// The arcs it turns over (each folded anticlockwise from its first angle to its second).
+    pub arcs: Vec<Arc>,
     /// How far it has turned: 0 not at all, 1 folded over (the reflection across the line).
     pub turn: f64,
 }
@@ -70,8 +70,8 @@ impl Made {
     fn moved(&self, n: usize) -> Vec<bool> {
         let mut moved = vec![false; n];
         if self.turn > 0.0 {
-            for &arc in &self.arcs {
-                for v in folded_vertices(n, arc) {
+            for arc in &self.arcs {
+                for v in arc.folded_vertices(n) {
                     moved[v] = true;
                 }
             }
@@ -160,24 +160,17 @@ pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
     Layers { layers, heights, lines, border }
 }
 
-/// A fold made before a motion, as an analysis step reports it: the `arcs` it turned over
-/// and its `line` (by default through the first arc's start and the last arc's end on the
-/// state it folds).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Prior {
-    pub arcs: Vec<[f64; 2]>,
-    pub line: Option<Line>,
-}
-
-/// `flat` with the `prior` folds made on it in order: the state they leave, and each as made.
-pub fn make(flat: &[Point], prior: &[Prior]) -> Result<(Vec<Point>, Vec<Made>)> {
+/// `flat` with the `prior` folds made on it in order, each as an analysis step reports it
+/// (its `line` by default through the first arc's start and the last arc's end on the state
+/// it folds): the state they leave, and each as made.
+pub fn make(flat: &[Point], prior: &[Folding]) -> Result<(Vec<Point>, Vec<Made>)> {
     let mut state = flat.to_vec();
     let mut made = Vec::with_capacity(prior.len());
     for (k, fold) in prior.iter().enumerate() {
-        let (Some(first), Some(last)) = (fold.arcs.first(), fold.arcs.last()) else {
+        let Some(span) = Fold::span(&fold.arcs) else {
             return Err(Error::InvalidArgument(format!("prior fold {} has no arc", k + 1)));
         };
-        if let Some(bad) = fold.arcs.iter().flatten().find(|a| !a.is_finite()) {
+        if let Some(bad) = fold.arcs.iter().flat_map(|a| a.ends()).find(|a| !a.is_finite()) {
             return Err(Error::InvalidArgument(format!(
                 "prior fold {}: arc angles must be finite numbers, got {bad}",
                 k + 1
@@ -190,14 +183,14 @@ pub fn make(flat: &[Point], prior: &[Prior]) -> Result<(Vec<Point>, Vec<Made>)> 
                     k + 1
                 ))
             })?,
-            None => fold_line(&state, [first[0], last[1]], None).ok_or_else(|| {
+            None => span.line_on(&state, None).ok_or_else(|| {
                 Error::InvalidArgument(format!(
                     "prior fold {}: its two points lie on top of each other: give its `line`",
                     k + 1
                 ))
             })?,
         };
-        state = apply_arcs(&state, &fold.arcs, &line);
+        state = apply(&state, &Folding { fold: span, arcs: fold.arcs.clone(), line: Some(line) });
         made.push(Made { line, arcs: fold.arcs.clone(), turn: 1.0 });
     }
     Ok((state, made))
@@ -205,11 +198,11 @@ pub fn make(flat: &[Point], prior: &[Prior]) -> Result<(Vec<Point>, Vec<Made>)> 
 
 /// `line` with a unit direction, if it is finite and has one.
 fn unit(line: Line) -> Option<Line> {
-    let length = line.direction[0].hypot(line.direction[1]);
-    let finite = line.point.iter().chain(&line.direction).all(|c| c.is_finite());
+    let length = line.direction.x.hypot(line.direction.y);
+    let finite = line.point.iter().chain(line.direction.iter()).all(|c| c.is_finite());
     (finite && length > 0.0 && length.is_finite()).then(|| Line {
         point: line.point,
-        direction: [line.direction[0] / length, line.direction[1] / length],
+        direction: Vector2::new(line.direction.x / length, line.direction.y / length),
     })
 }
 
@@ -236,9 +229,9 @@ pub fn motion_states(
             let moving = match motion {
                 Motion::Between { .. } => {
                     let fold = interpolation.folds[k];
-                    fold_line(base, fold, None).map(|line| Made {
+                    fold.line_on(base, None).map(|line| Made {
                         line,
-                        arcs: vec![fold],
+                        arcs: vec![fold.arc()],
                         turn: 1.0,
                     })
                 }
@@ -274,13 +267,7 @@ pub struct Pictured {
 /// of the folds now when the plan goes there directly).
 pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Result<Vec<Pictured>> {
     let flat = analysis.start_border();
-    let prior: Vec<Prior> = analysis
-        .fold_arcs()
-        .into_iter()
-        .zip(analysis.fold_lines())
-        .map(|(arcs, line)| Prior { arcs: arcs.to_vec(), line })
-        .collect();
-    let (_, mut made) = make(flat, &prior)?;
+    let (_, mut made) = make(flat, &analysis.foldings())?;
     let pictured = |made: &[Made], segment: Option<&Line>| {
         let cloth = layers(flat, made);
         Pictured {
@@ -300,9 +287,9 @@ pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Resul
                 if case == Case::Direct {
                     made.clear();
                 }
-                let line = fold_line(flat, step.fold, None);
+                let line = step.fold.line_on(flat, None);
                 if let Some(line) = line {
-                    made.push(Made { line, arcs: vec![step.fold], turn: 1.0 });
+                    made.push(Made { line, arcs: vec![step.fold.arc()], turn: 1.0 });
                 }
                 let mut state = pictured(&made, None);
                 state.segment = line.map(|line| across(flat, &line));
@@ -316,8 +303,8 @@ pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Resul
 /// The segment of `line` across `points`: from the least to the greatest projection of a
 /// point on the line's direction.
 pub fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
-    let [px, py] = line.point;
-    let [dx, dy] = line.direction;
+    let (px, py) = (line.point.x, line.point.y);
+    let (dx, dy) = (line.direction.x, line.direction.y);
     let t = points.iter().map(|p| (p.x - px) * dx + (p.y - py) * dy);
     let (lo, hi) = t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
     let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
@@ -326,8 +313,8 @@ pub fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
 
 /// Signed distance of `p` from `line`, positive on its left.
 fn offset(p: &Point, line: &Line) -> f64 {
-    let [ux, uy] = line.direction;
-    (p.y - line.point[1]) * ux - (p.x - line.point[0]) * uy
+    let (ux, uy) = (line.direction.x, line.direction.y);
+    (p.y - line.point.y) * ux - (p.x - line.point.x) * uy
 }
 
 /// Whether the vertices the fold moves lie mostly on the line's left.
@@ -378,7 +365,7 @@ fn split(piece: &[Corner], line: &Line) -> Vec<(Piece, bool)> {
     }
     // Crossings in order along the line; consecutive ones bound a chord inside.
     let along = |p: &Point| {
-        (p.x - line.point[0]) * line.direction[0] + (p.y - line.point[1]) * line.direction[1]
+        (p.x - line.point.x) * line.direction.x + (p.y - line.point.y) * line.direction.y
     };
     let mut crossings: Vec<usize> = (0..nodes.len()).filter(|&k| nodes[k].1.is_none()).collect();
     crossings.sort_by(|&a, &b| along(&nodes[a].0.at).total_cmp(&along(&nodes[b].0.at)));
@@ -465,7 +452,15 @@ fn halves(piece: &[Corner], line: &Line) -> Vec<(Piece, bool)> {
 mod tests {
     use super::*;
     use close_core::angle::TAU;
-    use close_core::fold::reflect::apply_arcs;
+    use close_core::geometry::Point2;
+
+    /// The line through `point` along `direction`.
+    fn line_at(point: [f64; 2], direction: [f64; 2]) -> Line {
+        Line {
+            point: Point2::new(point[0], point[1]),
+            direction: Vector2::new(direction[0], direction[1]),
+        }
+    }
 
     /// A polygon through `corners` with `per` vertices a side, anticlockwise.
     fn outline(corners: &[[f64; 2]], per: usize) -> Vec<Point> {
@@ -506,15 +501,15 @@ mod tests {
     }
 
     /// The arc (angles) of border parameters s1 → s2 on a border of n vertices.
-    fn arc(n: usize, s: [f64; 2]) -> [f64; 2] {
-        s.map(|s| s * TAU / n as f64)
+    fn arc(n: usize, s: [f64; 2]) -> Arc {
+        Arc::new(s[0] * TAU / n as f64, s[1] * TAU / n as f64)
     }
 
     #[test]
     fn a_half_fold_gives_a_base_and_a_flap_of_half_the_area() {
         let square = outline(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]], 4);
         // Vertical line x = 1: the right side (parameters 2 → 10) turns over.
-        let line = Line { point: [1.0, 0.0], direction: [0.0, 1.0] };
+        let line = line_at([1.0, 0.0], [0.0, 1.0]);
         let made = Made { line, arcs: vec![arc(16, [2.0, 10.0])], turn: 1.0 };
         let out = layers(&square, std::slice::from_ref(&made));
         assert_eq!(out.layers.len(), 2);
@@ -554,7 +549,7 @@ mod tests {
             4,
         );
         let n = u.len();
-        let line = Line { point: [0.0, 1.5], direction: [1.0, 0.0] };
+        let line = line_at([0.0, 1.5], [1.0, 0.0]);
         // The right leg's outline above the line: parameters 6, at (3, 1.5), to 15, at (2, 1.5).
         let arcs = vec![arc(n, [6.0, 15.0])];
         let made = Made { line, arcs: arcs.clone(), turn: 1.0 };
@@ -573,7 +568,9 @@ mod tests {
         assert!(kept.iter().any(|l| inside([0.5, 2.5], &l.points)), "the left leg's top stays");
         // The outline agrees: the analysis's own border after the fold has the left leg's
         // top corner (0, 3) where it was, and the right leg's (3, 3) at (3, 0).
-        let border = apply_arcs(&u, &arcs, &line);
+        let folding =
+            Folding { fold: Fold::span(&arcs).unwrap(), arcs: arcs.clone(), line: Some(line) };
+        let border = apply(&u, &folding);
         assert!(border.iter().any(|p| (p.x, p.y) == (0.0, 3.0)));
         assert!(border.iter().any(|p| (p.x - 3.0).abs() < 1e-12 && p.y.abs() < 1e-12));
         // Every piece lies inside the drawing's bounds: nothing spills off.
@@ -590,14 +587,14 @@ mod tests {
     fn a_second_fold_cuts_every_layer_and_lands_on_top() {
         let square = outline(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]], 4);
         let first = Made {
-            line: Line { point: [1.0, 0.0], direction: [0.0, 1.0] },
+            line: line_at([1.0, 0.0], [0.0, 1.0]),
             arcs: vec![arc(16, [2.0, 10.0])],
             turn: 1.0,
         };
         // Then the left half (now two layers) folded along y = 1, the top onto the bottom.
         // On the folded border, the upper half is parameters 6 → 14 (the two top sides).
         let second = Made {
-            line: Line { point: [0.0, 1.0], direction: [1.0, 0.0] },
+            line: line_at([0.0, 1.0], [1.0, 0.0]),
             arcs: vec![arc(16, [6.0, 14.0])],
             turn: 1.0,
         };
@@ -616,7 +613,7 @@ mod tests {
     #[test]
     fn a_fold_that_moves_nothing_leaves_the_cloth_and_a_crossed_outline_still_draws() {
         let square = outline(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], 2);
-        let line = Line { point: [0.5, 0.0], direction: [0.0, 1.0] };
+        let line = line_at([0.5, 0.0], [0.0, 1.0]);
         let still = layers(&square, &[Made { line, arcs: vec![arc(8, [1.0, 5.0])], turn: 0.0 }]);
         assert_eq!(still.layers.len(), 1);
         assert!(still.heights.iter().all(|&h| h == 0.0));

@@ -27,14 +27,14 @@ use std::fmt;
 use close_core::analysis::Analysis;
 use close_core::angle::{self, angle_to_param, vertices_in_arc};
 use close_core::border::Point;
-use close_core::fold::reflect::{apply_fold_line, fold_line, folded_vertices};
-use close_core::fold::Line;
+use close_core::fold::apply;
+use close_core::geometry::{Fold, Folding, Line};
 
 /// A sample's true folds, as its file gives them.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Truth {
     /// (t1, t2) per fold.
-    pub folds: Vec<[f64; 2]>,
+    pub folds: Vec<Fold>,
     /// Per fold, the vertices (the input's indices) it turned over, when the sample says.
     pub folded: Vec<Option<Vec<usize>>>,
 }
@@ -54,7 +54,7 @@ impl Truth {
     }
 
     /// True folds known by their points alone.
-    pub fn folds(folds: &[[f64; 2]]) -> Truth {
+    pub fn folds(folds: &[Fold]) -> Truth {
         Truth { folds: folds.to_vec(), folded: vec![None; folds.len()] }
     }
 
@@ -100,7 +100,7 @@ pub fn true_lines(analysis: &Analysis, truth: &Truth) -> Vec<(Option<Line>, Vec<
         .enumerate()
         .map(|(k, &fold)| {
             let before = state.clone();
-            let line = fold_line(&state, fold, None);
+            let line = fold.line_on(&state, None);
             if let Some(line) = &line {
                 state = match truth.folded.get(k).and_then(Option::as_ref) {
                     Some(folded) => {
@@ -110,7 +110,9 @@ pub fn true_lines(analysis: &Analysis, truth: &Truth) -> Vec<(Option<Line>, Vec<
                         }
                         next
                     }
-                    None => apply_fold_line(&state, fold, line),
+                    None => {
+                        apply(&state, &Folding { fold, arcs: vec![fold.arc()], line: Some(*line) })
+                    }
                 };
             }
             (line, before)
@@ -132,43 +134,42 @@ pub fn agreement(
     line: Option<&Line>,
 ) -> Option<Agreement> {
     let (found, true_fold) = (analysis.folds.get(k)?, truth.folds.get(k)?);
-    let arcs = analysis.fold_arcs().get(k).map(|a| a.to_vec()).unwrap_or_default();
+    let folding = analysis.foldings().into_iter().nth(k);
+    let arcs = folding.as_ref().map(|f| f.arcs.clone()).unwrap_or_default();
     let n = analysis.n;
     // The vertices each turned over, as input indices.
     let found_set: BTreeSet<usize> = arcs
         .iter()
-        .flat_map(|&arc| folded_vertices(n, arc))
+        .flat_map(|arc| arc.folded_vertices(n))
         .map(|v| analysis.border_indices[v])
         .collect();
     let true_set: Option<BTreeSet<usize>> =
         truth.folded.get(k).and_then(Option::as_ref).map(|s| s.iter().copied().collect());
     let true_arc: BTreeSet<usize> =
-        vertices_in_arc(n, angle_to_param(true_fold[0], n), angle_to_param(true_fold[1], n))
+        vertices_in_arc(n, angle_to_param(true_fold.f1, n), angle_to_param(true_fold.f2, n))
             .into_iter()
             .map(|v| analysis.border_indices[v])
             .collect();
     let multi = arcs.len() > 1 || true_set.as_ref().is_some_and(|s| *s != true_arc);
     if !multi {
         return Some(Agreement::Points([
-            angle::distance(found[0], true_fold[0]).to_degrees(),
-            angle::distance(found[1], true_fold[1]).to_degrees(),
+            angle::distance(found.f1, true_fold.f1).to_degrees(),
+            angle::distance(found.f2, true_fold.f2).to_degrees(),
         ]));
     }
-    let found_line = analysis.fold_lines().get(k).copied().flatten()?;
+    let found_line = folding?.line?;
     let line = line?;
-    let cross =
-        found_line.direction[0] * line.direction[1] - found_line.direction[1] * line.direction[0];
-    let dot =
-        found_line.direction[0] * line.direction[0] + found_line.direction[1] * line.direction[1];
+    let cross = found_line.direction.perp(&line.direction);
+    let dot = found_line.direction.dot(&line.direction);
     // Lines have no direction: the angle between them is at most 90°.
     let angle = cross.abs().atan2(dot.abs()).to_degrees();
     let (centre, radius) = centre_and_radius(analysis.start_border());
     // How far the true line passes from where the found one passes nearest the centre.
-    let along = (centre[0] - found_line.point[0]) * found_line.direction[0]
-        + (centre[1] - found_line.point[1]) * found_line.direction[1];
+    let along = (centre[0] - found_line.point.x) * found_line.direction.x
+        + (centre[1] - found_line.point.y) * found_line.direction.y;
     let foot = [
-        found_line.point[0] + along * found_line.direction[0],
-        found_line.point[1] + along * found_line.direction[1],
+        found_line.point.x + along * found_line.direction.x,
+        found_line.point.y + along * found_line.direction.y,
     ];
     let offset = distance_to(line, foot).abs() / radius.max(f64::MIN_POSITIVE);
     let shared = true_set.map(|t| {
@@ -192,5 +193,5 @@ fn centre_and_radius(points: &[Point]) -> ([f64; 2], f64) {
 
 /// Signed distance of XY point `p` from `line`.
 fn distance_to(line: &Line, p: [f64; 2]) -> f64 {
-    (p[1] - line.point[1]) * line.direction[0] - (p[0] - line.point[0]) * line.direction[1]
+    (p[1] - line.point.y) * line.direction.x - (p[0] - line.point.x) * line.direction.y
 }

@@ -471,6 +471,8 @@ pub fn app(state: AppState) -> Router {
         .route("/api/readout/{key}", get(routes::readout))
         .route("/api/cells.png", get(routes::cell_picture))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
+        .route("/api/verify", post(routes::verify).layer(small_bodies))
+        .route("/api/distance", post(routes::distance).layer(small_bodies))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))
         .layer(

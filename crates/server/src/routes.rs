@@ -18,6 +18,7 @@ use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
 use close_core::border::{to_xyz, BorderFrames};
 use close_core::budget::{Budget, Deadline};
 use close_core::error::{Error, Result};
+use close_core::geometry::{Fold, Line};
 use close_io::cache::content_key;
 use close_io::formats::{json::parse_sample, read_files, Sample, Truth};
 use close_render::colour::Scale;
@@ -775,13 +776,13 @@ pub struct InterpolateRequest {
     /// step's `arcs`) about `line` (its `line`; by default the line through the first arc's
     /// start and the last arc's end). See [`close_core::interpolate::Motion`].
     #[serde(default)]
-    from: Option<[f64; 2]>,
+    from: Option<Fold>,
     #[serde(default)]
-    to: Option<[f64; 2]>,
+    to: Option<Fold>,
     #[serde(default)]
-    arcs: Option<Vec<[f64; 2]>>,
+    arcs: Option<Vec<close_core::geometry::Arc>>,
     #[serde(default)]
-    line: Option<LineRequest>,
+    line: Option<Line>,
     /// States evenly spaced from the start to the end, both included (60 by default)…
     #[serde(default)]
     steps: Option<usize>,
@@ -803,9 +804,9 @@ pub struct InterpolateRequest {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PriorFold {
-    arcs: Vec<[f64; 2]>,
+    arcs: Vec<close_core::geometry::Arc>,
     #[serde(default)]
-    line: Option<LineRequest>,
+    line: Option<Line>,
 }
 
 /// States of an interpolation when the request names none.
@@ -815,20 +816,6 @@ const DEFAULT_STEPS: usize = 60;
 /// and its JSON, three floats of at most 24 characters with their brackets and commas (80);
 /// drawn, its height and its share of the layers (about as much again).
 const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
-
-/// A fold line as an analysis reports it (`steps[k].line`): a point and a direction, XY.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LineRequest {
-    point: [f64; 2],
-    direction: [f64; 2],
-}
-
-impl LineRequest {
-    fn line(&self) -> close_core::interpolate::Line {
-        close_core::interpolate::Line { point: self.point, direction: self.direction }
-    }
-}
 
 /// `POST /api/interpolate`'s answer when asked to draw (`drawn`): the states of the motion
 /// (core's [`Interpolation`]) and each as the web app draws it ([`close_render::cloth`]).
@@ -872,19 +859,15 @@ pub async fn interpolate(
         ));
     }
     state.config().budget.interpolation(req.border.len(), at.len())?;
-    let motion = close_core::interpolate::Motion::of(
-        req.from,
-        req.to,
-        req.arcs,
-        req.line.as_ref().map(LineRequest::line),
-    )?;
-    let prior: Vec<close_render::cloth::Prior> = req
+    let motion = close_core::interpolate::Motion::of(req.from, req.to, req.arcs, req.line)?;
+    let prior: Vec<close_core::geometry::Folding> = req
         .prior
         .unwrap_or_default()
         .into_iter()
-        .map(|p| close_render::cloth::Prior {
+        .map(|p| close_core::geometry::Folding {
+            fold: Fold::span(&p.arcs).unwrap_or_default(),
             arcs: p.arcs,
-            line: p.line.as_ref().map(LineRequest::line),
+            line: p.line,
         })
         .collect();
     // The answer's size is known now: reserved before it is built, not found after.
@@ -1148,32 +1131,11 @@ pub async fn disk_cells(
     Ok(JsonBytes(answer))
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PlanRequest {
-    /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis; kept
-    /// raw so a sample is parsed once, on a worker.
-    sample: Box<RawValue>,
-    goal: [f64; 2],
-}
-
-/// `POST /api/plan`'s answer: the plan ([`close_core::plan::Answer`]) and the states it goes
-/// through as the web app draws them ([`close_render::cloth::plan_states`]).
-#[derive(Serialize)]
-struct PlanAnswer<'a> {
-    #[serde(flatten)]
-    answer: close_core::plan::Answer<'a>,
-    states: Vec<close_render::cloth::Pictured>,
-}
-
-pub async fn plan(
-    State(state): State<AppState>,
-    AppJson(req): AppJson<PlanRequest>,
-) -> Result<JsonBytes, ApiError> {
-    if req.goal.iter().any(|g| !g.is_finite()) {
-        return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
-    }
-    let raw = req.sample.get();
+/// The analysed state a plan or a verification starts from: `sample` is a Sample JSON
+/// object (analysed once, on a worker, and cached by its bytes), the id of a listed sample,
+/// or the `key` of an analysis still cached.
+async fn drawing_of(state: &AppState, sample: Box<RawValue>) -> Result<Arc<Drawing>, ApiError> {
+    let raw = sample.get();
     let drawing =
         match raw.trim_start().as_bytes().first() {
             // An analysis still cached (an upload's "key") or a listed sample's id.
@@ -1183,23 +1145,23 @@ pub async fn plan(
                 match state.drawing(&id) {
                     Some(hit) => hit,
                     None if state.entry(&id).is_some() || state.catalog().get(&id).is_some() => {
-                        sample_analysis(&state, &id).await?.drawing.clone()
+                        sample_analysis(state, &id).await?.drawing.clone()
                     }
                     None if state.uploads().is_some()
                         && state.uploads().and_then(|u| u.load(&id)).is_some() =>
                     {
-                        kept_analysis(&state, &id).await?.drawing.clone()
+                        kept_analysis(state, &id).await?.drawing.clone()
                     }
-                    None => sample_analysis(&state, &id).await?.drawing.clone(),
+                    None => sample_analysis(state, &id).await?.drawing.clone(),
                 }
             }
             Some(b'{') => {
                 let key = content_key(&[b"plan", raw.as_bytes()]);
                 let budget = state.config().budget;
-                analysis(&state, key, move |key, _| {
+                analysis(state, key, move |key, _| {
                     Loaded::of(
                         key,
-                        &parse_sample(req.sample.get().as_bytes())?,
+                        &parse_sample(sample.get().as_bytes())?,
                         FrameRange::default(),
                         UPLOAD,
                         None,
@@ -1215,6 +1177,35 @@ pub async fn plan(
                     .into(),
             )),
         };
+    Ok(drawing)
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanRequest {
+    /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis; kept
+    /// raw so a sample is parsed once, on a worker.
+    sample: Box<RawValue>,
+    goal: Fold,
+}
+
+/// `POST /api/plan`'s answer: the plan ([`close_core::plan::Answer`]) and the states it goes
+/// through as the web app draws them ([`close_render::cloth::plan_states`]).
+#[derive(Serialize)]
+struct PlanAnswer<'a> {
+    #[serde(flatten)]
+    answer: close_core::plan::Answer<'a>,
+    states: Vec<close_render::cloth::Pictured>,
+}
+
+pub async fn plan(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<PlanRequest>,
+) -> Result<JsonBytes, ApiError> {
+    if !req.goal.is_finite() {
+        return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
+    }
+    let drawing = drawing_of(&state, req.sample).await?;
     let goal = req.goal;
     let answer = state
         .run_cpu(Lane::Light, move |_| {
@@ -1222,6 +1213,85 @@ pub async fn plan(
             let states =
                 close_render::cloth::plan_states(&drawing.analysis, answer.case, &answer.steps)?;
             to_json(&PlanAnswer { answer, states })
+        })
+        .await?;
+    Ok(JsonBytes(answer))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VerifyRequest {
+    /// As [`PlanRequest::sample`]: the observed state.
+    sample: Box<RawValue>,
+    /// The goal folds in order, each [g1, g2] in radians.
+    goal: Vec<[f64; 2]>,
+    /// The line each goal fold is made along, where known (`null` entries: through its points).
+    #[serde(default)]
+    lines: Vec<Option<close_core::Line>>,
+    #[serde(default)]
+    tolerance: close_core::verify::Tolerance,
+}
+
+/// `POST /api/verify`: the sample's end state against the goal folds
+/// ([`close_core::verify::verify`]).
+pub async fn verify(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<VerifyRequest>,
+) -> Result<JsonBytes, ApiError> {
+    let goal = close_core::verify::Goal { folds: req.goal, lines: req.lines };
+    // The goal is checked before the sample is analysed: a bad goal costs nothing.
+    close_core::verify::check_goal(&goal, None)?;
+    let drawing = drawing_of(&state, req.sample).await?;
+    let tolerance = req.tolerance;
+    let answer = state
+        .run_cpu(Lane::Light, move |_| {
+            to_json(&close_core::verify::verify(&drawing.analysis, &goal, tolerance)?)
+        })
+        .await?;
+    Ok(JsonBytes(answer))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistanceRequest {
+    /// Two states of one cloth: each its folds in order, [f1, f2] in radians.
+    a: Vec<[f64; 2]>,
+    b: Vec<[f64; 2]>,
+    /// The cloth's flat border, for the geometric distance too.
+    #[serde(default)]
+    border: Option<Vec<[f64; 3]>>,
+}
+
+/// `POST /api/distance`: {`folds`, `geometric`} between two states of one cloth
+/// ([`close_core::distance`]).
+pub async fn distance(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<DistanceRequest>,
+) -> Result<JsonBytes, ApiError> {
+    use close_core::distance::{check_folds, fold_distance, geometric_distance, Distance};
+    for (name, folds) in [("a", &req.a), ("b", &req.b)] {
+        if folds.len() > close_core::distance::MAX_BATCH_FOLDS {
+            return Err(Error::too_large(
+                "folds",
+                folds.len(),
+                close_core::distance::MAX_BATCH_FOLDS,
+            )
+            .into());
+        }
+        check_folds(name, folds, 0.0)?;
+    }
+    let answer = state
+        .run_cpu(Lane::Light, move |_| {
+            // The border is checked as every border (at most MAX_VERTICES vertices); the
+            // work is then O(N · folds).
+            let geometric = match req.border {
+                Some(border) => {
+                    let flat = close_core::border::prepare(vec![border])?;
+                    Some(geometric_distance(&flat.frames[0], &req.a, &req.b)?)
+                }
+                None => None,
+            };
+            to_json(&Distance { folds: fold_distance(&req.a, &req.b), geometric })
         })
         .await?;
     Ok(JsonBytes(answer))
