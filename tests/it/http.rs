@@ -331,7 +331,7 @@ async fn image_urls_outlive_the_analysis_cache() {
     }
     let gone = get(&app, images["close"].as_str().expect("a URL")).await;
     assert!(
-        gone.error(StatusCode::NOT_FOUND).contains("expired"),
+        gone.error(StatusCode::NOT_FOUND).contains("Upload the sample again"),
         "{}",
         String::from_utf8_lossy(&gone.body)
     );
@@ -1163,7 +1163,7 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
     assert!(get(&app, "/api/readout/0123abcd")
         .await
         .error(StatusCode::NOT_FOUND)
-        .contains("analyse the sample again"));
+        .contains("Upload the sample again"));
     assert!(get(&app, &format!("/api/readout/sample:{}?colour=red", entry.id))
         .await
         .error(StatusCode::BAD_REQUEST)
