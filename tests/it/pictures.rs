@@ -332,11 +332,12 @@ fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
     let truth = close::render::truth::Truth::of(sample.truth.as_ref().expect("its truth"));
     assert!(analysis.foldings().iter().any(|f| f.arcs.len() > 1), "a multi-arc fold is found");
     let lines = close::render::truth::true_lines(&analysis, &truth);
-    for k in 0..truth.folds.len() {
-        let agreement = close::render::truth::agreement(&analysis, &truth, k, lines[k].0.as_ref())
-            .expect("compared");
+    let foldings = analysis.foldings();
+    for (k, (line, _)) in lines.iter().enumerate() {
+        let agreement =
+            close::render::truth::agreement(&analysis, &truth, k, line.as_ref()).expect("compared");
         println!("fold {}: {agreement}", k + 1);
-        if analysis.foldings()[k].arcs.len() > 1 {
+        if foldings[k].arcs.len() > 1 {
             let close::render::truth::Agreement::Line { angle, offset, shared } = agreement else {
                 panic!("fold {}: compared by its points: {agreement}", k + 1);
             };
