@@ -13,9 +13,9 @@ use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_arcs, fold_line, folded_vertices};
-use crate::fold::{detect, FoldDetection, FoldMethod, Line};
-use crate::label::{label_arcs, Label, CHANGED_RMSE};
+use crate::fold::{apply, detect, FoldDetection, FoldMethod};
+use crate::geometry::{Fold, Folding, Line};
+use crate::label::{label, Label, CHANGED_RMSE};
 use crate::metrics::{Metrics, RigidMotion};
 
 /// Which frames to analyse (defaults: first and last).
@@ -61,6 +61,15 @@ pub struct Step {
     pub predicted: Vec<[f64; 3]>,
 }
 
+impl Step {
+    /// The fold this step found, as it was made in `predicted`: its fold, its arcs and its
+    /// line; `None` without a fold.
+    pub fn folding(&self) -> Option<Folding> {
+        let fold = self.detection.fold?;
+        Some(Folding { fold, arcs: self.detection.arcs.clone(), line: self.line })
+    }
+}
+
 /// Everything `close analyze` reports.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Analysis {
@@ -71,7 +80,7 @@ pub struct Analysis {
     pub corner_vertices: Vec<usize>,
     pub corner_threshold: f64,
     /// One [f1, f2] per detected fold, in order.
-    pub folds: Vec<[f64; 2]>,
+    pub folds: Vec<Fold>,
     /// The CloSE value of the end state: the corners and the folds that led to it.
     pub close: Close,
     pub label: Label,
@@ -108,21 +117,10 @@ impl Analysis {
         &self.frames[self.frames.len() - 1]
     }
 
-    /// The line each fold of [`Analysis::folds`] was made along (`steps[k].line` of the
-    /// steps that found a fold), in fold order.
-    pub fn fold_lines(&self) -> Vec<Option<crate::fold::Line>> {
-        self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect()
-    }
-
-    /// The arcs each fold of [`Analysis::folds`] turned over (`steps[k].arcs` of the steps
-    /// that found a fold), in fold order: one arc, the fold itself, unless the fold line
-    /// crossed the border more than twice.
-    pub fn fold_arcs(&self) -> Vec<&[[f64; 2]]> {
-        self.steps
-            .iter()
-            .filter(|s| s.detection.fold.is_some())
-            .map(|s| s.detection.arcs.as_slice())
-            .collect()
+    /// Each fold of [`Analysis::folds`] as it was made ([`Step::folding`] of the steps that
+    /// found one), in fold order: its arcs and the line of `predicted_end`.
+    pub fn foldings(&self) -> Vec<Folding> {
+        self.steps.iter().filter_map(Step::folding).collect()
     }
 
     /// The folds in the caller's own vertex order: each fold point as the angle 2πt/M of
@@ -143,33 +141,28 @@ impl Analysis {
     /// let clockwise = |f: &[[f64; 3]]| (0..40).map(|i| f[(40 - i) % 40]).collect::<Vec<_>>();
     /// let frames = border::prepare(vec![clockwise(&square), clockwise(&folded)])?;
     /// let analysis = analyze(&frames, FrameRange::default())?;
-    /// let [f1, f2] = analysis.folds[0];
-    /// let [g1, g2] = analysis.input_folds().unwrap()[0];
+    /// let [f1, f2] = analysis.folds[0].ends();
+    /// let [g1, g2] = analysis.input_folds().unwrap()[0].ends();
     /// // Border vertex k is input vertex 40 − k: angle f is 2π − f in the input's order.
     /// let tau = std::f64::consts::TAU;
     /// assert!((g1 - (tau - f2)).abs() < 1e-9 && (g2 - (tau - f1)).abs() < 1e-9);
     /// # Ok::<(), close_core::Error>(())
     /// ```
-    pub fn input_folds(&self) -> Option<Vec<[f64; 2]>> {
+    pub fn input_folds(&self) -> Option<Vec<Fold>> {
         if self.border_source != "border" {
             return None;
         }
         let m = self.border_indices.iter().max().map_or(0, |&v| v + 1);
         let input = |f: f64| input_angle(&self.border_indices, self.reversed, m, f);
-        Some(
-            self.folds
-                .iter()
-                .map(
-                    |&[f1, f2]| {
-                        if self.reversed {
-                            [input(f2), input(f1)]
-                        } else {
-                            [input(f1), input(f2)]
-                        }
-                    },
-                )
-                .collect(),
-        )
+        let mapped = |f: &Fold| {
+            let [g1, g2] = [input(f.f1), input(f.f2)];
+            if self.reversed {
+                Fold::new(g2, g1)
+            } else {
+                Fold::new(g1, g2)
+            }
+        };
+        Some(self.folds.iter().map(mapped).collect())
     }
 
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
@@ -248,15 +241,11 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
         || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options),
     );
     let (steps, predicted) = steps?;
-    let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
+    let foldings: Vec<Folding> = steps.iter().filter_map(Step::folding).collect();
+    let folds: Vec<Fold> = foldings.iter().map(|f| f.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
-    let arcs: Vec<&[[f64; 2]]> = steps
-        .iter()
-        .filter(|s| s.detection.fold.is_some())
-        .map(|s| s.detection.arcs.as_slice())
-        .collect();
-    let mut label = label_arcs(n, &found.vertices, &folds, &arcs);
+    let mut label = label(n, &found.vertices, &foldings);
     // A cloth only moved across the table is in the same state: the aligned error decides.
     let changed: Vec<usize> = steps
         .iter()
@@ -315,10 +304,11 @@ fn analyse_steps(
             // lie rotated from it (a cloth that slid as it folded).
             let direction = direction
                 .map(|d| placement(before_border, &norm.apply_all(&predicted), &unmoved).rotate(d));
-            let line = fold_line(&predicted, fold, direction)?;
-            predicted = apply_arcs(&predicted, &detection.arcs, &line);
-            for &arc in &detection.arcs {
-                for v in folded_vertices(predicted.len(), arc) {
+            let line = fold.line_on(&predicted, direction)?;
+            let folding = Folding { fold, arcs: detection.arcs.clone(), line: Some(line) };
+            predicted = apply(&predicted, &folding);
+            for arc in &detection.arcs {
+                for v in arc.folded_vertices(predicted.len()) {
                     unmoved[v] = false;
                 }
             }
