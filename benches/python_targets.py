@@ -11,6 +11,10 @@ ratios; exits 1 when one is missed.
 4. authors:   the authors' Python, 9.74 s per analysis at N = 76 (the median of three runs in
               the reference implementation's timing, `get_feature_vector` on a start/end pair),
               / one `close.analyze` at N = 76 here            (reported)
+5. verify:    `close.verify` of each sample against its own folds (analysis included) /
+              `close.analyze` of the same samples, both from a loop at N = 76 (reported: the
+              verification's cost on top of the analysis); and `close.verify` of an Analysis
+              already made, per call (reported, µs)
 
 The samples are the reference fixtures with N = 76 (tests/fixtures/reference), cycled to
 `--samples` (1,000 by default). Each timing is the best of `--repeats` runs. A ratio of
@@ -82,6 +86,12 @@ def main():
     rust_disk, _ = best(lambda: close.dgli_disk(border), max(args.repeats, 5))
     load_after = os.getloadavg()
 
+    # Issue 30: verify beside analyze, each sample against the folds found in it.
+    goals = [close.analyze(s).folds or [(0.0, 3.14159)] for s in samples]
+    verify_loop, _ = best(lambda: [close.verify(s, g) for s, g in zip(samples, goals)], args.repeats)
+    analyses = [close.analyze(s) for s in samples]
+    verify_only, _ = best(lambda: [close.verify(a, g) for a, g in zip(analyses, goals)], args.repeats)
+
     per_analysis = loop / len(samples)
     targets = [
         ("boundary loop/many(threads=1)", loop / one, "<=", 1.15),
@@ -101,9 +111,12 @@ def main():
         "numpy_disk_s": numpy_disk,
         "dgli_disk_s": rust_disk,
         "per_analysis_76_s": per_analysis,
+        "verify_loop_s": verify_loop,
+        "verify_of_analysis_76_s": verify_only / len(samples),
         "ratios": {f"{name} [{op} {target}]": value for name, value, op, target in targets},
     }
     results["ratios"]["authors' Python 9.74 s / close.analyze at N=76"] = AUTHORS_SECONDS_AT_76 / per_analysis
+    results["ratios"]["verify(sample)/analyze(sample) at N=76"] = verify_loop / loop
     missed = [(name, value, op, target) for name, value, op, target in targets
               if not (value <= target if op == "<=" else value >= target)]
     for name, value in results["ratios"].items():
@@ -111,6 +124,7 @@ def main():
     print(f"(loop {loop:.3f} s, many(1) {one:.3f} s, many(2) {two:.3f} s for {len(samples)} samples; "
           f"CPU s: many(1) {one_cpu:.3f}, many(2) {two_cpu:.3f} (cpu/wall {two_cpu / two:.2f}); "
           f"disk N={args.disk_n}: numpy {numpy_disk * 1e3:.1f} ms, close {rust_disk * 1e3:.2f} ms; {os.cpu_count()} cores)")
+    print(f"(close.verify of an Analysis already made, N=76: {verify_only / len(samples) * 1e6:.0f} µs per call)")
     print("load average before: {:.2f} {:.2f} {:.2f}; after: {:.2f} {:.2f} {:.2f}".format(*load_before, *load_after))
     for name, value, op, target in missed:
         print(f"MISSED: {name} = {value:.2f}, target {op} {target}")

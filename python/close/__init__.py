@@ -39,9 +39,11 @@ from ._close import (
     analyze,
     dgli_disk,
     disk_layout,
+    distance,
     interpolate,
     plan,
     to_arrays,
+    verify,
 )
 
 __all__ = [
@@ -53,10 +55,12 @@ __all__ = [
     "analyze_many",
     "dgli_disk",
     "disk_layout",
+    "distance",
     "evaluate",
     "interpolate",
     "load",
     "plan",
     "to_arrays",
+    "verify",
     "vrfolding",
 ]
