@@ -630,22 +630,7 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }
-    let mut text = plan.case.as_str().to_string();
-    for (k, step) in plan.steps.iter().enumerate() {
-        text += &format!(
-            "\n{}. {} ({:.4}, {:.4}), corners {:?}",
-            k + 1,
-            step.action.as_str(),
-            step.fold.f1,
-            step.fold.f2,
-            step.corners
-        );
-        for p in &step.picks {
-            let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
-            text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
-        }
-    }
-    emit(&text)
+    emit(&plan.text())
 }
 
 /// The folds of `--goal`: pairs `f1,f2` separated by `;`.
