@@ -171,6 +171,10 @@ struct ServeFlags {
     /// MiB of request bodies held at once across all requests [default: 256].
     #[arg(long, value_name = "MIB")]
     upload_budget: Option<usize>,
+    /// Keep uploads on disk in DIR (the 1000 most recent, 1 GiB at most; the oldest go
+    /// first), so their links survive a reload of the page and a restart of the server.
+    #[arg(long, value_name = "DIR")]
+    data_dir: Option<PathBuf>,
 }
 
 impl ServeFlags {
@@ -178,6 +182,7 @@ impl ServeFlags {
         let mut config = close::server::Config {
             allowed_hosts: self.allow_host,
             cors_origins: self.cors,
+            data_dir: self.data_dir,
             ..Default::default()
         };
         let secs = std::time::Duration::from_secs;
@@ -625,22 +630,7 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }
-    let mut text = plan.case.as_str().to_string();
-    for (k, step) in plan.steps.iter().enumerate() {
-        text += &format!(
-            "\n{}. {} ({:.4}, {:.4}), corners {:?}",
-            k + 1,
-            step.action.as_str(),
-            step.fold.f1,
-            step.fold.f2,
-            step.corners
-        );
-        for p in &step.picks {
-            let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
-            text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
-        }
-    }
-    emit(&text)
+    emit(&plan.text())
 }
 
 /// The folds of `--goal`: pairs `f1,f2` separated by `;`.

@@ -6,7 +6,7 @@ anticlockwise from f1 to f2. Arrays are numpy float64.
 
 import os
 from concurrent.futures import Executor
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -19,8 +19,14 @@ PathLike = Union[str, os.PathLike[str]]
 Frames = Union[npt.ArrayLike, Sequence[npt.ArrayLike]]
 FloatArray = npt.NDArray[np.float64]
 
+Progress = Union[bool, None, Callable[[int, int], Any]]
+
 class CloseError(ValueError):
     """Bad input, with the message the `close` command line prints."""
+
+class CloseWarning(UserWarning):
+    """What an analysis repaired or changed in its input (a clockwise border reversed, a
+    closing vertex dropped, duplicate vertices merged)."""
 
 class Sample:
     """A cloth sample: border frames (or a mesh), frame 0 the flat start."""
@@ -40,6 +46,9 @@ class Sample:
     @property
     def meta(self) -> Dict[str, Any]: ...
     def to_json(self) -> str: ...
+    @classmethod
+    def from_json(cls, text: Union[str, bytes]) -> "Sample":
+        """A sample from Sample JSON text, checked as `Sample(...)` checks its frames."""
 
 class Analysis:
     """What `close analyze --json` reports about a sample."""
@@ -60,6 +69,18 @@ class Analysis:
     def metrics(self) -> Optional[Dict[str, float]]: ...
     @property
     def border_indices(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def corner_vertices(self) -> npt.NDArray[np.int64]:
+        """Border vertex of each corner: "corner k" (1-based) is `corners[k - 1]` at `corner_vertices[k - 1]`."""
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def reversed(self) -> bool: ...
+    @property
+    def input_folds(self) -> Optional[List[Tuple[float, float]]]:
+        """The folds in the input's own vertex order (None for a mesh sample)."""
+    def disk(self, k: int = 0) -> FloatArray:
+        """The dGLI disk of analysed frame k (0 the start, -1 the end), as `--disks`."""
     def to_dict(self) -> Dict[str, Any]:
         """The object `close analyze --json` prints, key for key."""
     def to_json(self) -> str: ...
@@ -68,11 +89,32 @@ def analyze(frames: Union[Frames, Sample], *, method: str = "default", start: Op
     """Analyse frames start → end as `close analyze --json` does (radians, vertex k at 2πk/N,
     folded side anticlockwise from f1 to f2)."""
 
-def analyze_many(items: Iterable[Union[Frames, Sample]], *, threads: Optional[int] = None, method: str = "default") -> List[Analysis]:
-    """`analyze` of every item on native threads, the GIL released."""
+@overload
+def analyze_many(
+    items: Iterable[Union[Frames, Sample]],
+    *,
+    threads: Optional[int] = None,
+    method: str = "default",
+    progress: Progress = None,
+    errors: Literal["raise"] = "raise",
+) -> List[Analysis]:
+    """`analyze` of every item on native threads, the GIL released; Ctrl-C stops it."""
+@overload
+def analyze_many(
+    items: Iterable[Union[Frames, Sample]],
+    *,
+    threads: Optional[int] = None,
+    method: str = "default",
+    progress: Progress = None,
+    errors: Literal["return"],
+) -> List[Union[Analysis, CloseError]]:
+    """`analyze` of every item; a failed item's place holds its `CloseError`."""
+def to_arrays(results: Iterable[Union[Analysis, BaseException]]) -> Dict[str, Any]:
+    """A batch's results as NaN-padded numpy arrays (`corners` (B, C), `folds` (B, F, 2),
+    `rmse`, `frechet`, `aligned_rmse`, `n`, `corner_count`, `fold_count` (B,)) and `error`."""
 
 def load(*paths: PathLike) -> Sample:
-    """Read a sample from files (Sample JSON, .mat, text/CSV per frame, OBJ/PLY per frame)."""
+    """Read a sample from files (Sample JSON, .mat, text/CSV per frame, OBJ/PLY per frame, .npy/.npz)."""
 
 def dgli_disk(border: npt.ArrayLike, *, reference: Optional[npt.ArrayLike] = None) -> FloatArray:
     """The condensed dGLI pair vector of one (N, 3) border state, as `close analyze --disks`."""
@@ -129,5 +171,6 @@ def evaluate(
     threads: Optional[int] = None,
     executor: Optional[Executor] = None,
     method: str = "default",
+    progress: Progress = None,
 ) -> Dict[str, Any]:
     """The object `close eval --json` prints; `executor`: any concurrent.futures.Executor."""

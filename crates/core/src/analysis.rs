@@ -7,9 +7,11 @@
 
 use serde::Serialize;
 
+use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
 use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
+use crate::confidence::{judge, Confidence};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
 use crate::fold::{apply, detect, FoldDetection, FoldMethod};
@@ -58,6 +60,9 @@ pub struct Step {
     /// coordinates, border order): the last step's is `predicted_end`. A frame scrubber
     /// shows it beside the observed frame.
     pub predicted: Vec<[f64; 3]>,
+    /// How strong the disks' evidence for this step's fold (or for no fold) is, and why
+    /// not, when it is weak ([`crate::confidence`]).
+    pub confidence: Confidence,
 }
 
 impl Step {
@@ -122,11 +127,67 @@ impl Analysis {
         self.steps.iter().filter_map(Step::folding).collect()
     }
 
+    /// The folds in the caller's own vertex order: each fold point as the angle 2πt/M of
+    /// its fractional INPUT vertex index t (M input vertices, a closing repeat of vertex 0
+    /// not counted), the folded side running from the first to the second in the input's
+    /// order. For an anticlockwise input without merged duplicates these are
+    /// [`Analysis::folds`]; a clockwise input was walked the other way round, so its
+    /// points are mirrored and swapped. `None` for a mesh, whose vertices have no border
+    /// order of their own.
+    ///
+    /// ```
+    /// use close_core::{analyze, border, FrameRange};
+    /// # let square: Vec<[f64; 3]> = (0..40)
+    /// #     .map(|k| { let t = (k % 10) as f64 / 10.0; [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10] })
+    /// #     .map(|[x, y]| [x, y, 0.0]).collect();
+    /// # let folded: Vec<[f64; 3]> = square.iter().map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] }).collect();
+    /// // The same folded square, its vertices listed clockwise from vertex 0.
+    /// let clockwise = |f: &[[f64; 3]]| (0..40).map(|i| f[(40 - i) % 40]).collect::<Vec<_>>();
+    /// let frames = border::prepare(vec![clockwise(&square), clockwise(&folded)])?;
+    /// let analysis = analyze(&frames, FrameRange::default())?;
+    /// let [f1, f2] = analysis.folds[0].ends();
+    /// let [g1, g2] = analysis.input_folds().unwrap()[0].ends();
+    /// // Border vertex k is input vertex 40 − k: angle f is 2π − f in the input's order.
+    /// let tau = std::f64::consts::TAU;
+    /// assert!((g1 - (tau - f2)).abs() < 1e-9 && (g2 - (tau - f1)).abs() < 1e-9);
+    /// # Ok::<(), close_core::Error>(())
+    /// ```
+    pub fn input_folds(&self) -> Option<Vec<Fold>> {
+        if self.border_source != "border" {
+            return None;
+        }
+        let m = self.border_indices.iter().max().map_or(0, |&v| v + 1);
+        let input = |f: f64| input_angle(&self.border_indices, self.reversed, m, f);
+        let mapped = |f: &Fold| {
+            let [g1, g2] = [input(f.f1), input(f.f2)];
+            if self.reversed {
+                Fold::new(g2, g1)
+            } else {
+                Fold::new(g1, g2)
+            }
+        };
+        Some(self.folds.iter().map(mapped).collect())
+    }
+
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
     /// by the start frame's transform, as the analysis computed it; `None` past the end.
     pub fn disk(&self, k: usize) -> Option<Disk> {
         self.frames.get(k).map(|frame| Disk::of_border(&self.normalisation.apply_all(frame)))
     }
+}
+
+/// The angle 2πt/m, in the input's own order, of border angle `f`: t runs from input
+/// vertex `indices[k]` to `indices[k + 1]` as the border parameter runs from k to k + 1,
+/// one step of the walk (forwards through the input, or backwards when it was `reversed`;
+/// a merged duplicate makes the step longer).
+fn input_angle(indices: &[usize], reversed: bool, m: usize, f: f64) -> f64 {
+    let n = indices.len();
+    let s = angle_to_param(f, n);
+    let k = (s.floor() as usize).min(n - 1);
+    let (a, b) = (indices[k] as f64, indices[(k + 1) % n] as f64);
+    let mf = m as f64;
+    let step = if reversed { -(a - b).rem_euclid(mf) } else { (b - a).rem_euclid(mf) };
+    wrap_tau(param_to_angle((a + (s - k as f64) * step).rem_euclid(mf), m))
 }
 
 /// Analyse frames `range` of a prepared sample.
@@ -258,6 +319,7 @@ fn analyse_steps(
             Some(line)
         });
         let metrics = Metrics::measure(norm, &predicted, frame);
+        let confidence = judge(&detection, &metrics);
         steps.push(Step {
             from_frame: first + k - 1,
             to_frame: first + k,
@@ -265,6 +327,7 @@ fn analyse_steps(
             line,
             metrics,
             predicted: predicted.iter().map(to_xyz).collect(),
+            confidence,
         });
         previous = Some((after_border, after));
     }
@@ -292,6 +355,7 @@ fn placement(observed: &[Point], predicted: &[Point], unmoved: &[bool]) -> Rigid
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::TAU;
 
     #[test]
     fn a_sample_without_frames_is_an_error_not_a_panic() {
@@ -303,6 +367,25 @@ mod tests {
             warnings: Vec::new(),
         };
         assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty { .. })));
+    }
+
+    #[test]
+    fn border_angles_map_to_the_inputs_own_order() {
+        let at = |indices: &[usize], reversed: bool, m: usize, s: f64| {
+            let n = indices.len();
+            input_angle(indices, reversed, m, param_to_angle(s, n)) * m as f64 / TAU
+        };
+        let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        // Reversed (vertex 0 kept first): border k is input 10 − k.
+        let reversed = [0, 9, 8, 7, 6, 5, 4, 3, 2, 1];
+        assert!(near(at(&reversed, true, 10, 2.5), 7.5));
+        assert!(near(at(&reversed, true, 10, 0.5), 9.5));
+        assert!(near(at(&reversed, true, 10, 9.5), 0.5));
+        // Input vertex 5 merged into 4: the border's edge 4 spans two input edges.
+        let merged = [0, 1, 2, 3, 4, 6, 7, 8, 9, 10];
+        assert!(near(at(&merged, false, 11, 4.5), 5.0));
+        assert!(near(at(&merged, false, 11, 9.5), 10.5));
+        assert!(near(at(&merged, false, 11, 3.0), 3.0));
     }
 
     fn square_frames(frames: usize) -> BorderFrames {

@@ -11,6 +11,14 @@
 //!
 //! The classes are those of Kamat, Borràs, Torras, "CloSE", Sec. IV (semantic labelling).
 //!
+//! **Numbering.** The sentence names corner k by its 1-based number in border order, as a
+//! person counts ("corner 1" is the first corner, `corner_vertices[0]` of an analysis).
+//! Every structured field that holds such a number has the corner's border vertex index
+//! beside it (`folded_corner_vertices` beside `folded_corners`, `from_vertex` beside
+//! `from_corner`, …): the 0-based index of the vertex in border order, the index into an
+//! analysis's `corner_vertices` values and its `predicted_end` rows (the input's own index
+//! is `border_indices[vertex]`).
+//!
 //! ```
 //! use close_core::geometry::{Fold, Folding};
 //! use close_core::label::{label, FoldClass};
@@ -72,13 +80,18 @@ pub struct SideFold {
     /// 1-based corner numbers at the side's ends.
     pub from_corner: usize,
     pub to_corner: usize,
+    /// Border vertex indices (0-based) of those two corners.
+    pub from_vertex: usize,
+    pub to_vertex: usize,
     pub folded_percent: f64,
 }
 
 /// One folded corner and the folded share of its two sides.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FoldedCorner {
+    /// 1-based corner number.
     pub corner: usize,
+    /// Its border vertex index (0-based).
     pub vertex: usize,
     pub before: SideFold,
     pub after: SideFold,
@@ -90,8 +103,12 @@ pub struct FoldLabel {
     pub class: FoldClass,
     /// 1-based numbers of the corners strictly inside the folded arc.
     pub folded_corners: Vec<usize>,
+    /// Their border vertex indices (0-based), in the same order.
+    pub folded_corner_vertices: Vec<usize>,
     /// 1-based numbers of corners lying on the fold line.
     pub corners_on_fold_line: Vec<usize>,
+    /// Their border vertex indices (0-based), in the same order.
+    pub corner_vertices_on_fold_line: Vec<usize>,
     pub corner_sides: Vec<FoldedCorner>,
     /// Sides cut by the fold line (where the fold points lie), with their folded share.
     pub cut_sides: Vec<SideFold>,
@@ -213,6 +230,8 @@ fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLa
         SideFold {
             from_corner: k + 1,
             to_corner: (k + 1) % nc + 1,
+            from_vertex: corners[k],
+            to_vertex: corners[(k + 1) % nc],
             folded_percent: 100.0 * overlap(nf, a, len, s1, span) / len,
         }
     };
@@ -280,9 +299,12 @@ fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLa
             border_degrees[0], border_degrees[1]
         ));
     }
+    let vertices = |numbers: &[usize]| numbers.iter().map(|&c| corners[c - 1]).collect();
     FoldLabel {
         class,
+        folded_corner_vertices: vertices(&folded_corners),
         folded_corners,
+        corner_vertices_on_fold_line: vertices(&on_line),
         corners_on_fold_line: on_line,
         corner_sides,
         cut_sides,
@@ -310,6 +332,7 @@ fn label_multi_arc(
         })
     };
     out.folded_corners.retain(|&c| on_arcs(corners[c - 1]));
+    out.folded_corner_vertices.retain(|&v| on_arcs(v));
     out.corner_sides.retain(|s| on_arcs(s.vertex));
     out.folded_percent =
         arcs.iter().map(|&Arc { a, b }| 100.0 * angle_to_param(b - a, n) / nf).sum();
@@ -419,9 +442,29 @@ mod tests {
         let l = label(76, &SQUARE, &folds(&[[angle(12.0), angle(26.0)]]));
         let c = &l.folds[0].corner_sides[0];
         assert_eq!((c.corner, c.vertex), (2, 19));
+        // Each 1-based corner number has its border vertex beside it.
+        assert_eq!((c.before.from_corner, c.before.from_vertex), (1, 0));
+        assert_eq!((c.before.to_corner, c.before.to_vertex), (2, 19));
+        assert_eq!((c.after.from_corner, c.after.from_vertex), (2, 19));
+        assert_eq!((c.after.to_corner, c.after.to_vertex), (3, 38));
+        assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
         assert!((c.before.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
         assert!((c.after.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
         assert!(l.text.contains("Corner 2 is folded"), "{}", l.text);
+    }
+
+    #[test]
+    fn a_multi_arc_fold_keeps_each_corner_number_beside_its_vertex() {
+        // The pair spans corners 2 and 3, its arcs hold corner 2 alone.
+        let arcs = [[angle(12.0), angle(26.0)], [angle(40.0), angle(45.0)]];
+        let folding = Folding {
+            fold: Fold::new(angle(12.0), angle(45.0)),
+            arcs: arcs.iter().map(|&a| a.into()).collect(),
+            line: None,
+        };
+        let l = label(76, &SQUARE, &[folding]);
+        assert_eq!(l.folds[0].folded_corners, vec![2]);
+        assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
     }
 
     #[test]
@@ -431,6 +474,8 @@ mod tests {
             let l = label(76, &SQUARE, &folds(&[[angle(eps), angle(38.0 - eps)]]));
             assert_eq!(l.folds[0].folded_corners, vec![2]);
             assert_eq!(l.folds[0].corners_on_fold_line, vec![1, 3]);
+            assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
+            assert_eq!(l.folds[0].corner_vertices_on_fold_line, vec![0, 38]);
         }
     }
 
