@@ -171,6 +171,10 @@ struct ServeFlags {
     /// MiB of request bodies held at once across all requests [default: 256].
     #[arg(long, value_name = "MIB")]
     upload_budget: Option<usize>,
+    /// Keep uploads on disk in DIR (the 1000 most recent, 1 GiB at most; the oldest go
+    /// first), so their links survive a reload of the page and a restart of the server.
+    #[arg(long, value_name = "DIR")]
+    data_dir: Option<PathBuf>,
 }
 
 impl ServeFlags {
@@ -178,6 +182,7 @@ impl ServeFlags {
         let mut config = close::server::Config {
             allowed_hosts: self.allow_host,
             cors_origins: self.cors,
+            data_dir: self.data_dir,
             ..Default::default()
         };
         let secs = std::time::Duration::from_secs;

@@ -11,6 +11,7 @@ use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
 use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
+use crate::confidence::{judge, Confidence};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
 use crate::fold::{apply, detect, FoldDetection, FoldMethod};
@@ -59,6 +60,9 @@ pub struct Step {
     /// coordinates, border order): the last step's is `predicted_end`. A frame scrubber
     /// shows it beside the observed frame.
     pub predicted: Vec<[f64; 3]>,
+    /// How strong the disks' evidence for this step's fold (or for no fold) is, and why
+    /// not, when it is weak ([`crate::confidence`]).
+    pub confidence: Confidence,
 }
 
 impl Step {
@@ -315,6 +319,7 @@ fn analyse_steps(
             Some(line)
         });
         let metrics = Metrics::measure(norm, &predicted, frame);
+        let confidence = judge(&detection, &metrics);
         steps.push(Step {
             from_frame: first + k - 1,
             to_frame: first + k,
@@ -322,6 +327,7 @@ fn analyse_steps(
             line,
             metrics,
             predicted: predicted.iter().map(to_xyz).collect(),
+            confidence,
         });
         previous = Some((after_border, after));
     }

@@ -367,8 +367,8 @@ fn draw_marks(canvas: &mut Canvas, layout: &Layout, marks: &Marks, layers: usize
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{colours, decode, folded_square, preview};
-    use super::super::{disk_png, render_png, Picture};
+    use super::super::tests::{colours, decode, disk_png, folded_square, png, preview};
+    use super::super::Picture;
     use super::*;
     use close_core::disk::{condensed_index, position};
 
@@ -428,7 +428,7 @@ mod tests {
         let disk = &analysis.disk(0).unwrap();
         let n = disk.n();
         let (w, h) = (400, 360);
-        let (_, _, rgb) = decode(&disk_png(disk, "start", w, h).unwrap());
+        let (_, _, rgb) = decode(&disk_png(disk, "start", (w, h)));
         let layout = Layout::of(w, h);
         let scale = Scale::of(disk.values());
         let (mut white, mut strong) = (0, 0);
@@ -455,7 +455,7 @@ mod tests {
         values[condensed_index(8, 0, 1)] = 1.0;
         values[condensed_index(8, 2, 3)] = -1.0;
         let disk = Disk::from_values(8, values).unwrap();
-        let (_, _, rgb) = decode(&disk_png(&disk, "signs", 300, 300).unwrap());
+        let (_, _, rgb) = decode(&disk_png(&disk, "signs", (300, 300)));
         let layout = Layout::of(300, 300);
         let [r, _, b] = sample(&rgb, 300, &layout, 0.9, position(8, 0, 1).angle);
         assert!(r > 150 && b < 100, "positive should be orange, got {r}, {b}");
@@ -467,21 +467,21 @@ mod tests {
     #[test]
     fn odd_disks_never_panic() {
         let zeros = Disk::from_values(50, vec![0.0; 50 * 49 / 2]).unwrap();
-        let (_, _, rgb) = decode(&disk_png(&zeros, "zeros", 120, 100).unwrap());
+        let (_, _, rgb) = decode(&disk_png(&zeros, "zeros", (120, 100)));
         let layout = Layout::of(120, 100);
         assert!(is_whiteish(sample(&rgb, 120, &layout, 0.5, 1.0)));
         let four = Disk::from_values(4, vec![1.0, -1.0, 0.5, 0.0, 2.0, f64::NAN]).unwrap();
-        decode(&disk_png(&four, "", 64, 64).unwrap());
+        decode(&disk_png(&four, "", (64, 64)));
         let big: Vec<f64> = (0..1000 * 999 / 2).map(|k| ((k % 97) as f64 - 48.0) / 10.0).collect();
         let big = Disk::from_values(1000, big).unwrap();
-        decode(&disk_png(&big, "N = 1000", 160, 160).unwrap());
+        decode(&disk_png(&big, "N = 1000", (160, 160)));
     }
 
     #[test]
     fn large_pictures_are_drawn_at_their_size_and_the_diff_differs_from_the_disk() {
         let analysis = folded_square(10, [0.3, 0.3 + std::f64::consts::PI]);
         for picture in Picture::ALL {
-            let png = render_png(&analysis, picture, 1200, 900).unwrap();
+            let png = png(&analysis, picture, None, (1200, 900)).unwrap();
             let (w, h, rgb) = decode(&png);
             assert_eq!((w, h), (1200, 900), "{picture:?}");
             assert!(colours(&rgb) > 10, "{picture:?} is (nearly) one flat colour");
@@ -489,8 +489,8 @@ mod tests {
         }
         let big = folded_square(25, [1.0, 4.0]);
         let (start, diff) = (
-            render_png(&big, Picture::DiskStart, 480, 480).unwrap(),
-            render_png(&big, Picture::Diff, 480, 480).unwrap(),
+            png(&big, Picture::DiskStart, None, (480, 480)).unwrap(),
+            png(&big, Picture::Diff, None, (480, 480)).unwrap(),
         );
         assert_ne!(
             decode(&start).2,

@@ -4,8 +4,9 @@
 //! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
 //! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state; `?format=svg`: SVG),
-//! `POST /api/disk/cells` and `GET /api/readout/{key}` (a disk's values and where the
-//! pictures draw them, for reading values off them: [`close_render::readout`]),
+//! `POST /api/disk/cells`, `GET /api/readout/{key}` and `GET /api/cells.png` (a disk's
+//! values and which cell each pixel of its picture shows, for reading values off the
+//! pictures: [`close_render::readout`]),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
 //! 5xx) with `{"error": "..."}`. Analyses, renders and large answers run on CPU workers
@@ -35,6 +36,7 @@ mod extract;
 pub mod guard;
 mod routes;
 mod socket;
+mod uploads;
 mod workers;
 
 use std::future::Future;
@@ -110,6 +112,13 @@ pub struct Config {
     pub cors_origins: Vec<String>,
     /// The user's own datasets (`--dataset`): folders of samples or VR-Folding stores.
     pub datasets: Vec<std::path::PathBuf>,
+    /// Where uploads are kept on disk (`--data-dir`), so their links outlive a restart;
+    /// none: uploads live in the caches alone.
+    pub data_dir: Option<std::path::PathBuf>,
+    /// Uploads kept in the data folder at most, and their largest total size in bytes; past
+    /// either, the oldest go first.
+    pub kept_uploads: usize,
+    pub kept_upload_bytes: u64,
 }
 
 impl Default for Config {
@@ -133,6 +142,9 @@ impl Default for Config {
             allowed_hosts: Vec::new(),
             cors_origins: Vec::new(),
             datasets: Vec::new(),
+            data_dir: None,
+            kept_uploads: 1000,
+            kept_upload_bytes: 1 << 30,
         }
     }
 }
@@ -154,6 +166,8 @@ struct Inner {
     sample_list: OnceLock<Arc<datasets::Listing>>,
     /// The user's datasets, listed at start.
     catalog: Arc<close_io::catalog::Catalog>,
+    /// The uploads kept on disk, with `--data-dir`.
+    uploads: Option<uploads::Uploads>,
     /// Connection slots: [`Config::max_connections`] permits, one held by each open
     /// connection ([`serve_with`]); their crowding shortens a body's grace ([`guard::BodyRate`]).
     connections: Arc<Semaphore>,
@@ -221,6 +235,9 @@ impl AppState {
             )),
             catalog: Arc::new(close_io::catalog::Catalog::open(&config.datasets)),
             connections: Arc::new(Semaphore::new(config.max_connections.max(1))),
+            uploads: config.data_dir.as_deref().map(|dir| {
+                uploads::Uploads::new(dir, config.kept_uploads, config.kept_upload_bytes)
+            }),
             config,
         }))
     }
@@ -294,6 +311,27 @@ impl AppState {
             Lane::Heavy => &self.0.heavy,
         };
         workers.run(deadline, work).await
+    }
+
+    /// The uploads kept on disk, with `--data-dir`.
+    fn uploads(&self) -> Option<&uploads::Uploads> {
+        self.0.uploads.as_ref()
+    }
+
+    /// Keep upload `key` (its `sample`, the `frames` analysed) on disk, with `--data-dir`.
+    /// An upload that cannot be kept is still analysed: the failure is logged.
+    fn keep_upload(
+        &self,
+        key: &str,
+        frames: close_core::FrameRange,
+        sample: close_io::formats::Sample,
+    ) {
+        if let Some(uploads) = self.uploads() {
+            let stored = uploads::Stored { start: frames.start, end: frames.end, sample };
+            if let Err(e) = uploads.save(key, &stored) {
+                tracing::warn!("could not keep upload {key} in {}: {e}", uploads.dir().display());
+            }
+        }
     }
 
     /// Pictures (and recordings) in the cache now.
@@ -428,6 +466,7 @@ pub fn app(state: AppState) -> Router {
         .route("/assets/{file}", get(assets::asset))
         .route("/healthz", get(routes::healthz))
         .route("/api/analyze", post(routes::analyze))
+        .route("/api/analyses/{key}", get(routes::analysis_by_key))
         .route("/api/samples", get(datasets::samples))
         .route("/api/samples/{id}", get(routes::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
@@ -436,6 +475,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/disk", post(routes::disk).layer(small_bodies))
         .route("/api/disk/cells", post(routes::disk_cells).layer(small_bodies))
         .route("/api/readout/{key}", get(routes::readout))
+        .route("/api/cells.png", get(routes::cell_picture))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
         .route("/api/verify", post(routes::verify).layer(small_bodies))
         .route("/api/distance", post(routes::distance).layer(small_bodies))

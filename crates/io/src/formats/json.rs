@@ -226,24 +226,42 @@ pub(super) fn truth_folds<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Fold>, 
     Bounded { what: "true folds", limit: MAX_FRAMES, item: PhantomData::<Fold> }.deserialize(d)
 }
 
+/// A list of vertices, at most one entry per mesh vertex.
+struct Vertices(Vec<usize>);
+
+impl<'de> Deserialize<'de> for Vertices {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Bounded { what: "folded vertices", limit: MAX_MESH_VERTICES, item: PhantomData::<usize> }
+            .deserialize(d)
+            .map(Vertices)
+    }
+}
+
 /// `truth.folded_vertices`: at most one entry per mesh vertex.
 pub(super) fn folded_vertices<'de, D: Deserializer<'de>>(
     d: D,
 ) -> Result<Option<Vec<usize>>, D::Error> {
-    /// The bounded list, as a type `Option` can wrap (null stays `None`).
-    struct Vertices(Vec<usize>);
-    impl<'de> Deserialize<'de> for Vertices {
+    Ok(Option::<Vertices>::deserialize(d)?.map(|v| v.0))
+}
+
+/// `truth.folded_vertices_per_fold`: at most one list per frame, each as `folded_vertices`.
+pub(super) fn folded_vertices_per_fold<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<Vec<Vec<usize>>>, D::Error> {
+    /// The bounded lists, as a type `Option` can wrap (null stays `None`).
+    struct PerFold(Vec<Vertices>);
+    impl<'de> Deserialize<'de> for PerFold {
         fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
             Bounded {
-                what: "folded vertices",
-                limit: MAX_MESH_VERTICES,
-                item: PhantomData::<usize>,
+                what: "folds' folded vertices",
+                limit: MAX_FRAMES,
+                item: PhantomData::<Vertices>,
             }
             .deserialize(d)
-            .map(Vertices)
+            .map(PerFold)
         }
     }
-    Ok(Option::<Vertices>::deserialize(d)?.map(|v| v.0))
+    Ok(Option::<PerFold>::deserialize(d)?.map(|p| p.0.into_iter().map(|v| v.0).collect()))
 }
 
 fn border_edges<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[usize; 2]>, D::Error> {
@@ -309,7 +327,11 @@ mod tests {
             .unwrap();
         assert_eq!(
             s.truth,
-            Some(crate::formats::Truth { folds: vec![Fold::new(1.0, 2.0)], folded_vertices: None })
+            Some(crate::formats::Truth {
+                folds: vec![Fold::new(1.0, 2.0)],
+                folded_vertices: None,
+                folded_vertices_per_fold: None
+            })
         );
         let s = parse_sample(doc(r#"{"folded_vertices": [3, 4]}"#).as_bytes()).unwrap();
         assert_eq!(s.truth.and_then(|t| t.folded_vertices), Some(vec![3, 4]));

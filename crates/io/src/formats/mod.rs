@@ -183,6 +183,13 @@ pub struct Truth {
         deserialize_with = "json::folded_vertices"
     )]
     pub folded_vertices: Option<Vec<usize>>,
+    /// Per fold, the vertices it turned over (a fold of several arcs is known by them).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "json::folded_vertices_per_fold"
+    )]
+    pub folded_vertices_per_fold: Option<Vec<Vec<usize>>>,
 }
 
 /// One mesh file: a frame's vertex positions and its faces (polygons of vertex indices).
