@@ -6,8 +6,8 @@ use std::f64::consts::PI;
 
 use close::border::{prepare, Point};
 use close::disk::Disk;
-use close::fold::reflect::apply_fold;
-use close::{analyze, FrameRange};
+use close::fold::apply;
+use close::{analyze, Fold, Folding, FrameRange};
 
 fn main() {
     divan::main();
@@ -31,8 +31,8 @@ fn napkin(n: usize) -> Vec<Point> {
 
 fn folded_frames(n: usize) -> Vec<Vec<[f64; 3]>> {
     let start = napkin(n);
-    let fold = [2.0 * PI * 0.07, 2.0 * PI * 0.59];
-    let end = apply_fold(&start, fold);
+    let fold = Fold::new(2.0 * PI * 0.07, 2.0 * PI * 0.59);
+    let end = apply(&start, &Folding::new(fold));
     let lift = |p: &Point, s: &Point| [p.x, p.y, if p == s { p.z } else { p.z + 0.01 }];
     vec![
         start.iter().map(|p| lift(p, p)).collect(),

@@ -1,8 +1,8 @@
 //! `close`: the CloSE cloth-state representation as one library, the facade over the
 //! workspace's crates, which the `close` binary, the tests and the benchmarks use.
 //!
-//! - [`close_core`]: the maths (border, gli, disk, fold, close, label, plan, interpolate,
-//!   metrics, analysis), with no web, async, plotting or C dependency;
+//! - [`close_core`]: the maths (border, geometry, gli, disk, fold, close, label, plan,
+//!   interpolate, metrics, analysis), with no web, async, plotting or C dependency;
 //! - [`close_io`]: the readers, the built-in dataset, the evaluation, VR-Folding stores;
 //! - [`close_render`]: the pictures and Rerun recordings;
 //! - [`close_server`]: the web app.
@@ -25,9 +25,9 @@
 //! ```
 
 pub use close_core::{
-    analysis, analyze, analyze_with, angle, border, budget, close, disk, error, fold, gli,
-    interpolate, label, metrics, plan, rng, Analysis, Error, FoldMethod, FrameRange, Options,
-    Result,
+    analysis, analyze, analyze_with, angle, border, budget, close, disk, error, fold, geometry,
+    gli, interpolate, label, metrics, plan, rng, Analysis, Arc, Error, Fold, FoldMethod, Folding,
+    FrameRange, Line, Options, Result,
 };
 #[cfg(feature = "vrfolding")]
 pub use close_io::vrfolding;

@@ -533,7 +533,7 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     let sample = load_sample(files)?;
     let frames = sample.border_frames()?;
     let analysis = analyze(&frames, FrameRange::default())?;
-    let plan = close::plan::plan_for(&analysis, [g1, g2])?;
+    let plan = close::plan::plan_for(&analysis, close::Fold::new(g1, g2))?;
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }
@@ -543,8 +543,8 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
             "\n{}. {} ({:.4}, {:.4}), corners {:?}",
             k + 1,
             step.action.as_str(),
-            step.fold[0],
-            step.fold[1],
+            step.fold.f1,
+            step.fold.f2,
             step.corners
         );
         for p in &step.picks {

@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use close_core::budget::Budget;
+use close_core::geometry::{Fold, Line, Point2, Vector2};
 use close_core::{Analysis, FoldMethod, FrameRange, Options};
 use close_io::formats::{Sample, MAX_FILE_BYTES};
 use numpy::ndarray::{Array1, Array2, Array3};
@@ -572,25 +573,27 @@ fn interpolate<'py>(
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let border = points(border, "border")?;
     let reference = reference.map(|r| points(r, "reference")).transpose()?;
-    let pair = |p: (f64, f64)| [p.0, p.1];
+    let pair = |p: (f64, f64)| Fold::new(p.0, p.1);
     let line = line.map(fold_line).transpose()?;
+    let arcs = arcs.map(|arcs| arcs.into_iter().map(close_core::geometry::Arc::from).collect());
     let motion = close_core::interpolate::Motion::of(from_.map(pair), to.map(pair), arcs, line)
         .map_err(close_error)?;
     Budget::SERVER.interpolation(border.len(), steps).map_err(close_error)?;
     let motion = py
-        .detach(|| close_core::interpolate::interpolate_border(border, reference, &motion, steps))
+        .detach(|| close_core::interpolate::interpolate(border, reference, &motion, steps))
         .map_err(close_error)?;
     frames_array(py, &motion.borders)
 }
 
 /// A fold line given as an analysis reports it: {"point": (x, y), "direction": (dx, dy)}.
-fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<close_core::interpolate::Line> {
+fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<Line> {
     let pair = |key: &str| -> PyResult<[f64; 2]> {
         line.get_item(key)
             .and_then(|v| v.extract())
             .map_err(|_| invalid(format!("line: expected a dict {{\"point\": (x, y), \"direction\": (dx, dy)}}, without a usable \"{key}\"")))
     };
-    Ok(close_core::interpolate::Line { point: pair("point")?, direction: pair("direction")? })
+    let ([x, y], [dx, dy]) = (pair("point")?, pair("direction")?);
+    Ok(Line { point: Point2::new(x, y), direction: Vector2::new(dx, dy) })
 }
 
 /// How to reach the goal fold (g1, g2) (radians) from the state a sample ends in: the answer
@@ -603,7 +606,7 @@ fn plan<'py>(
     sample_or_analysis: &Bound<'py, PyAny>,
     goal: (f64, f64),
 ) -> PyResult<Bound<'py, PyAny>> {
-    let goal = [goal.0, goal.1];
+    let goal = Fold::new(goal.0, goal.1);
     let analysis = match sample_or_analysis.cast::<PyAnalysis>() {
         Ok(a) => a.get().analysis.clone().ok_or_else(|| {
             invalid("this Analysis was unpickled: plan from its Sample instead".into())

@@ -113,8 +113,8 @@ pub fn angle_diff(a: f64, b: f64) -> f64 {
 
 /// The larger angular error of a found fold's two points against the truth, in edges of
 /// an `n`-vertex border.
-pub fn error_in_edges(found: [f64; 2], truth: [f64; 2], n: usize) -> f64 {
-    angle_diff(found[0], truth[0]).max(angle_diff(found[1], truth[1])) * n as f64 / TAU
+pub fn error_in_edges(found: close::Fold, truth: close::Fold, n: usize) -> f64 {
+    angle_diff(found.f1, truth.f1).max(angle_diff(found.f2, truth.f2)) * n as f64 / TAU
 }
 
 /// A scratch folder under target/ that is removed afterwards (no tempfile crate needed).

@@ -6,9 +6,9 @@
 use std::collections::HashSet;
 
 use close::border::Point;
-use close::fold::reflect::reflect_xy;
 use close::formats::{read_files, Sample};
 use close::mesh::MeshFrames;
+use close::Line;
 use close::{analyze, Analysis, Error, FrameRange};
 use proptest::prelude::*;
 
@@ -43,13 +43,14 @@ fn grid(
 /// Fold: every vertex left of the directed line a→b (in XY) is reflected across it and
 /// stacked: z ↦ top − z.
 fn fold(vertices: &[[f64; 3]], a: [f64; 2], b: [f64; 2], top: f64) -> Vec<[f64; 3]> {
-    let (pa, pb) = (Point::new(a[0], a[1], 0.0), Point::new(b[0], b[1], 0.0));
+    let line = Line::through(&Point::new(a[0], a[1], 0.0), &Point::new(b[0], b[1], 0.0));
     vertices
         .iter()
         .map(|v| {
             let side = (b[0] - a[0]) * (v[1] - a[1]) - (b[1] - a[1]) * (v[0] - a[0]);
             if side > 1e-9 {
-                let r = reflect_xy(&Point::new(v[0], v[1], v[2]), &pa, &pb);
+                let p = Point::new(v[0], v[1], v[2]);
+                let r = line.map_or(p, |l| l.reflect(&p));
                 [r.x, r.y, top - v[2]]
             } else {
                 *v
@@ -101,8 +102,8 @@ fn assert_same_close(mesh: &Analysis, border: &Analysis, ids: &[usize], tol: f64
     assert_eq!(mesh.corners, border.corners);
     assert_eq!(mesh.folds.len(), border.folds.len());
     for (m, b) in mesh.folds.iter().zip(&border.folds) {
-        for k in 0..2 {
-            let d = (m[k] - b[k]).rem_euclid(std::f64::consts::TAU);
+        for (m, b) in [(m.f1, b.f1), (m.f2, b.f2)] {
+            let d = (m - b).rem_euclid(std::f64::consts::TAU);
             assert!(
                 d.min(std::f64::consts::TAU - d) < tol,
                 "{:?} vs {:?}",

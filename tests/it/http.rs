@@ -533,9 +533,13 @@ async fn interpolation_moves_from_one_fold_to_the_other() {
     // A folded state folds on against its flat reference, in its own vertex order.
     let on = post_json(&app, "/api/interpolate", &json!({"border": borders[8], "reference": border, "from": [1.0, 4.0], "to": [0.5, 3.0], "steps": 3})).await;
     assert_eq!(on.status, StatusCode::OK, "{}", String::from_utf8_lossy(&on.body));
-    let folded: Vec<close::border::Point> =
-        borders[8].iter().map(close::border::from_xyz).collect();
-    let expected = close::interpolate::interpolate(&folded, [1.0, 4.0], [0.5, 3.0], 3).unwrap();
+    let motion = close::interpolate::Motion::Between {
+        from: close::Fold::new(1.0, 4.0),
+        to: close::Fold::new(0.5, 3.0),
+    };
+    let expected =
+        close::interpolate::interpolate(borders[8].clone(), Some(border.clone()), &motion, 3)
+            .unwrap();
     assert_eq!(on.json()["borders"], json!(expected.borders));
 
     for (body, status, words) in [

@@ -7,10 +7,13 @@ use std::f64::consts::{PI, TAU};
 use std::io::Write;
 use std::process::{Command, Stdio};
 
-use close::border::Point;
-use close::interpolate::{interpolate, turn_arcs, Line};
+use close::border::{to_xyz, Point};
+use close::fold::apply;
+use close::geometry::{Point2, Vector2};
+use close::interpolate::{interpolate, Motion};
 use close::rng::SplitMix64;
 use close::{analyze, FrameRange};
+use close::{Arc, Fold, Line};
 use serde_json::{json, Value};
 
 use crate::common::samples_in;
@@ -95,16 +98,16 @@ fn browser_and_server_interpolate_alike() {
     let js: Vec<Value> = serde_json::from_value(node(&input)["out"].clone()).expect("a list");
     assert_eq!(js.len(), cases.len());
 
-    let points: Vec<Point> = border.iter().map(|&p| Point::from(p)).collect();
     for ((from, to, steps), js) in cases.iter().zip(&js) {
-        let rust = interpolate(&points, *from, *to, *steps).expect("valid case");
+        let motion = Motion::Between { from: Fold::from(*from), to: Fold::from(*to) };
+        let rust = interpolate(border.clone(), None, &motion, *steps).expect("valid case");
         let js_folds: Vec<[f64; 2]> = serde_json::from_value(js["folds"].clone()).expect("folds");
         let js_borders: Vec<Vec<[f64; 3]>> =
             serde_json::from_value(js["borders"].clone()).expect("borders");
         assert_eq!(js_folds.len(), rust.folds.len());
         for (k, (a, b)) in rust.folds.iter().zip(&js_folds).enumerate() {
             assert!(
-                (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9,
+                (a.f1 - b[0]).abs() < 1e-9 && (a.f2 - b[1]).abs() < 1e-9,
                 "{from:?} → {to:?} step {k}: rust {a:?}, js {b:?}"
             );
         }
@@ -119,22 +122,24 @@ fn browser_and_server_interpolate_alike() {
 #[test]
 #[ignore = "needs node (apt-get install nodejs); run with `cargo test -- --ignored`"]
 fn browser_and_server_turn_arcs_alike() {
-    // A state, its arcs, the line they turn about and the number of interpolated states.
-    type Turn = (Vec<Point>, Vec<[f64; 2]>, Option<Line>, usize);
+    // A state, its flat reference, its arcs, the line they turn about and the number of
+    // interpolated states.
+    type Turn = (Vec<Point>, Option<Vec<[f64; 3]>>, Vec<Arc>, Option<Line>, usize);
     let mut turns: Vec<Turn> = Vec::new();
     for sample in samples_in("physics-mujoco/border") {
         let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
         let mut state = analysis.start_border().to_vec();
-        for step in analysis.steps.iter().filter(|s| s.detection.fold.is_some()) {
-            turns.push((state.clone(), step.detection.arcs.clone(), step.line, 9));
-            state = close::fold::reflect::apply_arcs(
-                &state,
-                &step.detection.arcs,
-                &step.line.expect("a fold has a line"),
-            );
+        let flat: Vec<[f64; 3]> = state.iter().map(to_xyz).collect();
+        for step in analysis.steps.iter().filter_map(|s| s.folding()) {
+            let line = step.line.expect("a fold has a line");
+            turns.push((state.clone(), Some(flat.clone()), step.arcs.clone(), Some(line), 9));
+            state = apply(&state, &step);
         }
     }
-    assert!(turns.iter().any(|(_, arcs, _, _)| arcs.len() > 1), "a multi-arc fold among the cases");
+    assert!(
+        turns.iter().any(|(_, _, arcs, _, _)| arcs.len() > 1),
+        "a multi-arc fold among the cases"
+    );
     let gon: Vec<Point> = (0..13)
         .map(|k| k as f64 * TAU / 13.0)
         .map(|a| {
@@ -149,25 +154,27 @@ fn browser_and_server_turn_arcs_alike() {
     for case in 0..100 {
         let mut cuts: Vec<f64> = (0..2 + 2 * (case % 3)).map(|_| rng.uniform() * TAU).collect();
         cuts.sort_by(f64::total_cmp);
-        let arcs: Vec<[f64; 2]> = cuts.chunks(2).map(|c| [c[0], c[1]]).collect();
+        let arcs: Vec<Arc> = cuts.chunks(2).map(|c| Arc::new(c[0], c[1])).collect();
         let phi = rng.uniform() * PI;
         let line = (case % 4 != 0).then(|| Line {
-            point: [rng.uniform() - 0.5, rng.uniform() - 0.5],
-            direction: [phi.cos(), phi.sin()],
+            point: Point2::new(rng.uniform() - 0.5, rng.uniform() - 0.5),
+            direction: Vector2::new(phi.cos(), phi.sin()),
         });
-        turns.push((gon.clone(), arcs, line, 2 + (rng.uniform() * 20.0) as usize));
+        turns.push((gon.clone(), None, arcs, line, 2 + (rng.uniform() * 20.0) as usize));
     }
     let rust: Vec<_> = turns
         .iter()
-        .map(|(border, arcs, line, steps)| {
-            turn_arcs(border, arcs, *line, *steps).expect("a valid turn")
+        .map(|(border, reference, arcs, line, steps)| {
+            let turn = Motion::Turn { arcs: arcs.clone(), line: *line };
+            let state = border.iter().map(to_xyz).collect();
+            interpolate(state, reference.clone(), &turn, *steps).expect("a valid turn")
         })
         .collect();
     let xyz = |b: &[Point]| b.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>();
     let input = json!({
         "border": [],
         "cases": [],
-        "turns": turns.iter().map(|(border, arcs, line, steps)| json!({"border": xyz(border), "arcs": arcs, "line": line, "steps": steps})).collect::<Vec<_>>(),
+        "turns": turns.iter().map(|(border, _, arcs, line, steps)| json!({"border": xyz(border), "arcs": arcs, "line": line, "steps": steps})).collect::<Vec<_>>(),
     });
     let js = node(&input)["turned"].clone();
     for (k, (rust, js)) in rust.iter().zip(js.as_array().expect("a list")).enumerate() {
@@ -176,6 +183,6 @@ fn browser_and_server_turn_arcs_alike() {
             serde_json::from_value(js["borders"].clone()).expect("borders");
         assert_eq!(Some(js_turns), rust.turns, "case {k}");
         let worst = worst(&rust.borders, &js_borders);
-        assert!(worst < 1e-9, "case {k} ({:?}): borders differ by {worst}", turns[k].1);
+        assert!(worst < 1e-9, "case {k} ({:?}): borders differ by {worst}", turns[k].2);
     }
 }

@@ -37,7 +37,7 @@ fn assert_same_close(a: &Analysis, b: &Analysis, shift: f64) {
     assert_eq!(b.folds.len(), 1);
     for k in 0..2 {
         assert!(
-            angle_diff(a.folds[0][k] + shift, b.folds[0][k]) < 1e-4,
+            angle_diff(a.folds[0].ends()[k] + shift, b.folds[0].ends()[k]) < 1e-4,
             "folds {:?} vs {:?}",
             a.folds,
             b.folds
@@ -54,7 +54,7 @@ fn a_reflection_fold_is_found_where_it_was_made() {
     let truth = [TAU * FOLD.0 / n, TAU * FOLD.1 / n];
     for k in 0..2 {
         assert!(
-            angle_diff(a.folds[0][k], truth[k]) < 0.5 * 2.0 * PI / n,
+            angle_diff(a.folds[0].ends()[k], truth[k]) < 0.5 * 2.0 * PI / n,
             "{:?} vs {truth:?}",
             a.folds
         );
@@ -154,7 +154,7 @@ fn a_fold_across_exactly_straight_sides_stays_within_its_edge() {
     let a = run(vec![start, end]);
     let edge = 2.0 * PI / 24.0;
     assert_eq!(a.folds.len(), 1);
-    for (found, truth) in a.folds[0].iter().zip([3.0 * edge, 15.0 * edge]) {
+    for (found, truth) in a.folds[0].ends().iter().zip([3.0 * edge, 15.0 * edge]) {
         assert!(angle_diff(*found, truth) <= 0.5 * edge + 1e-9, "{:?}", a.folds);
     }
 }

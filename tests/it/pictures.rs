@@ -279,13 +279,13 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
             let Some(fold) = step.detection.fold else { continue };
             steps += 1;
             let curves = &step.detection.curves;
-            if curves.len() != fold.len() {
+            if curves.len() != fold.ends().len() {
                 misses.push(format!(
                     "{} step {}: {} curves for {} fold points",
                     entry.id,
                     k + 1,
                     curves.len(),
-                    fold.len()
+                    fold.ends().len()
                 ));
             }
             for c in curves.iter().filter(|c| c.loss.is_nan() || c.loss >= 0.0) {
@@ -297,7 +297,7 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
                     c.loss
                 ));
             }
-            for f in fold {
+            for f in fold.ends() {
                 let nearest = curves
                     .iter()
                     .map(|c| close::angle::distance(c.a0 + c.a1, f))

@@ -6,10 +6,11 @@ use std::f64::consts::{PI, TAU};
 use close::angle::{
     self, distance, edge, param_to_angle, wrap_pi, wrap_tau, ArcVertices, ON_LINE_EDGES,
 };
-use close::border::Point;
-use close::fold::reflect::{apply_fold, apply_fold_line, fold_line};
-use close::interpolate::{displacements, fold_path, interpolate};
+use close::border::{to_xyz, Point};
+use close::fold::apply;
+use close::interpolate::{displacements, fold_path, interpolate, Motion};
 use close::plan::{plan, Action, Case};
+use close::{Arc, Fold, Folding};
 use proptest::prelude::*;
 
 /// A star-shaped polygon, anticlockwise: vertex k at angle 2π(k + jitter)/n, radius in [0.5, 1].
@@ -88,13 +89,13 @@ proptest! {
     #[test]
     fn a_folded_vertex_is_one_inside_the_arc_off_its_ends(n in 4usize..100, u1 in 0.0f64..1.0, u2 in 0.0f64..1.0, margin in 0.0f64..1.0) {
         let nf = n as f64;
-        let fold = [u1 * TAU, u2 * TAU];
+        let arc = Arc::new(u1 * TAU, u2 * TAU);
         let (s1, span) = (u1 * nf, ((u2 - u1) * nf).rem_euclid(nf));
         for v in 0..n {
             let offset = (v as f64 - s1).rem_euclid(nf);
             // Away from the decision's edges, where rounding of angle and parameter may differ.
             if [offset - margin, span - margin - offset].iter().all(|d| d.abs() > 1e-6) {
-                prop_assert_eq!(angle::folds_vertex(n, fold, v, margin), offset > margin && offset < span - margin);
+                prop_assert_eq!(arc.folds_vertex(n, v, margin), offset > margin && offset < span - margin);
             }
         }
     }
@@ -102,39 +103,41 @@ proptest! {
     #[test]
     fn a_fold_applied_twice_along_its_line_is_undone(border in star(), u in 0.0f64..1.0, v in 0.0f64..1.0) {
         let n = border.len();
-        let fold = [u * TAU, v * TAU];
-        prop_assume!(distance(fold[0], fold[1]) > edge(n));
-        let line = fold_line(&border, fold, None);
+        let fold = Fold::new(u * TAU, v * TAU);
+        prop_assume!(distance(fold.f1, fold.f2) > edge(n));
+        let line = fold.line_on(&border, None);
         prop_assume!(line.is_some());
         let line = line.unwrap();
-        let once = apply_fold_line(&border, fold, &line);
-        let twice = apply_fold_line(&once, fold, &line);
+        let along = Folding { line: Some(line), ..Folding::new(fold) };
+        let once = apply(&border, &along);
+        let twice = apply(&once, &along);
         for (k, (a, b)) in border.iter().zip(&twice).enumerate() {
             prop_assert!(close_points(a, b), "vertex {}: {:?} → {:?}", k, a, b);
         }
         // A reflection keeps each vertex's distance to the line's points.
-        let p = Point::new(line.point[0], line.point[1], 0.0);
+        let p = Point::new(line.point.x, line.point.y, 0.0);
         prop_assert!(border.iter().zip(&once).all(|(a, b)| ((a - p).norm() - (b - p).norm()).abs() < 1e-9));
     }
 
     #[test]
     fn an_interpolation_ends_at_its_goal_without_a_jump(border in star(), from in -10.0f64..10.0, from_span in 0.3f64..6.0, to in -10.0f64..10.0, to_span in 0.3f64..6.0, steps in 2usize..40) {
-        let (from, to) = ([from, from + from_span], [to, to + to_span]);
+        let (from, to) = (Fold::new(from, from + from_span), Fold::new(to, to + to_span));
         let path = fold_path(from, to, steps);
         prop_assert_eq!(path.len(), steps);
-        prop_assert_eq!(path[0], from.map(wrap_tau));
-        prop_assert_eq!(path[steps - 1], to.map(wrap_tau));
+        prop_assert_eq!(path[0], from.wrapped());
+        prop_assert_eq!(path[steps - 1], to.wrapped());
         // The displacements lead from the start to the goal, and each step moves by its share.
         let d = displacements(from, to);
         for k in 0..2 {
-            prop_assert!(distance(from[k] + d[k], to[k]) < 1e-9, "endpoint {}: {:?} + {:?} ≠ {:?}", k, from, d, to);
+            prop_assert!(distance(from.ends()[k] + d[k], to.ends()[k]) < 1e-9, "endpoint {}: {:?} + {:?} ≠ {:?}", k, from, d, to);
             for w in path.windows(2) {
-                prop_assert!(distance(w[0][k], w[1][k]) <= d[k].abs() / (steps - 1) as f64 + 1e-9);
+                prop_assert!(distance(w[0].ends()[k], w[1].ends()[k]) <= d[k].abs() / (steps - 1) as f64 + 1e-9);
             }
         }
         // The last border is the border folded along the goal.
-        let motion = interpolate(&border, from, to, steps).unwrap();
-        let goal = apply_fold(&border, to);
+        let raw: Vec<[f64; 3]> = border.iter().map(to_xyz).collect();
+        let motion = interpolate(raw, None, &Motion::Between { from, to }, steps).unwrap();
+        let goal = apply(&border, &Folding::new(to));
         let last = motion.borders.last().unwrap();
         prop_assert!(last.iter().zip(&goal).all(|(a, b)| close_points(&Point::new(a[0], a[1], a[2]), b)));
     }
@@ -148,16 +151,17 @@ proptest! {
         let fold = |u: f64, w: f64| {
             let e = edge(n);
             let f1 = u * TAU;
-            [f1, wrap_tau(f1 + 2.0 * e + w * (TAU - 4.0 * e))]
+            Fold::new(f1, wrap_tau(f1 + 2.0 * e + w * (TAU - 4.0 * e)))
         };
-        let current: Vec<[f64; 2]> = folds.iter().enumerate().map(|(k, &u)| fold(u, (0.37 * (k + 1) as f64 + u) % 1.0)).collect();
+        let current: Vec<Fold> = folds.iter().enumerate().map(|(k, &u)| fold(u, (0.37 * (k + 1) as f64 + u) % 1.0)).collect();
         let goal = fold(goal_seed.0, goal_seed.1);
-        let p = plan(&border, &corners, &current, goal).unwrap();
-        let goal_state = apply_fold(&border, goal);
+        let foldings: Vec<Folding> = current.iter().map(|&f| Folding::new(f)).collect();
+        let p = plan(&border, &corners, &foldings, goal).unwrap();
+        let goal_state = apply(&border, &Folding::new(goal));
         match p.case {
             Case::AlreadyThere => {
                 prop_assert!(p.steps.is_empty() && current.len() == 1);
-                prop_assert!((0..2).all(|k| distance(current[0][k], goal[k]) <= 0.5 * edge(n) + 1e-12));
+                prop_assert!((0..2).all(|k| distance(current[0].ends()[k], goal.ends()[k]) <= 0.5 * edge(n) + 1e-12));
                 return Ok(());
             }
             Case::Fold => {
@@ -180,8 +184,8 @@ proptest! {
         // The last step folds the goal, moving the corners it folds to where the goal puts them.
         let last = p.steps.last().unwrap();
         prop_assert_eq!(last.action, Action::Fold);
-        prop_assert_eq!(last.fold, goal.map(wrap_tau));
-        let folded: Vec<usize> = (0..corners.len()).filter(|&k| angle::folds_vertex(n, goal, corners[k], ON_LINE_EDGES)).map(|k| k + 1).collect();
+        prop_assert_eq!(last.fold, goal.wrapped());
+        let folded: Vec<usize> = (0..corners.len()).filter(|&k| goal.arc().folds_vertex(n, corners[k], ON_LINE_EDGES)).map(|k| k + 1).collect();
         prop_assert_eq!(&last.corners, &folded);
         prop_assert!(!last.picks.is_empty() && last.picks.len() <= 2);
         for pick in &last.picks {

@@ -173,7 +173,13 @@ fn rigid_copies_give_the_same_fold() {
         assert_eq!(a.len(), 1);
         assert_eq!(b.len(), 1);
         for k in 0..2 {
-            assert!(angle_diff(a[0][k], b[0][k]) < 1e-4, "{}: {:?} vs {:?}", rigid.name, a, b);
+            assert!(
+                angle_diff(a[0].ends()[k], b[0].ends()[k]) < 1e-4,
+                "{}: {:?} vs {:?}",
+                rigid.name,
+                a,
+                b
+            );
         }
     }
 }

@@ -88,7 +88,10 @@ fn random_sample(rng: &mut SplitMix64, index: usize) -> Sample {
     };
     let mut sample =
         Sample::from_frames(format!("unseen_{index}"), "unseen", vec![place(start), place(end)]);
-    sample.truth = Some(Truth { folds: vec![[TAU * f1 / n, TAU * f2 / n]], folded_vertices: None });
+    sample.truth = Some(Truth {
+        folds: vec![close::Fold::new(TAU * f1 / n, TAU * f2 / n)],
+        folded_vertices: None,
+    });
     sample
 }
 

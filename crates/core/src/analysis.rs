@@ -12,9 +12,9 @@ use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_arcs, fold_line, folded_vertices};
-use crate::fold::{detect, FoldDetection, FoldMethod, Line};
-use crate::label::{label_arcs, Label, CHANGED_RMSE};
+use crate::fold::{apply, detect, FoldDetection, FoldMethod};
+use crate::geometry::{Fold, Folding, Line};
+use crate::label::{label, Label, CHANGED_RMSE};
 use crate::metrics::{Metrics, RigidMotion};
 
 /// Which frames to analyse (defaults: first and last).
@@ -60,6 +60,15 @@ pub struct Step {
     pub predicted: Vec<[f64; 3]>,
 }
 
+impl Step {
+    /// The fold this step found, as it was made in `predicted`: its fold, its arcs and its
+    /// line; `None` without a fold.
+    pub fn folding(&self) -> Option<Folding> {
+        let fold = self.detection.fold?;
+        Some(Folding { fold, arcs: self.detection.arcs.clone(), line: self.line })
+    }
+}
+
 /// Everything `close analyze` reports.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Analysis {
@@ -70,7 +79,7 @@ pub struct Analysis {
     pub corner_vertices: Vec<usize>,
     pub corner_threshold: f64,
     /// One [f1, f2] per detected fold, in order.
-    pub folds: Vec<[f64; 2]>,
+    pub folds: Vec<Fold>,
     /// The CloSE value of the end state: the corners and the folds that led to it.
     pub close: Close,
     pub label: Label,
@@ -107,21 +116,10 @@ impl Analysis {
         &self.frames[self.frames.len() - 1]
     }
 
-    /// The line each fold of [`Analysis::folds`] was made along (`steps[k].line` of the
-    /// steps that found a fold), in fold order.
-    pub fn fold_lines(&self) -> Vec<Option<crate::fold::Line>> {
-        self.steps.iter().filter(|s| s.detection.fold.is_some()).map(|s| s.line).collect()
-    }
-
-    /// The arcs each fold of [`Analysis::folds`] turned over (`steps[k].arcs` of the steps
-    /// that found a fold), in fold order: one arc, the fold itself, unless the fold line
-    /// crossed the border more than twice.
-    pub fn fold_arcs(&self) -> Vec<&[[f64; 2]]> {
-        self.steps
-            .iter()
-            .filter(|s| s.detection.fold.is_some())
-            .map(|s| s.detection.arcs.as_slice())
-            .collect()
+    /// Each fold of [`Analysis::folds`] as it was made ([`Step::folding`] of the steps that
+    /// found one), in fold order: its arcs and the line of `predicted_end`.
+    pub fn foldings(&self) -> Vec<Folding> {
+        self.steps.iter().filter_map(Step::folding).collect()
     }
 
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
@@ -186,15 +184,11 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
         || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options),
     );
     let (steps, predicted) = steps?;
-    let folds: Vec<[f64; 2]> = steps.iter().filter_map(|s| s.detection.fold).collect();
+    let foldings: Vec<Folding> = steps.iter().filter_map(Step::folding).collect();
+    let folds: Vec<Fold> = foldings.iter().map(|f| f.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
-    let arcs: Vec<&[[f64; 2]]> = steps
-        .iter()
-        .filter(|s| s.detection.fold.is_some())
-        .map(|s| s.detection.arcs.as_slice())
-        .collect();
-    let mut label = label_arcs(n, &found.vertices, &folds, &arcs);
+    let mut label = label(n, &found.vertices, &foldings);
     // A cloth only moved across the table is in the same state: the aligned error decides.
     let changed: Vec<usize> = steps
         .iter()
@@ -253,10 +247,11 @@ fn analyse_steps(
             // lie rotated from it (a cloth that slid as it folded).
             let direction = direction
                 .map(|d| placement(before_border, &norm.apply_all(&predicted), &unmoved).rotate(d));
-            let line = fold_line(&predicted, fold, direction)?;
-            predicted = apply_arcs(&predicted, &detection.arcs, &line);
-            for &arc in &detection.arcs {
-                for v in folded_vertices(predicted.len(), arc) {
+            let line = fold.line_on(&predicted, direction)?;
+            let folding = Folding { fold, arcs: detection.arcs.clone(), line: Some(line) };
+            predicted = apply(&predicted, &folding);
+            for arc in &detection.arcs {
+                for v in arc.folded_vertices(predicted.len()) {
                     unmoved[v] = false;
                 }
             }

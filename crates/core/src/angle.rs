@@ -65,19 +65,9 @@ pub fn arc_contains(from: f64, to: f64, angle: f64) -> bool {
 }
 
 /// A corner closer than this many edges to a fold point lies on the fold line: a fold that
-/// ends a hair past a corner does not fold it, and one that ends on it gets one answer.
+/// ends a hair past a corner does not fold it, and one that ends on it gets one answer
+/// (`geometry::Arc::folds_vertex`).
 pub const ON_LINE_EDGES: f64 = 0.5;
-
-/// True when border vertex `v` of an `n`-vertex border lies strictly inside the folded arc
-/// of `fold` (anticlockwise from angle f1 to f2) and more than `margin` edges from both of
-/// its ends: the vertices a fold moves are those with `margin` 0, the corners it folds
-/// those with [`ON_LINE_EDGES`] (closer to a fold point, a corner is on the line). With
-/// `margin` 0 this is [`arc_contains`] of the vertex's angle.
-pub fn folds_vertex(n: usize, fold: [f64; 2], v: usize, margin: f64) -> bool {
-    let offset = wrap_tau(param_to_angle(v as f64, n) - fold[0]);
-    let off_line = margin * edge(n);
-    offset > off_line && offset < wrap_tau(fold[1] - fold[0]) - off_line
-}
 
 /// The vertices strictly inside the anticlockwise arc from border parameter `s1` to
 /// `s2` (fractional vertex indices) of an `n`-vertex border, in walking order. A vertex
@@ -165,32 +155,6 @@ mod tests {
                 && arc_contains(0.0, 1.0, 0.5)
                 && !arc_contains(0.0, 1.0, 2.0)
         );
-    }
-
-    #[test]
-    fn a_folded_vertex_is_inside_the_arc_and_off_its_ends() {
-        let n = 8;
-        let at = |s: f64| param_to_angle(s, n);
-        // The arc from vertex 1.2 to 5.6: vertices 2 to 5 inside, 1 and 6 not.
-        let fold = [at(1.2), at(5.6)];
-        let inside: Vec<usize> = (0..n).filter(|&v| folds_vertex(n, fold, v, 0.0)).collect();
-        assert_eq!(inside, vec![2, 3, 4, 5]);
-        assert!(
-            (0..n)
-                .all(|v| folds_vertex(n, fold, v, 0.0)
-                    == arc_contains(fold[0], fold[1], at(v as f64)))
-        );
-        // Off the line: vertex 5 is 0.6 edges from the end, vertex 2 0.8 from the start.
-        let off: Vec<usize> = (0..n).filter(|&v| folds_vertex(n, fold, v, ON_LINE_EDGES)).collect();
-        assert_eq!(off, vec![2, 3, 4, 5]);
-        let near_ends = [at(1.7), at(5.4)];
-        let off: Vec<usize> =
-            (0..n).filter(|&v| folds_vertex(n, near_ends, v, ON_LINE_EDGES)).collect();
-        assert_eq!(off, vec![3, 4]);
-        // Through zero, and a vertex exactly on a fold point is on the line.
-        let through_zero = [at(6.0), at(2.0)];
-        let off: Vec<usize> = (0..n).filter(|&v| folds_vertex(n, through_zero, v, 0.0)).collect();
-        assert_eq!(off, vec![0, 1, 7]);
     }
 
     #[test]

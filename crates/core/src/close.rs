@@ -50,6 +50,7 @@ use serde::Serialize;
 
 use crate::angle::{param_to_angle, wrap_pi};
 use crate::border::Point;
+use crate::geometry::Fold;
 
 use crate::disk::Disk;
 
@@ -179,7 +180,7 @@ fn turn(border: &[Point], v: usize, reach: &[(usize, usize)]) -> f64 {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Close {
     pub corners: Vec<f64>,
-    pub folds: Vec<[f64; 2]>,
+    pub folds: Vec<Fold>,
 }
 
 #[cfg(test)]

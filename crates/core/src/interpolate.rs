@@ -20,24 +20,25 @@
 //! drawn from above (x, y of the rotated point, z kept, as the reflection keeps it). With
 //! f the foot of p on the line, p(τ) = f + cos(πτ)·(p − f): τ = 0 is the border as given
 //! and τ = 1 the reflection across the line, exactly the analysis's prediction
-//! ([`apply_arcs`]). Vertices outside the arcs never move. Without a line the fold is
+//! ([`crate::fold::apply`]). Vertices outside the arcs never move. Without a line the fold is
 //! made along the line through the border points at the first arc's start and the last
-//! arc's end, as the analysis makes it ([`fold_line`]).
+//! arc's end, as the analysis makes it ([`Fold::line_on`]).
 //!
 //! `web/fold.mjs` implements the same rules for the browser (a test checks parity).
 //!
-//! A border given by a user goes through [`interpolate_border`]: it is validated and
-//! oriented by [`crate::border::prepare`], exactly as an analysis's start frame, so a border
-//! that the analysis refuses (coincident, collinear, too small or too large) is refused here
-//! too; the answer's `border_indices` name the input vertex of each border vertex.
+//! The border goes through [`interpolate`], the one entry: it is validated and oriented by
+//! [`crate::border::prepare`], exactly as an analysis's start frame, so a border that the
+//! analysis refuses (coincident, collinear, too small or too large) is refused here too;
+//! the answer's `border_indices` name the input vertex of each border vertex.
 //!
 //! ```
+//! use close_core::geometry::Fold;
 //! use close_core::interpolate::fold_path;
 //! use std::f64::consts::PI;
 //! // Both endpoints move a quarter turn anticlockwise: the span stays π.
-//! let path = fold_path([0.0, PI], [PI / 2.0, 1.5 * PI], 3);
+//! let path = fold_path(Fold::new(0.0, PI), Fold::new(PI / 2.0, 1.5 * PI), 3);
 //! assert_eq!(path.len(), 3);
-//! assert!((path[1][0] - PI / 4.0).abs() < 1e-12 && (path[1][1] - 1.25 * PI).abs() < 1e-12);
+//! assert!((path[1].f1 - PI / 4.0).abs() < 1e-12 && (path[1].f2 - 1.25 * PI).abs() < 1e-12);
 //! ```
 
 use std::f64::consts::PI;
@@ -48,8 +49,8 @@ use crate::angle::{wrap_pi, wrap_tau, TAU};
 use crate::border::{prepare, to_xyz};
 use crate::border::{Point, MAX_VERTICES, MIN_VERTICES};
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_arcs, apply_fold, fold_line, folded_vertices};
-pub use crate::fold::synth::Line;
+use crate::fold::apply;
+use crate::geometry::{Arc, Fold, Folding, Line, Vector2};
 
 /// Fewest and most folds an interpolation may have (both ends included).
 pub const STEPS: std::ops::RangeInclusive<usize> = 2..=1000;
@@ -58,19 +59,18 @@ pub const STEPS: std::ops::RangeInclusive<usize> = 2..=1000;
 #[derive(Debug, Clone, PartialEq)]
 pub enum Motion {
     /// From fold `from` to fold `to`, each state the flat border reflected across one fold.
-    Between { from: [f64; 2], to: [f64; 2] },
-    /// The `arcs` (angles, each [a, b] folded anticlockwise from a to b) turned over
-    /// together about `line`, or about the line through the first arc's start and the last
-    /// arc's end when `None`.
-    Turn { arcs: Vec<[f64; 2]>, line: Option<Line> },
+    Between { from: Fold, to: Fold },
+    /// The `arcs` (each folded anticlockwise from a to b) turned over together about `line`,
+    /// or about the line through the first arc's start and the last arc's end when `None`.
+    Turn { arcs: Vec<Arc>, line: Option<Line> },
 }
 
 impl Motion {
     /// The motion a request names: `from` and `to`, or `arcs` with an optional `line`.
     pub fn of(
-        from: Option<[f64; 2]>,
-        to: Option<[f64; 2]>,
-        arcs: Option<Vec<[f64; 2]>>,
+        from: Option<Fold>,
+        to: Option<Fold>,
+        arcs: Option<Vec<Arc>>,
         line: Option<Line>,
     ) -> Result<Motion> {
         let bad = |what: &str| Err(Error::InvalidArgument(what.into()));
@@ -96,7 +96,7 @@ impl Motion {
 pub struct Interpolation {
     /// Each state's fold: the fold on the circle, or for a turned fold the pair that spans
     /// its arcs (the first arc's start, the last arc's end), the same in every state.
-    pub folds: Vec<[f64; 2]>,
+    pub folds: Vec<Fold>,
     /// For a turned fold, how far each state is turned (0 as given, 1 folded over), as a
     /// fraction of a half turn.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -112,9 +112,9 @@ pub struct Interpolation {
 }
 
 /// How far each endpoint moves (d1, d2) going from `from` to `to`.
-pub fn displacements(from: [f64; 2], to: [f64; 2]) -> [f64; 2] {
-    let span_change = wrap_tau(to[1] - to[0]) - wrap_tau(from[1] - from[0]);
-    let d1 = wrap_pi(to[0] - from[0]);
+pub fn displacements(from: Fold, to: Fold) -> [f64; 2] {
+    let span_change = wrap_tau(to.f2 - to.f1) - wrap_tau(from.f2 - from.f1);
+    let d1 = wrap_pi(to.f1 - from.f1);
     let cost = |d: f64| d.abs() + (d + span_change).abs();
     let best = [d1, d1 - TAU, d1 + TAU].into_iter().fold(d1, |best, d| {
         if cost(d) < cost(best) - 1e-12 {
@@ -127,16 +127,16 @@ pub fn displacements(from: [f64; 2], to: [f64; 2]) -> [f64; 2] {
 }
 
 /// `steps` folds from `from` to `to` (both included), each in [0, 2π).
-pub fn fold_path(from: [f64; 2], to: [f64; 2], steps: usize) -> Vec<[f64; 2]> {
+pub fn fold_path(from: Fold, to: Fold, steps: usize) -> Vec<Fold> {
     let [d1, d2] = displacements(from, to);
     let last = steps.saturating_sub(1).max(1) as f64;
     (0..steps)
         .map(|t| match t {
-            0 => [wrap_tau(from[0]), wrap_tau(from[1])],
-            t if t + 1 == steps => [wrap_tau(to[0]), wrap_tau(to[1])],
+            0 => from.wrapped(),
+            t if t + 1 == steps => to.wrapped(),
             t => {
                 let tau = t as f64 / last;
-                [wrap_tau(from[0] + tau * d1), wrap_tau(from[1] + tau * d2)]
+                Fold::new(wrap_tau(from.f1 + tau * d1), wrap_tau(from.f2 + tau * d2))
             }
         })
         .collect()
@@ -145,9 +145,9 @@ pub fn fold_path(from: [f64; 2], to: [f64; 2], steps: usize) -> Vec<[f64; 2]> {
 /// `p` turned about the XY `line` (unit direction) by the fraction `turn` of a half turn,
 /// seen from above: f + cos(π·turn)·(p − f), f the foot of p on the line, z kept.
 pub fn turn_about(p: &Point, line: &Line, turn: f64) -> Point {
-    let [ux, uy] = line.direction;
-    let t = (p.x - line.point[0]) * ux + (p.y - line.point[1]) * uy;
-    let (fx, fy) = (line.point[0] + t * ux, line.point[1] + t * uy);
+    let (ux, uy) = (line.direction.x, line.direction.y);
+    let t = (p.x - line.point.x) * ux + (p.y - line.point.y) * uy;
+    let (fx, fy) = (line.point.x + t * ux, line.point.y + t * uy);
     let c = (PI * turn).cos();
     Point::new(fx + c * (p.x - fx), fy + c * (p.y - fy), p.z)
 }
@@ -155,28 +155,30 @@ pub fn turn_about(p: &Point, line: &Line, turn: f64) -> Point {
 /// The line a turned fold uses: `line` checked (finite, a direction of non-zero length, made
 /// unit), or the line through the border points at the first arc's start and the last
 /// arc's end.
-fn turn_line(border: &[Point], arcs: &[[f64; 2]], line: Option<Line>) -> Result<Line> {
+fn turn_line(border: &[Point], arcs: &[Arc], line: Option<Line>) -> Result<Line> {
     let Some(line) = line else {
-        let span = [arcs[0][0], arcs[arcs.len() - 1][1]];
-        return fold_line(border, span, None).ok_or_else(|| {
+        let span = Fold::span(arcs).ok_or_else(|| {
+            Error::InvalidArgument("a fold to turn over needs at least one arc".into())
+        })?;
+        return span.line_on(border, None).ok_or_else(|| {
             Error::InvalidArgument(
                 "the fold's two points lie on top of each other: give the `line` to turn about"
                     .into(),
             )
         });
     };
-    if let Some(bad) = line.point.iter().chain(&line.direction).find(|c| !c.is_finite()) {
+    if let Some(bad) = line.point.iter().chain(line.direction.iter()).find(|c| !c.is_finite()) {
         return Err(Error::InvalidArgument(format!(
             "the line's point and direction must be finite numbers, got {bad}"
         )));
     }
-    let length = line.direction[0].hypot(line.direction[1]);
+    let length = line.direction.x.hypot(line.direction.y);
     if length == 0.0 || !length.is_finite() {
         return Err(Error::InvalidArgument("the line's direction has no length".into()));
     }
     Ok(Line {
         point: line.point,
-        direction: [line.direction[0] / length, line.direction[1] / length],
+        direction: Vector2::new(line.direction.x / length, line.direction.y / length),
     })
 }
 
@@ -202,8 +204,8 @@ fn check(border: &[Point], steps: usize) -> Result<()> {
 }
 
 /// Angles must be finite; `what` names them in the error.
-fn finite_angles<'a>(angles: impl IntoIterator<Item = &'a f64>, what: &str) -> Result<()> {
-    match angles.into_iter().find(|a| !a.is_finite()) {
+fn finite_angles(angles: &[f64], what: &str) -> Result<()> {
+    match angles.iter().find(|a| !a.is_finite()) {
         Some(bad) => {
             Err(Error::InvalidArgument(format!("{what} must be finite numbers, got {bad}")))
         }
@@ -212,19 +214,15 @@ fn finite_angles<'a>(angles: impl IntoIterator<Item = &'a f64>, what: &str) -> R
 }
 
 /// The border folded along each fold of [`fold_path`]; `border` is taken as given (an
-/// anticlockwise border, e.g. an analysis's start border), checked for size and finite
-/// coordinates only: see [`interpolate_border`] for a user's input.
-pub fn interpolate(
-    border: &[Point],
-    from: [f64; 2],
-    to: [f64; 2],
-    steps: usize,
-) -> Result<Interpolation> {
+/// anticlockwise border), checked for size and finite coordinates only.
+fn between(border: &[Point], from: Fold, to: Fold, steps: usize) -> Result<Interpolation> {
     check(border, steps)?;
-    finite_angles(from.iter().chain(&to), "fold angles")?;
+    finite_angles(&[from.f1, from.f2, to.f1, to.f2], "fold angles")?;
     let folds = fold_path(from, to, steps);
-    let borders =
-        folds.iter().map(|&f| apply_fold(border, f).iter().map(to_xyz).collect()).collect();
+    let borders = folds
+        .iter()
+        .map(|&f| apply(border, &Folding::new(f)).iter().map(to_xyz).collect())
+        .collect();
     Ok(Interpolation {
         folds,
         turns: None,
@@ -236,13 +234,8 @@ pub fn interpolate(
 
 /// `steps` states of the fold that turns `arcs` of `border` over about `line` (see the
 /// module doc): turn t/(steps−1) each, the first `border` itself and the last
-/// [`apply_arcs`] exactly. `border` is taken as [`interpolate`] takes it.
-pub fn turn_arcs(
-    border: &[Point],
-    arcs: &[[f64; 2]],
-    line: Option<Line>,
-    steps: usize,
-) -> Result<Interpolation> {
+/// [`crate::fold::apply`] exactly. `border` is taken as [`between`] takes it.
+fn turn(border: &[Point], arcs: &[Arc], line: Option<Line>, steps: usize) -> Result<Interpolation> {
     check(border, steps)?;
     if arcs.is_empty() {
         return Err(Error::InvalidArgument("a fold to turn over needs at least one arc".into()));
@@ -255,10 +248,15 @@ pub fn turn_arcs(
             border.len()
         )));
     }
-    finite_angles(arcs.iter().flatten(), "arc angles")?;
+    let angles: Vec<f64> = arcs.iter().flat_map(|a| [a.a, a.b]).collect();
+    finite_angles(&angles, "arc angles")?;
     let line = turn_line(border, arcs, line)?;
-    let mut moved: Vec<usize> =
-        arcs.iter().flat_map(|&arc| folded_vertices(border.len(), arc)).collect();
+    let folding = Folding {
+        fold: Fold::span(arcs).unwrap_or_default(),
+        arcs: arcs.to_vec(),
+        line: Some(line),
+    };
+    let mut moved: Vec<usize> = arcs.iter().flat_map(|a| a.folded_vertices(border.len())).collect();
     moved.sort_unstable();
     moved.dedup();
     let last = (steps - 1) as f64;
@@ -268,7 +266,7 @@ pub fn turn_arcs(
         .map(|&turn| {
             // The ends exactly: the border as given, and the analysis's reflection.
             if turn >= 1.0 {
-                return apply_arcs(border, arcs, &line).iter().map(to_xyz).collect();
+                return apply(border, &folding).iter().map(to_xyz).collect();
             }
             let mut state = border.to_vec();
             if turn > 0.0 {
@@ -279,9 +277,8 @@ pub fn turn_arcs(
             state.iter().map(to_xyz).collect()
         })
         .collect();
-    let span = [wrap_tau(arcs[0][0]), wrap_tau(arcs[arcs.len() - 1][1])];
     Ok(Interpolation {
-        folds: vec![span; steps],
+        folds: vec![folding.fold.wrapped(); steps],
         turns: Some(turns),
         line: Some(line),
         borders,
@@ -289,39 +286,37 @@ pub fn turn_arcs(
     })
 }
 
-/// [`interpolate`] or [`turn_arcs`], as `motion` says, on `border` as given.
-pub fn interpolate_motion(
-    border: &[Point],
-    motion: &Motion,
-    steps: usize,
-) -> Result<Interpolation> {
+/// The motion on `border` as given (an anticlockwise border), checked for size and finite
+/// numbers only.
+fn on_state(border: &[Point], motion: &Motion, steps: usize) -> Result<Interpolation> {
     match motion {
-        Motion::Between { from, to } => interpolate(border, *from, *to, steps),
-        Motion::Turn { arcs, line } => turn_arcs(border, arcs, *line, steps),
+        Motion::Between { from, to } => between(border, *from, *to, steps),
+        Motion::Turn { arcs, line } => turn(border, arcs, *line, steps),
     }
 }
 
-/// [`interpolate_motion`] on a user's border, validated by [`prepare`] as an analysis
+/// `steps` states of `motion` on `border`, validated by [`prepare`] as an analysis
 /// validates its frames: `border` is the state to fold and `reference` the flat border whose
 /// orientation applies (an analysis's start frame; by default `border` itself, which must
 /// then be a valid start frame). A border already folded overlaps itself, so its own area
 /// and orientation are no guide: send the flat one as `reference`.
 ///
 /// ```
-/// use close_core::interpolate::{interpolate_border, Motion};
+/// use close_core::geometry::{Arc, Fold};
+/// use close_core::interpolate::{interpolate, Motion};
 /// let square = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
-/// let between = Motion::Between { from: [0.0, 3.1], to: [0.5, 3.6] };
-/// assert_eq!(interpolate_border(square.clone(), None, &between, 5).unwrap().borders.len(), 5);
+/// let between = Motion::Between { from: Fold::new(0.0, 3.1), to: Fold::new(0.5, 3.6) };
+/// assert_eq!(interpolate(square.clone(), None, &between, 5).unwrap().borders.len(), 5);
 /// let line = vec![[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [2.0, 2.0, 0.0], [3.0, 3.0, 0.0]];
-/// assert!(interpolate_border(line.clone(), None, &between, 5).is_err());
+/// assert!(interpolate(line.clone(), None, &between, 5).is_err());
 /// // A state with no area of its own is fine against a flat reference.
-/// assert!(interpolate_border(line, Some(square.clone()), &between, 5).is_ok());
+/// assert!(interpolate(line, Some(square.clone()), &between, 5).is_ok());
 /// // Vertex 1 turned over about the diagonal through vertices 0 and 2: on vertex 3 at the end.
-/// let turn = Motion::Turn { arcs: vec![[0.0, std::f64::consts::PI]], line: None };
-/// let motion = interpolate_border(square, None, &turn, 3).unwrap();
+/// let turn = Motion::Turn { arcs: vec![Arc::new(0.0, std::f64::consts::PI)], line: None };
+/// let motion = interpolate(square, None, &turn, 3).unwrap();
 /// assert!((motion.borders[2][1][0] - 0.0).abs() < 1e-12 && (motion.borders[2][1][1] - 1.0).abs() < 1e-12);
 /// ```
-pub fn interpolate_border(
+pub fn interpolate(
     border: Vec<[f64; 3]>,
     reference: Option<Vec<[f64; 3]>>,
     motion: &Motion,
@@ -334,7 +329,7 @@ pub fn interpolate_border(
     let prepared = prepare(frames)?;
     // prepare gives one frame per frame given: the state is the last.
     let state = prepared.frames.last().map_or(&[][..], Vec::as_slice);
-    let motion = interpolate_motion(state, motion, steps)?;
+    let motion = on_state(state, motion, steps)?;
     Ok(Interpolation { border_indices: prepared.border_indices, ..motion })
 }
 
@@ -354,14 +349,28 @@ mod tests {
             .collect()
     }
 
-    fn between() -> Motion {
-        Motion::Between { from: [0.0, 1.0], to: [1.0, 2.0] }
+    fn motion() -> Motion {
+        Motion::Between { from: Fold::new(0.0, 1.0), to: Fold::new(1.0, 2.0) }
+    }
+
+    /// The line y = 0, rightwards.
+    fn x_axis() -> Line {
+        Line { point: crate::geometry::Point2::new(0.0, 0.0), direction: Vector2::new(1.0, 0.0) }
+    }
+
+    /// `border` folded by `arcs` over `line`, as the analysis folds it.
+    fn folded(border: &[Point], arcs: &[Arc], line: Line) -> Vec<[f64; 3]> {
+        let fold = Fold::span(arcs).unwrap();
+        apply(border, &Folding { fold, arcs: arcs.to_vec(), line: Some(line) })
+            .iter()
+            .map(to_xyz)
+            .collect()
     }
 
     /// Two legs joined at the top, anticlockwise from the left leg's outer hem corner, a
     /// vertex every 0.1: the line y = 0 crosses the border 4 times, once per leg side. The
     /// two arcs below it (border parameters) are the hems.
-    fn two_legs() -> (Vec<Point>, Vec<[f64; 2]>) {
+    fn two_legs() -> (Vec<Point>, Vec<Arc>) {
         let corners: [(f64, f64); 7] = [
             (-1.0, -1.0),
             (-0.4, -1.0),
@@ -393,8 +402,8 @@ mod tests {
         // Below the line: from the last crossing (the right outer side) round through
         // vertex 0 to the first, and between the second and the third (the inner sides).
         let arcs = vec![
-            [angle(crossings[3]), angle(crossings[0])],
-            [angle(crossings[1]), angle(crossings[2])],
+            Arc::new(angle(crossings[3]), angle(crossings[0])),
+            Arc::new(angle(crossings[1]), angle(crossings[2])),
         ];
         (points, arcs)
     }
@@ -402,22 +411,19 @@ mod tests {
     #[test]
     fn a_turned_fold_turns_only_its_arcs_by_one_angle() {
         let (legs, arcs) = two_legs();
-        let line = Line { point: [0.0, 0.0], direction: [1.0, 0.0] };
+        let line = x_axis();
         let steps = 9;
-        let motion = turn_arcs(&legs, &arcs, Some(line), steps).unwrap();
+        let motion = turn(&legs, &arcs, Some(line), steps).unwrap();
         let below: Vec<bool> = legs.iter().map(|p| p.y < 0.0).collect();
         assert!(below.iter().filter(|&&b| b).count() > 10);
         // The ends exactly: the border as given, and the analysis's reflection.
         assert_eq!(motion.borders[0], legs.iter().map(to_xyz).collect::<Vec<_>>());
-        assert_eq!(
-            motion.borders[steps - 1],
-            apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>()
-        );
+        assert_eq!(motion.borders[steps - 1], folded(&legs, &arcs, line));
         assert_eq!(
             motion.turns.as_deref(),
             Some(&[0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0][..])
         );
-        assert_eq!(motion.folds, vec![[arcs[0][0], arcs[1][1]]; steps]);
+        assert_eq!(motion.folds, vec![Fold::new(arcs[0].a, arcs[1].b); steps]);
         for (t, state) in motion.borders.iter().enumerate() {
             let c = (PI * t as f64 / 8.0).cos();
             for (v, (p, q)) in legs.iter().zip(state).enumerate() {
@@ -438,49 +444,40 @@ mod tests {
     #[test]
     fn a_turned_fold_without_a_line_folds_along_its_span() {
         let (legs, arcs) = two_legs();
-        let motion = turn_arcs(&legs, &arcs, None, 3).unwrap();
-        let line = fold_line(&legs, [arcs[0][0], arcs[1][1]], None).unwrap();
+        let motion = turn(&legs, &arcs, None, 3).unwrap();
+        let line = Fold::new(arcs[0].a, arcs[1].b).line_on(&legs, None).unwrap();
         assert_eq!(motion.line, Some(line));
-        assert_eq!(
-            motion.borders[2],
-            apply_arcs(&legs, &arcs, &line).iter().map(to_xyz).collect::<Vec<_>>()
-        );
+        assert_eq!(motion.borders[2], folded(&legs, &arcs, line));
         // A given line is made unit.
         let long =
-            turn_arcs(&legs, &arcs, Some(Line { point: [0.0, 0.0], direction: [3.0, 0.0] }), 3)
+            turn(&legs, &arcs, Some(Line { direction: Vector2::new(3.0, 0.0), ..x_axis() }), 3)
                 .unwrap();
-        assert_eq!(long.line.map(|l| l.direction), Some([1.0, 0.0]));
+        assert_eq!(long.line.map(|l| l.direction), Some(Vector2::new(1.0, 0.0)));
     }
 
     #[test]
     fn bad_turns_are_named() {
         let (legs, arcs) = two_legs();
-        let flat = Line { point: [0.0, 0.0], direction: [0.0, 0.0] };
-        assert!(turn_arcs(&legs, &arcs, Some(flat), 3)
-            .unwrap_err()
-            .to_string()
-            .contains("no length"));
-        let nan = Line { point: [f64::NAN, 0.0], direction: [1.0, 0.0] };
-        assert!(turn_arcs(&legs, &arcs, Some(nan), 3).unwrap_err().to_string().contains("finite"));
-        assert!(turn_arcs(&legs, &[], None, 3)
-            .unwrap_err()
-            .to_string()
-            .contains("at least one arc"));
-        assert!(turn_arcs(&legs, &[[0.0, f64::INFINITY]], None, 3)
+        let flat = Line { direction: Vector2::new(0.0, 0.0), ..x_axis() };
+        assert!(turn(&legs, &arcs, Some(flat), 3).unwrap_err().to_string().contains("no length"));
+        let nan = Line { point: crate::geometry::Point2::new(f64::NAN, 0.0), ..x_axis() };
+        assert!(turn(&legs, &arcs, Some(nan), 3).unwrap_err().to_string().contains("finite"));
+        assert!(turn(&legs, &[], None, 3).unwrap_err().to_string().contains("at least one arc"));
+        assert!(turn(&legs, &[Arc::new(0.0, f64::INFINITY)], None, 3)
             .unwrap_err()
             .to_string()
             .contains("arc angles"));
-        assert!(turn_arcs(&legs, &vec![[0.0, 1.0]; legs.len() + 1], None, 3)
+        assert!(turn(&legs, &vec![Arc::new(0.0, 1.0); legs.len() + 1], None, 3)
             .unwrap_err()
             .to_string()
             .contains("arcs on a border"));
-        assert!(turn_arcs(&legs, &arcs, None, 1).unwrap_err().to_string().contains("steps"));
+        assert!(turn(&legs, &arcs, None, 1).unwrap_err().to_string().contains("steps"));
         // Two fold points on top of each other give no line: the error asks for one.
         let mut stacked = legs.clone();
         let n = legs.len();
         stacked[n / 2] = stacked[0];
         let q = TAU / n as f64;
-        assert!(turn_arcs(&stacked, &[[0.0, (n / 2) as f64 * q]], None, 3)
+        assert!(turn(&stacked, &[Arc::new(0.0, (n / 2) as f64 * q)], None, 3)
             .unwrap_err()
             .to_string()
             .contains("`line`"));
@@ -488,19 +485,20 @@ mod tests {
 
     #[test]
     fn a_motion_is_one_of_the_two_forms() {
-        let line = Some(Line { point: [0.0, 0.0], direction: [1.0, 0.0] });
-        assert_eq!(Motion::of(Some([0.0, 1.0]), Some([1.0, 2.0]), None, None), Ok(between()));
+        let line = Some(x_axis());
+        let (f, g, arc) = (Fold::new(0.0, 1.0), Fold::new(1.0, 2.0), Arc::new(0.0, 1.0));
+        assert_eq!(Motion::of(Some(f), Some(g), None, None), Ok(motion()));
         assert_eq!(
-            Motion::of(None, None, Some(vec![[0.0, 1.0]]), line),
-            Ok(Motion::Turn { arcs: vec![[0.0, 1.0]], line })
+            Motion::of(None, None, Some(vec![arc]), line),
+            Ok(Motion::Turn { arcs: vec![arc], line })
         );
         for (from, to, arcs, line, says) in [
             (None, None, None, None, "give the folds"),
-            (Some([0.0, 1.0]), None, None, None, "go together"),
-            (None, Some([0.0, 1.0]), None, None, "go together"),
-            (Some([0.0, 1.0]), Some([1.0, 2.0]), Some(vec![[0.0, 1.0]]), None, "not both"),
-            (Some([0.0, 1.0]), None, Some(vec![[0.0, 1.0]]), None, "not both"),
-            (Some([0.0, 1.0]), Some([1.0, 2.0]), None, line, "give `arcs`"),
+            (Some(f), None, None, None, "go together"),
+            (None, Some(f), None, None, "go together"),
+            (Some(f), Some(g), Some(vec![arc]), None, "not both"),
+            (Some(f), None, Some(vec![arc]), None, "not both"),
+            (Some(f), Some(g), None, line, "give `arcs`"),
         ] {
             assert!(
                 Motion::of(from, to, arcs, line).unwrap_err().to_string().contains(says),
@@ -510,9 +508,9 @@ mod tests {
     }
 
     /// Pairs of folds covering wraps through 0, crossing cases, tiny and huge spans.
-    fn cases() -> Vec<([f64; 2], [f64; 2])> {
+    fn cases() -> Vec<(Fold, Fold)> {
         let q = PI / 8.0;
-        vec![
+        let pairs: Vec<([f64; 2], [f64; 2])> = vec![
             ([0.0, PI], [PI / 2.0, 1.5 * PI]),
             ([15.0 * q, q], [q, 3.0 * q]),
             ([0.1, 0.3], [6.0, 0.2]),
@@ -522,15 +520,16 @@ mod tests {
             ([5.5, 2.0], [0.5, 3.9]),
             ([3.0, 2.9], [0.2, 0.1]),
             ([0.0, PI], [PI, 0.0]),
-        ]
+        ];
+        pairs.into_iter().map(|(a, b)| (a.into(), b.into())).collect()
     }
 
     #[test]
     fn endpoints_are_hit_exactly() {
         for (from, to) in cases() {
             let path = fold_path(from, to, 17);
-            assert_eq!(path[0], [wrap_tau(from[0]), wrap_tau(from[1])]);
-            assert_eq!(path[16], [wrap_tau(to[0]), wrap_tau(to[1])]);
+            assert_eq!(path[0], Fold::new(wrap_tau(from.f1), wrap_tau(from.f2)));
+            assert_eq!(path[16], Fold::new(wrap_tau(to.f1), wrap_tau(to.f2)));
         }
     }
 
@@ -538,7 +537,7 @@ mod tests {
     fn span_moves_monotonically_and_never_wraps() {
         for (from, to) in cases() {
             let path = fold_path(from, to, 101);
-            let spans: Vec<f64> = path.iter().map(|f| wrap_tau(f[1] - f[0])).collect();
+            let spans: Vec<f64> = path.iter().map(|f| wrap_tau(f.f2 - f.f1)).collect();
             let (s0, s1) = (spans[0], spans[100]);
             for w in spans.windows(2) {
                 // The span moves in the direction of s1 − s0, by equal steps: no jump of ~2π.
@@ -555,7 +554,7 @@ mod tests {
         for (from, to) in cases() {
             let path = fold_path(from, to, 201);
             for w in path.windows(2) {
-                for (a, b) in w[0].iter().zip(&w[1]) {
+                for (a, b) in [(w[0].f1, w[1].f1), (w[0].f2, w[1].f2)] {
                     // No endpoint travels a full turn: under 2π / 200 per step.
                     assert!(wrap_pi(b - a).abs() <= TAU / 200.0 + 1e-12, "{from:?} → {to:?}");
                 }
@@ -565,7 +564,7 @@ mod tests {
 
     #[test]
     fn endpoints_take_the_shorter_way_when_they_do_not_cross() {
-        let [d1, d2] = displacements([0.1, 3.0], [6.2, 3.2]);
+        let [d1, d2] = displacements(Fold::new(0.1, 3.0), Fold::new(6.2, 3.2));
         assert!((d1 - (6.2 - 0.1 - TAU)).abs() < 1e-12 && (d2 - 0.2).abs() < 1e-12);
     }
 
@@ -573,10 +572,10 @@ mod tests {
     fn crossing_endpoints_send_one_the_long_way() {
         // Shortest ways: f1 0.1 → 0.2 forward, f2 0.3 → 0.1 back: the span would pass 0
         // (0.2 → −0.1); it must grow from 0.2 to 2π − 0.1 instead.
-        let from = [0.1, 0.3];
-        let to = [0.2, 0.1];
+        let from = Fold::new(0.1, 0.3);
+        let to = Fold::new(0.2, 0.1);
         let [d1, d2] = displacements(from, to);
-        let (s0, s1) = (wrap_tau(from[1] - from[0]), wrap_tau(to[1] - to[0]));
+        let (s0, s1) = (wrap_tau(from.f2 - from.f1), wrap_tau(to.f2 - to.f1));
         assert!(((d2 - d1) - (s1 - s0)).abs() < 1e-12);
         assert!(d1.abs() > PI || d2.abs() > PI, "one endpoint goes the long way: {d1} {d2}");
     }
@@ -584,7 +583,9 @@ mod tests {
     #[test]
     fn a_square_folds_continuously() {
         let sq = square(8);
-        let motion = interpolate(&sq, [PI / 4.0 + 0.01, 1.25 * PI + 0.01], [0.0, PI], 61).unwrap();
+        let motion =
+            between(&sq, Fold::new(PI / 4.0 + 0.01, 1.25 * PI + 0.01), Fold::new(0.0, PI), 61)
+                .unwrap();
         assert_eq!(motion.borders.len(), 61);
         for w in motion.borders.windows(2) {
             let jump = w[0]
@@ -594,7 +595,7 @@ mod tests {
                 .fold(0.0, f64::max);
             assert!(jump < 0.25, "a vertex jumped by {jump}");
         }
-        let last = apply_fold(&sq, [0.0, PI]);
+        let last = apply(&sq, &Folding::new(Fold::new(0.0, PI)));
         assert!(motion.borders[60]
             .iter()
             .zip(&last)
@@ -604,53 +605,50 @@ mod tests {
     #[test]
     fn bad_arguments_are_named() {
         let sq = square(2);
-        assert!(interpolate(&sq, [0.0, 1.0], [1.0, 2.0], 1)
-            .unwrap_err()
-            .to_string()
-            .contains("steps"));
-        assert!(interpolate(&sq, [f64::NAN, 1.0], [1.0, 2.0], 5)
+        let (f, g) = (Fold::new(0.0, 1.0), Fold::new(1.0, 2.0));
+        assert!(between(&sq, f, g, 1).unwrap_err().to_string().contains("steps"));
+        assert!(between(&sq, Fold::new(f64::NAN, 1.0), g, 5)
             .unwrap_err()
             .to_string()
             .contains("finite"));
-        assert!(matches!(
-            interpolate(&sq[..3], [0.0, 1.0], [1.0, 2.0], 5),
-            Err(Error::TooFewVertices { .. })
-        ));
+        assert!(matches!(between(&sq[..3], f, g, 5), Err(Error::TooFewVertices { .. })));
     }
 
     #[test]
     fn a_users_border_is_validated_as_an_analysis_validates_it() {
         let raw: Vec<[f64; 3]> = square(2).iter().map(to_xyz).collect();
-        let ok = interpolate_border(raw.clone(), None, &between(), 5).unwrap();
+        let ok = interpolate(raw.clone(), None, &motion(), 5).unwrap();
         assert_eq!(ok.border_indices, (0..8).collect::<Vec<_>>());
         for bad in [
             raw[..3].to_vec(),
             vec![[1.0, 2.0, 0.0]; 8],
             (0..8).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect(),
         ] {
-            let ours = interpolate_border(bad.clone(), None, &between(), 5).unwrap_err();
+            let ours = interpolate(bad.clone(), None, &motion(), 5).unwrap_err();
             assert_eq!(ours, prepare(vec![bad]).unwrap_err(), "the same refusal as the analysis");
         }
         // A clockwise border is walked anticlockwise, vertex 0 first, as the analysis does.
         let mut cw = raw.clone();
         cw[1..].reverse();
-        let reversed = interpolate_border(cw, None, &between(), 5).unwrap();
+        let reversed = interpolate(cw, None, &motion(), 5).unwrap();
         assert_eq!(reversed.border_indices, [0, 7, 6, 5, 4, 3, 2, 1]);
         assert_eq!(reversed.borders, ok.borders);
         // A square folded in half has no area of its own: against the flat one, it folds on,
         // in its own vertex order; against a reference of another vertex count, it is refused.
-        let half: Vec<[f64; 3]> =
-            apply_fold(&square(2), [PI / 4.0, 1.25 * PI]).iter().map(to_xyz).collect();
-        assert!(interpolate_border(half.clone(), None, &between(), 5).is_err());
-        let on = interpolate_border(half.clone(), Some(raw.clone()), &between(), 5).unwrap();
+        let half: Vec<[f64; 3]> = apply(&square(2), &Folding::new(Fold::new(PI / 4.0, 1.25 * PI)))
+            .iter()
+            .map(to_xyz)
+            .collect();
+        assert!(interpolate(half.clone(), None, &motion(), 5).is_err());
+        let on = interpolate(half.clone(), Some(raw.clone()), &motion(), 5).unwrap();
         assert_eq!(on.border_indices, (0..8).collect::<Vec<_>>());
         let half_points: Vec<Point> = half.iter().map(crate::border::from_xyz).collect();
         assert_eq!(
             on.borders,
-            interpolate(&half_points, [0.0, 1.0], [1.0, 2.0], 5).unwrap().borders
+            between(&half_points, Fold::new(0.0, 1.0), Fold::new(1.0, 2.0), 5).unwrap().borders
         );
         assert!(matches!(
-            interpolate_border(half, Some(raw[..6].to_vec()), &between(), 5),
+            interpolate(half, Some(raw[..6].to_vec()), &motion(), 5),
             Err(Error::FrameSizeMismatch { .. })
         ));
     }

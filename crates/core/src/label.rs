@@ -12,17 +12,19 @@
 //! The classes are those of Kamat, Borràs, Torras, "CloSE", Sec. IV (semantic labelling).
 //!
 //! ```
+//! use close_core::geometry::{Fold, Folding};
 //! use close_core::label::{label, FoldClass};
 //! use std::f64::consts::PI;
 //! // A square of 8 vertices with corners at 0, 2, 4, 6, folded along the diagonal 0–4.
-//! let l = label(8, &[0, 2, 4, 6], &[[0.0, PI]]);
+//! let l = label(8, &[0, 2, 4, 6], &[Folding::new(Fold::new(0.0, PI))]);
 //! assert_eq!(l.folds[0].class, FoldClass::DiagonallyFoldedInHalf);
 //! assert_eq!(l.folds[0].folded_corners, vec![2]);
 //! ```
 
 use serde::Serialize;
 
-use crate::angle::{angle_to_param, folds_vertex, wrap_tau, ON_LINE_EDGES};
+use crate::angle::{angle_to_param, wrap_tau, ON_LINE_EDGES};
+use crate::geometry::{Arc, Fold, Folding};
 
 /// More corners than this and the cloth is called circular.
 pub const CIRCULAR_CORNERS: usize = 20;
@@ -121,32 +123,20 @@ fn overlap(n: f64, a: f64, la: f64, b: f64, lb: f64) -> f64 {
         .sum()
 }
 
-/// Label a border of `n` vertices with corners at `corner_vertices` (sorted) and `folds`.
+/// Label a border of `n` vertices with corners at `corner_vertices` (sorted) and `folds`,
+/// in order. A fold of one arc is labelled by its fold (f1, f2). A fold of several arcs (a
+/// multi-arc fold) is classed by the pair that spans its arcs; its folded corners and share
+/// are those of its arcs, and its sentence says how many separate flaps turned over. Lines
+/// play no part.
 ///
 /// A cloth with no fold is "not folded" — unless it changed: see [`Label::changed_without_fold`].
-pub fn label(n: usize, corner_vertices: &[usize], folds: &[[f64; 2]]) -> Label {
-    label_arcs(n, corner_vertices, folds, &[])
-}
-
-/// [`label`] for folds that may turn several arcs over (`arcs[k]`, angles [a, b] each folded
-/// anticlockwise, for fold k; a fold with no entry, or one arc, is the arc of `folds[k]`).
-/// A multi-arc fold is classed by the pair that spans its arcs; its folded corners and share
-/// are those of its arcs, and its sentence says how many separate flaps turned over.
-pub fn label_arcs(
-    n: usize,
-    corner_vertices: &[usize],
-    folds: &[[f64; 2]],
-    arcs: &[&[[f64; 2]]],
-) -> Label {
+pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
     let circular = corner_vertices.len() > CIRCULAR_CORNERS || corner_vertices.is_empty();
     let fold_labels: Vec<FoldLabel> = folds
         .iter()
-        .enumerate()
-        .map(|(k, &f)| match arcs.get(k) {
-            Some(&several) if several.len() > 1 => {
-                label_multi_arc(n, corner_vertices, f, several, circular)
-            }
-            _ => label_fold(n, corner_vertices, f, circular),
+        .map(|f| match f.arcs.as_slice() {
+            several @ [_, _, ..] => label_multi_arc(n, corner_vertices, f.fold, several, circular),
+            _ => label_fold(n, corner_vertices, f.fold, circular),
         })
         .collect();
     let mut text = if corner_vertices.len() > CIRCULAR_CORNERS {
@@ -195,10 +185,10 @@ impl Label {
     }
 }
 
-fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> FoldLabel {
+fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLabel {
     let nf = n as f64;
-    let s1 = angle_to_param(fold[0], n);
-    let span = angle_to_param(fold[1] - fold[0], n);
+    let s1 = angle_to_param(fold.f1, n);
+    let span = angle_to_param(fold.f2 - fold.f1, n);
     let folded_percent = 100.0 * span / nf;
     let near = |v: f64, s: f64| {
         let d = (v - s).rem_euclid(nf);
@@ -210,7 +200,7 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
     for (k, &c) in corners.iter().enumerate() {
         if near(c as f64, s1) || near(c as f64, s2) {
             on_line.push(k + 1);
-        } else if folds_vertex(n, fold, c, ON_LINE_EDGES) {
+        } else if fold.arc().folds_vertex(n, c, ON_LINE_EDGES) {
             folded_corners.push(k + 1);
         }
     }
@@ -281,7 +271,7 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
             },
         }
     };
-    let border_degrees = fold.map(|f| wrap_tau(f).to_degrees());
+    let border_degrees = [fold.f1, fold.f2].map(|f| wrap_tau(f).to_degrees());
     let mut text =
         fold_text(class, folded_percent, &folded_corners, &on_line, &corner_sides, &cut_sides);
     if circular {
@@ -308,20 +298,21 @@ fn label_fold(n: usize, corners: &[usize], fold: [f64; 2], circular: bool) -> Fo
 fn label_multi_arc(
     n: usize,
     corners: &[usize],
-    fold: [f64; 2],
-    arcs: &[[f64; 2]],
+    fold: Fold,
+    arcs: &[Arc],
     circular: bool,
 ) -> FoldLabel {
     let mut out = label_fold(n, corners, fold, circular);
     let nf = n as f64;
     let on_arcs = |v: usize| {
-        arcs.iter().any(|&[a, b]| {
+        arcs.iter().any(|&Arc { a, b }| {
             (v as f64 - angle_to_param(a, n)).rem_euclid(nf) < angle_to_param(b - a, n)
         })
     };
     out.folded_corners.retain(|&c| on_arcs(corners[c - 1]));
     out.corner_sides.retain(|s| on_arcs(s.vertex));
-    out.folded_percent = arcs.iter().map(|&[a, b]| 100.0 * angle_to_param(b - a, n) / nf).sum();
+    out.folded_percent =
+        arcs.iter().map(|&Arc { a, b }| 100.0 * angle_to_param(b - a, n) / nf).sum();
     let flaps = match arcs.len() {
         2 => "both".to_string(),
         k => format!("all {k}"),
@@ -401,13 +392,19 @@ mod tests {
     use std::f64::consts::PI;
 
     const SQUARE: [usize; 4] = [0, 19, 38, 57];
+
+    /// Ordinary folds, one arc each.
+    fn folds(pairs: &[[f64; 2]]) -> Vec<Folding> {
+        pairs.iter().map(|&f| Folding::new(Fold::from(f))).collect()
+    }
     fn angle(s: f64) -> f64 {
         param_to_angle(s, 76)
     }
 
     #[test]
     fn classes_of_the_napkin_folds() {
-        let class = |a: f64, b: f64| label(76, &SQUARE, &[[angle(a), angle(b)]]).folds[0].class;
+        let class =
+            |a: f64, b: f64| label(76, &SQUARE, &folds(&[[angle(a), angle(b)]])).folds[0].class;
         assert_eq!(class(9.5, 47.5), FoldClass::FoldedInHalf);
         assert_eq!(class(0.0, 38.0), FoldClass::DiagonallyFoldedInHalf);
         assert_eq!(class(57.0, 19.0), FoldClass::DiagonallyFoldedInHalf);
@@ -419,7 +416,7 @@ mod tests {
 
     #[test]
     fn corner_fold_reports_its_sides() {
-        let l = label(76, &SQUARE, &[[angle(12.0), angle(26.0)]]);
+        let l = label(76, &SQUARE, &folds(&[[angle(12.0), angle(26.0)]]));
         let c = &l.folds[0].corner_sides[0];
         assert_eq!((c.corner, c.vertex), (2, 19));
         assert!((c.before.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
@@ -431,7 +428,7 @@ mod tests {
     fn fold_on_a_corner_is_not_a_coin_flip() {
         // A hair either side of the corner gives the same answer.
         for eps in [-1e-9, 0.0, 1e-9] {
-            let l = label(76, &SQUARE, &[[angle(eps), angle(38.0 - eps)]]);
+            let l = label(76, &SQUARE, &folds(&[[angle(eps), angle(38.0 - eps)]]));
             assert_eq!(l.folds[0].folded_corners, vec![2]);
             assert_eq!(l.folds[0].corners_on_fold_line, vec![1, 3]);
         }
@@ -442,13 +439,21 @@ mod tests {
         // A pentagon of 172 vertices (corners as `physics__pentagon_f1_half_axis` finds
         // them) folded along its axis: a vertex past corner 4 to the middle of side 1–2.
         let pentagon = [0, 28, 60, 99, 140];
-        let l = label(172, &pentagon, &[[param_to_angle(100.1, 172), param_to_angle(14.0, 172)]]);
+        let l = label(
+            172,
+            &pentagon,
+            &folds(&[[param_to_angle(100.1, 172), param_to_angle(14.0, 172)]]),
+        );
         let fold = &l.folds[0];
         assert_eq!(fold.class, FoldClass::FoldedInHalf, "{}", l.text);
         assert_eq!(fold.corners_on_fold_line, vec![4]);
         assert!(l.text.contains("through corner 4") && !l.text.contains("side 4–5"), "{}", l.text);
         // Off the middle of the opposite side, it is askew.
-        let off = label(172, &pentagon, &[[param_to_angle(100.1, 172), param_to_angle(22.0, 172)]]);
+        let off = label(
+            172,
+            &pentagon,
+            &folds(&[[param_to_angle(100.1, 172), param_to_angle(22.0, 172)]]),
+        );
         assert_eq!(off.folds[0].class, FoldClass::FoldedInHalfAskew, "{}", off.text);
     }
 
@@ -457,7 +462,7 @@ mod tests {
         let mut l = label(76, &SQUARE, &[]);
         l.changed_without_fold(&[1]);
         assert_eq!(l.text, "Cloth has 4 corners. It changed, but no fold found (step 1).");
-        let mut folded = label(76, &SQUARE, &[[angle(9.5), angle(47.5)]]);
+        let mut folded = label(76, &SQUARE, &folds(&[[angle(9.5), angle(47.5)]]));
         let before = folded.text.clone();
         folded.changed_without_fold(&[2, 3]);
         assert_eq!(folded.text, format!("{before} It changed, but no fold found (steps 2, 3)."));
@@ -469,7 +474,7 @@ mod tests {
     #[test]
     fn round_cloth() {
         let corners: Vec<usize> = (0..64).collect();
-        let l = label(64, &corners, &[[0.0, PI]]);
+        let l = label(64, &corners, &folds(&[[0.0, PI]]));
         assert!(l.circular);
         assert_eq!(l.folds[0].class, FoldClass::FoldedInHalf);
         assert!(l.text.starts_with("Cloth is circular"));
@@ -479,7 +484,7 @@ mod tests {
 
     #[test]
     fn a_cloth_without_corners_is_told_by_its_border() {
-        let l = label(160, &[], &[[PI / 2.0, 3.0 * PI / 2.0]]);
+        let l = label(160, &[], &folds(&[[PI / 2.0, 3.0 * PI / 2.0]]));
         assert_eq!(l.corners, 0);
         assert!(l.text.starts_with("Cloth has no corners."), "{}", l.text);
         let fold = &l.folds[0];

@@ -15,7 +15,7 @@
 //! binary are crates of their own above it.
 //!
 //! The modules import one way; each uses only those to its left: [`border`] (validation,
-//! normalisation) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates, a fold
+//! normalisation) → [`geometry`] (fold, arc, line) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates, a fold
 //! applied) → [`close`] (corners, the CloSE value) / [`label`] / [`metrics`] /
 //! [`interpolate`] → [`analysis`] (the whole pipeline) → [`plan`]. Below them all: [`angle`],
 //! [`error`], [`budget`], [`rng`].
@@ -42,6 +42,7 @@ pub mod close;
 pub mod disk;
 pub mod error;
 pub mod fold;
+pub mod geometry;
 pub mod gli;
 pub mod interpolate;
 pub mod label;
@@ -52,3 +53,4 @@ pub mod rng;
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
 pub use error::{Error, Result};
 pub use fold::FoldMethod;
+pub use geometry::{Arc, Fold, Folding, Line};

@@ -27,6 +27,7 @@
 use serde::Serialize;
 
 use crate::border::{Normalisation, Point};
+use crate::geometry::{Point2, Vector2};
 
 /// Error of a predicted end border against the true one.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -78,8 +79,8 @@ pub struct RigidMotion {
     /// Anticlockwise rotation, radians.
     pub angle: f64,
     /// The rotation is about this point, which then moves to `to`.
-    from: [f64; 2],
-    to: [f64; 2],
+    from: Point2,
+    to: Point2,
 }
 
 impl RigidMotion {
@@ -89,31 +90,31 @@ impl RigidMotion {
     pub fn fit_xy(a: &[Point], b: &[Point]) -> RigidMotion {
         let n = a.len().min(b.len());
         if n == 0 {
-            return RigidMotion { angle: 0.0, from: [0.0; 2], to: [0.0; 2] };
+            return RigidMotion { angle: 0.0, from: Point2::origin(), to: Point2::origin() };
         }
         let (a, b) = (&a[..n], &b[..n]);
         let centroid = |s: &[Point]| {
             let (x, y) = s.iter().fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
-            [x / n as f64, y / n as f64]
+            Point2::new(x / n as f64, y / n as f64)
         };
         let (from, to) = (centroid(a), centroid(b));
         let (dot, cross) = a.iter().zip(b).fold((0.0, 0.0), |(dot, cross), (p, q)| {
-            let (px, py, qx, qy) = (p.x - from[0], p.y - from[1], q.x - to[0], q.y - to[1]);
+            let (px, py, qx, qy) = (p.x - from.x, p.y - from.y, q.x - to.x, q.y - to.y);
             (dot + px * qx + py * qy, cross + px * qy - py * qx)
         });
         RigidMotion { angle: cross.atan2(dot), from, to }
     }
 
     /// `v` (an XY direction) turned by the motion's rotation.
-    pub fn rotate(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+    pub fn rotate(&self, v: Vector2) -> Vector2 {
         let (sin, cos) = self.angle.sin_cos();
-        [cos * x - sin * y, sin * x + cos * y]
+        Vector2::new(cos * v.x - sin * v.y, sin * v.x + cos * v.y)
     }
 
     /// `p` moved.
     pub fn apply(&self, p: &Point) -> Point {
-        let [x, y] = self.rotate([p.x - self.from[0], p.y - self.from[1]]);
-        Point::new(self.to[0] + x, self.to[1] + y, p.z)
+        let v = self.rotate(Vector2::new(p.x - self.from.x, p.y - self.from.y));
+        Point::new(self.to.x + v.x, self.to.y + v.y, p.z)
     }
 }
 

@@ -23,11 +23,12 @@
 //!
 //! ```
 //! use close_core::border::Point;
+//! use close_core::geometry::Fold;
 //! use close_core::plan::plan;
 //! use std::f64::consts::PI;
 //! let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
 //! // Diagonal fold from corner 1 (vertex 0) to corner 3 (vertex 2): corner 2 goes onto corner 4.
-//! let p = plan(&square, &[0, 1, 2, 3], &[], [0.0, PI]).unwrap();
+//! let p = plan(&square, &[0, 1, 2, 3], &[], Fold::new(0.0, PI)).unwrap();
 //! assert_eq!(p.case, close_core::plan::Case::Fold);
 //! assert_eq!(p.steps[0].corners, vec![2]);
 //! let to = p.steps[0].picks[0].to;
@@ -39,13 +40,11 @@ use std::collections::BTreeSet;
 use serde::Serialize;
 
 use crate::analysis::Analysis;
-use crate::angle::{
-    angle_to_param, distance, edge, folds_vertex, param_to_angle, wrap_tau, ON_LINE_EDGES,
-};
+use crate::angle::{angle_to_param, distance, edge, param_to_angle, ON_LINE_EDGES};
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
-use crate::fold::reflect::{apply_arcs, fold_line, folded_vertices, reflect_xy};
-use crate::fold::Line;
+use crate::fold::apply;
+use crate::geometry::{Arc, Fold, Folding, Line};
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -110,7 +109,7 @@ impl Case {
 pub struct PlanStep {
     pub action: Action,
     /// The fold (f1, f2) in angles.
-    pub fold: [f64; 2],
+    pub fold: Fold,
     /// 1-based numbers of every corner the step moves.
     pub corners: Vec<usize>,
     /// At most two grasps.
@@ -161,7 +160,9 @@ fn grasped(border: &[Point], moved: &[usize], arc: &[usize], p1: &Point, p2: &Po
     match moved {
         [] => {
             // No corner: the farthest vertex from the line (ties go to the earlier vertex).
-            let distance = |v: usize| (reflect_xy(&border[v], p1, p2) - border[v]).norm();
+            let line = Line::through(p1, p2);
+            let reflect = |p: &Point| line.map_or(*p, |l| l.reflect(p));
+            let distance = |v: usize| (reflect(&border[v]) - border[v]).norm();
             let far = arc.iter().copied().fold(None, |best: Option<usize>, v| match best {
                 Some(b) if distance(b) >= distance(v) => Some(b),
                 _ => Some(v),
@@ -184,30 +185,29 @@ fn grasped(border: &[Point], moved: &[usize], arc: &[usize], p1: &Point, p2: &Po
     }
 }
 
-/// Corners strictly inside the folded arc of `fold`, off the line ([`folds_vertex`], as in
+/// Corners strictly inside the folded `arc`, off the line ([`Arc::folds_vertex`], as in
 /// [`crate::label`]), as vertex indices.
-fn corners_moved(n: usize, corners: &[usize], fold: [f64; 2]) -> Vec<usize> {
-    corners.iter().copied().filter(|&c| folds_vertex(n, fold, c, ON_LINE_EDGES)).collect()
+fn corners_moved(n: usize, corners: &[usize], arc: Arc) -> Vec<usize> {
+    corners.iter().copied().filter(|&c| arc.folds_vertex(n, c, ON_LINE_EDGES)).collect()
 }
 
-/// A step that folds `before` along `fold` (or, `unfold`, takes the folded state back).
-/// `arcs` are the arcs the fold turns (a multi-arc fold; `[fold]` otherwise). `line` is the
-/// line the fold is made along (by default through its two fold points of `before`);
-/// `from_state` gives where a grasped vertex is now when the step starts a fold.
+/// A step that makes `folding` on `before` (or, `unfold`, takes the folded state back):
+/// its arcs turn over its line ([`Folding::line_on`]); `from_state` gives where a grasped
+/// vertex is now when the step starts a fold.
 fn step(
     action: Action,
     before: &[Point],
     corners: &[usize],
-    (fold, arcs): ([f64; 2], &[[f64; 2]]),
-    line: Option<Line>,
+    folding: &Folding,
     from_state: &[Point],
 ) -> PlanStep {
-    let n = before.len();
-    let (p1, p2) = (point_at(before, param(fold[0], n)), point_at(before, param(fold[1], n)));
-    let line = line.or_else(|| fold_line(before, fold, None));
+    let (n, fold) = (before.len(), folding.fold);
+    let (p1, p2) = (point_at(before, param(fold.f1, n)), point_at(before, param(fold.f2, n)));
+    let line = folding.line_on(before);
     let reflect = |p: &Point| line.as_ref().map_or(*p, |l| l.reflect(p));
-    let arc: Vec<usize> = arcs.iter().flat_map(|&a| folded_vertices(n, a)).collect();
-    let moved: Vec<usize> = arcs.iter().flat_map(|&a| corners_moved(n, corners, a)).collect();
+    let arc: Vec<usize> = folding.arcs.iter().flat_map(|a| a.folded_vertices(n)).collect();
+    let moved: Vec<usize> =
+        folding.arcs.iter().flat_map(|&a| corners_moved(n, corners, a)).collect();
     let picks = grasped(before, &moved, &arc, &p1, &p2)
         .into_iter()
         .map(|v| {
@@ -229,46 +229,34 @@ fn step(
     PlanStep { action, fold, corners: moved.iter().map(|&c| number(c)).collect(), picks }
 }
 
-fn check_fold(name: &str, fold: [f64; 2], n: usize) -> Result<()> {
-    if !(fold[0].is_finite() && fold[1].is_finite()) {
+fn check_fold(name: &str, fold: Fold, n: usize) -> Result<()> {
+    if !fold.is_finite() {
         return Err(Error::InvalidArgument(format!(
             "{name} ({}, {}) is not finite",
-            fold[0], fold[1]
+            fold.f1, fold.f2
         )));
     }
     let edge = edge(n);
-    if distance(fold[0], fold[1]) <= edge {
+    if distance(fold.f1, fold.f2) <= edge {
         return Err(Error::InvalidArgument(format!(
             "{name} ({:.4}, {:.4}): its two angles must be more than one edge ({edge:.4} rad) apart",
-            fold[0], fold[1]
+            fold.f1, fold.f2
         )));
     }
     Ok(())
 }
 
-/// Plan from the current state (the flat border, its corner vertices, the folds applied so
-/// far in order) to the goal fold (g1, g2), all folds in angles. Each current fold is made
-/// along the line through its two fold points of the state before it.
+/// Plan from the current state (the flat border, its corner vertices, the folds made so far
+/// in order) to the goal fold (g1, g2), all folds in angles. Each current fold turns its
+/// arcs (a fold without any turns its own arc) over its line, by default the line through
+/// its two fold points of the state before it ([`Folding::line_on`]): a fold through two
+/// stacked layers has its two fold points (nearly) on top of each other, so the line
+/// through them is no guide, and an analysis gives its line.
 pub fn plan(
     flat: &[Point],
     corner_vertices: &[usize],
-    current_folds: &[[f64; 2]],
-    goal: [f64; 2],
-) -> Result<Plan> {
-    plan_along(flat, corner_vertices, current_folds, &vec![None; current_folds.len()], &[], goal)
-}
-
-/// [`plan`] with the line each current fold was made along where it is known (`lines[k]`
-/// for fold k): a fold through two stacked layers has its two fold points (nearly) on top of
-/// each other, so the line through them is no guide, and the analysis gives its line. A
-/// multi-arc fold k turns only its `arcs[k]` (a fold without an entry turns its own arc).
-fn plan_along(
-    flat: &[Point],
-    corner_vertices: &[usize],
-    current_folds: &[[f64; 2]],
-    lines: &[Option<Line>],
-    arcs: &[&[[f64; 2]]],
-    goal: [f64; 2],
+    current_folds: &[Folding],
+    goal: Fold,
 ) -> Result<Plan> {
     let n = flat.len();
     if n < crate::border::MIN_VERTICES {
@@ -283,66 +271,61 @@ fn plan_along(
         )));
     }
     check_fold("the goal fold", goal, n)?;
-    let goal = goal.map(wrap_tau);
-    for (k, &f) in current_folds.iter().enumerate() {
-        check_fold(&format!("current fold {}", k + 1), f, n)?;
+    let goal = goal.wrapped();
+    for (k, f) in current_folds.iter().enumerate() {
+        check_fold(&format!("current fold {}", k + 1), f.fold, n)?;
     }
+    let current_folds: Vec<Folding> = current_folds
+        .iter()
+        .map(|f| match f.arcs.is_empty() {
+            true => Folding { arcs: vec![f.fold.arc()], ..f.clone() },
+            false => f.clone(),
+        })
+        .collect();
     let corners: Vec<usize> =
         corner_vertices.iter().copied().collect::<BTreeSet<_>>().into_iter().collect();
     // The line of each current fold, and states[k], the border after the first k folds.
     let mut states = vec![flat.to_vec()];
-    let mut made_along = Vec::with_capacity(current_folds.len());
-    let own: Vec<[[f64; 2]; 1]> = current_folds.iter().map(|&f| [f]).collect();
-    let arcs_of = |k: usize| -> &[[f64; 2]] {
-        arcs.get(k).copied().filter(|a| !a.is_empty()).unwrap_or(&own[k])
-    };
-    for (k, &f) in current_folds.iter().enumerate() {
+    let mut made: Vec<Folding> = Vec::with_capacity(current_folds.len());
+    for f in &current_folds {
         let before = states.last().expect("the flat state");
-        let line = lines.get(k).copied().flatten().or_else(|| fold_line(before, f, None));
-        let next =
-            line.as_ref().map_or_else(|| before.clone(), |l| apply_arcs(before, arcs_of(k), l));
-        made_along.push(line);
-        states.push(next);
+        let along = Folding { line: f.line_on(before), ..f.clone() };
+        states.push(apply(before, &along));
+        made.push(along);
     }
     let current = states.last().expect("the flat state");
-    if let [only] = current_folds {
+    if let [only] = current_folds.as_slice() {
         let same = |a: f64, b: f64| distance(a, b) <= SAME_FOLD_EDGES * edge(n);
-        if same(only[0], goal[0]) && same(only[1], goal[1]) {
+        if same(only.fold.f1, goal.f1) && same(only.fold.f2, goal.f2) {
             return Ok(Plan { case: Case::AlreadyThere, steps: Vec::new() });
         }
     }
+    let goal_fold = Folding::new(goal);
     if current_folds.is_empty() {
         return Ok(Plan {
             case: Case::Fold,
-            steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat)],
+            steps: vec![step(Action::Fold, flat, &corners, &goal_fold, flat)],
         });
     }
-    let folded_now: BTreeSet<usize> = (0..current_folds.len())
-        .flat_map(|k| {
-            arcs_of(k).iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()
+    let folded_now: BTreeSet<usize> = current_folds
+        .iter()
+        .flat_map(|f| {
+            f.arcs.iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()
         })
         .collect();
-    let folded_by_goal: BTreeSet<usize> = corners_moved(n, &corners, goal).into_iter().collect();
+    let folded_by_goal: BTreeSet<usize> =
+        corners_moved(n, &corners, goal.arc()).into_iter().collect();
     if folded_now == folded_by_goal {
         return Ok(Plan {
             case: Case::Direct,
-            steps: vec![step(Action::Fold, flat, &corners, (goal, &[goal]), None, current)],
+            steps: vec![step(Action::Fold, flat, &corners, &goal_fold, current)],
         });
     }
-    let mut steps: Vec<PlanStep> = (0..current_folds.len())
+    let mut steps: Vec<PlanStep> = (0..made.len())
         .rev()
-        .map(|k| {
-            step(
-                Action::Unfold,
-                &states[k],
-                &corners,
-                (current_folds[k], arcs_of(k)),
-                made_along[k],
-                &states[k],
-            )
-        })
+        .map(|k| step(Action::Unfold, &states[k], &corners, &made[k], &states[k]))
         .collect();
-    steps.push(step(Action::Fold, flat, &corners, (goal, &[goal]), None, flat));
+    steps.push(step(Action::Fold, flat, &corners, &goal_fold, flat));
     Ok(Plan { case: Case::UnfoldThenFold, steps })
 }
 
@@ -350,16 +333,10 @@ fn plan_along(
 /// along the line the analysis reports for it, so the plan starts from its predicted end), with
 /// every pick's `vertex` given as the index in the analysis's INPUT (through
 /// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
-pub fn plan_for(analysis: &Analysis, goal: [f64; 2]) -> Result<Plan> {
+pub fn plan_for(analysis: &Analysis, goal: Fold) -> Result<Plan> {
     // Each fold along the line the analysis made it along (its `predicted_end`).
-    let mut plan = plan_along(
-        analysis.start_border(),
-        &analysis.corner_vertices,
-        &analysis.folds,
-        &analysis.fold_lines(),
-        &analysis.fold_arcs(),
-        goal,
-    )?;
+    let mut plan =
+        plan(analysis.start_border(), &analysis.corner_vertices, &analysis.foldings(), goal)?;
     for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
         pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
             Error::InvalidArgument(format!(
@@ -378,8 +355,8 @@ pub struct Answer<'a> {
     pub case: Case,
     pub steps: Vec<PlanStep>,
     /// In [0, 2π), as the plan's steps.
-    pub goal: [f64; 2],
-    pub folds: &'a [[f64; 2]],
+    pub goal: Fold,
+    pub folds: &'a [Fold],
     /// The line each current fold was made along (as the analysis's `steps[k].line`).
     pub lines: Vec<Option<Line>>,
     pub corners: &'a [f64],
@@ -388,14 +365,14 @@ pub struct Answer<'a> {
 }
 
 /// [`plan_for`] with the analysed state it starts from: the answer of `POST /api/plan`.
-pub fn answer(analysis: &Analysis, goal: [f64; 2]) -> Result<Answer<'_>> {
+pub fn answer(analysis: &Analysis, goal: Fold) -> Result<Answer<'_>> {
     let plan = plan_for(analysis, goal)?;
     Ok(Answer {
         case: plan.case,
         steps: plan.steps,
-        goal: goal.map(wrap_tau),
+        goal: goal.wrapped(),
         folds: &analysis.folds,
-        lines: analysis.fold_lines(),
+        lines: analysis.foldings().iter().map(|f| f.line).collect(),
         corners: &analysis.corners,
         start_border: analysis.start_border().iter().map(to_xyz).collect(),
         border_indices: &analysis.border_indices,
@@ -423,6 +400,17 @@ mod tests {
         (points, (0..m).map(|c| c * per_side).collect())
     }
 
+    /// [`plan`] of ordinary folds given as pairs.
+    fn plan_folds(
+        flat: &[Point],
+        corners: &[usize],
+        current: &[[f64; 2]],
+        goal: [f64; 2],
+    ) -> Result<Plan> {
+        let current: Vec<Folding> = current.iter().map(|&f| Folding::new(f.into())).collect();
+        plan(flat, corners, &current, goal.into())
+    }
+
     fn angle(s: f64, n: usize) -> f64 {
         param_to_angle(s, n)
     }
@@ -445,7 +433,7 @@ mod tests {
     #[test]
     fn diagonal_goal_puts_the_one_corner_on_the_opposite_corner() {
         let (sq, corners) = square();
-        let p = plan(&sq, &corners, &[], [angle(0.0, 16), angle(8.0, 16)]).unwrap();
+        let p = plan_folds(&sq, &corners, &[], [angle(0.0, 16), angle(8.0, 16)]).unwrap();
         assert_eq!(p.case, Case::Fold);
         assert_eq!(p.steps.len(), 1);
         let s = &p.steps[0];
@@ -458,7 +446,7 @@ mod tests {
     fn half_fold_picks_both_corners() {
         let (sq, corners) = square();
         // Line x = 0.5 from the bottom middle (2) to the top middle (10): right half folded.
-        let p = plan(&sq, &corners, &[], [angle(2.0, 16), angle(10.0, 16)]).unwrap();
+        let p = plan_folds(&sq, &corners, &[], [angle(2.0, 16), angle(10.0, 16)]).unwrap();
         let s = &p.steps[0];
         assert_eq!(s.corners, vec![2, 3]);
         assert_eq!(s.picks.len(), 2);
@@ -471,7 +459,7 @@ mod tests {
         let (sq, corners) = square();
         let current = [angle(2.0, 16), angle(10.0, 16)];
         // A slightly askew fold of the same right side moves corners 2 and 3 again.
-        let p = plan(&sq, &corners, &[current], [angle(3.0, 16), angle(9.0, 16)]).unwrap();
+        let p = plan_folds(&sq, &corners, &[current], [angle(3.0, 16), angle(9.0, 16)]).unwrap();
         assert_eq!(p.case, Case::Direct);
         assert_eq!(p.steps.len(), 1);
         let s = &p.steps[0];
@@ -486,12 +474,12 @@ mod tests {
         let (sq, corners) = square();
         let current = [angle(2.0, 16), angle(10.0, 16)];
         // Top half instead: corners 3 and 4.
-        let p = plan(&sq, &corners, &[current], [angle(6.0, 16), angle(14.0, 16)]).unwrap();
+        let p = plan_folds(&sq, &corners, &[current], [angle(6.0, 16), angle(14.0, 16)]).unwrap();
         assert_eq!(p.case, Case::UnfoldThenFold);
         let actions: Vec<Action> = p.steps.iter().map(|s| s.action).collect();
         assert_eq!(actions, [Action::Unfold, Action::Fold]);
         let (unfold, fold) = (&p.steps[0], &p.steps[1]);
-        assert_eq!((unfold.fold, unfold.corners.clone()), (current, vec![2, 3]));
+        assert_eq!((unfold.fold, unfold.corners.clone()), (current.into(), vec![2, 3]));
         assert_pick(&unfold.picks[0], 4, [0.0, 0.0], [1.0, 0.0]);
         assert_pick(&unfold.picks[1], 8, [0.0, 1.0], [1.0, 1.0]);
         assert_eq!(fold.corners, vec![3, 4]);
@@ -504,7 +492,7 @@ mod tests {
         let (sq, corners) = square();
         // A detected diagonal fold just short of 2π and just past π: still corner 2 alone.
         let detected = [TAU - 1e-9, PI + 1e-9];
-        let p = plan(&sq, &corners, &[detected], [angle(1.0, 16), angle(7.0, 16)]).unwrap();
+        let p = plan_folds(&sq, &corners, &[detected], [angle(1.0, 16), angle(7.0, 16)]).unwrap();
         assert_eq!(p.case, Case::Direct);
         assert_eq!(p.steps[0].corners, vec![2]);
         let pick = &p.steps[0].picks[0];
@@ -518,10 +506,10 @@ mod tests {
         let (sq, corners) = square();
         // Right quarter over (x = 0.75), then the stack's bottom half up (y = 0.5).
         let current = [[angle(3.0, 16), angle(9.0, 16)], [angle(14.0, 16), angle(6.0, 16)]];
-        let p = plan(&sq, &corners, &current, [angle(0.0, 16), angle(8.0, 16)]).unwrap();
+        let p = plan_folds(&sq, &corners, &current, [angle(0.0, 16), angle(8.0, 16)]).unwrap();
         assert_eq!(p.case, Case::UnfoldThenFold);
         let summary: Vec<(Action, [f64; 2], Vec<usize>)> =
-            p.steps.iter().map(|s| (s.action, s.fold, s.corners.clone())).collect();
+            p.steps.iter().map(|s| (s.action, s.fold.into(), s.corners.clone())).collect();
         assert_eq!(
             summary,
             vec![
@@ -543,7 +531,7 @@ mod tests {
         let (house, corners) =
             polygon(&[[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [3.0, 3.0], [0.0, 2.0]], 4);
         let n = house.len();
-        let p = plan(&house, &corners, &[], [angle(6.0, n), angle(18.0, n)]).unwrap();
+        let p = plan_folds(&house, &corners, &[], [angle(6.0, n), angle(18.0, n)]).unwrap();
         let s = &p.steps[0];
         assert_eq!(s.corners, vec![3, 4, 5]);
         assert_eq!(s.picks.len(), 2);
@@ -564,7 +552,7 @@ mod tests {
         let circle: Vec<Point> = (0..16)
             .map(|k| Point::new(angle(k as f64, 16).cos(), angle(k as f64, 16).sin(), 0.0))
             .collect();
-        let p = plan(&circle, &[], &[], [angle(2.0, 16), angle(6.0, 16)]).unwrap();
+        let p = plan_folds(&circle, &[], &[], [angle(2.0, 16), angle(6.0, 16)]).unwrap();
         assert!(p.steps[0].corners.is_empty());
         assert_eq!(p.steps[0].picks.iter().map(|k| k.vertex).collect::<Vec<_>>(), vec![4]);
     }
@@ -574,18 +562,19 @@ mod tests {
         let (sq, corners) = square();
         let current = [angle(2.0, 16), angle(10.0, 16)];
         // The same fold, given one turn further round: already there, no motion.
-        let p = plan(&sq, &corners, &[current], [current[0] + TAU, current[1] - TAU]).unwrap();
+        let p =
+            plan_folds(&sq, &corners, &[current], [current[0] + TAU, current[1] - TAU]).unwrap();
         assert_eq!(p.case, Case::AlreadyThere);
         assert!(p.steps.is_empty());
         // A quarter of an edge off is the same fold; a whole edge is not.
         assert_eq!(
-            plan(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]])
+            plan_folds(&sq, &corners, &[current], [current[0] + angle(0.25, 16), current[1]])
                 .unwrap()
                 .case,
             Case::AlreadyThere
         );
         assert_eq!(
-            plan(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]])
+            plan_folds(&sq, &corners, &[current], [current[0] + angle(1.0, 16), current[1]])
                 .unwrap()
                 .case,
             Case::Direct
@@ -595,8 +584,8 @@ mod tests {
     #[test]
     fn goal_angles_come_back_wrapped() {
         let (sq, corners) = square();
-        let p = plan(&sq, &corners, &[], [7.0, 100.0]).unwrap();
-        let [g1, g2] = p.steps[0].fold;
+        let p = plan_folds(&sq, &corners, &[], [7.0, 100.0]).unwrap();
+        let Fold { f1: g1, f2: g2 } = p.steps[0].fold;
         assert!((0.0..TAU).contains(&g1) && (0.0..TAU).contains(&g2));
         assert!((g1 - (7.0 - TAU)).abs() < 1e-12 && (g2 - 100.0f64.rem_euclid(TAU)).abs() < 1e-12);
     }
@@ -615,11 +604,12 @@ mod tests {
     fn bad_goals_are_named() {
         let (sq, corners) = square();
         let message = |r: Result<Plan>| r.unwrap_err().to_string();
-        assert!(message(plan(&sq, &corners, &[], [f64::NAN, 1.0])).contains("not finite"));
-        assert!(message(plan(&sq, &corners, &[], [1.0, 1.0 + angle(1.0, 16)]))
+        assert!(message(plan_folds(&sq, &corners, &[], [f64::NAN, 1.0])).contains("not finite"));
+        assert!(message(plan_folds(&sq, &corners, &[], [1.0, 1.0 + angle(1.0, 16)]))
             .contains("more than one edge"));
-        assert!(message(plan(&sq, &corners, &[], [0.1, 0.1 + TAU])).contains("more than one edge"));
-        assert!(message(plan(&sq, &[3, 99], &[], [0.0, PI])).contains("corner vertex 99"));
-        assert!(message(plan(&sq[..3], &[], &[], [0.0, PI])).contains("too few vertices"));
+        assert!(message(plan_folds(&sq, &corners, &[], [0.1, 0.1 + TAU]))
+            .contains("more than one edge"));
+        assert!(message(plan_folds(&sq, &[3, 99], &[], [0.0, PI])).contains("corner vertex 99"));
+        assert!(message(plan_folds(&sq[..3], &[], &[], [0.0, PI])).contains("too few vertices"));
     }
 }

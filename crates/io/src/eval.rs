@@ -21,6 +21,7 @@ use close_core::analysis::{analyze_with, Analysis, Options};
 use close_core::angle;
 use close_core::error::Error;
 use close_core::fold::FoldMethod;
+use close_core::geometry::Fold;
 
 /// The outcome for one sample. Rows scored elsewhere (another process, another machine)
 /// come back as JSON and are reported as they were.
@@ -192,8 +193,8 @@ pub fn score(sample: &Sample, analysis: std::result::Result<&Analysis, &Error>) 
             result.rmse = a.metrics.map(|m| m.rmse);
             result.frechet = a.metrics.map(|m| m.frechet);
             result.aligned_rmse = a.metrics.map(|m| m.aligned_rmse);
-            let error = |found: &[f64; 2], truth: &[f64; 2]| {
-                [angle::distance(found[0], truth[0]), angle::distance(found[1], truth[1])]
+            let error = |found: &Fold, truth: &Fold| {
+                [angle::distance(found.f1, truth.f1), angle::distance(found.f2, truth.f2)]
             };
             if let (Some(found), Some(truth)) =
                 (a.folds.first(), truth_folds.as_ref().and_then(|t| t.first()))

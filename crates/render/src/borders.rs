@@ -29,8 +29,8 @@ use close_core::analysis::Analysis;
 use close_core::angle;
 use close_core::border::Point;
 use close_core::error::Result;
-use close_core::fold::reflect::{apply_fold_line, fold_line};
-use close_core::fold::Line;
+use close_core::fold::apply;
+use close_core::geometry::{Fold, Folding, Line};
 
 /// One border to draw: vertices (x, y, z), colour, line width in pixels, legend name.
 struct Trace {
@@ -52,8 +52,8 @@ struct FoldMark {
 /// The segment of `line` across `points`: from the least to the greatest projection of a
 /// point on the line's direction.
 fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
-    let [px, py] = line.point;
-    let [dx, dy] = line.direction;
+    let (px, py) = (line.point.x, line.point.y);
+    let (dx, dy) = (line.direction.x, line.direction.y);
     let t = points.iter().map(|p| (p.x - px) * dx + (p.y - py) * dy);
     let (lo, hi) = t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
     [[px + lo * dx, py + lo * dy], [px + hi * dx, py + hi * dy]]
@@ -64,7 +64,7 @@ fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
 /// fold points; `None` for a fold whose points coincide and has no line.
 fn fold_segments(
     start: &[Point],
-    folds: &[[f64; 2]],
+    folds: &[Fold],
     lines: &[Option<Line>],
 ) -> Vec<Option<[[f64; 2]; 2]>> {
     let mut state = start.to_vec();
@@ -72,16 +72,16 @@ fn fold_segments(
         .iter()
         .enumerate()
         .map(|(k, &fold)| {
-            let line = lines.get(k).copied().flatten().or_else(|| fold_line(&state, fold, None))?;
+            let line = lines.get(k).copied().flatten().or_else(|| fold.line_on(&state, None))?;
             let segment = across(&state, &line);
-            state = apply_fold_line(&state, fold, &line);
+            state = apply(&state, &Folding { fold, arcs: vec![fold.arc()], line: Some(line) });
             Some(segment)
         })
         .collect()
 }
 
 /// The found folds' lines, and the true folds' beside them with the found fold's angle errors.
-fn fold_marks(analysis: &Analysis, truth: &[[f64; 2]]) -> Vec<FoldMark> {
+fn fold_marks(analysis: &Analysis, truth: &[Fold]) -> Vec<FoldMark> {
     let numbered = |what: &str, k: usize, count: usize| {
         if count > 1 {
             format!("{what} {}", k + 1)
@@ -89,7 +89,8 @@ fn fold_marks(analysis: &Analysis, truth: &[[f64; 2]]) -> Vec<FoldMark> {
             what.to_string()
         }
     };
-    let found = fold_segments(analysis.start_border(), &analysis.folds, &analysis.fold_lines());
+    let lines: Vec<Option<Line>> = analysis.foldings().iter().map(|f| f.line).collect();
+    let found = fold_segments(analysis.start_border(), &analysis.folds, &lines);
     let true_lines = fold_segments(analysis.start_border(), truth, &[]);
     let mut marks = Vec::new();
     for (k, segment) in found.into_iter().enumerate() {
@@ -108,8 +109,8 @@ fn fold_marks(analysis: &Analysis, truth: &[[f64; 2]]) -> Vec<FoldMark> {
             |f| {
                 format!(
                     "{:.1}°, {:.1}° off",
-                    angle::distance(f[0], t[0]).to_degrees(),
-                    angle::distance(f[1], t[1]).to_degrees()
+                    angle::distance(f.f1, t.f1).to_degrees(),
+                    angle::distance(f.f2, t.f2).to_degrees()
                 )
             },
         );
@@ -205,11 +206,7 @@ impl Mapping {
 
 /// Draw the border plot of `analysis`, with the `truth` folds (when known) beside the found
 /// ones; gives how it mapped data to pixels.
-pub(crate) fn draw(
-    canvas: &mut Canvas,
-    analysis: &Analysis,
-    truth: &[[f64; 2]],
-) -> Result<Mapping> {
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[Fold]) -> Result<Mapping> {
     let unit = canvas.unit();
     let traces = traces(analysis, unit);
     let marks = fold_marks(analysis, truth);
@@ -488,7 +485,9 @@ mod tests {
         let size = size.1 - size.0;
         for (k, (f, t)) in found.iter().zip(&true_ones).enumerate() {
             let off = |e: usize| {
-                close_core::angle::distance(analysis.folds[k][e], truth[k][e]).to_degrees()
+                let pair = |f: Fold| [f.f1, f.f2];
+                close_core::angle::distance(pair(analysis.folds[k])[e], pair(truth[k])[e])
+                    .to_degrees()
             };
             let errors = format!("{:.1}°, {:.1}° off", off(0), off(1));
             assert!(t.name.contains(&errors), "{} lacks {errors}", t.name);
@@ -499,7 +498,7 @@ mod tests {
                 .min(d(f.ends[0], t.ends[1]) + d(f.ends[1], t.ends[0]));
             assert!(apart < 0.1 * size, "fold {k}: the true line is {apart} away");
         }
-        let picture = |truth: &[[f64; 2]]| {
+        let picture = |truth: &[Fold]| {
             let known = super::super::Known { truth, mesh: None };
             super::super::render_step(
                 &analysis,

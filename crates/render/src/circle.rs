@@ -7,10 +7,11 @@
 //! which is the fold line. The values are written underneath.
 //!
 //! ```
+//! use close_core::geometry::Arc;
 //! use close_render::circle::folded_arc;
 //! use std::f64::consts::PI;
 //! // The arc from 3π/2 to π/2 wraps through 0 and spans half the circle.
-//! let arc = folded_arc([1.5 * PI, 0.5 * PI], 5);
+//! let arc = folded_arc(Arc::new(1.5 * PI, 0.5 * PI), 5);
 //! assert!((arc[2] - 2.0 * PI).abs() < 1e-12);
 //! ```
 
@@ -27,12 +28,13 @@ use super::{
 use close_core::analysis::Analysis;
 use close_core::angle;
 use close_core::error::Result;
+use close_core::geometry::{Arc, Fold};
 
 /// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).
 pub const NUMBERED_CORNERS: usize = 20;
 
 /// `points` angles from f1 anticlockwise to f2 (unwrapped: increasing from f1).
-pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
+pub fn folded_arc(Arc { a: f1, b: f2 }: Arc, points: usize) -> Vec<f64> {
     let span = (f2 - f1).rem_euclid(TAU);
     let last = points.max(2) - 1;
     (0..=last).map(|k| f1 + span * k as f64 / last as f64).collect()
@@ -42,12 +44,7 @@ pub fn folded_arc([f1, f2]: [f64; 2], points: usize) -> Vec<f64> {
 /// known, the found fold's angle errors against the true one (drawn as ○); a true fold not
 /// found gets its own line. Each line is wrapped to `width` (the corners and folds are named
 /// on the circle; the label sentence is the page's).
-fn caption(
-    analysis: &Analysis,
-    truth: &[[f64; 2]],
-    size: f64,
-    width: f64,
-) -> Vec<(String, [u8; 3])> {
+fn caption(analysis: &Analysis, truth: &[Fold], size: f64, width: f64) -> Vec<(String, [u8; 3])> {
     let mut lines = Vec::new();
     let count = analysis.folds.len();
     for (k, f) in analysis.folds.iter().enumerate() {
@@ -55,12 +52,12 @@ fn caption(
         let error = truth.get(k).map_or_else(String::new, |t| {
             format!(
                 " · ○ {:.1}°, {:.1}° off",
-                angle::distance(f[0], t[0]).to_degrees(),
-                angle::distance(f[1], t[1]).to_degrees()
+                angle::distance(f.f1, t.f1).to_degrees(),
+                angle::distance(f.f2, t.f2).to_degrees()
             )
         });
         lines.push((
-            format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f[0], names[1], f[1]),
+            format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f.f1, names[1], f.f2),
             fold_colour(k),
         ));
     }
@@ -69,7 +66,7 @@ fn caption(
     }
     for (k, t) in truth.iter().enumerate().skip(count) {
         lines.push((
-            format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t[0], t[1]),
+            format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t.f1, t.f2),
             fold_colour(k),
         ));
     }
@@ -215,7 +212,7 @@ impl Layout {
     /// The fold circle of `analysis` with `truth` on a `width`×`height` canvas: the title,
     /// the caption at the bottom, the circle as large as the rest allows with a margin for
     /// the labels, which are placed round it without overlapping.
-    fn of(width: u32, height: u32, analysis: &Analysis, truth: &[[f64; 2]]) -> Layout {
+    fn of(width: u32, height: u32, analysis: &Analysis, truth: &[Fold]) -> Layout {
         let (w, h) = (width as f64, height as f64);
         let unit = w.min(h);
         let size = label_size(unit);
@@ -253,7 +250,7 @@ impl Layout {
 fn labels(analysis: &Analysis) -> Vec<Label> {
     let count = analysis.folds.len();
     let folds = analysis.folds.iter().enumerate().flat_map(|(k, fold)| {
-        fold.iter().enumerate().map(move |(e, &f)| Label {
+        [fold.f1, fold.f2].into_iter().enumerate().map(move |(e, f)| Label {
             text: endpoint_name(k, e, count),
             colour: fold_colour(k),
             theta: f,
@@ -274,7 +271,7 @@ fn labels(analysis: &Analysis) -> Vec<Label> {
 
 /// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
 /// markers joined by a thin chord beside the found ones.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]]) -> Result<()> {
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[Fold]) -> Result<()> {
     let unit = canvas.unit();
     let layout = Layout::of(canvas.width, canvas.height, analysis, truth);
     let frame = layout.frame;
@@ -321,8 +318,8 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[[f64; 2]])
 /// The folded side of each fold, between each of its arcs and its chord, lightly shaded.
 fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -> Result<()> {
     canvas.draw(|area| {
-        for (k, arcs) in analysis.fold_arcs().into_iter().enumerate() {
-            for &fold in arcs {
+        for (k, folding) in analysis.foldings().iter().enumerate() {
+            for &fold in &folding.arcs {
                 let arc: Vec<(i32, i32)> = folded_arc(fold, 361)
                     .into_iter()
                     .map(|t| frame.at(1.0, t))
@@ -345,13 +342,13 @@ fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) {
 }
 
 /// Each true fold: its chord thin, its two points as hollow rings in its fold's colour.
-fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
+fn draw_truth(canvas: &mut Canvas, truth: &[Fold], frame: &Frame) {
     let unit = canvas.unit();
     let marker = (unit * 0.022).max(4.0);
     for (k, t) in truth.iter().enumerate() {
         let colour = fold_colour(k);
-        canvas.stroke(&[frame.at(1.0, t[0]), frame.at(1.0, t[1])], line_width(unit, 0.003), MUTED);
-        for &a in t {
+        canvas.stroke(&[frame.at(1.0, t.f1), frame.at(1.0, t.f2)], line_width(unit, 0.003), MUTED);
+        for a in [t.f1, t.f2] {
             canvas.ring(frame.at(1.0, a), marker, line_width(unit, 0.004), colour);
         }
     }
@@ -362,15 +359,16 @@ fn draw_truth(canvas: &mut Canvas, truth: &[[f64; 2]], frame: &Frame) {
 fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
     let unit = canvas.unit();
     let marker = (unit * 0.016).max(3.0);
-    for (k, (&fold, arcs)) in analysis.folds.iter().zip(analysis.fold_arcs()).enumerate() {
-        let colour = fold_colour(k);
-        for &[a, b] in arcs {
+    for (k, folding) in analysis.foldings().iter().enumerate() {
+        let (colour, fold) = (fold_colour(k), folding.fold);
+        for &arc in &folding.arcs {
+            let Arc { a, b } = arc;
             let arc: Vec<(f64, f64)> =
-                folded_arc([a, b], 361).into_iter().map(|t| frame.at(1.0, t)).collect();
+                folded_arc(arc, 361).into_iter().map(|t| frame.at(1.0, t)).collect();
             canvas.stroke(&arc, line_width(unit, 0.014), colour);
             canvas.stroke(&[frame.at(1.0, a), frame.at(1.0, b)], line_width(unit, 0.005), colour);
         }
-        for &f in &fold {
+        for f in [fold.f1, fold.f2] {
             canvas.disc(frame.at(1.0, f), marker + 1.5, PAPER);
             canvas.disc(frame.at(1.0, f), marker, colour);
         }
@@ -383,7 +381,7 @@ mod tests {
 
     #[test]
     fn folded_arc_runs_anticlockwise_from_f1_to_f2() {
-        let arc = folded_arc([1.0, 0.5], 3);
+        let arc = folded_arc(Arc::new(1.0, 0.5), 3);
         assert_eq!(arc[0], 1.0);
         assert!((arc[2] - (0.5 + TAU)).abs() < 1e-12);
         assert!(arc.windows(2).all(|w| w[1] >= w[0]));
@@ -404,7 +402,7 @@ mod tests {
     }
 
     /// The analysis of a built-in sample and its true folds.
-    fn builtin(id: &str) -> (Analysis, Vec<[f64; 2]>) {
+    fn builtin(id: &str) -> (Analysis, Vec<Fold>) {
         let entry = close_io::dataset::Dataset::builtin().get(id).unwrap().clone();
         let analysis = close_core::analyze(
             &entry.sample.border_frames().unwrap(),

@@ -44,6 +44,7 @@ use super::{
 use close_core::disk::Disk;
 use close_core::error::Result;
 use close_core::fold::Curve;
+use close_core::geometry::Fold;
 use close_io::cache::Lru;
 
 /// Height of the ring ruler's band under the disk, in label sizes.
@@ -97,7 +98,7 @@ impl Layout {
 /// What is drawn over a diff disk: fold points on the rim and the fold curves.
 pub(crate) struct Marks {
     /// (fold number, 0-based, in step order; (f1, f2)) of each fold to mark.
-    pub folds: Vec<(usize, [f64; 2])>,
+    pub folds: Vec<(usize, Fold)>,
     /// How many folds the analysis has (names are numbered when more than one).
     pub total: usize,
     /// The curves to draw: those of the fold reported.
@@ -349,7 +350,7 @@ fn draw_marks(canvas: &mut Canvas, layout: &Layout, marks: &Marks, layers: usize
     let marker = (unit * 0.014).max(3.0);
     let size = label_size(unit);
     for &(k, fold) in &marks.folds {
-        for (e, &f) in fold.iter().enumerate() {
+        for (e, f) in [fold.f1, fold.f2].into_iter().enumerate() {
             let colour = fold_colour(k);
             canvas.disc(layout.pixel(1.0, f), marker + 1.5, PAPER);
             canvas.disc(layout.pixel(1.0, f), marker, colour);

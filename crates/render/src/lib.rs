@@ -152,7 +152,7 @@ pub fn render_step_png(
 pub struct Known<'a> {
     /// The sample's true folds (may be empty), drawn beside the found ones on the fold
     /// circle and the borders.
-    pub truth: &'a [[f64; 2]],
+    pub truth: &'a [close_core::geometry::Fold],
     /// A mesh sample's mesh, which [`Picture::Mesh`] draws.
     pub mesh: Option<&'a mesh_picture::MeshView>,
 }
@@ -290,7 +290,7 @@ impl StepSpan {
                 // method; the paper's free fit also finds others).
                 let at_fold = |c: &&close_core::fold::Curve| {
                     step.detection.fold.is_some_and(|f| {
-                        f.iter().any(|&f| close_core::angle::distance(c.rim, f) < 1e-9)
+                        [f.f1, f.f2].iter().any(|&f| close_core::angle::distance(c.rim, f) < 1e-9)
                     })
                 };
                 marks.curves = step.detection.curves.iter().filter(at_fold).copied().collect();
@@ -597,7 +597,8 @@ fn line_width(unit: f64, fraction: f64) -> f64 {
 pub(crate) mod tests {
     use super::*;
     use close_core::border::prepare;
-    use close_core::fold::reflect::{apply_fold, folded_vertices};
+    use close_core::fold::apply;
+    use close_core::geometry::{Fold, Folding};
     use close_core::{analyze, FrameRange};
     use std::f64::consts::PI;
 
@@ -617,8 +618,9 @@ pub(crate) mod tests {
                 )
             })
             .collect();
-        let mut folded = apply_fold(&flat, fold);
-        for v in folded_vertices(n, fold) {
+        let fold = Fold::from(fold);
+        let mut folded = apply(&flat, &Folding::new(fold));
+        for v in fold.arc().folded_vertices(n) {
             folded[v].z = 0.02;
         }
         let raw =

@@ -22,6 +22,7 @@ use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
 use close_core::analysis::Analysis;
 use close_core::disk::Disk;
 use close_core::error::{Error, Result};
+use close_core::geometry::Fold;
 
 /// Most disk values one readout sends (about 10 MB of JSON): two disks of N = 1000.
 pub const MAX_VALUES: usize = 1_000_000;
@@ -65,7 +66,7 @@ pub struct PlotTransform {
 impl PlotTransform {
     /// The map of the border plot of `analysis` drawn `size`×`size` (clamped as pictures are),
     /// with the `truth` folds it draws (they take legend rows, so they move the plot).
-    pub fn of_borders(analysis: &Analysis, truth: &[[f64; 2]], size: u32) -> Result<PlotTransform> {
+    pub fn of_borders(analysis: &Analysis, truth: &[Fold], size: u32) -> Result<PlotTransform> {
         let mut canvas = Canvas::new(size, size)?;
         let (x, y) = borders::draw(&mut canvas, analysis, truth)?.affine();
         Ok(PlotTransform { x, y })
@@ -96,7 +97,7 @@ pub struct Readout {
 /// drawn with the `truth` folds.
 pub fn readout(
     analysis: &Analysis,
-    truth: &[[f64; 2]],
+    truth: &[Fold],
     step: Option<usize>,
     size: u32,
 ) -> Result<Readout> {

@@ -35,7 +35,8 @@ use close_core::angle::angle_to_param;
 use close_core::border::{point_at, BorderFrames, Point};
 use close_core::disk::Disk;
 use close_core::error::{Error, Result};
-use close_core::fold::reflect::apply_fold;
+use close_core::fold::apply;
+use close_core::geometry::Folding;
 
 /// Name of the frame timeline.
 pub const TIMELINE: &str = "frame";
@@ -100,14 +101,14 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
     let steps = analysis.steps.iter().filter_map(|s| s.detection.fold.map(|f| (s.to_frame, f)));
     for (k, (frame, fold)) in steps.enumerate() {
         rec.set_time_sequence(TIMELINE, frame as i64);
-        let ends = fold.map(|f| xyz(&point_at(&folded, angle_to_param(f, n))));
+        let ends = fold.ends().map(|f| xyz(&point_at(&folded, angle_to_param(f, n))));
         let base = format!("fold/{}", k + 1);
         rec.log(format!("{base}/points"), &Points3D::new(ends).with_labels(["f1", "f2"]))
             .map_err(failed)?;
         rec.log(format!("{base}/line"), &LineStrips3D::new([ends])).map_err(failed)?;
-        rec.log("close/f1", &Scalars::single(fold[0])).map_err(failed)?;
-        rec.log("close/f2", &Scalars::single(fold[1])).map_err(failed)?;
-        folded = apply_fold(&folded, fold);
+        rec.log("close/f1", &Scalars::single(fold.f1)).map_err(failed)?;
+        rec.log("close/f2", &Scalars::single(fold.f2)).map_err(failed)?;
+        folded = apply(&folded, &Folding::new(fold));
     }
     rec.set_time_sequence(TIMELINE, end as i64);
     rec.log("predicted_end", &LineStrips3D::new([closed_strip(&folded)])).map_err(failed)?;

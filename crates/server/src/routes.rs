@@ -18,6 +18,7 @@ use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
 use close_core::border::{to_xyz, BorderFrames};
 use close_core::budget::{Budget, Deadline};
 use close_core::error::{Error, Result};
+use close_core::geometry::{Fold, Line};
 use close_io::cache::content_key;
 use close_io::formats::{json::parse_sample, read_files, Sample, Truth};
 use close_render::colour::Scale;
@@ -37,7 +38,7 @@ const SAMPLE_KEY: &str = "sample:";
 pub struct Drawing {
     pub analysis: Analysis,
     /// The sample's known folds (empty when it carries none), drawn beside the found ones.
-    pub truth: Vec<[f64; 2]>,
+    pub truth: Vec<Fold>,
     /// A mesh sample's mesh at the analysed frames, for its mesh picture.
     pub mesh: Option<MeshView>,
     /// Roughly the memory it holds ([`Drawing::weigh`]), counted once when it is made.
@@ -45,7 +46,7 @@ pub struct Drawing {
 }
 
 impl Drawing {
-    fn new(analysis: Analysis, truth: Vec<[f64; 2]>, mesh: Option<MeshView>) -> Drawing {
+    fn new(analysis: Analysis, truth: Vec<Fold>, mesh: Option<MeshView>) -> Drawing {
         let bytes = Self::weigh(&analysis, &truth) + mesh.as_ref().map_or(0, MeshView::bytes);
         Drawing { analysis, truth, mesh, bytes }
     }
@@ -53,7 +54,7 @@ impl Drawing {
     /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
     /// (O(frames·N), the bulk), its index and angle lists, its steps with their arcs and
     /// curves, and its texts.
-    fn weigh(a: &Analysis, truth: &[[f64; 2]]) -> usize {
+    fn weigh(a: &Analysis, truth: &[Fold]) -> usize {
         use std::mem::{size_of, size_of_val};
         let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
         let steps: usize = a
@@ -693,13 +694,13 @@ pub struct InterpolateRequest {
     /// step's `arcs`) about `line` (its `line`; by default the line through the first arc's
     /// start and the last arc's end). See [`close_core::interpolate::Motion`].
     #[serde(default)]
-    from: Option<[f64; 2]>,
+    from: Option<Fold>,
     #[serde(default)]
-    to: Option<[f64; 2]>,
+    to: Option<Fold>,
     #[serde(default)]
-    arcs: Option<Vec<[f64; 2]>>,
+    arcs: Option<Vec<close_core::geometry::Arc>>,
     #[serde(default)]
-    line: Option<LineRequest>,
+    line: Option<Line>,
     #[serde(default = "default_steps")]
     steps: usize,
 }
@@ -708,28 +709,18 @@ pub struct InterpolateRequest {
 /// and its JSON, three floats of at most 24 characters with their brackets and commas (80).
 const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
 
-/// A fold line as an analysis reports it (`steps[k].line`): a point and a direction, XY.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LineRequest {
-    point: [f64; 2],
-    direction: [f64; 2],
-}
-
 pub async fn interpolate(
     State(state): State<AppState>,
     AppJson(req): AppJson<InterpolateRequest>,
 ) -> Result<Response, ApiError> {
     state.config().budget.interpolation(req.border.len(), req.steps)?;
-    let line =
-        req.line.map(|l| close_core::interpolate::Line { point: l.point, direction: l.direction });
-    let motion = close_core::interpolate::Motion::of(req.from, req.to, req.arcs, line)?;
+    let motion = close_core::interpolate::Motion::of(req.from, req.to, req.arcs, req.line)?;
     // The answer's size is known now: reserved before it is built, not found after.
     let points = req.border.len().saturating_mul(req.steps.saturating_add(1));
     let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
     let answer = state
         .run_cpu(Lane::Light, move |_| {
-            to_json(&close_core::interpolate::interpolate_border(
+            to_json(&close_core::interpolate::interpolate(
                 req.border,
                 req.reference,
                 &motion,
@@ -907,14 +898,14 @@ pub struct PlanRequest {
     /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis; kept
     /// raw so a sample is parsed once, on a worker.
     sample: Box<RawValue>,
-    goal: [f64; 2],
+    goal: Fold,
 }
 
 pub async fn plan(
     State(state): State<AppState>,
     AppJson(req): AppJson<PlanRequest>,
 ) -> Result<JsonBytes, ApiError> {
-    if req.goal.iter().any(|g| !g.is_finite()) {
+    if !req.goal.is_finite() {
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
     let raw = req.sample.get();

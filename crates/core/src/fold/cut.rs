@@ -322,7 +322,8 @@ mod tests {
     use super::*;
     use crate::angle::param_to_angle;
     use crate::border::Point;
-    use crate::fold::reflect::apply_fold;
+    use crate::fold::reflect::apply;
+    use crate::geometry::{Fold, Folding};
 
     fn square(per_side: usize) -> Vec<Point> {
         let s = per_side as f64;
@@ -340,10 +341,9 @@ mod tests {
     }
 
     fn cut_of(points: &[Point], f: [f64; 2]) -> Cut {
-        let mut end = apply_fold(
-            points,
-            [param_to_angle(f[0], points.len()), param_to_angle(f[1], points.len())],
-        );
+        let n = points.len();
+        let fold = Fold::new(param_to_angle(f[0], n), param_to_angle(f[1], n));
+        let mut end = apply(points, &Folding::new(fold));
         for (e, s) in end.iter_mut().zip(points) {
             if e != s {
                 e.z = 0.01;

@@ -22,6 +22,7 @@ use rayon::prelude::*;
 use super::loss::{exact_loss, ring_cells, Cell, RingTables};
 use crate::angle::{edge, wrap_pi, wrap_tau, TAU};
 use crate::disk::Disk;
+use crate::geometry::Fold;
 
 /// Starting curves a0 = 2πm/STARTS, a1 = 0.
 pub const STARTS: usize = 20;
@@ -175,16 +176,17 @@ fn slopes(n: usize) -> usize {
 /// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| position(n, i, j).angle))
 ///     .map(|angle| ridge(angle, 1.0) + ridge(angle, 4.0))
 ///     .collect();
-/// let curves = curves_through(&RingTables::new(&Disk::from_values(n, values).unwrap()), n, [1.0, 4.0]);
+/// let curves = curves_through(&RingTables::new(&Disk::from_values(n, values).unwrap()), n, close_core::geometry::Fold::new(1.0, 4.0));
 /// // Each fold point gets the radial curve ending there.
 /// assert_eq!(curves.iter().map(|c| c.rim).collect::<Vec<_>>(), vec![1.0, 4.0]);
 /// assert!(curves.iter().all(|c| c.a1.abs() < 0.1 && c.loss < 0.0));
 /// ```
-pub fn curves_through(tables: &RingTables, n: usize, fold: [f64; 2]) -> Vec<Curve> {
+pub fn curves_through(tables: &RingTables, n: usize, fold: Fold) -> Vec<Curve> {
     let slopes = slopes(n);
     let step = 2.0 * A1_BOUND / (slopes - 1) as f64;
     // The two points in parallel: this runs after the fold is found, with nothing beside it.
-    fold.par_iter()
+    [fold.f1, fold.f2]
+        .par_iter()
         .filter_map(|&rim| {
             let scan: Vec<(f64, f64)> =
                 (0..slopes).map(|k| -A1_BOUND + k as f64 * step).map(|a1| (rim - a1, a1)).collect();
@@ -303,14 +305,16 @@ mod tests {
         let g = ridged(n, &[(1.0, 0.0), (4.0, 0.5)]);
         // The fold points sit a little off the ridges' rim ends, as a cut's may: the curves
         // still end at the fold points, and follow the ridges' slopes.
-        let curves = curves_through(&RingTables::new(&g), n, [1.05, 3.95]);
+        let curves = curves_through(&RingTables::new(&g), n, Fold::new(1.05, 3.95));
         assert_eq!(curves.len(), 2);
         for (curve, (f, slope)) in curves.iter().zip([(1.05, 0.0), (3.95, 0.5)]) {
             assert!((curve.a0 + curve.a1 - f).abs() < 1e-12 && curve.rim == f, "{curve:?}");
             assert!((curve.a1 - slope).abs() < 0.15 && curve.loss < 0.0, "{curve:?}");
         }
         // No change at all: no line through a fold point has negative loss, no curve.
-        assert!(curves_through(&RingTables::new(&ridged(n, &[])), n, [1.05, 3.95]).is_empty());
+        assert!(
+            curves_through(&RingTables::new(&ridged(n, &[])), n, Fold::new(1.05, 3.95)).is_empty()
+        );
     }
 
     #[test]

@@ -27,11 +27,13 @@ use serde::Serialize;
 pub use cut::Cut;
 pub use fit::Curve;
 pub use orientation::Orientation;
-pub use synth::{Line, Synthesis};
+pub use reflect::apply;
+pub use synth::Synthesis;
 
 use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
-use crate::border::{point_at, Point};
+use crate::border::Point;
 use crate::disk::Disk;
+use crate::geometry::{Arc, Fold};
 use loss::RingTables;
 
 /// A diff disk whose largest cell is below this has no fold.
@@ -61,12 +63,12 @@ pub struct FoldDetection {
     /// (f1, f2) in [0, 2π), the folded side anticlockwise from f1; `None` without a fold.
     /// For a fold of several arcs, the pair that spans them (the first point of the first
     /// arc, the last point of the last).
-    pub fold: Option<[f64; 2]>,
+    pub fold: Option<Fold>,
     /// The arcs the fold turned over, each [a, b] in [0, 2π) folded anticlockwise from a to
     /// b, in walking order from f1: `[fold]` when the fold line crosses the border twice,
     /// k arcs when it crosses 2k times (our extension of CloSE: a *multi-arc fold*). Empty
     /// without a fold.
-    pub arcs: Vec<[f64; 2]>,
+    pub arcs: Vec<Arc>,
     /// The fold's curves on the diff disk. With [`FoldMethod::Cut`], the paper's curve through
     /// each fold point ([`fit::curves_through`]); with [`FoldMethod::Paper`], every distinct
     /// curve of the free fit, lowest loss first ([`fit::fit_curves`]), the first two giving the
@@ -110,7 +112,7 @@ pub(crate) fn is_flat(points: &[Point]) -> bool {
 /// let end: Vec<Point> =
 ///     square.iter().map(|p| if p.x < -1e-9 { Point::new(-p.x, p.y, 0.02) } else { *p }).collect();
 /// let found = detect(&square, &Disk::of_border(&square), &Disk::of_border(&end), FoldMethod::Cut);
-/// let [f1, f2] = found.fold.unwrap();
+/// let close_core::geometry::Fold { f1, f2 } = found.fold.unwrap();
 /// // Vertex 4 (the middle of the bottom side) sits at angle 2π·4/32 and vertex 20 at 2π·20/32.
 /// let edge = close_core::angle::edge(32);
 /// assert!((f1 - 20.0 * edge).abs() < 0.3 * edge && (f2 - 4.0 * edge).abs() < 0.3 * edge);
@@ -146,28 +148,22 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
                 let (fold, orientation) = orientation::orient(start, end, first.rim, second.rim);
                 found.fold = Some(fold);
                 found.orientation = Some(orientation);
-                found.arcs = vec![fold];
+                found.arcs = vec![fold.arc()];
             }
         }
         Some((refined, orientation)) => {
             found.orientation = orientation;
             if let Some(refined) = refined {
-                let angle = |s: [f64; 2]| s.map(|s| wrap_tau(param_to_angle(s, n)));
-                let fold = angle(refined.s);
+                let angle = |[a, b]: [f64; 2]| [a, b].map(|s| wrap_tau(param_to_angle(s, n)));
+                let fold = Fold::from(angle(refined.s));
                 found.curves = fit::curves_through(&tables, n, fold);
                 found.fold = Some(fold);
-                found.arcs = refined.arcs.iter().map(|&arc| angle(arc)).collect();
+                found.arcs = refined.arcs.iter().map(|&arc| Arc::from(angle(arc))).collect();
                 found.synthesis = Some(refined);
             }
         }
     }
     found
-}
-
-/// The line through the border point at parameter `s` of `points` at angle `phi`.
-fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
-    let p = point_at(points, s);
-    Line::at_angle([p.x, p.y], phi)
 }
 
 /// [`FoldMethod::Cut`]: on a flat start the cut, oriented, refined; on a stacked one the
@@ -185,30 +181,12 @@ fn fold_by_cut(
         };
         let (p, q) = (param_to_angle(cut.p1, n), param_to_angle(cut.p2, n));
         let (fold, orientation) = orientation::orient(start, end, p, q);
-        (
-            Some(synth::refine(before, start, end, fold.map(|f| angle_to_param(f, n)), None)),
-            Some(orientation),
-        )
+        let s = [fold.f1, fold.f2].map(|f| angle_to_param(f, n));
+        (Some(synth::refine(before, start, end, &Synthesis::guess(s))), Some(orientation))
     } else {
         let refined = synth::search_line(before, start, end)
-            .into_iter()
-            .filter_map(|found| match (found.arcs.len(), found.direction) {
-                (1, direction) => Some(synth::refine(
-                    before,
-                    start,
-                    end,
-                    found.s,
-                    direction.map(|[x, y]| y.atan2(x)),
-                )),
-                // Every arc left of the line: the line is refined, the arcs follow it.
-                (_, Some([x, y])) => Some(synth::refine_arcs(
-                    before,
-                    start,
-                    end,
-                    &crossing_line(before, found.s[0], y.atan2(x)),
-                )),
-                (_, None) => None,
-            })
+            .iter()
+            .map(|found| synth::refine(before, start, end, found))
             .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
             .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch));
         (refined, None)
@@ -256,7 +234,7 @@ mod tests {
         // x = 0.1 cuts the bottom side at vertex 3.6 and the top side at 14.4 (per side 6).
         let s = square(6);
         let found = run(&s, &folded(&s, 0.1));
-        let [f1, f2] = found.fold.unwrap();
+        let Fold { f1, f2 } = found.fold.unwrap();
         let n = s.len();
         let e = edge(n);
         assert!(crate::angle::distance(f1, param_to_angle(3.6, n)) < 0.2 * e, "{}", f1 / e);
@@ -274,7 +252,7 @@ mod tests {
             .map(|p| if p.y > 1e-9 { Point::new(p.x, -p.y, 0.1 - p.z) } else { *p })
             .collect::<Vec<_>>();
         let found = run(&half, &top);
-        let [f1, f2] = found.fold.unwrap();
+        let Fold { f1, f2 } = found.fold.unwrap();
         let n = s.len();
         // The folded arc runs from the right side's middle (vertex 9) to the left side's (21),
         // both on the line, where they lie on top of each other: within an edge of them.
@@ -291,7 +269,7 @@ mod tests {
         // The line came from the disks: horizontal.
         let direction =
             found.synthesis.as_ref().and_then(|s| s.direction).expect("the fold points coincide");
-        assert!(direction[1].abs() < 0.1, "{direction:?}");
+        assert!(direction.y.abs() < 0.1, "{direction:?}");
         assert!(found.orientation.is_none(), "a stacked start is not oriented by flips");
     }
 }

@@ -14,8 +14,9 @@
 //! arc with fewer vertices is the folded one (a cloth is folded smaller part over larger),
 //! and for equal arcs the one that starts at the smaller angle.
 
-use crate::angle::{folds_vertex, wrap_tau};
+use crate::angle::wrap_tau;
 use crate::disk::Disk;
+use crate::geometry::{Arc, Fold};
 
 /// Flip scores closer than this are a tie.
 pub const TIE_MARGIN: f64 = 0.1;
@@ -35,7 +36,7 @@ pub struct Orientation {
 
 /// Edges lying wholly inside the anticlockwise arc from angle `from` to angle `to`.
 fn edges_inside(n: usize, from: f64, to: f64) -> Vec<usize> {
-    let inside = |v: usize| folds_vertex(n, [from, to], v, 0.0);
+    let inside = |v: usize| Arc::new(from, to).folds_vertex(n, v, 0.0);
     (0..n).filter(|&e| inside(e) && inside((e + 1) % n)).collect()
 }
 
@@ -71,10 +72,10 @@ fn flip_score(start: &Disk, end: &Disk, edges: &[usize]) -> f64 {
 /// let (p, q) = (close_core::angle::param_to_angle(10.0, 16), close_core::angle::param_to_angle(2.0, 16));
 /// // Given the wrong way round, the points are swapped.
 /// let (fold, how) = orient(&Disk::of_border(&square), &Disk::of_border(&end), p, q);
-/// assert_eq!(fold, [q, p]);
+/// assert_eq!(fold, close_core::geometry::Fold::new(q, p));
 /// assert!(how.swapped && !how.tie_break);
 /// ```
-pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> ([f64; 2], Orientation) {
+pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> (Fold, Orientation) {
     let n = start.n();
     let forward = edges_inside(n, p, q);
     let backward = edges_inside(n, q, p);
@@ -91,7 +92,7 @@ pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> ([f64; 2], Orientatio
     } else {
         flip_backward > flip_forward
     };
-    let fold = if swapped { [q, p] } else { [p, q] };
+    let fold = if swapped { Fold::new(q, p) } else { Fold::new(p, q) };
     (fold, Orientation { flip_forward, flip_backward, tie_break, swapped })
 }
 
@@ -128,7 +129,7 @@ mod tests {
                 .collect();
         let (a, b) = (param_to_angle(14.0, 16), param_to_angle(2.0, 16));
         let (fold, how) = orient(&Disk::of_border(&start), &Disk::of_border(&end), a, b);
-        assert_eq!(fold, [a, b]);
+        assert_eq!(fold, Fold::new(a, b));
         assert!(!how.swapped && how.flip_forward > how.flip_backward + TIE_MARGIN, "{how:?}");
     }
 
@@ -139,7 +140,7 @@ mod tests {
         let (a, b) = (param_to_angle(3.0, 16), param_to_angle(6.0, 16));
         let (fold, how) = orient(&disk, &disk, b, a);
         assert!(how.tie_break && how.swapped);
-        assert_eq!(fold, [a, b]);
+        assert_eq!(fold, Fold::new(a, b));
     }
 
     #[test]

@@ -1,80 +1,41 @@
-//! Applying a fold to a border: reflect the folded arc across the fold line.
+//! Applying a fold to a border: reflect the folded arcs across the fold line.
 //!
-//! Fold (f1, f2) in angles; s = f·N/2π are border parameters. The vertices strictly inside
-//! the anticlockwise arc from s1 to s2 are reflected, in the XY plane, across the line
-//! through the border points at s1 and s2; z is kept. A vertex exactly at s1 or s2 lies on
-//! the line and stays.
+//! A [`Folding`] names the arcs (angles; border parameter s = θ·N/2π) and the line. The
+//! vertices strictly inside an arc are reflected, in the XY plane, across the line; z is
+//! kept. A vertex exactly at an arc's end lies on the line and stays. An ordinary fold
+//! (f1, f2) has one arc, f1 → f2, and is made along the line through the border points at
+//! f1 and f2; a multi-arc fold turns only its arcs, and what lies between them stays. When
+//! the two fold points coincide (a second fold through two stacked layers) the line runs
+//! through them in the direction the disks gave ([`Fold::line_on`]).
 //!
 //! ```
 //! use close_core::border::Point;
-//! use close_core::fold::reflect::apply_fold;
+//! use close_core::fold::reflect::apply;
+//! use close_core::geometry::{Fold, Folding};
 //! use std::f64::consts::PI;
 //! let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
 //! // Fold along the diagonal from vertex 0 to vertex 2: vertex 1 lands on vertex 3.
-//! let folded = apply_fold(&square, [0.0, PI]);
+//! let folded = apply(&square, &Folding::new(Fold::new(0.0, PI)));
 //! assert!((folded[1] - square[3]).norm() < 1e-12);
 //! ```
-//!
-//! When the two fold points coincide (a second fold through two stacked layers) the line
-//! runs through them in the direction the disks gave ([`fold_line`]).
 
-use crate::angle::{angle_to_param, vertices_in_arc};
-use crate::border::{point_at, Point};
+use crate::border::Point;
+#[cfg(doc)]
+use crate::geometry::Fold;
+use crate::geometry::Folding;
 
-use super::synth::Line;
-
-/// Indices of the vertices strictly inside the anticlockwise arc from angle f1 to f2, in
-/// walking order.
-pub fn folded_vertices(n: usize, fold: [f64; 2]) -> Vec<usize> {
-    vertices_in_arc(n, angle_to_param(fold[0], n), angle_to_param(fold[1], n))
-}
-
-/// Reflect `p` across the XY line through `a` and `b` (z kept); `p` itself when a = b in XY.
-pub fn reflect_xy(p: &Point, a: &Point, b: &Point) -> Point {
-    Line::through(a, b).map_or(*p, |line| line.reflect(p))
-}
-
-/// The line a fold (f1, f2) of `points` is made along: through the border points at f1 and
-/// f2, or, when a `direction` is given (the two points coincide, see
-/// [`super::synth`]), through their midpoint in that direction. `None` when the two points
-/// coincide and no direction is given.
-pub fn fold_line(points: &[Point], fold: [f64; 2], direction: Option<[f64; 2]>) -> Option<Line> {
-    let n = points.len();
-    let (a, b) = (
-        point_at(points, angle_to_param(fold[0], n)),
-        point_at(points, angle_to_param(fold[1], n)),
-    );
-    match direction {
-        Some(direction) => Some(Line { point: [(a.x + b.x) / 2.0, (a.y + b.y) / 2.0], direction }),
-        None => Line::through(&a, &b),
-    }
-}
-
-/// The border after folding it along (f1, f2) across `line`: the folded arc reflected in XY,
-/// z kept.
-pub fn apply_fold_line(points: &[Point], fold: [f64; 2], line: &Line) -> Vec<Point> {
-    apply_arcs(points, &[fold], line)
-}
-
-/// The border after a fold of several arcs (a multi-arc fold, angles [a, b] each folded
-/// anticlockwise from a to b) across `line`: only the vertices inside the arcs are
-/// reflected in XY, z kept; what lies between the arcs stays.
-pub fn apply_arcs(points: &[Point], arcs: &[[f64; 2]], line: &Line) -> Vec<Point> {
+/// The border after `folding`: the vertices inside its arcs reflected in XY across its line
+/// ([`Folding::line_on`]), z kept. Without a line (its two points coincide and no direction
+/// is known) nothing moves.
+pub fn apply(points: &[Point], folding: &Folding) -> Vec<Point> {
     let mut out = points.to_vec();
-    for &arc in arcs {
-        for v in folded_vertices(points.len(), arc) {
+    let Some(line) = folding.line_on(points) else { return out };
+    for arc in &folding.arcs {
+        for v in arc.folded_vertices(points.len()) {
             out[v] = line.reflect(&points[v]);
         }
     }
     out
-}
-
-/// The border after folding it along (f1, f2), across the line through the two fold points.
-pub fn apply_fold(points: &[Point], fold: [f64; 2]) -> Vec<Point> {
-    match fold_line(points, fold, None) {
-        Some(line) => apply_fold_line(points, fold, &line),
-        None => points.to_vec(),
-    }
 }
 
 #[cfg(test)]
@@ -82,24 +43,18 @@ mod tests {
     use super::*;
 
     use crate::angle::edge;
+    use crate::geometry::{Arc, Fold, Line, Point2, Vector2};
 
     #[test]
-    fn folded_arc_wraps_through_zero() {
-        let n = 8;
-        let q = edge(n);
-        assert_eq!(folded_vertices(n, [6.5 * q, 1.5 * q]), vec![7, 0, 1]);
-        // Endpoints on vertices are not folded.
-        assert_eq!(folded_vertices(n, [2.0 * q, 5.0 * q]), vec![3, 4]);
-    }
-
-    #[test]
-    fn a_multi_arc_fold_turns_only_its_arcs() {
+    fn only_the_arcs_of_a_multi_arc_fold_turn() {
         // Arcs 1.5 → 3.5 and 7.5 → 9.5 of 12 vertices: vertices 2, 3, 8, 9 cross y = 0.
         let points: Vec<Point> =
             (0..12).map(|k| Point::new(k as f64, 1.0 + (k as f64).sin(), 0.5)).collect();
-        let line = Line { point: [0.0, 0.0], direction: [1.0, 0.0] };
+        let line = Line { point: Point2::new(0.0, 0.0), direction: Vector2::new(1.0, 0.0) };
         let q = edge(12);
-        let out = apply_arcs(&points, &[[1.5 * q, 3.5 * q], [7.5 * q, 9.5 * q]], &line);
+        let arcs = vec![Arc::new(1.5 * q, 3.5 * q), Arc::new(7.5 * q, 9.5 * q)];
+        let fold = Fold::span(&arcs).unwrap();
+        let out = apply(&points, &Folding { fold, arcs, line: Some(line) });
         for (v, (p, o)) in points.iter().zip(&out).enumerate() {
             let expected = if [2, 3, 8, 9].contains(&v) { Point::new(p.x, -p.y, p.z) } else { *p };
             assert!((o - expected).norm() < 1e-12, "vertex {v}: {o:?}");
@@ -107,11 +62,11 @@ mod tests {
     }
 
     #[test]
-    fn reflection_is_an_involution() {
-        let (a, b) = (Point::new(0.0, 0.0, 0.0), Point::new(1.0, 2.0, 5.0));
-        let p = Point::new(0.3, -0.7, 0.25);
-        let r = reflect_xy(&p, &a, &b);
-        assert_eq!(r.z, p.z);
-        assert!((reflect_xy(&r, &a, &b) - p).norm() < 1e-12);
+    fn a_fold_without_a_line_moves_nothing() {
+        let mut points: Vec<Point> =
+            (0..8).map(|k| Point::new((k as f64).cos(), (k as f64).sin(), 0.0)).collect();
+        points[4] = points[0];
+        let fold = Fold::new(0.0, 4.0 * edge(8));
+        assert_eq!(apply(&points, &Folding::new(fold)), points);
     }
 }

@@ -32,9 +32,10 @@ use crate::disk::Disk;
 
 use super::cut::find_cuts;
 use super::synth::{
-    LIFT, arcs_left_of, mean_edge, sampled_edges, Line, Probe, Turned, COINCIDE_EDGES, DIRECTIONS,
+    arcs_left_of, mean_edge, sampled_edges, Probe, Turned, COINCIDE_EDGES, DIRECTIONS, LIFT,
     SAMPLES, SCREEN_SAMPLES,
 };
+use crate::geometry::{Line, Point2};
 
 /// Most folds of one sequence.
 pub const MAX_FOLDS: usize = 4;
@@ -80,11 +81,11 @@ impl Move {
             Anchor::Points([a, b]) => Line::through(&point_at(state, a), &point_at(state, b))?,
             Anchor::Ray(a, phi) => {
                 let p = point_at(state, a);
-                Line::at_angle([p.x, p.y], phi)
+                Line::at_angle(Point2::new(p.x, p.y), phi)
             }
         };
         Some(if self.reversed {
-            Line { point: line.point, direction: line.direction.map(|d| -d) }
+            Line { point: line.point, direction: -line.direction }
         } else {
             line
         })

@@ -29,6 +29,7 @@ use serde::Serialize;
 use crate::angle::ArcVertices;
 use crate::border::{point_at, Point};
 use crate::disk::Disk;
+use crate::geometry::{Line, Point2, Vector2};
 use crate::gli::dgli_each;
 
 /// Height of a synthesised flap above the highest vertex of the start state (normalised
@@ -65,36 +66,6 @@ pub(crate) const DIRECTIONS: usize = 36;
 /// A stacked step whose best line does not bring the mismatch below this share of the
 /// unfolded state's has no fold. (Measured on physics second folds: 0.46–0.64.)
 pub const MAX_MISMATCH_RATIO: f64 = 0.8;
-
-/// A fold line in the XY plane: a point and a unit direction.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Line {
-    pub point: [f64; 2],
-    pub direction: [f64; 2],
-}
-
-impl Line {
-    /// The line through the XY projections of `a` and `b`; `None` when they coincide.
-    pub fn through(a: &Point, b: &Point) -> Option<Line> {
-        let (dx, dy) = (b.x - a.x, b.y - a.y);
-        let len = dx.hypot(dy);
-        (len > 1e-12 * (1.0 + a.coords.norm() + b.coords.norm()))
-            .then(|| Line { point: [a.x, a.y], direction: [dx / len, dy / len] })
-    }
-
-    /// The line through `point` (XY) at angle `phi` to the x axis.
-    pub fn at_angle(point: [f64; 2], phi: f64) -> Line {
-        Line { point, direction: [phi.cos(), phi.sin()] }
-    }
-
-    /// Reflection of `p` across the line, in XY, z kept.
-    pub fn reflect(&self, p: &Point) -> Point {
-        let [ux, uy] = self.direction;
-        let (px, py) = (p.x - self.point[0], p.y - self.point[1]);
-        let t = px * ux + py * uy;
-        Point::new(self.point[0] + 2.0 * t * ux - px, self.point[1] + 2.0 * t * uy - py, p.z)
-    }
-}
 
 thread_local! {
     /// [`Probe::cost`]'s buffers (each pair's value, the pairs that need a dGLI), kept per
@@ -344,15 +315,29 @@ pub struct Synthesis {
     pub s: [f64; 2],
     /// The folded arcs (border parameters, each anticlockwise from its first point), in
     /// walking order from `s[0]`: one arc, `s` itself, unless the fold line crosses the
-    /// border more than twice and turns several arcs over ([`refine_arcs`]).
+    /// border more than twice and turns several arcs over ([`refine`]).
     pub arcs: Vec<[f64; 2]>,
-    /// The direction found on the disks when the fold points coincide; `None` when the line
-    /// runs through the two fold points.
-    pub direction: Option<[f64; 2]>,
+    /// The direction found on the disks when the fold points coincide (a unit vector);
+    /// `None` when the line runs through the two fold points.
+    pub direction: Option<Vector2>,
     /// Mean probe mismatch of the best candidate.
     pub mismatch: f64,
     /// Mean probe mismatch of the start state left as it was (no fold), for comparison.
     pub unfolded_mismatch: f64,
+}
+
+impl Synthesis {
+    /// A fold at border parameters `s`, one arc along the line through its points, not yet
+    /// measured: what [`refine`] starts from when the cut gives the points.
+    pub fn guess(s: [f64; 2]) -> Synthesis {
+        Synthesis {
+            s,
+            arcs: vec![s],
+            direction: None,
+            mismatch: f64::INFINITY,
+            unfolded_mismatch: f64::INFINITY,
+        }
+    }
 }
 
 /// The line of a candidate: through the two fold points, or through their midpoint at `phi`.
@@ -360,7 +345,32 @@ fn line_of(before: &[Point], s: [f64; 2], phi: Option<f64>) -> Option<Line> {
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
     match phi {
         None => Line::through(&a, &b),
-        Some(phi) => Some(Line::at_angle([(a.x + b.x) / 2.0, (a.y + b.y) / 2.0], phi)),
+        Some(phi) => Some(Line::at_angle(Point2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0), phi)),
+    }
+}
+
+/// The line through the border point at parameter `s` of `points` at angle `phi`.
+fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
+    let p = point_at(points, s);
+    Line::at_angle(Point2::new(p.x, p.y), phi)
+}
+
+/// Refine a candidate fold (`guess`: the cut's points, [`Synthesis::guess`], or a
+/// candidate of [`search_line`]) on the step's start border `before` (normalised) against
+/// the measured `end` disk. A fold of one arc is refined by its two points (and the
+/// direction of its line when they coincide, from the guess's direction when it has one), by
+/// a pattern search over them. A fold of several arcs is refined by its line (direction and
+/// offset), the arcs following it. The result's `mismatch` is infinite when the guess holds
+/// several arcs and gives no line.
+pub fn refine(before: &[Point], start: &Disk, end: &Disk, guess: &Synthesis) -> Synthesis {
+    let heading = guess.direction.map(|d| d.y.atan2(d.x));
+    match (guess.arcs.len(), heading) {
+        (0 | 1, heading) => refine_points(before, start, end, guess.s, heading),
+        (_, Some(phi)) => refine_line(before, start, end, &crossing_line(before, guess.s[0], phi)),
+        (_, None) => match line_of(before, guess.s, None) {
+            Some(line) => refine_line(before, start, end, &line),
+            None => Synthesis { mismatch: f64::INFINITY, ..guess.clone() },
+        },
     }
 }
 
@@ -377,7 +387,7 @@ pub(crate) fn mean_edge(points: &[Point]) -> f64 {
 /// coincide the direction is searched too: from `heading` (the direction of a line that
 /// gave `s`, radians) or else the best of [`DIRECTIONS`] per half turn, again over a half
 /// turn from the best start, then with the points.
-pub fn refine(
+fn refine_points(
     before: &[Point],
     start: &Disk,
     end: &Disk,
@@ -438,7 +448,7 @@ pub fn refine(
     Synthesis {
         s,
         arcs: vec![s],
-        direction: phi.map(|p| [p.cos(), p.sin()]),
+        direction: phi.map(|p| Vector2::new(p.cos(), p.sin())),
         mismatch,
         unfolded_mismatch: probe.unfolded(),
     }
@@ -447,7 +457,10 @@ pub fn refine(
 /// The line at angle `phi` to the x axis whose signed distance from the origin (along its
 /// left normal) is `rho`.
 pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
-    Line { point: [-rho * phi.sin(), rho * phi.cos()], direction: [phi.cos(), phi.sin()] }
+    Line {
+        point: Point2::new(-rho * phi.sin(), rho * phi.cos()),
+        direction: Vector2::new(phi.cos(), phi.sin()),
+    }
 }
 
 /// Refine a fold that turns every arc of the border left of `line` over it: a line that
@@ -456,9 +469,9 @@ pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
 /// no longer give the line, so the line itself is searched, by a pattern search over its
 /// direction and offset from `line`, and the arcs follow it. The result spans the arcs:
 /// `s` runs from the first point of the first arc to the last point of the last.
-pub fn refine_arcs(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synthesis {
-    let phi0 = line.direction[1].atan2(line.direction[0]);
-    let rho0 = line.direction[0] * line.point[1] - line.direction[1] * line.point[0];
+fn refine_line(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synthesis {
+    let phi0 = line.direction.y.atan2(line.direction.x);
+    let rho0 = line.direction.x * line.point.y - line.direction.y * line.point.x;
     let probe = Probe::around(start, end, &arcs_left_of(before, line), super::is_flat(before));
     let axis = flap_axis(before, LIFT);
     let folded = |phi: f64, rho: f64| {
@@ -597,7 +610,7 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
                 kept.push(Synthesis {
                     s,
                     arcs: arcs.clone(),
-                    direction: Some([phi.cos(), phi.sin()]),
+                    direction: Some(Vector2::new(phi.cos(), phi.sin())),
                     mismatch: *mismatch,
                     unfolded_mismatch: unfolded,
                 });
@@ -648,9 +661,9 @@ fn turns_of(before: &[Point], line: &Line) -> Vec<(Vec<[f64; 2]>, Turn)> {
 /// the last span them all as tightly as they can.
 pub(crate) fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
     let n = before.len();
-    let [ux, uy] = line.direction;
+    let (ux, uy) = (line.direction.x, line.direction.y);
     let d: Vec<f64> =
-        before.iter().map(|p| ux * (p.y - line.point[1]) - uy * (p.x - line.point[0])).collect();
+        before.iter().map(|p| ux * (p.y - line.point.y) - uy * (p.x - line.point.x)).collect();
     // The vertex after k, without a remainder: this runs for every vertex of every line tried.
     let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
     let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[next(k)]);
@@ -763,12 +776,15 @@ mod tests {
             .iter()
             .map(|p| Point::new(p.x + 0.5, p.y + 0.5, 0.0))
             .collect::<Vec<_>>();
-        let across = Line { point: [0.0, 0.6], direction: [1.0, 0.0] };
+        let across = Line { point: Point2::new(0.0, 0.6), direction: Vector2::new(1.0, 0.0) };
         let arcs = arcs_left_of(&unit, &across);
         assert_eq!(arcs.len(), 1);
         assert!((arcs[0][0] - 6.4).abs() < 1e-12 && (arcs[0][1] - 13.6).abs() < 1e-12, "{arcs:?}");
         // Turned round, the line's left is below: the arc from 13.6 round to 6.4.
-        let below = arcs_left_of(&unit, &Line { point: [0.0, 0.6], direction: [-1.0, 0.0] });
+        let below = arcs_left_of(
+            &unit,
+            &Line { point: Point2::new(0.0, 0.6), direction: Vector2::new(-1.0, 0.0) },
+        );
         assert!(
             below.len() == 1
                 && (below[0][0] - 13.6).abs() < 1e-12
@@ -777,9 +793,16 @@ mod tests {
         );
         // A line that misses the border gives no arc; one that cuts off a single vertex, an arc
         // of that vertex alone (too small to fold, the candidates' size check leaves it out).
-        assert!(arcs_left_of(&unit, &Line { point: [0.0, 2.0], direction: [-1.0, 0.0] }).is_empty());
+        assert!(arcs_left_of(
+            &unit,
+            &Line { point: Point2::new(0.0, 2.0), direction: Vector2::new(-1.0, 0.0) }
+        )
+        .is_empty());
         let h = 0.5f64.sqrt();
-        let corner = arcs_left_of(&unit, &Line { point: [0.05, 0.05], direction: [-h, h] });
+        let corner = arcs_left_of(
+            &unit,
+            &Line { point: Point2::new(0.05, 0.05), direction: Vector2::new(-h, h) },
+        );
         assert!(
             corner.len() == 1 && ArcVertices::of(16, corner[0][0], corner[0][1]).vertices().eq([0]),
             "{corner:?}"
@@ -803,7 +826,7 @@ mod tests {
                 Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
             })
             .collect();
-        let line = Line { point: [0.0, 1.5], direction: [1.0, 0.0] };
+        let line = Line { point: Point2::new(0.0, 1.5), direction: Vector2::new(1.0, 0.0) };
         let arcs = arcs_left_of(&u, &line);
         assert_eq!(arcs.len(), 2, "{arcs:?}");
         for s in &arcs {
@@ -832,7 +855,7 @@ mod tests {
             // Laid at a height of its own, not the synthesis's LIFT.
             let end = Disk::of_border(&fold_by_hand(&before, truth, 0.006));
             let guess = truth.map(|s| (2.0 * s).round() / 2.0);
-            let found = refine(&before, &start, &end, guess, None);
+            let found = refine(&before, &start, &end, &Synthesis::guess(guess));
             let error = [0, 1].map(|k| (found.s[k] - truth[k]).abs());
             assert!(
                 error.iter().all(|&e| e <= 0.1),

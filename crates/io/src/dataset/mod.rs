@@ -40,6 +40,7 @@ use crate::formats::{MeshFrames, Sample, Truth};
 use close_core::angle::param_to_angle;
 use close_core::border::{to_xyz, Point};
 use close_core::error::Result;
+use close_core::geometry::Fold;
 
 use exact_fold::fold_border;
 use grid::grid_mesh;
@@ -116,7 +117,11 @@ fn border_sample(name: String, category: &str, varied: Varied) -> Sample {
         frames: varied.frames.iter().map(|f| to_arrays(f)).collect(),
         mesh: None,
         truth: Some(Truth {
-            folds: varied.folds.iter().map(|f| f.map(|s| param_to_angle(s, n))).collect(),
+            folds: varied
+                .folds
+                .iter()
+                .map(|f| Fold::from(f.map(|s| param_to_angle(s, n))))
+                .collect(),
             folded_vertices: Some(varied.folded),
         }),
     }
@@ -195,7 +200,7 @@ fn mesh_samples() -> Result<Vec<Sample>> {
                 category: "mesh".into(),
                 frames: Vec::new(),
                 truth: Some(Truth {
-                    folds: vec![[param_to_angle(f1, n), param_to_angle(f2, n)]],
+                    folds: vec![Fold::new(param_to_angle(f1, n), param_to_angle(f2, n))],
                     folded_vertices: Some(moved(grid.vertices(), &folded)),
                 }),
                 mesh: Some(MeshFrames::new(
@@ -211,7 +216,8 @@ fn mesh_samples() -> Result<Vec<Sample>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use close_core::fold::reflect::apply_fold;
+    use close_core::fold::apply;
+    use close_core::geometry::Folding;
     use std::collections::HashSet;
 
     /// Frames of a border sample or of a mesh sample.
@@ -253,7 +259,7 @@ mod tests {
         );
     }
 
-    /// The generator's own mirror against the predictor's `apply_fold`: two independent
+    /// The generator's own mirror against the predictor's `apply`: two independent
     /// implementations of the fold must agree on every synthetic sample.
     #[test]
     fn truth_folds_reproduce_the_end_frames() {
@@ -262,7 +268,8 @@ mod tests {
             // The border as the analysis sees it (a mesh's boundary, in border order).
             let b = e.sample.border_frames().unwrap();
             let start = &b.frames[0];
-            let predicted = truth.folds.iter().fold(start.clone(), |b, &f| apply_fold(&b, f));
+            let predicted =
+                truth.folds.iter().fold(start.clone(), |b, &f| apply(&b, &Folding::new(f)));
             let end = &b.frames[b.frames.len() - 1];
             let worst = predicted
                 .iter()

@@ -98,7 +98,11 @@ mod tests {
         for s in &samples {
             let truth = s.truth.as_ref().unwrap_or_else(|| panic!("{}: no truth", s.name));
             assert_eq!(truth.folds.len() + 1, s.frames.len(), "{}", s.name);
-            assert!(truth.folds.iter().flatten().all(|f| (0.0..TAU).contains(f)), "{}", s.name);
+            assert!(
+                truth.folds.iter().flat_map(|f| [f.f1, f.f2]).all(|f| (0.0..TAU).contains(&f)),
+                "{}",
+                s.name
+            );
             let b = s.border_frames().unwrap_or_else(|e| panic!("{}: {e}", s.name));
             // Given anticlockwise and clean: nothing to repair.
             assert!(!b.reversed && b.warnings.is_empty(), "{}: {:?}", s.name, b.warnings);

@@ -26,6 +26,7 @@ use super::{Sample, MAX_FILE_BYTES};
 use crate::mesh::{MeshFrames, MAX_FACE_CORNERS, MAX_MESH_FACES, MAX_MESH_VERTICES};
 use close_core::border::{MAX_FRAMES, MAX_VERTICES};
 use close_core::error::{Error, Format, Result};
+use close_core::geometry::Fold;
 
 /// Deepest nesting of lists and objects a JSON document may have.
 pub const MAX_NESTING: usize = 128;
@@ -220,8 +221,8 @@ fn mesh_frames<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Vec<[f64; 3]>>, D:
 }
 
 /// `truth.folds`: at most one fold per step between frames.
-pub(super) fn truth_folds<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
-    Bounded { what: "true folds", limit: MAX_FRAMES, item: PhantomData::<[f64; 2]> }.deserialize(d)
+pub(super) fn truth_folds<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Fold>, D::Error> {
+    Bounded { what: "true folds", limit: MAX_FRAMES, item: PhantomData::<Fold> }.deserialize(d)
 }
 
 /// `truth.folded_vertices`: at most one entry per mesh vertex.
@@ -307,7 +308,7 @@ mod tests {
             .unwrap();
         assert_eq!(
             s.truth,
-            Some(crate::formats::Truth { folds: vec![[1.0, 2.0]], folded_vertices: None })
+            Some(crate::formats::Truth { folds: vec![Fold::new(1.0, 2.0)], folded_vertices: None })
         );
         let s = parse_sample(doc(r#"{"folded_vertices": [3, 4]}"#).as_bytes()).unwrap();
         assert_eq!(s.truth.and_then(|t| t.folded_vertices), Some(vec![3, 4]));

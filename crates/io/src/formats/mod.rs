@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use close_core::border::{prepare, BorderFrames, MAX_FRAMES};
 use close_core::error::{Error, Format, MeshError, Result};
+use close_core::geometry::Fold;
 // Mesh frames belong to `mesh` (formats reads files into them); re-exported for callers.
 pub use crate::mesh::MeshFrames;
 
@@ -81,7 +82,7 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Truth {
     #[serde(default, deserialize_with = "json::truth_folds")]
-    pub folds: Vec<[f64; 2]>,
+    pub folds: Vec<Fold>,
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
