@@ -130,7 +130,7 @@ fn browser_and_server_turn_arcs_alike() {
         let analysis = analyze(&sample.border_frames().unwrap(), FrameRange::default()).unwrap();
         let mut state = analysis.start_border().to_vec();
         let flat: Vec<[f64; 3]> = state.iter().map(to_xyz).collect();
-        for step in analysis.steps.iter().filter_map(|s| s.folding()) {
+        for step in analysis.foldings() {
             let line = step.line.expect("a fold has a line");
             turns.push((state.clone(), Some(flat.clone()), step.arcs.clone(), Some(line), 9));
             state = apply(&state, &step);

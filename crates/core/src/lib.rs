@@ -50,7 +50,7 @@ pub mod metrics;
 pub mod plan;
 pub mod rng;
 
-pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
+pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options, DEFAULT_MAX_FOLDS};
 pub use error::{Error, Result};
 pub use fold::FoldMethod;
 pub use geometry::{Arc, Fold, Folding, Line};

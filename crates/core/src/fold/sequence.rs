@@ -1,50 +1,104 @@
-//! Fold sequences in one step: the folds that took a state to one whose disk alone is seen.
+//! Fold sequences in one step: the folds that took a flat cloth to a state whose disk alone
+//! is seen.
 //!
 //! Our extension of CloSE, after the paper's "Multi-folds" section (Kamat, Borràs, Torras,
-//! "CloSE", Sec. V): the diff disk of two folds seen at once holds the lines of both. A cloth
-//! folded k times, seen flat and folded with no frame between, is read as a sequence of
-//! folds, each made on the state the ones before it left (later folds cross stacked layers,
-//! and may turn several arcs of the border at once).
+//! "CloSE"): the diff disk of two folds seen at once holds the lines of both. A cloth folded
+//! k times, seen flat and folded with no frame between, is read as a sequence of folds, each
+//! made on the state the ones before it left: later folds cross stacked layers and may turn
+//! several arcs of the border at once.
 //!
 //! **Where the creases meet the border.** Folds of a flat cloth move each piece between the
 //! creases rigidly, so a pair of edges of one piece keeps |dGLI|: a border arc inside one
-//! piece holds no change of the abs diff disk. The border split into m arcs of least change
-//! within themselves ([`super::cut::find_cuts`]) puts its m cut points where the creases meet
-//! the border (m = 2 is the one fold's cut).
+//! piece holds no change of the abs diff disk g. The border split into m arcs of least
+//! change within themselves ([`super::cut::find_cuts`]) puts its m cut points where the
+//! creases meet the border. Straight sides hold no change at all (collinear edges have dGLI
+//! 0 before and after), so a split at a corner would cost nothing: each pair's change is
+//! offset by [`INFORMATION`] times its start |dGLI|, which favours arcs whose pairs could
+//! have shown a change.
 //!
 //! **Analysis by synthesis.** Each fold of a candidate sequence is a line on the state it is
-//! made on, through two cut points (where they lie on that state), or through one and a
-//! direction when the two coincide there (stacked layers), and the arcs of the border left of
-//! it that turn over: all of them, or the one holding a given vertex (a fold may turn the top
-//! layer only). The folds are made in turn ([`super::synth`]: the flap rotated by π about the
-//! line, laid above the stack), and the synthesised state's dGLI on probe pairs is compared
-//! with the measured end disk. A beam search builds the sequences a fold at a time, on a
-//! screen of strided pairs; the best are refined, all their folds together, by a pattern
-//! search over each fold's two parameters. The end border's coordinates are never read.
+//! made on, through two cut points where they lie on that state, or through one in a
+//! searched direction where two coincide (stacked layers), and the arcs of the border left
+//! of it that turn over: all of them, or the one holding a given vertex (a fold of the top
+//! layer only). The folds are made in turn ([`super::synth`]: each flap rotated by π about
+//! its line, laid above the stack), and the synthesised state's dGLI on probe pairs is
+//! compared with the measured end disk (`asinh`-compressed, mean absolute difference). A
+//! beam search builds the sequences a fold at a time on a screen of strided pairs (every
+//! first fold is carried on: a sequence's first fold explains little alone); the best are
+//! refined, all their folds together, by a pattern search over each fold's two parameters,
+//! and judged on a larger probe, each at the flap height that fits it best (the cloth's
+//! thickness, which sets how far apart its layers lie, shows in the disk).
+//!
+//! **Layer order.** Two perpendicular half folds done in either order land alike on the
+//! table, but for a rigid motion, which no disk sees: what tells them apart is the order of
+//! their layers. A sequence whose end lands like the best one's (within [`CONGRUENT`]) is
+//! compared with it on the order alone: each one's outline with each one's heights.
+//!
+//! **Model selection.** k folds are reported only when they explain markedly more of the end
+//! disk than k − 1 ([`MARKEDLY`], [`MIN_GAIN`]); the search runs only when the step's one
+//! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. A fold or sequence that
+//! leaves more than [`UNEXPLAINED`] unexplained is not a confident fold.
+//!
+//! The end border's coordinates are never read: only its disk.
 
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
+use serde::Serialize;
 
-use crate::angle::ArcVertices;
+use crate::angle::{angle_to_param, param_to_angle, wrap_tau, ArcVertices};
 use crate::border::{point_at, Point};
 use crate::disk::Disk;
+use crate::geometry::{Arc, Fold, Folding, Line, Point2};
+use crate::metrics::aligned_rmse_xy;
 
 use super::cut::find_cuts;
 use super::synth::{
     arcs_left_of, mean_edge, sampled_edges, Probe, Turned, COINCIDE_EDGES, DIRECTIONS, LIFT,
     SAMPLES, SCREEN_SAMPLES,
 };
-use crate::geometry::{Line, Point2};
+use super::FoldDetection;
 
-/// Most folds of one sequence.
+fn compared_at() -> f64 {
+    std::env::var("SEQ_SCALE").ok().and_then(|v| v.parse().ok()).unwrap_or(super::synth::STACKED_SCALE)
+}
+
+/// Most folds one step may hold.
 pub const MAX_FOLDS: usize = 4;
-/// Sequences kept at each length of the beam search.
-fn beam_width() -> usize { std::env::var("SEQ_BEAM").ok().and_then(|v| v.parse().ok()).unwrap_or(8) }
-/// Sequences of each length refined in full.
-const REFINED: usize = 6;
+/// Weight of a pair's start |dGLI| against its change when the creases are placed.
+pub const INFORMATION: f64 = 0.05;
 /// First folds carried on to the second: all there are, up to this many.
 const FIRST_BEAM: usize = 96;
+/// Sequences carried on from the second fold on.
+const BEAM: usize = 8;
+/// Sequences of each length refined in full.
+const REFINED: usize = 6;
+/// Two cut points closer than this many times [`COINCIDE_EDGES`] mean edges on a state
+/// also give lines through one of them in every direction.
+const RAY_REACH: f64 = 3.0;
+/// Twins of the best sequence refined: two folds land alike in up to eight ways (either
+/// order, either side of each).
+const TWINS: usize = 8;
+/// Two end states this close once one is moved rigidly onto the other (aligned RMSE,
+/// normalised units) land alike on the table.
+pub const CONGRUENT: f64 = 0.05;
+/// Flap heights above the stack tried when sequences are judged (normalised units: a
+/// cloth's thickness, doubled at a crease, is 0.25–8 % of its size).
+const LIFTS: [f64; 7] = [0.0025, 0.005, 0.0075, 0.01, 0.02, 0.04, 0.08];
+/// Edges sampled for the layer-order test, all pairs of them.
+const ORDER_SAMPLES: usize = 96;
+/// A step whose one fold leaves at most this share of its end disk's mismatch unexplained
+/// is one fold: no sequence is searched.
+pub const EXPLAINED_BY_ONE: f64 = 0.4;
+/// k folds only when they leave at most this share of what k − 1 left …
+pub const MARKEDLY: f64 = 0.6;
+/// … and explain at least this share of the whole more.
+pub const MIN_GAIN: f64 = 0.2;
+/// A sequence (or one fold) leaving more than this share of the end disk's mismatch
+/// unexplained is not a confident fold.
+pub const UNEXPLAINED: f64 = 0.6;
+/// Alternatives listed: sequences whose mismatch is within this share of the best one's.
+const ABOUT_AS_WELL: f64 = 0.25;
 
 /// Which of the arcs left of a fold's line turn over.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,11 +138,7 @@ impl Move {
                 Line::at_angle(Point2::new(p.x, p.y), phi)
             }
         };
-        Some(if self.reversed {
-            Line { point: line.point, direction: -line.direction }
-        } else {
-            line
-        })
+        Some(if self.reversed { Line { direction: -line.direction, ..line } } else { line })
     }
 
     /// The arcs this fold turns over on `state` (border parameters): `None` when it turns
@@ -96,7 +146,7 @@ impl Move {
     fn arcs(&self, state: &[Point], line: &Line) -> Option<Vec<[f64; 2]>> {
         let n = state.len();
         let left = arcs_left_of(state, line);
-        let arcs = match self.turn {
+        let arcs: Vec<[f64; 2]> = match self.turn {
             Turn::All => left,
             Turn::Holding(v) => {
                 left.into_iter().filter(|a| ArcVertices::of(n, a[0], a[1]).contains(v)).collect()
@@ -106,8 +156,8 @@ impl Move {
         (moved >= 2 && moved + 2 <= n).then_some(arcs)
     }
 
-    /// The same fold moved by `delta` edges along the border (and, for a ray, radians in its
-    /// direction, `angle_step` per edge step).
+    /// The same fold moved by `delta` edges along the border (for a ray, by `delta[0]` edges
+    /// and `delta[1]` times `angle_step` radians).
     fn moved(&self, delta: [f64; 2], angle_step: f64) -> Move {
         let anchor = match self.anchor {
             Anchor::Points([a, b]) => Anchor::Points([a + delta[0], b + delta[1]]),
@@ -117,97 +167,94 @@ impl Move {
     }
 }
 
-/// A fold of a sequence as made: its line on the state before it and the arcs it turned.
+/// A fold as made on a synthesised state: its line and the arcs it turned (border
+/// parameters, each anticlockwise from its first point, in walking order).
 #[derive(Debug, Clone, PartialEq)]
-pub struct SequenceFold {
-    /// The line, on the synthesised state the fold was made on (normalised coordinates of the
-    /// step's start), directed so that the arcs turned lie on its left.
-    pub line: Line,
-    /// The arcs turned over (border parameters, each anticlockwise from its first point), in
-    /// walking order.
-    pub arcs: Vec<[f64; 2]>,
+struct Made {
+    line: Line,
+    arcs: Vec<[f64; 2]>,
 }
 
-impl SequenceFold {
-    /// The pair of border parameters that spans the arcs: the first point of the first arc
-    /// and the last point of the last.
-    pub fn span(&self) -> [f64; 2] {
-        match (self.arcs.first(), self.arcs.last()) {
-            (Some(first), Some(last)) => [first[0], last[1]],
-            _ => [0.0; 2],
-        }
+impl Made {
+    /// As a [`Folding`] (angles) of a border of `n` vertices.
+    fn folding(&self, n: usize) -> Folding {
+        let angle = |s: f64| wrap_tau(param_to_angle(s, n));
+        let arcs: Vec<Arc> = self.arcs.iter().map(|&[a, b]| Arc::new(angle(a), angle(b))).collect();
+        let fold = Fold::span(&arcs).unwrap_or_default();
+        Folding { fold, arcs, line: Some(self.line) }
     }
 }
 
-/// A sequence of folds found by synthesis.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Sequence {
-    pub folds: Vec<SequenceFold>,
-    /// Mean probe mismatch of the synthesised end state with the measured end disk, on the
-    /// probe every sequence of the step is judged by.
-    pub mismatch: f64,
-    /// The same after each fold of the sequence in turn (the last is `mismatch`).
-    pub mismatches: Vec<f64>,
-    /// The same for the start state left as it was.
-    pub unfolded_mismatch: f64,
-}
-
-/// The state after `moves` made in turn on `before`, with each fold as made; `None` when
-/// one of them cannot be made.
-fn synthesise(before: &[Point], moves: &[Move]) -> Option<(Turned, Vec<SequenceFold>)> {
-    synthesise_at(before, moves, LIFT)
-}
-
-/// [`synthesise`] with each flap laid `lift` above the stack.
-fn synthesise_at(before: &[Point], moves: &[Move], lift: f64) -> Option<(Turned, Vec<SequenceFold>)> {
+/// The state after `made` turned in turn on `before`, each flap laid `lift` above the stack.
+fn turned(before: &[Point], made: &[Made], lift: f64) -> Turned {
     let mut turned = Turned::unfolded(before);
-    let mut folds = Vec::with_capacity(moves.len());
+    for m in made {
+        turned.fold(&m.arcs, &m.line, lift);
+    }
+    turned
+}
+
+/// The folds of `moves` made in turn on `before`; `None` when one of them cannot be made.
+fn make(before: &[Point], moves: &[Move]) -> Option<(Turned, Vec<Made>)> {
+    let mut turned = Turned::unfolded(before);
+    let mut made = Vec::with_capacity(moves.len());
     for m in moves {
         let line = m.line(&turned.state)?;
         let arcs = m.arcs(&turned.state, &line)?;
-        turned.fold(&arcs, &line, lift);
-        folds.push(SequenceFold { line, arcs });
+        turned.fold(&arcs, &line, LIFT);
+        made.push(Made { line, arcs });
     }
-    Some((turned, folds))
+    Some((turned, made))
 }
 
 fn cost(probe: &Probe, before: &[Point], moves: &[Move]) -> f64 {
-    synthesise(before, moves).map_or(f64::INFINITY, |(turned, _)| probe.cost(&turned))
+    make(before, moves).map_or(f64::INFINITY, |(turned, _)| probe.cost(&turned))
 }
 
-/// The folds that can be made on `state` along lines through the cut `points`.
-fn moves_on(state: &[Point], points: &[f64]) -> Vec<Move> {
+/// Every pair of `edges`.
+fn all_pairs(edges: &[usize]) -> Vec<(usize, usize)> {
+    edges.iter().enumerate().flat_map(|(k, &i)| edges[k + 1..].iter().map(move |&j| (i, j))).collect()
+}
+
+/// The folds that can be made on `state` along lines through two of the cut `points` that
+/// no fold before it ran through (creases meet the border at points of their own), each with
+/// the indices of the two points.
+fn moves_on(state: &[Point], points: &[f64], used: &[usize]) -> Vec<(Move, [usize; 2])> {
     let n = state.len();
     let near = COINCIDE_EDGES * mean_edge(state);
-    let mut anchors: Vec<Anchor> = Vec::new();
-    let mut rays: Vec<Point> = Vec::new();
-    for (k, &a) in points.iter().enumerate() {
-        for &b in &points[k + 1..] {
+    let free: Vec<usize> = (0..points.len()).filter(|k| !used.contains(k)).collect();
+    let mut anchors: Vec<(Anchor, [usize; 2])> = Vec::new();
+    for (k, &i) in free.iter().enumerate() {
+        for &j in &free[k + 1..] {
+            let (a, b) = (points[i], points[j]);
             let (pa, pb) = (point_at(state, a), point_at(state, b));
-            if (pa.xy() - pb.xy()).norm() >= near {
-                anchors.push(Anchor::Points([a, b]));
-            } else if rays.iter().all(|r| (r.xy() - pa.xy()).norm() >= near) {
-                // Layers stacked there: the line's direction is searched.
-                rays.push(pa);
-                anchors.extend(
-                    (0..DIRECTIONS).map(|d| Anchor::Ray(a, PI * d as f64 / DIRECTIONS as f64)),
-                );
+            let apart = (pa.xy() - pb.xy()).norm();
+            if apart >= near {
+                anchors.push((Anchor::Points([a, b]), [i, j]));
+            }
+            if apart < RAY_REACH * near {
+                // Layers stacked there (the cut points lie within an edge or two of the
+                // creases, so two that should meet may not quite): the line's direction is
+                // searched.
+                anchors.extend((0..DIRECTIONS).map(|d| {
+                    (Anchor::Ray(a, PI * d as f64 / DIRECTIONS as f64), [i, j])
+                }));
             }
         }
     }
     let mut moves = Vec::new();
-    for anchor in anchors {
+    for (anchor, through) in anchors {
         for reversed in [false, true] {
             let m = Move { anchor, reversed, turn: Turn::All };
             let Some(line) = m.line(state) else { continue };
             let left = arcs_left_of(state, &line);
-            moves.push(m);
+            moves.push((m, through));
             if left.len() > 1 {
                 for arc in &left {
                     let inside = ArcVertices::of(n, arc[0], arc[1]);
                     let middle = inside.vertices().nth(inside.len / 2);
                     if let Some(v) = middle {
-                        moves.push(Move { turn: Turn::Holding(v), ..m });
+                        moves.push((Move { turn: Turn::Holding(v), ..m }, through));
                     }
                 }
             }
@@ -216,265 +263,238 @@ fn moves_on(state: &[Point], points: &[f64]) -> Vec<Move> {
     moves
 }
 
-/// Sequences of up to `max_folds` folds that take `before` (the step's start border,
-/// normalised, with disk `start`) to a state with the measured `end` disk: the best of each
-/// length, shortest first, each judged on the same probe. Empty when the disks do not differ.
-pub fn search(before: &[Point], start: &Disk, end: &Disk, max_folds: usize) -> Vec<Sequence> {
+/// A sequence being built: the cut set its folds run through, its folds, and the cut points
+/// they ran through.
+#[derive(Clone)]
+struct Partial {
+    set: usize,
+    moves: Vec<Move>,
+    used: Vec<usize>,
+}
+
+/// A sequence judged at the flap height that fits it best.
+struct Judged {
+    /// Mean mismatch on the judging probe.
+    cost: f64,
+    made: Vec<Made>,
+    lift: f64,
+    /// The synthesised end state at that height.
+    state: Vec<Point>,
+}
+
+/// `made` judged on `judge` at each of [`LIFTS`], the best kept.
+fn judge_made(judge: &Probe, before: &[Point], made: Vec<Made>) -> Judged {
+    let (cost, lift, state) = LIFTS
+        .iter()
+        .map(|&lift| {
+            let t = turned(before, &made, lift);
+            (judge.cost(&t), lift, t.state)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("LIFTS is not empty");
+    Judged { cost, made, lift, state }
+}
+
+/// The probes of one step: the screen (strided pairs, for the beam), the judge (more
+/// strided pairs, every sequence and the one fold judged alike) and the order test's.
+struct Probes {
+    screen: Probe,
+    judge: Probe,
+    order: Probe,
+}
+
+/// The best sequence of each length from two folds up to `max_folds`, judged on `probes`,
+/// with the sequences of its length judged about as well (its twins and alternatives).
+fn search(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    probes: &Probes,
+    max_folds: usize,
+) -> Vec<(Judged, Vec<Judged>)> {
     let n = before.len();
-    let flat = super::is_flat(before);
-    let lambda: f64 = std::env::var("SEQ_LAMBDA").ok().and_then(|v| v.parse().ok()).unwrap_or(0.05);
-    let g = {
-        let g = start.abs_diff(end);
-        let values = g.values().iter().zip(start.values()).map(|(c, s)| c - lambda * s.abs()).collect();
-        Disk::from_values(n, values).expect("the diff disk's own size")
-    };
-    let max_folds = max_folds.min(MAX_FOLDS);
+    let g = start.abs_diff(end);
+    let offset: Vec<f64> =
+        g.values().iter().zip(start.values()).map(|(c, s)| c - INFORMATION * s.abs()).collect();
+    let Ok(offset) = Disk::from_values(n, offset) else { return Vec::new() };
     // Cut points of as many arcs as the sequences could make: 2 per fold line on a flat
-    // cloth, doubled by each layer it crosses.
-    let cut_sets: Vec<Vec<f64>> = [2usize, 4, 6, 8]
+    // cloth, more where it crosses layers.
+    let cut_sets: Vec<Vec<f64>> = [4usize, 6, 8]
         .into_iter()
         .filter(|&m| m <= 2 * max_folds + 2 && m < n)
-        .filter_map(|m| find_cuts(&g, m).map(|c| c.points))
+        .filter_map(|m| find_cuts(&offset, m).map(|c| c.points))
         .collect();
-    if cut_sets.is_empty() {
-        return Vec::new();
-    }
     if std::env::var("SEQ_DEBUG").is_ok() {
-        eprintln!("  cut sets {cut_sets:?}");
+        eprintln!("cut sets {cut_sets:?}");
     }
-    let all_pairs = |samples: usize| {
-        let edges = sampled_edges(n, samples);
-        let pairs: Vec<(usize, usize)> = edges
-            .iter()
-            .enumerate()
-            .flat_map(|(k, &i)| edges[k + 1..].iter().map(move |&j| (i, j)))
-            .collect();
-        pairs
-    };
-    let cap: f64 = std::env::var("SEQ_CAP").ok().and_then(|v| v.parse().ok()).unwrap_or(f64::INFINITY);
-    let screen = Probe::of(all_pairs(SCREEN_SAMPLES), start, end, flat, scale_flat(flat)).capped(cap);
-    let judge = Probe::of(all_pairs(SAMPLES), start, end, flat, scale_flat(flat));
-    let mut beam: Vec<Vec<Move>> = vec![Vec::new()];
-    let mut best: Vec<Sequence> = Vec::new();
-    let debug = std::env::var("SEQ_DEBUG").is_ok();
+    let mut beam: Vec<Partial> = (0..cut_sets.len())
+        .map(|set| Partial { set, moves: Vec::new(), used: Vec::new() })
+        .collect();
+    let mut found = Vec::new();
     for level in 0..max_folds {
-        // Every fold through the cut points on each state of the beam, screened.
-        let mut scored: Vec<(f64, usize, Vec<Move>, Vec<u8>)> = beam
+        // Every fold through the free cut points on each state of the beam, screened.
+        let mut scored: Vec<(f64, usize, Partial, Vec<u8>)> = beam
             .par_iter()
             .enumerate()
-            .flat_map_iter(|(p, moves)| {
-                let state = synthesise(before, moves).map(|(t, _)| t.state).unwrap_or_default();
-                let mut next = Vec::new();
-                for points in &cut_sets {
-                    for m in moves_on(&state, points) {
-                        let mut longer = moves.clone();
-                        longer.push(m);
-                        next.push((p, longer));
-                    }
-                }
-                next
+            .flat_map_iter(|(p, partial)| {
+                let state = make(before, &partial.moves).map(|(t, _)| t.state).unwrap_or_default();
+                moves_on(&state, &cut_sets[partial.set], &partial.used)
+                    .into_iter()
+                    .map(move |(m, through)| {
+                        let mut longer = partial.clone();
+                        longer.moves.push(m);
+                        longer.used.extend(through);
+                        (p, longer)
+                    })
             })
-            .filter_map(|(p, moves)| {
-                let (turned, _) = synthesise(before, &moves)?;
-                Some((screen.cost(&turned), p, moves, turned.groups().to_vec()))
+            .filter_map(|(p, partial)| {
+                let (turned, _) = make(before, &partial.moves)?;
+                Some((probes.screen.cost(&turned), p, partial, turned.groups().to_vec()))
             })
             .collect();
         scored.sort_by(|a, b| a.0.total_cmp(&b.0));
-        if debug {
-            for (rank, (c, p, m, _)) in scored.iter().enumerate().take(40) {
-                let folds = synthesise(before, m).map(|(_, f)| f).unwrap_or_default();
-                eprintln!("    screen #{rank} {c:.4} prefix {p}: {:?}", folds.iter().map(|f| f.arcs.iter().map(|a| [(a[0]*10.0).round()/10.0, (a[1]*10.0).round()/10.0]).collect::<Vec<_>>()).collect::<Vec<_>>());
-            }
-        }
-        // Distinct by what the folds moved: the beam carries every first fold on (a
-        // sequence's first folds explain little alone), then the best few.
-        let width = if level == 0 { FIRST_BEAM } else { beam_width() };
-        let mut kept: Vec<(f64, usize, Vec<Move>, Vec<u8>)> = Vec::new();
+        // Distinct by what the folds moved.
+        let width = if level == 0 { FIRST_BEAM } else { BEAM };
+        let mut kept: Vec<&(f64, usize, Partial, Vec<u8>)> = Vec::new();
         for s in &scored {
             if kept.len() == width {
                 break;
             }
             if kept.iter().all(|k| k.3 != s.3) {
-                kept.push(s.clone());
+                kept.push(s);
             }
         }
         if kept.is_empty() {
             break;
         }
-        // Refined: the best of each state the beam came from, the best few overall.
+        if level == 0 {
+            // One fold is the step's own detection's business.
+            beam = kept.into_iter().map(|k| k.2.clone()).collect();
+            continue;
+        }
+        // Refined: the best of each state the beam came from first.
         let mut chosen: Vec<Vec<Move>> = Vec::new();
         let mut prefixes: Vec<usize> = Vec::new();
         for k in &kept {
             if chosen.len() < REFINED && !prefixes.contains(&k.1) {
                 prefixes.push(k.1);
-                chosen.push(k.2.clone());
+                chosen.push(k.2.moves.clone());
             }
         }
         for k in &kept {
-            if chosen.len() < REFINED && !chosen.contains(&k.2) {
-                chosen.push(k.2.clone());
+            if chosen.len() < REFINED && !chosen.contains(&k.2.moves) {
+                chosen.push(k.2.moves.clone());
             }
         }
         let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
             chosen
                 .into_par_iter()
                 .filter_map(|moves| {
-                    let moves = refine(before, start, end, flat, moves).1;
-                    judged_at_best_lift(&judge, before, moves)
+                    let moves = refine(before, start, end, moves);
+                    let (_, made) = make(before, &moves)?;
+                    Some(judge_made(&probes.judge, before, made))
                 })
                 .collect()
         };
         let mut judged = judge_all(chosen);
         judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
-        // The best one's twins: sequences that land alike on the table (another order of
-        // the same folds), refined too, so that the layer order can decide between them.
+        // The best one's twins (another order of the same folds) are refined too, so that
+        // the layer order can decide between them.
         if let Some(first) = judged.first() {
-            let groups: Vec<Vec<u8>> = judged
+            let seen: Vec<Vec<u8>> = judged
                 .iter()
-                .filter_map(|j| synthesise(before, &j.moves).map(|(t, _)| t.groups().to_vec()))
+                .map(|j| turned(before, &j.made, LIFT).groups().to_vec())
                 .collect();
-            let twins: Vec<Vec<Move>> = scored
-                .iter()
-                .take(TWIN_SCAN)
-                .filter(|s| !groups.contains(&s.3))
-                .filter_map(|s| {
-                    let (t, _) = synthesise(before, &s.2)?;
-                    (crate::metrics::aligned_rmse_xy(&t.state, &first.state) < CONGRUENT)
-                        .then(|| s.2.clone())
-                })
-                .take(TWINS)
-                .collect();
-            if debug {
-                eprintln!("    twins: {}", twins.len());
+            let mut twins: Vec<(Vec<Move>, Vec<u8>)> = Vec::new();
+            for s in scored.iter().filter(|s| !seen.contains(&s.3)) {
+                if twins.len() == TWINS {
+                    break;
+                }
+                if twins.iter().any(|t| t.1 == s.3) {
+                    continue;
+                }
+                let Some((t, _)) = make(before, &s.2.moves) else { continue };
+                // Unrefined, a twin lands less alike.
+                if aligned_rmse_xy(&t.state, &first.state) < 2.0 * CONGRUENT {
+                    twins.push((s.2.moves.clone(), s.3.clone()));
+                }
             }
+            if std::env::var("SEQ_DEBUG").is_ok() {
+                eprintln!("   scored {} kept {} twins {}", scored.len(), kept.len(), twins.len());
+                for t in &twins { let (tt, made) = make(before, &t.0).unwrap(); eprintln!("     twin {:.3} {:?}", aligned_rmse_xy(&tt.state, &first.state), made.iter().map(|m| m.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>()); }
+                for sc in scored.iter() { if let Some((tt, made)) = make(before, &sc.2.moves) { let a0 = made[0].arcs[0]; if (a0[0]-44.0).abs() < 2.0 && (a0[1]-110.0).abs() < 2.0 && made.len() == 2 { let b0 = made[1].arcs[0]; if (b0[0]-12.0).abs() < 3.0 && (b0[1]-78.0).abs()<3.0 { eprintln!("     truthlike score {:.4} aligned {:.3} {:?}", sc.0, aligned_rmse_xy(&tt.state, &first.state), made.iter().map(|m| m.arcs.clone()).collect::<Vec<_>>()); } } } }
+            }
+            let twins: Vec<Vec<Move>> = twins.into_iter().map(|t| t.0).collect();
             judged.extend(judge_all(twins));
             judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+            // Refined from different starts, two may have become one.
+            let mut groups: Vec<Vec<u8>> = Vec::new();
+            judged.retain(|j| {
+                let g = turned(before, &j.made, LIFT).groups().to_vec();
+                let new = !groups.contains(&g);
+                groups.push(g);
+                new
+            });
         }
-        if debug {
-            for j in &judged {
-                let folds = synthesise(before, &j.moves).map(|(_, f)| f).unwrap_or_default();
-                eprintln!("    cand judge {:.4} ratio {:.3} lift {}: {:?}", j.cost, j.cost / judge.unfolded(), j.lift, folds.iter().map(|f| f.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>());
-            }
+        if let Some(best) = layer_order(&probes.order, &mut judged) {
+            found.push((best, judged));
         }
-        let order_probe = Probe::of(all_pairs(ORDER_SAMPLES), start, end, false, scale_flat(flat));
-        let Some(winner) = layer_order(&order_probe, judged, debug) else { break };
-        let Some((_, folds)) = synthesise_at(before, &winner.moves, winner.lift) else { break };
-        let mismatches = (1..=winner.moves.len())
-            .map(|k| {
-                synthesise_at(before, &winner.moves[..k], winner.lift)
-                    .map_or(f64::INFINITY, |(t, _)| judge.cost(&t))
-            })
-            .collect::<Vec<_>>();
-        best.push(Sequence {
-            folds,
-            mismatch: winner.cost,
-            mismatches,
-            unfolded_mismatch: judge.unfolded(),
-        });
-        beam = kept.into_iter().map(|(_, _, moves, _)| moves).collect();
+        beam = kept.into_iter().map(|k| k.2.clone()).collect();
     }
-    best
+    found
 }
 
-/// Two sequences whose end states lie alike on the table, but for a rigid motion, this
-/// close (aligned RMSE, normalised units), differ in how their layers are stacked.
-const CONGRUENT: f64 = 0.05;
-
-/// A refined sequence judged at the flap height that fits it best.
-struct Judged {
-    cost: f64,
-    moves: Vec<Move>,
-    lift: f64,
-    state: Vec<Point>,
-}
-
-/// `moves` judged on `judge` at each of [`LIFTS`], the best kept: the layers' spacing is
-/// the cloth's own thickness, which the disk shows.
-fn judged_at_best_lift(judge: &Probe, before: &[Point], moves: Vec<Move>) -> Option<Judged> {
-    LIFTS
-        .iter()
-        .filter_map(|&lift| {
-            let (turned, _) = synthesise_at(before, &moves, lift)?;
-            Some((judge.cost(&turned), lift, turned.state))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(cost, lift, state)| Judged { cost, moves, lift, state })
-}
-
-/// Scored sequences searched for twins of the best one.
-const TWIN_SCAN: usize = 400;
-/// Twins refined.
-const TWINS: usize = 3;
-
-/// The sequence of least mismatch among `judged` (best first), but that one whose end lands
-/// like it (within [`CONGRUENT`]), its layers stacked in another order, is compared with it
-/// on the order alone: each one's outline with each one's heights, on `probe`.
-fn layer_order(probe: &Probe, judged: Vec<Judged>, debug: bool) -> Option<Judged> {
+/// Take out of `judged` (best first) the sequence of least mismatch, but that one which
+/// explains the end disk about as well ([`ABOUT_AS_WELL`]) and lands like it (within
+/// [`CONGRUENT`]), its layers stacked in another order, and whose heights fit the measured
+/// disk better, on each one's outline, on `probe`.
+fn layer_order(probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
     let with = |xy: &[Point], z: &[Point]| -> Vec<Point> {
         xy.iter().zip(z).map(|(p, q)| Point::new(p.x, p.y, q.z)).collect()
     };
-    let mut it = judged.into_iter();
-    let mut best = it.next()?;
-    for other in it {
-        if crate::metrics::aligned_rmse_xy(&best.state, &other.state) > CONGRUENT {
+    let mut best = 0;
+    for k in 1..judged.len() {
+        let (a, b) = (&judged[best].state, &judged[k].state);
+        if std::env::var("SEQ_DEBUG").is_ok() && aligned_rmse_xy(&judged[0].state, b) < CONGRUENT {
+            let a0 = &judged[0].state;
+            eprintln!("      order on best outline: cand {k} ({:.3}): own {:.4} theirs {:.4}; on theirs: best z {:.4} own {:.4}", judged[k].cost, probe.cost_of_state(a0), probe.cost_of_state(&with(a0, b)), probe.cost_of_state(&with(b, a0)), probe.cost_of_state(b));
+        }
+        if judged[k].cost > (1.0 + ABOUT_AS_WELL) * judged[0].cost || aligned_rmse_xy(a, b) > CONGRUENT
+        {
             continue;
         }
-        let (a, b) = (&best.state, &other.state);
-        // Positive when `other`'s heights fit better, on either outline.
+        // Positive when the other's heights fit better, on either outline.
         let evidence = (probe.cost_of_state(a) - probe.cost_of_state(&with(a, b)))
             + (probe.cost_of_state(&with(b, a)) - probe.cost_of_state(b));
-        if debug {
-            eprintln!("    order evidence for the other ({:.4} vs {:.4}): {evidence:.4}", other.cost, best.cost);
-        }
-        if evidence > 0.0 && std::env::var("SEQ_NO_ORDER").is_err() {
-            best = other;
+        if evidence > 0.0 {
+            best = k;
         }
     }
-    Some(best)
-}
-
-/// Flap heights above the stack tried when sequences are judged (normalised units: a
-/// cloth's thickness, doubled at a crease, is 0.5–4 % of its size).
-const LIFTS: [f64; 7] = [0.0025, 0.005, 0.0075, 0.01, 0.02, 0.04, 0.08];
-
-/// Edges sampled for the layer-order test, all pairs of them.
-const ORDER_SAMPLES: usize = 96;
-
-/// Whether the probe values of a step from a flat start are compared at the flat scale.
-fn scale_flat(flat: bool) -> bool {
-    flat && std::env::var("SEQ_STACKED_SCALE").is_err()
+    (!judged.is_empty()).then(|| judged.remove(best))
 }
 
 /// Refine every fold of `moves` together: a pattern search over each fold's two parameters
 /// (all eight neighbours of one fold at a time), the step halving when none is better.
-fn refine(
-    before: &[Point],
-    start: &Disk,
-    end: &Disk,
-    flat: bool,
-    moves: Vec<Move>,
-) -> (f64, Vec<Move>) {
-    let arcs: Vec<[f64; 2]> = synthesise(before, &moves)
-        .map(|(_, folds)| folds.into_iter().flat_map(|f| f.arcs).collect())
+fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<Move> {
+    let arcs: Vec<[f64; 2]> = make(before, &moves)
+        .map(|(_, made)| made.into_iter().flat_map(|m| m.arcs).collect())
         .unwrap_or_default();
-    let probe = Probe::around(start, end, &arcs, scale_flat(flat));
+    let probe = Probe::around(start, end, &arcs, true, compared_at());
     let angle_step = PI / DIRECTIONS as f64;
     let mut best = (cost(&probe, before, &moves), moves);
     let mut h = 0.5;
     while h >= 0.125 {
-        let centre = best.1.clone();
+        let centre = &best.1;
         let neighbours: Vec<Vec<Move>> = (0..centre.len())
             .flat_map(|k| {
-                let centre = &centre;
                 [-1.0, 0.0, 1.0].into_iter().flat_map(move |d1| {
-                    [-1.0, 0.0, 1.0].into_iter().filter_map(move |d2| {
-                        if d1 == 0.0 && d2 == 0.0 {
-                            return None;
-                        }
-                        let mut moved = centre.clone();
-                        moved[k] = centre[k].moved([d1 * h, d2 * h], angle_step);
-                        Some(moved)
-                    })
+                    [-1.0, 0.0, 1.0].into_iter().filter(move |&d2| (d1, d2) != (0.0, 0.0)).map(
+                        move |d2| {
+                            let mut moved = centre.clone();
+                            moved[k] = centre[k].moved([d1 * h, d2 * h], angle_step);
+                            moved
+                        },
+                    )
                 })
             })
             .collect();
@@ -487,30 +507,139 @@ fn refine(
             _ => h /= 2.0,
         }
     }
-    best
+    best.1
 }
 
-/// Lab only.
-pub fn debug_score(before: &[Point], start: &Disk, end: &Disk, lines: &[Line]) -> Vec<f64> {
-    let n = before.len();
-    let flat = super::is_flat(before);
-    let edges = sampled_edges(n, SAMPLES);
-    let pairs: Vec<(usize, usize)> = edges
-        .iter()
-        .enumerate()
-        .flat_map(|(k, &i)| edges[k + 1..].iter().map(move |&j| (i, j)))
-        .collect();
-    let judge = Probe::of(pairs, start, end, flat, scale_flat(flat));
-    let mut turned = Turned::unfolded(before);
-    let mut out = vec![judge.unfolded()];
-    for line in lines {
-        let arcs = arcs_left_of(&turned.state, line);
-        eprintln!("arcs {arcs:?}");
-        turned.fold(&arcs, line, LIFT);
-        out.push(judge.cost(&turned));
+/// One fold of a step's sequence and the share of the step's end-disk mismatch it explained.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExplainedFold {
+    /// The fold as made: its `line` lies on the synthesised state it was made on
+    /// (normalised coordinates of the step's start frame).
+    #[serde(flatten)]
+    pub folding: Folding,
+    /// Share of the step's mismatch (the start state's against the end disk) this fold took
+    /// away, on the probe every candidate of the step is judged by: the folds' shares add up
+    /// to the share the sequence explains. `None` when not judged (`--method paper`).
+    pub explained: Option<f64>,
+}
+
+/// Another sequence that explains a step's end disk about as well as the one reported.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Alternative {
+    pub folds: Vec<ExplainedFold>,
+    /// Share of the step's mismatch the sequence explains (the reported one's for
+    /// comparison is `StepFolds::explained`).
+    pub explained: f64,
+}
+
+/// What a step's end disk was explained by.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StepFolds {
+    /// The step's folds, in the order made; empty without a confident fold.
+    pub folds: Vec<ExplainedFold>,
+    /// Other sequences explaining it about as well; for a step whose best candidate was not
+    /// confident, that candidate.
+    pub alternatives: Vec<Alternative>,
+    /// Share of the step's mismatch `folds` explain.
+    pub explained: f64,
+    /// True when the best fold or sequence found left more than [`UNEXPLAINED`] of the
+    /// mismatch: the step changed, but no fold found explains it, and none is reported.
+    pub unexplained: bool,
+}
+
+impl Judged {
+    /// The share of `unfolded` each fold took away, in turn, at the judged height.
+    fn explained(&self, judge: &Probe, before: &[Point], unfolded: f64) -> Vec<ExplainedFold> {
+        let n = before.len();
+        let mut previous = unfolded;
+        (1..=self.made.len())
+            .map(|k| {
+                let now = judge.cost(&turned(before, &self.made[..k], self.lift));
+                let share = (previous - now) / unfolded;
+                previous = now;
+                ExplainedFold { folding: self.made[k - 1].folding(n), explained: Some(share) }
+            })
+            .collect()
     }
-    let full = Disk::of_border(&turned.state);
-    let diff: f64 = full.values().iter().zip(end.values()).map(|(a, b)| (a - b).abs()).sum::<f64>() / full.values().len() as f64;
-    eprintln!("full-disk mean abs diff of the synthesised end {diff}; z {:?}", turned.state.iter().map(|p| p.z).collect::<Vec<_>>());
-    out
+}
+
+/// The folds of one step: its own one fold (`single`, from [`super::detect`]), or, when that
+/// leaves its end disk unexplained and the step starts flat, the sequence of up to
+/// `max_folds` folds ([`MAX_FOLDS`] at most) that explains it markedly better, by the
+/// model selection of the module's documentation.
+///
+/// `before` is the step's start border (normalised as the disks were), `start` its disk,
+/// `end` the measured end disk.
+pub fn explain(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    single: &FoldDetection,
+    max_folds: usize,
+) -> StepFolds {
+    let n = before.len();
+    let Some(fold) = single.fold else { return StepFolds::default() };
+    let direction = single.synthesis.as_ref().and_then(|s| s.direction);
+    let single_folding = || Folding { fold, arcs: single.arcs.clone(), line: fold.line_on(before, direction) };
+    if !super::is_flat(before) {
+        // A stacked start keeps its one fold, judged by its own refinement.
+        let explained = single.synthesis.as_ref().map_or(1.0, |s| {
+            if s.unfolded_mismatch > 0.0 { 1.0 - s.mismatch / s.unfolded_mismatch } else { 1.0 }
+        });
+        return StepFolds {
+            folds: vec![ExplainedFold { folding: single_folding(), explained: Some(explained) }],
+            explained,
+            ..StepFolds::default()
+        };
+    }
+    let strided = |samples: usize| all_pairs(&sampled_edges(n, samples));
+    let probes = Probes {
+        screen: Probe::of(strided(SCREEN_SAMPLES), start, end, true, compared_at()),
+        judge: Probe::of(strided(SAMPLES), start, end, true, compared_at()),
+        order: Probe::of(strided(ORDER_SAMPLES), start, end, false, compared_at()),
+    };
+    let unfolded = probes.judge.unfolded();
+    let share = |cost: f64| if unfolded > 0.0 { cost / unfolded } else { 0.0 };
+    let Some(line) = single_folding().line else { return StepFolds::default() };
+    let arcs = single.arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect();
+    let one = judge_made(&probes.judge, before, vec![Made { line, arcs }]);
+    let mut left = share(one.cost);
+    let mut chosen = (one, Vec::new());
+    if max_folds >= 2 && left > EXPLAINED_BY_ONE {
+        for (best, others) in search(before, start, end, &probes, max_folds.min(MAX_FOLDS)) {
+            let now = share(best.cost);
+            if std::env::var("SEQ_DEBUG").is_ok() {
+                eprintln!("one fold leaves {left:.3}; {} folds leave {now:.3}: {:?}", best.made.len(), best.made.iter().map(|m| m.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>());
+                for o in &others { eprintln!("   other {:.3} {:?}", share(o.cost), o.made.iter().map(|m| m.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>()); }
+            }
+            if now <= MARKEDLY * left && left - now >= MIN_GAIN {
+                left = now;
+                chosen = (best, others);
+            } else {
+                break;
+            }
+        }
+    }
+    let (best, others) = chosen;
+    let alternative = |j: &Judged| Alternative {
+        folds: j.explained(&probes.judge, before, unfolded),
+        explained: 1.0 - share(j.cost),
+    };
+    if left > UNEXPLAINED {
+        return StepFolds {
+            alternatives: vec![alternative(&best)],
+            unexplained: true,
+            ..StepFolds::default()
+        };
+    }
+    StepFolds {
+        folds: best.explained(&probes.judge, before, unfolded),
+        alternatives: others
+            .iter()
+            .filter(|o| o.cost <= (1.0 + ABOUT_AS_WELL) * best.cost)
+            .map(alternative)
+            .collect(),
+        explained: 1.0 - left,
+        unexplained: false,
+    }
 }

@@ -52,7 +52,16 @@ const SCALE: f64 = 1.0;
 /// MuJoCo second folds from a wrong line on two of six to mean RMSE 0.071; 0.003–0.1 are
 /// alike, 0.3 and up lose the circle's second fold. On flat starts it moved the built-in
 /// towels' exact folds by a tenth of a degree, so those keep 1.0.)
-const STACKED_SCALE: f64 = 0.03;
+pub(crate) const STACKED_SCALE: f64 = 0.03;
+
+/// The compression's scale of a step that starts `flat` or stacked.
+pub(crate) fn scale_of(flat: bool) -> f64 {
+    if flat {
+        SCALE
+    } else {
+        STACKED_SCALE
+    }
+}
 /// Edges on each side of a fold point whose rows are probed.
 pub(crate) const NEAR: usize = 3;
 /// Most probe edges sampled along the whole border (the cost per candidate is bounded
@@ -162,7 +171,6 @@ pub(crate) fn flap_axis(before: &[Point], lift: f64) -> f64 {
 }
 
 /// The probe pairs, their measured end values and their values in the step's start state.
-#[derive(Clone)]
 pub(crate) struct Probe {
     pairs: Vec<(usize, usize)>,
     measured: Vec<f64>,
@@ -175,9 +183,6 @@ pub(crate) struct Probe {
     flap_negates: bool,
     /// The compression's scale ([`SCALE`], [`STACKED_SCALE`]).
     scale: f64,
-    /// A pair's mismatch counts up to this much (robust: a sequence's first folds explain
-    /// some pairs exactly and leave the others to the folds after them).
-    cap: f64,
 }
 
 impl Probe {
@@ -188,18 +193,23 @@ impl Probe {
         start: &Disk,
         end: &Disk,
         flap_negates: bool,
-        flat: bool,
+        scale: f64,
     ) -> Probe {
-        let scale = if flat { SCALE } else { STACKED_SCALE };
         let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j), scale)).collect();
         let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j), scale)).collect();
-        Probe { pairs, measured, start, flap_negates, scale, cap: f64::INFINITY }
+        Probe { pairs, measured, start, flap_negates, scale }
     }
 
     /// Probe pairs around the ends of the folded `arcs`: every edge near them against a
     /// strided sample of all edges, and sampled edges of the folded arcs against the rest.
     /// On a flat start the flap's pairs take their negated start values ([`Probe::flap_negates`]).
-    pub(crate) fn around(start: &Disk, end: &Disk, arcs: &[[f64; 2]], flat: bool) -> Probe {
+    pub(crate) fn around(
+        start: &Disk,
+        end: &Disk,
+        arcs: &[[f64; 2]],
+        flap_negates: bool,
+        scale: f64,
+    ) -> Probe {
         let n = end.n();
         let sampled = sampled_edges(n, SAMPLES);
         let mut near: Vec<usize> = Vec::new();
@@ -226,7 +236,7 @@ impl Probe {
         }
         pairs.sort_unstable();
         pairs.dedup();
-        Probe::of(pairs, start, end, flat, flat)
+        Probe::of(pairs, start, end, flap_negates, scale)
     }
 
     /// Mean mismatch of the synthesised state `turned` with the measured end disk.
@@ -266,29 +276,25 @@ impl Probe {
             let total: f64 = values
                 .iter()
                 .zip(&self.measured)
-                .map(|(value, m)| (value.unwrap_or(0.0) - m).abs().min(self.cap))
+                .map(|(value, m)| (value.unwrap_or(0.0) - m).abs())
                 .sum();
             total / self.pairs.len().max(1) as f64
         })
     }
 
     /// Mean mismatch of any `state` of the border with the measured end disk, every pair's
-    /// dGLI computed.
+    /// dGLI computed (the probe is made without `flap_negates`).
     pub(crate) fn cost_of_state(&self, state: &[Point]) -> f64 {
+        debug_assert!(!self.flap_negates);
         let mut turned = Turned::unfolded(state);
-        // Every vertex its own group but for the edges' shared ends: no pair is skipped.
-        turned.group = (0..state.len()).map(|v| 1 + (v % 2) as u8).collect();
-        Probe { flap_negates: false, ..self.clone() }.cost(&turned)
-    }
-
-    /// The same probe with each pair's mismatch capped at `cap`.
-    pub(crate) fn capped(self, cap: f64) -> Probe {
-        Probe { cap, ..self }
+        // Every vertex moved: no pair keeps its start value.
+        turned.group.fill(1);
+        self.cost(&turned)
     }
 
     /// Mean mismatch of the start state left as it was.
     pub(crate) fn unfolded(&self) -> f64 {
-        self.start.iter().zip(&self.measured).map(|(s, m)| (s - m).abs().min(self.cap)).sum::<f64>()
+        self.start.iter().zip(&self.measured).map(|(s, m)| (s - m).abs()).sum::<f64>()
             / self.pairs.len().max(1) as f64
     }
 }
@@ -396,7 +402,8 @@ fn refine_points(
 ) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
-    let probe = Probe::around(start, end, &[s], super::is_flat(before));
+    let flat = super::is_flat(before);
+    let probe = Probe::around(start, end, &[s], flat, scale_of(flat));
     let axis = flap_axis(before, LIFT);
     let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
@@ -472,7 +479,8 @@ pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
 fn refine_line(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synthesis {
     let phi0 = line.direction.y.atan2(line.direction.x);
     let rho0 = line.direction.x * line.point.y - line.direction.y * line.point.x;
-    let probe = Probe::around(start, end, &arcs_left_of(before, line), super::is_flat(before));
+    let flat = super::is_flat(before);
+    let probe = Probe::around(start, end, &arcs_left_of(before, line), flat, scale_of(flat));
     let axis = flap_axis(before, LIFT);
     let folded = |phi: f64, rho: f64| {
         let line = line_at(phi, rho);
@@ -572,7 +580,7 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
         .iter()
         .flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j)))
         .collect();
-    let probe = Probe::of(pairs, start, end, true, false);
+    let probe = Probe::of(pairs, start, end, true, STACKED_SCALE);
     let unfolded = probe.unfolded();
     let axis = flap_axis(before, LIFT);
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
@@ -743,7 +751,8 @@ mod tests {
             let axis = flap_axis(&before, LIFT);
             let folded = fold_by_hand(&before, s, axis);
             let (start, end) = (Disk::of_border(&before), Disk::of_border(&folded));
-            let probe = Probe::around(&start, &end, &[s], flap_negates);
+            let probe =
+                Probe::around(&start, &end, &[s], flap_negates, scale_of(flap_negates));
             let line = line_of(&before, s, None).expect("two distinct fold points");
             let turned = Turned::new(&before, axis, &[s], &line);
             // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
