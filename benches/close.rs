@@ -1,6 +1,11 @@
 //! Benchmarks: one dGLI disk and a full analysis (two disks + fit + label) at N = 76, 300
 //! and 1000. Run with `cargo bench`; `scripts/bench.sh` runs them beside the numpy
 //! baseline (`benches/numpy_baseline.py`) and prints the ratios.
+//!
+//! The reward of a learning loop: `close::distance::fold_distances` on 10⁵ pairs of fold
+//! sequences (1–3 folds each), beside the plainest distance one could take instead (the
+//! sum of the circular distances of the padded fold angles, the same pairs, one core): the
+//! ratio is what the edit distance's matching of missing and extra folds costs.
 
 use std::f64::consts::PI;
 
@@ -50,4 +55,59 @@ fn dgli_disk(bencher: divan::Bencher, n: usize) {
 fn analyze_fold(bencher: divan::Bencher, n: usize) {
     let frames = prepare(folded_frames(n)).unwrap();
     bencher.bench(|| analyze(divan::black_box(&frames), FrameRange::default()).unwrap());
+}
+
+/// 10⁵ pairs of seeded fold sequences of 1–3 folds, as (count, 3, 2) arrays padded with NaN.
+fn fold_batches() -> (Vec<f64>, Vec<f64>) {
+    let mut rng = close::rng::SplitMix64::new(30);
+    let mut batch = || -> Vec<f64> {
+        (0..100_000)
+            .flat_map(|_| {
+                let k = 1 + rng.below(3);
+                let mut rows = [f64::NAN; 6];
+                for f in rows.chunks_mut(2).take(k) {
+                    let f1 = rng.range(0.0, 2.0 * PI);
+                    f[0] = f1;
+                    f[1] = (f1 + rng.range(0.3, 5.9)) % (2.0 * PI);
+                }
+                rows
+            })
+            .collect()
+    };
+    (batch(), batch())
+}
+
+#[divan::bench]
+fn fold_distances_100k(bencher: divan::Bencher) {
+    use close::distance::{fold_distances, FoldBatch};
+    let (a, b) = fold_batches();
+    let (a, b) = (FoldBatch::new(&a, 100_000, 3).unwrap(), FoldBatch::new(&b, 100_000, 3).unwrap());
+    bencher.bench(|| fold_distances(divan::black_box(&a), divan::black_box(&b)).unwrap());
+}
+
+/// The baseline: Σ circular distances of the six padded angles (NaN rows count as 0), one
+/// core, no matching of folds.
+#[divan::bench]
+fn padded_angle_distances_100k(bencher: divan::Bencher) {
+    let (a, b) = fold_batches();
+    bencher.bench(|| {
+        divan::black_box(&a)
+            .chunks(6)
+            .zip(divan::black_box(&b).chunks(6))
+            .map(|(x, y)| {
+                x.iter()
+                    .zip(y)
+                    .map(|(p, q)| {
+                        let d = (p - q).abs() % (2.0 * PI);
+                        if d.is_nan() {
+                            0.0
+                        } else {
+                            d.min(2.0 * PI - d)
+                        }
+                    })
+                    .sum::<f64>()
+                    / (2.0 * PI)
+            })
+            .collect::<Vec<f64>>()
+    });
 }

@@ -2,7 +2,7 @@
 //! workspace's crates, which the `close` binary, the tests and the benchmarks use.
 //!
 //! - [`close_core`]: the maths (border, geometry, gli, disk, fold, close, label, plan,
-//!   interpolate, metrics, analysis), with no web, async, plotting or C dependency;
+//!   interpolate, metrics, analysis, distance, verify), with no web, async, plotting or C dependency;
 //! - [`close_io`]: the readers, the built-in dataset, the evaluation, VR-Folding stores;
 //! - [`close_render`]: the pictures and Rerun recordings;
 //! - [`close_server`]: the web app.
@@ -25,9 +25,9 @@
 //! ```
 
 pub use close_core::{
-    analysis, analyze, analyze_with, angle, border, budget, close, disk, error, fold, geometry,
-    gli, interpolate, label, metrics, plan, rng, Analysis, Arc, Error, Fold, FoldMethod, Folding,
-    FrameRange, Line, Options, Result, DEFAULT_MAX_FOLDS,
+    analysis, analyze, analyze_with, angle, border, budget, close, disk, distance, error, fold,
+    geometry, gli, interpolate, label, metrics, plan, rng, verify, Analysis, Arc, Error, Fold,
+    FoldMethod, Folding, FrameRange, Line, Options, Result, DEFAULT_MAX_FOLDS,
 };
 #[cfg(feature = "vrfolding")]
 pub use close_io::vrfolding;

@@ -1,4 +1,4 @@
-//! `close`: the command line: analyze, eval, dataset, plan, record, serve.
+//! `close`: the command line: analyze, eval, dataset, plan, verify, record, serve.
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -99,6 +99,26 @@ enum Command {
         )]
         goal: Vec<f64>,
         /// Print the plan as JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Check a sample's end state against a goal sequence of folds: reached or not, how far,
+    /// which folds are missing, extra or misplaced, and the plan that corrects it.
+    Verify {
+        /// One Sample JSON, or one text/CSV file per frame (the flat start first).
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The goal folds in order, each two angles in radians: `--goal 0.5,3.6` or
+        /// `--goal '0.5,3.6;1.2,4.0'`.
+        #[arg(long, required = true, allow_hyphen_values = true)]
+        goal: String,
+        /// Each fold point within this many edges of the goal's.
+        #[arg(long, default_value_t = close::verify::Tolerance::default().edges)]
+        tolerance_edges: f64,
+        /// The aligned RMSE between the predicted borders at most this (normalised units).
+        #[arg(long, default_value_t = close::verify::Tolerance::default().aligned_rmse)]
+        tolerance_rmse: f64,
+        /// Print the answer as JSON instead of text.
         #[arg(long)]
         json: bool,
     },
@@ -560,6 +580,79 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     emit(&text)
 }
 
+/// The folds of `--goal`: pairs `f1,f2` separated by `;`.
+fn parse_goal(text: &str) -> CliResult<Vec<[f64; 2]>> {
+    text.split(';')
+        .filter(|fold| !fold.trim().is_empty())
+        .enumerate()
+        .map(|(k, fold)| {
+            let angles: Vec<f64> = fold
+                .split(',')
+                .map(|a| a.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|e| CliError::Usage(format!("--goal, fold {}: {fold:?}: {e}", k + 1)))?;
+            match angles[..] {
+                [f1, f2] => Ok([f1, f2]),
+                _ => Err(CliError::Usage(format!(
+                    "--goal, fold {}: {fold:?} is not two angles f1,f2",
+                    k + 1
+                ))),
+            }
+        })
+        .collect()
+}
+
+/// Analyse the sample, then verify its end state against the goal folds.
+fn run_verify(
+    files: &[PathBuf],
+    goal: &str,
+    tolerance: close::verify::Tolerance,
+    json: bool,
+) -> CliResult {
+    let goal = close::verify::Goal::folds(parse_goal(goal)?);
+    let sample = load_sample(files)?;
+    let analysis = analyze(&sample.border_frames()?, FrameRange::default())?;
+    let answer = close::verify::verify(&analysis, &goal, tolerance)?;
+    if json {
+        return emit(&serde_json::to_string(&answer)?);
+    }
+    let mut text = answer.text.clone();
+    let distance = answer.distance;
+    text += &format!(
+        "
+distance: folds {:.4} of the border",
+        distance.folds
+    );
+    if let Some(g) = distance.geometric {
+        text += &format!(", shapes {g:.4} (aligned RMSE)");
+    }
+    for (k, f) in answer.folds.iter().enumerate() {
+        let status = serde_json::to_value(f.status)?;
+        text += &format!(
+            "
+fold {}: ({:.4}, {:.4}) {}",
+            k + 1,
+            f.goal[0],
+            f.goal[1],
+            status.as_str().unwrap_or_default()
+        );
+        if let (Some(e), Some(p)) = (f.error_edges, f.error_percent) {
+            text += &format!(
+                ", points off by {:+.2}, {:+.2} edges ({:+.2} %, {:+.2} %)",
+                e[0], e[1], p[0], p[1]
+            );
+        }
+    }
+    for e in &answer.extra {
+        text += &format!(
+            "
+extra fold: ({:.4}, {:.4})",
+            e.fold[0], e.fold[1]
+        );
+    }
+    emit(&text)
+}
+
 #[cfg(feature = "rerun")]
 fn run_record(files: &[PathBuf], out: &Path, force: bool) -> CliResult {
     let sample = load_sample(files)?;
@@ -610,6 +703,11 @@ fn main() -> ExitCode {
         }
         Some(Command::Dataset { out, from, force }) => run_dataset(&out, &from, force),
         Some(Command::Plan { files, goal, json }) => run_plan(&files, &goal, json),
+        Some(Command::Verify { files, goal, tolerance_edges, tolerance_rmse, json }) => {
+            let tolerance =
+                close::verify::Tolerance { edges: tolerance_edges, aligned_rmse: tolerance_rmse };
+            run_verify(&files, &goal, tolerance, json)
+        }
         #[cfg(feature = "rerun")]
         Some(Command::Record { files, out, force }) => run_record(&files, &out, force),
         Some(Command::Serve { addr, datasets, limits }) => {

@@ -86,6 +86,24 @@ function drawCircle() {
 
 const writeInputs = () => inputs.write({ "goal-1": view.goal[0], "goal-2": view.goal[1] });
 
+/**
+ * Whether the cloth's state reaches the goal, in the server's words (`POST /api/verify`'s
+ * `text`: "goal reached …", or what is off and the grasp that corrects it), shown under the
+ * plan's case; its own paragraph, made here, so the page's markup stays as it is.
+ */
+async function verdict() {
+  let p = $("#plan-verdict");
+  if (!p) {
+    p = el("p", { id: "plan-verdict", className: "plan-case" });
+    p.setAttribute("aria-live", "polite");
+    $("#plan-case").after(p);
+  }
+  p.textContent = "";
+  const res = await api.json("plan-verify", "/api/verify", { sample: view.cloth.id, goal: [view.goal] });
+  p.textContent = res.text;
+  p.dataset.reached = res.reached;
+}
+
 /** Ask the server for the plan and draw every step. */
 async function plan() {
   if (!view.cloth) return;
@@ -94,7 +112,7 @@ async function plan() {
   $("#plan-case").textContent = "Planning…";
   $("#plan-json").hidden = true;
   try {
-    const res = await api.plan({ sample: view.cloth.id, goal: view.goal });
+    const [res] = await Promise.all([api.plan({ sample: view.cloth.id, goal: view.goal }), verdict()]);
     Object.assign(view, { folds: res.folds, corners: res.corners });
     drawCircle();
     const count = res.steps.length;

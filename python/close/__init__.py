@@ -33,9 +33,11 @@ from ._close import (
     analyze_many,
     dgli_disk,
     disk_layout,
+    distance,
     interpolate,
     load,
     plan,
+    verify,
 )
 from . import _close
 
@@ -47,10 +49,12 @@ __all__ = [
     "analyze_many",
     "dgli_disk",
     "disk_layout",
+    "distance",
     "evaluate",
     "interpolate",
     "load",
     "plan",
+    "verify",
     "vrfolding",
 ]
 

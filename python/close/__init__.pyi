@@ -96,6 +96,33 @@ def interpolate(
 def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> Dict[str, Any]:
     """The `POST /api/plan` answer: how to reach the goal fold from the sample's state."""
 
+FoldsLike = Union[Analysis, Dict[str, Any], Sequence[Tuple[float, float]], npt.ArrayLike]
+
+def distance(
+    a: FoldsLike,
+    b: FoldsLike,
+    *,
+    kind: str = "folds",
+    border: Optional[npt.ArrayLike] = None,
+) -> Union[float, FloatArray]:
+    """Distance between two states of one cloth. `kind="folds"` (default): the fold distance in
+    shares of the border (one fold point moved by one edge costs 1/N, a missing or extra fold
+    the share it folds over). `kind="geometric"`: the aligned XY RMSE of the two predicted
+    borders (normalised units; needs the flat `border`, or two Analyses). `a`, `b`: Analyses,
+    CloSE dicts, (K, 2) arrays of folds, or (B, K, 2) batches (NaN rows pad shorter
+    sequences; one sequence pairs with every one of a batch): a float, or a (B,) array."""
+
+def verify(
+    observed: Union[Sample, Analysis, Frames],
+    goal: FoldsLike,
+    *,
+    tolerance_edges: float = 1.5,
+    tolerance_rmse: float = 0.03,
+) -> Dict[str, Any]:
+    """The `POST /api/verify` answer: `reached`, `text`, `distance` {`folds`, `geometric`},
+    `folds` (per goal fold: `status` found/misplaced/missing, `error_edges`, `error_percent`,
+    `short_edges`, `other_side`), `extra`, `plan` (a goal of one fold), `tolerance`."""
+
 def evaluate(
     items_or_path: Union[PathLike, Sequence[PathLike], Iterable[Union[Frames, Sample]]],
     *,

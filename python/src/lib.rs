@@ -596,6 +596,21 @@ fn fold_line(line: &Bound<'_, PyAny>) -> PyResult<Line> {
     Ok(Line { point: Point2::new(x, y), direction: Vector2::new(dx, dy) })
 }
 
+/// The analysis of `obj`: a `close.Analysis` made in this process, or a `close.Sample` (or
+/// frames) analysed first → last, with the GIL released. `what` names the caller in errors.
+fn analysis_for(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Arc<Analysis>> {
+    match obj.cast::<PyAnalysis>() {
+        Ok(a) => a.get().analysis.clone().ok_or_else(|| {
+            invalid(format!("this Analysis was unpickled: {what} from its Sample instead"))
+        }),
+        Err(_) => {
+            let sample = sample_of(obj)?;
+            let options = options("default", None, None)?;
+            py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)
+        }
+    }
+}
+
 /// How to reach the goal fold (g1, g2) (radians) from the state a sample ends in: the answer
 /// of `POST /api/plan` ({"case", "steps": [{"action", "fold", "corners", "picks"}], ...}).
 /// Takes a `close.Sample` (or frames: analysed first → last) or a `close.Analysis` made in
@@ -607,17 +622,132 @@ fn plan<'py>(
     goal: (f64, f64),
 ) -> PyResult<Bound<'py, PyAny>> {
     let goal = Fold::new(goal.0, goal.1);
-    let analysis = match sample_or_analysis.cast::<PyAnalysis>() {
-        Ok(a) => a.get().analysis.clone().ok_or_else(|| {
-            invalid("this Analysis was unpickled: plan from its Sample instead".into())
-        })?,
-        Err(_) => {
-            let sample = sample_of(sample_or_analysis)?;
-            let options = options("default", None, None)?;
-            py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)?
-        }
-    };
+    let analysis = analysis_for(py, sample_or_analysis, "plan")?;
     let answer = close_core::plan::answer(&analysis, goal).map_err(close_error)?;
+    to_python(py, &answer)
+}
+
+/// Fold sequences given to `close.distance` / `close.verify`: a `close.Analysis` (its folds),
+/// a dict with "folds" (a CloSE value, `Analysis.close`), or an array-like of folds: (K, 2)
+/// for one sequence, (B, K, 2) for a batch whose shorter sequences end in rows of NaN.
+/// Returns the numbers (row-major), the sequence count (`None`: one sequence, not a batch)
+/// and the width K.
+fn fold_rows(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Option<usize>, usize)> {
+    if let Ok(a) = obj.cast::<PyAnalysis>() {
+        let folds = a.get().folds();
+        let width = folds.len();
+        return Ok((folds.into_iter().flat_map(|(f1, f2)| [f1, f2]).collect(), None, width));
+    }
+    let folds = match obj.cast::<pyo3::types::PyDict>() {
+        Ok(dict) => dict
+            .get_item("folds")?
+            .ok_or_else(|| invalid(format!("{what}: a dict needs \"folds\" (a CloSE value)")))?,
+        Err(_) => obj.clone(),
+    };
+    let array = float_array(&folds)?;
+    let view = array.as_array();
+    let values = || view.iter().copied().collect::<Vec<f64>>();
+    match *view.shape() {
+        // An empty list: the flat cloth.
+        [0] => Ok((Vec::new(), None, 0)),
+        [k, 2] => Ok((values(), None, k)),
+        [count, k, 2] => Ok((values(), Some(count), k)),
+        ref shape => Err(invalid(format!(
+            "{what}: expected folds as a (K, 2) array or a batch (B, K, 2), got shape {shape:?}"
+        ))),
+    }
+}
+
+/// The distance between two states of one cloth (see `close_core::distance`): by default
+/// the fold distance, in shares of the border (moving one fold point by one edge costs 1/N,
+/// a missing or extra fold its folded share); `kind="geometric"`, the aligned XY RMSE of the
+/// two predicted borders in normalised units (needs `border`, the flat start, or two
+/// Analyses). `a`, `b`: Analyses, CloSE dicts, (K, 2) arrays of folds, or (B, K, 2) batches
+/// (NaN rows pad shorter sequences; a single sequence is paired with every one of a batch):
+/// a float for two states, a (B,) array for a batch.
+#[pyfunction]
+#[pyo3(signature = (a, b, *, kind = "folds", border = None))]
+fn distance<'py>(
+    py: Python<'py>,
+    a: &Bound<'py, PyAny>,
+    b: &Bound<'py, PyAny>,
+    kind: &str,
+    border: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use close_core::distance::{between, fold_distances, geometric_distances, FoldBatch};
+    let geometric = match kind {
+        "folds" => false,
+        "geometric" => true,
+        _ => return Err(invalid(format!("kind {kind:?}: expected \"folds\" or \"geometric\""))),
+    };
+    if let (true, None, Ok(x), Ok(y)) =
+        (geometric, border, a.cast::<PyAnalysis>(), b.cast::<PyAnalysis>())
+    {
+        let unpickled = || invalid("this Analysis was unpickled: give the flat `border`".into());
+        let (x, y) = (
+            x.get().analysis.clone().ok_or_else(unpickled)?,
+            y.get().analysis.clone().ok_or_else(unpickled)?,
+        );
+        let d = between(&x, &y).map_err(close_error)?;
+        return Ok(d.geometric.unwrap_or(f64::NAN).into_pyobject(py)?.into_any());
+    }
+    let flat = match (geometric, border) {
+        (true, None) => {
+            return Err(invalid(
+                "kind=\"geometric\" needs the flat `border` (or two Analyses)".into(),
+            ))
+        }
+        (true, Some(border)) => {
+            let prepared = close_core::border::prepare(vec![points(border, "border")?])
+                .map_err(close_error)?;
+            prepared.frames.into_iter().next()
+        }
+        (false, _) => None,
+    };
+    let ((xa, ca, wa), (xb, cb, wb)) = (fold_rows(a, "a")?, fold_rows(b, "b")?);
+    let batch = ca.is_some() || cb.is_some();
+    let out = py
+        .detach(|| {
+            let x = FoldBatch::new(&xa, ca.unwrap_or(1), wa)?;
+            let y = FoldBatch::new(&xb, cb.unwrap_or(1), wb)?;
+            match &flat {
+                Some(flat) => geometric_distances(flat, &x, &y),
+                None => fold_distances(&x, &y),
+            }
+        })
+        .map_err(close_error)?;
+    match out[..] {
+        [one] if !batch => Ok(one.into_pyobject(py)?.into_any()),
+        _ => Ok(out.into_pyarray(py).into_any()),
+    }
+}
+
+/// Did the state a sample ends in reach the goal folds? The answer of `POST /api/verify`
+/// ({"reached", "text", "distance", "folds", "extra", "plan", ...}). `observed`: a
+/// `close.Sample` (or frames, analysed first → last) or a `close.Analysis`; `goal`: folds
+/// (g1, g2) in order, as a list, a (K, 2) array, a CloSE dict or an Analysis.
+#[pyfunction]
+#[pyo3(signature = (observed, goal, *, tolerance_edges = 1.5, tolerance_rmse = 0.03))]
+fn verify<'py>(
+    py: Python<'py>,
+    observed: &Bound<'py, PyAny>,
+    goal: &Bound<'py, PyAny>,
+    tolerance_edges: f64,
+    tolerance_rmse: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    use close_core::verify::{check_goal, Goal, Tolerance};
+    let (values, count, _) = fold_rows(goal, "goal")?;
+    if count.is_some() {
+        return Err(invalid("goal: one sequence of folds, (K, 2), not a batch".into()));
+    }
+    let goal = Goal::folds(values.chunks(2).map(|f| [f[0], f[1]]));
+    // A bad goal is refused before the sample is analysed.
+    check_goal(&goal, None).map_err(close_error)?;
+    let analysis = analysis_for(py, observed, "verify")?;
+    let tolerance = Tolerance { edges: tolerance_edges, aligned_rmse: tolerance_rmse };
+    let answer = py
+        .detach(|| close_core::verify::verify(&analysis, &goal, tolerance))
+        .map_err(close_error)?;
     to_python(py, &answer)
 }
 
@@ -827,6 +957,8 @@ fn _close(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(disk_layout, m)?)?;
     m.add_function(wrap_pyfunction!(interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(distance, m)?)?;
+    m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(vrfolding_open, m)?)?;
     m.add_function(wrap_pyfunction!(_eval_units, m)?)?;
     m.add_function(wrap_pyfunction!(_eval_rows, m)?)?;

@@ -1119,3 +1119,88 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
     .contains("too few"));
     assert_healthy(&app).await;
 }
+
+#[tokio::test]
+async fn verify_answers_reached_or_what_to_do_and_distance_measures() {
+    let app = test_app();
+    let entry = first_entry();
+    let analysed = get(&app, &format!("/api/samples/{}", entry.id)).await.json();
+    let observed = analysed["folds"].clone();
+    // Its own folds: reached, at distance 0; by id, by sample and by analysis key alike.
+    let by_id =
+        post_json(&app, "/api/verify", &json!({"sample": entry.id, "goal": observed})).await.json();
+    assert_eq!(by_id["reached"], true, "{by_id}");
+    assert_eq!(by_id["distance"]["folds"], 0.0);
+    assert!(by_id["text"].as_str().unwrap().starts_with("goal reached"));
+    let by_sample =
+        post_json(&app, "/api/verify", &json!({"sample": entry.sample, "goal": observed}))
+            .await
+            .json();
+    assert_same(&by_sample["folds"], &by_id["folds"], "folds");
+    // Another goal: not reached, with a plan and the share of the border it is away.
+    let goal = json!([[0.3, 3.4]]);
+    let other = post_json(
+        &app,
+        "/api/verify",
+        &json!({"sample": entry.id, "goal": goal, "tolerance": {"edges": 0.5}}),
+    )
+    .await
+    .json();
+    assert_eq!(other["reached"], false);
+    assert_eq!(other["tolerance"]["edges"], 0.5);
+    assert_eq!(other["tolerance"]["aligned_rmse"], 0.03);
+    assert!(other["distance"]["folds"].as_f64().unwrap() > 0.0);
+    assert!(other["plan"]["steps"].is_array(), "{other}");
+    for (body, status, words) in [
+        (json!({"sample": entry.id, "goal": [[1.0, 1.0]]}), StatusCode::BAD_REQUEST, "more than"),
+        (json!({"sample": entry.id, "goal": [1.0, 2.0]}), StatusCode::UNPROCESSABLE_ENTITY, "goal"),
+        (json!({"sample": "nope", "goal": goal}), StatusCode::NOT_FOUND, "nope"),
+        (
+            json!({"sample": entry.id, "goal": goal, "tolerance": {"edges": -1}}),
+            StatusCode::BAD_REQUEST,
+            "tolerance",
+        ),
+        (
+            json!({"sample": entry.id, "goal": goal, "lines": [{"point": [0, 0], "direction": [0, 0]}]}),
+            StatusCode::BAD_REQUEST,
+            "direction",
+        ),
+    ] {
+        let error = post_json(&app, "/api/verify", &body).await.error(status);
+        assert!(error.contains(words), "{body}: {error:?} should name {words:?}");
+    }
+
+    // The distance: one fold point an edge off on a 16-vertex square is 1/16 of the border.
+    let edge = std::f64::consts::TAU / 16.0;
+    let square: Vec<[f64; 3]> = (0..16)
+        .map(|k| {
+            let t = (k % 4) as f64 / 4.0;
+            let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 4];
+            [x, y, 0.0]
+        })
+        .collect();
+    let d = post_json(
+        &app,
+        "/api/distance",
+        &json!({"a": [[0.0, 8.0 * edge]], "b": [[edge, 8.0 * edge]], "border": square}),
+    )
+    .await
+    .json();
+    assert!((d["folds"].as_f64().unwrap() - 1.0 / 16.0).abs() < 1e-12, "{d}");
+    assert!(d["geometric"].as_f64().unwrap() > 0.0);
+    let without =
+        post_json(&app, "/api/distance", &json!({"a": [], "b": [[0.0, 8.0 * edge]]})).await.json();
+    assert_eq!((without["folds"].as_f64(), without["geometric"].is_null()), (Some(0.5), true));
+    assert!(post_json(&app, "/api/distance", &json!({"a": [[0, "x"]], "b": []}))
+        .await
+        .error(StatusCode::UNPROCESSABLE_ENTITY)
+        .contains("a"));
+    let short = post_json(
+        &app,
+        "/api/distance",
+        &json!({"a": [], "b": [], "border": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}),
+    )
+    .await;
+    assert!(short.error(StatusCode::UNPROCESSABLE_ENTITY).contains("too few"), "{}", short.json());
+    assert_healthy(&app).await;
+}

@@ -27,4 +27,5 @@ mod readme;
 mod record;
 mod reference;
 mod unseen;
+mod verify;
 mod vrfolding;

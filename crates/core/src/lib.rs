@@ -40,6 +40,7 @@ pub mod border;
 pub mod budget;
 pub mod close;
 pub mod disk;
+pub mod distance;
 pub mod error;
 pub mod fold;
 pub mod geometry;
@@ -49,6 +50,7 @@ pub mod label;
 pub mod metrics;
 pub mod plan;
 pub mod rng;
+pub mod verify;
 
 pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options, DEFAULT_MAX_FOLDS};
 pub use error::{Error, Result};

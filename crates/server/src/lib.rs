@@ -431,6 +431,8 @@ pub fn app(state: AppState) -> Router {
         .route("/api/disk/cells", post(routes::disk_cells).layer(small_bodies))
         .route("/api/readout/{key}", get(routes::readout))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
+        .route("/api/verify", post(routes::verify).layer(small_bodies))
+        .route("/api/distance", post(routes::distance).layer(small_bodies))
         .fallback(routes::not_found)
         .layer(DefaultBodyLimit::max(config.body_limit))
         .layer(

@@ -892,6 +892,47 @@ pub async fn disk_cells(
     Ok(JsonBytes(answer))
 }
 
+/// The analysed state a plan or a verification starts from: `sample` is a Sample JSON
+/// object (analysed once, on a worker, and cached by its bytes), the id of a listed sample,
+/// or the `key` of an analysis still cached.
+async fn drawing_of(state: &AppState, sample: Box<RawValue>) -> Result<Arc<Drawing>, ApiError> {
+    let raw = sample.get();
+    let drawing =
+        match raw.trim_start().as_bytes().first() {
+            // An analysis still cached (an upload's "key") or a listed sample's id.
+            Some(b'"') => {
+                let id: String = serde_json::from_str(raw)
+                    .map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
+                match state.drawing(&id) {
+                    Some(hit) => hit,
+                    None => sample_analysis(state, &id).await?.drawing.clone(),
+                }
+            }
+            Some(b'{') => {
+                let key = content_key(&[b"plan", raw.as_bytes()]);
+                let budget = state.config().budget;
+                analysis(state, key, move |key, _| {
+                    Loaded::of(
+                        key,
+                        &parse_sample(sample.get().as_bytes())?,
+                        FrameRange::default(),
+                        UPLOAD,
+                        None,
+                        &budget,
+                    )
+                })
+                .await?
+                .drawing
+                .clone()
+            }
+            _ => return Err(ApiError::BadRequest(
+                "\"sample\" must be a Sample JSON object, a listed sample id or an analysis key"
+                    .into(),
+            )),
+        };
+    Ok(drawing)
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanRequest {
@@ -908,43 +949,89 @@ pub async fn plan(
     if !req.goal.is_finite() {
         return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
     }
-    let raw = req.sample.get();
-    let drawing =
-        match raw.trim_start().as_bytes().first() {
-            // An analysis still cached (an upload's "key") or a listed sample's id.
-            Some(b'"') => {
-                let id: String = serde_json::from_str(raw)
-                    .map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
-                match state.drawing(&id) {
-                    Some(hit) => hit,
-                    None => sample_analysis(&state, &id).await?.drawing.clone(),
-                }
-            }
-            Some(b'{') => {
-                let key = content_key(&[b"plan", raw.as_bytes()]);
-                let budget = state.config().budget;
-                analysis(&state, key, move |key, _| {
-                    Loaded::of(
-                        key,
-                        &parse_sample(req.sample.get().as_bytes())?,
-                        FrameRange::default(),
-                        UPLOAD,
-                        None,
-                        &budget,
-                    )
-                })
-                .await?
-                .drawing
-                .clone()
-            }
-            _ => return Err(ApiError::BadRequest(
-                "\"sample\" must be a Sample JSON object, a listed sample id or an analysis key"
-                    .into(),
-            )),
-        };
+    let drawing = drawing_of(&state, req.sample).await?;
     let goal = req.goal;
     let answer = state
         .run_cpu(Lane::Light, move |_| to_json(&close_core::plan::answer(&drawing.analysis, goal)?))
+        .await?;
+    Ok(JsonBytes(answer))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VerifyRequest {
+    /// As [`PlanRequest::sample`]: the observed state.
+    sample: Box<RawValue>,
+    /// The goal folds in order, each [g1, g2] in radians.
+    goal: Vec<[f64; 2]>,
+    /// The line each goal fold is made along, where known (`null` entries: through its points).
+    #[serde(default)]
+    lines: Vec<Option<close_core::Line>>,
+    #[serde(default)]
+    tolerance: close_core::verify::Tolerance,
+}
+
+/// `POST /api/verify`: the sample's end state against the goal folds
+/// ([`close_core::verify::verify`]).
+pub async fn verify(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<VerifyRequest>,
+) -> Result<JsonBytes, ApiError> {
+    let goal = close_core::verify::Goal { folds: req.goal, lines: req.lines };
+    // The goal is checked before the sample is analysed: a bad goal costs nothing.
+    close_core::verify::check_goal(&goal, None)?;
+    let drawing = drawing_of(&state, req.sample).await?;
+    let tolerance = req.tolerance;
+    let answer = state
+        .run_cpu(Lane::Light, move |_| {
+            to_json(&close_core::verify::verify(&drawing.analysis, &goal, tolerance)?)
+        })
+        .await?;
+    Ok(JsonBytes(answer))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistanceRequest {
+    /// Two states of one cloth: each its folds in order, [f1, f2] in radians.
+    a: Vec<[f64; 2]>,
+    b: Vec<[f64; 2]>,
+    /// The cloth's flat border, for the geometric distance too.
+    #[serde(default)]
+    border: Option<Vec<[f64; 3]>>,
+}
+
+/// `POST /api/distance`: {`folds`, `geometric`} between two states of one cloth
+/// ([`close_core::distance`]).
+pub async fn distance(
+    State(state): State<AppState>,
+    AppJson(req): AppJson<DistanceRequest>,
+) -> Result<JsonBytes, ApiError> {
+    use close_core::distance::{check_folds, fold_distance, geometric_distance, Distance};
+    for (name, folds) in [("a", &req.a), ("b", &req.b)] {
+        if folds.len() > close_core::distance::MAX_BATCH_FOLDS {
+            return Err(Error::too_large(
+                "folds",
+                folds.len(),
+                close_core::distance::MAX_BATCH_FOLDS,
+            )
+            .into());
+        }
+        check_folds(name, folds, 0.0)?;
+    }
+    let answer = state
+        .run_cpu(Lane::Light, move |_| {
+            // The border is checked as every border (at most MAX_VERTICES vertices); the
+            // work is then O(N · folds).
+            let geometric = match req.border {
+                Some(border) => {
+                    let flat = close_core::border::prepare(vec![border])?;
+                    Some(geometric_distance(&flat.frames[0], &req.a, &req.b)?)
+                }
+                None => None,
+            };
+            to_json(&Distance { folds: fold_distance(&req.a, &req.b), geometric })
+        })
         .await?;
     Ok(JsonBytes(answer))
 }
