@@ -432,10 +432,16 @@ fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, clos
     PyAnalysis::of(analysis_of(sample, options)?)
 }
 
-fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyResult<Options> {
+fn options(
+    method_name: &str,
+    start: Option<usize>,
+    end: Option<usize>,
+    max_folds: usize,
+) -> PyResult<Options> {
     Ok(Options {
         frames: FrameRange { start, end },
         method: method(method_name)?,
+        max_folds,
         budget: Budget::SERVER,
         ..Options::default()
     })
@@ -448,20 +454,23 @@ fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyRes
 /// a closed polyline listed anticlockwise seen from +z (z up, the table the XY plane); a
 /// clockwise one is reversed. Conventions: angles in radians in [0, 2π); vertex k sits at
 /// angle 2πk/N (a fractional vertex index s at 2πs/N); each fold (f1, f2) has its folded side
-/// anticlockwise from f1 to f2. `method`: "default" (= "cut") or "paper".
+/// anticlockwise from f1 to f2. `method`: "default" (= "cut") or "paper". `max_folds`: most
+/// folds one step may hold (1 to 4, as `close analyze --max-folds`): a step whose end one
+/// fold cannot explain is read as a sequence of folds (`steps[k].folds`).
 ///
 /// Raises `close.CloseError` (a ValueError) with the CLI's message on bad input, and on
 /// inputs over the server's limits (frames × N² dGLI cells).
 #[pyfunction]
-#[pyo3(signature = (frames, *, method = "default", start = None, end = None))]
+#[pyo3(signature = (frames, *, method = "default", start = None, end = None, max_folds = close_core::DEFAULT_MAX_FOLDS))]
 fn analyze(
     py: Python<'_>,
     frames: &Bound<'_, PyAny>,
     method: &str,
     start: Option<usize>,
     end: Option<usize>,
+    max_folds: usize,
 ) -> PyResult<PyAnalysis> {
-    let options = options(method, start, end)?;
+    let options = options(method, start, end, max_folds)?;
     let sample = sample_of(frames)?;
     py.detach(|| analyze_sample(&sample, &options)).map_err(close_error)
 }
@@ -488,7 +497,7 @@ fn analyze_many(
     threads: Option<usize>,
     method: &str,
 ) -> PyResult<Vec<PyAnalysis>> {
-    let options = options(method, None, None)?;
+    let options = options(method, None, None, close_core::DEFAULT_MAX_FOLDS)?;
     let samples = items.try_iter()?.map(|item| sample_of(&item?)).collect::<PyResult<Vec<_>>>()?;
     let pool = pool(threads)?;
     let results: Vec<_> = py.detach(|| {

@@ -26,6 +26,7 @@ mod properties;
 mod readme;
 mod record;
 mod reference;
+mod sequences;
 mod unseen;
 mod verify;
 mod vrfolding;

@@ -14,7 +14,7 @@ use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::sequence::{explain, Alternative, ExplainedFold, StepFolds};
+use crate::fold::sequence::{explain, Alternative, ExplainedFold, StepFolds, MAX_FOLDS};
 use crate::fold::{apply, detect, FoldDetection, FoldMethod};
 use crate::geometry::{Fold, Folding, Line};
 use crate::label::{label, Label, CHANGED_RMSE};
@@ -208,6 +208,12 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
             "end frame {end} comes before start frame {start}"
         )));
     }
+    if !(1..=MAX_FOLDS).contains(&options.max_folds) {
+        return Err(Error::InvalidArgument(format!(
+            "max_folds {} is out of range: a step holds 1 to {MAX_FOLDS} folds",
+            options.max_folds
+        )));
+    }
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;
@@ -278,7 +284,7 @@ fn analyse_steps(
             previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
         let mut detection = detect(before_border, before, &after, options.method);
         let found = if options.method == FoldMethod::Cut {
-            explain(before_border, before, &after, &detection, options.max_folds.max(1))
+            explain(before_border, before, &after, &detection, options.max_folds)
         } else {
             StepFolds::default()
         };

@@ -187,8 +187,8 @@ fn observed_lines(observed: &Analysis) -> Vec<LineOf> {
             // A step's one fold took the disks' direction only where its points coincide;
             // every fold of a sequence did.
             let sequence = s.folds.len() > 1;
-            let from_disks = sequence
-                || s.detection.synthesis.as_ref().is_some_and(|x| x.direction.is_some());
+            let from_disks =
+                sequence || s.detection.synthesis.as_ref().is_some_and(|x| x.direction.is_some());
             s.foldings().map(move |f| match f.line {
                 Some(line) if from_disks => LineOf::Direction([line.direction.x, line.direction.y]),
                 _ => LineOf::Points,

@@ -55,13 +55,9 @@ use crate::metrics::aligned_rmse_xy;
 use super::cut::find_cuts;
 use super::synth::{
     arcs_left_of, mean_edge, sampled_edges, Probe, Turned, COINCIDE_EDGES, DIRECTIONS, LIFT,
-    SAMPLES, SCREEN_SAMPLES,
+    SAMPLES, SCREEN_SAMPLES, STACKED_SCALE,
 };
 use super::FoldDetection;
-
-fn compared_at() -> f64 {
-    std::env::var("SEQ_SCALE").ok().and_then(|v| v.parse().ok()).unwrap_or(super::synth::STACKED_SCALE)
-}
 
 /// Most folds one step may hold.
 pub const MAX_FOLDS: usize = 4;
@@ -213,7 +209,11 @@ fn cost(probe: &Probe, before: &[Point], moves: &[Move]) -> f64 {
 
 /// Every pair of `edges`.
 fn all_pairs(edges: &[usize]) -> Vec<(usize, usize)> {
-    edges.iter().enumerate().flat_map(|(k, &i)| edges[k + 1..].iter().map(move |&j| (i, j))).collect()
+    edges
+        .iter()
+        .enumerate()
+        .flat_map(|(k, &i)| edges[k + 1..].iter().map(move |&j| (i, j)))
+        .collect()
 }
 
 /// The folds that can be made on `state` along lines through two of the cut `points` that
@@ -236,9 +236,10 @@ fn moves_on(state: &[Point], points: &[f64], used: &[usize]) -> Vec<(Move, [usiz
                 // Layers stacked there (the cut points lie within an edge or two of the
                 // creases, so two that should meet may not quite): the line's direction is
                 // searched.
-                anchors.extend((0..DIRECTIONS).map(|d| {
-                    (Anchor::Ray(a, PI * d as f64 / DIRECTIONS as f64), [i, j])
-                }));
+                anchors.extend(
+                    (0..DIRECTIONS)
+                        .map(|d| (Anchor::Ray(a, PI * d as f64 / DIRECTIONS as f64), [i, j])),
+                );
             }
         }
     }
@@ -324,9 +325,6 @@ fn search(
         .filter(|&m| m <= 2 * max_folds + 2 && m < n)
         .filter_map(|m| find_cuts(&offset, m).map(|c| c.points))
         .collect();
-    if std::env::var("SEQ_DEBUG").is_ok() {
-        eprintln!("cut sets {cut_sets:?}");
-    }
     let mut beam: Vec<Partial> = (0..cut_sets.len())
         .map(|set| Partial { set, moves: Vec::new(), used: Vec::new() })
         .collect();
@@ -338,14 +336,14 @@ fn search(
             .enumerate()
             .flat_map_iter(|(p, partial)| {
                 let state = make(before, &partial.moves).map(|(t, _)| t.state).unwrap_or_default();
-                moves_on(&state, &cut_sets[partial.set], &partial.used)
-                    .into_iter()
-                    .map(move |(m, through)| {
+                moves_on(&state, &cut_sets[partial.set], &partial.used).into_iter().map(
+                    move |(m, through)| {
                         let mut longer = partial.clone();
                         longer.moves.push(m);
                         longer.used.extend(through);
                         (p, longer)
-                    })
+                    },
+                )
             })
             .filter_map(|(p, partial)| {
                 let (turned, _) = make(before, &partial.moves)?;
@@ -401,10 +399,8 @@ fn search(
         // The best one's twins (another order of the same folds) are refined too, so that
         // the layer order can decide between them.
         if let Some(first) = judged.first() {
-            let seen: Vec<Vec<u8>> = judged
-                .iter()
-                .map(|j| turned(before, &j.made, LIFT).groups().to_vec())
-                .collect();
+            let seen: Vec<Vec<u8>> =
+                judged.iter().map(|j| turned(before, &j.made, LIFT).groups().to_vec()).collect();
             let mut twins: Vec<(Vec<Move>, Vec<u8>)> = Vec::new();
             for s in scored.iter().filter(|s| !seen.contains(&s.3)) {
                 if twins.len() == TWINS {
@@ -418,11 +414,6 @@ fn search(
                 if aligned_rmse_xy(&t.state, &first.state) < 2.0 * CONGRUENT {
                     twins.push((s.2.moves.clone(), s.3.clone()));
                 }
-            }
-            if std::env::var("SEQ_DEBUG").is_ok() {
-                eprintln!("   scored {} kept {} twins {}", scored.len(), kept.len(), twins.len());
-                for t in &twins { let (tt, made) = make(before, &t.0).unwrap(); eprintln!("     twin {:.3} {:?}", aligned_rmse_xy(&tt.state, &first.state), made.iter().map(|m| m.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>()); }
-                for sc in scored.iter() { if let Some((tt, made)) = make(before, &sc.2.moves) { let a0 = made[0].arcs[0]; if (a0[0]-44.0).abs() < 2.0 && (a0[1]-110.0).abs() < 2.0 && made.len() == 2 { let b0 = made[1].arcs[0]; if (b0[0]-12.0).abs() < 3.0 && (b0[1]-78.0).abs()<3.0 { eprintln!("     truthlike score {:.4} aligned {:.3} {:?}", sc.0, aligned_rmse_xy(&tt.state, &first.state), made.iter().map(|m| m.arcs.clone()).collect::<Vec<_>>()); } } } }
             }
             let twins: Vec<Vec<Move>> = twins.into_iter().map(|t| t.0).collect();
             judged.extend(judge_all(twins));
@@ -455,11 +446,8 @@ fn layer_order(probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
     let mut best = 0;
     for k in 1..judged.len() {
         let (a, b) = (&judged[best].state, &judged[k].state);
-        if std::env::var("SEQ_DEBUG").is_ok() && aligned_rmse_xy(&judged[0].state, b) < CONGRUENT {
-            let a0 = &judged[0].state;
-            eprintln!("      order on best outline: cand {k} ({:.3}): own {:.4} theirs {:.4}; on theirs: best z {:.4} own {:.4}", judged[k].cost, probe.cost_of_state(a0), probe.cost_of_state(&with(a0, b)), probe.cost_of_state(&with(b, a0)), probe.cost_of_state(b));
-        }
-        if judged[k].cost > (1.0 + ABOUT_AS_WELL) * judged[0].cost || aligned_rmse_xy(a, b) > CONGRUENT
+        if judged[k].cost > (1.0 + ABOUT_AS_WELL) * judged[0].cost
+            || aligned_rmse_xy(a, b) > CONGRUENT
         {
             continue;
         }
@@ -479,7 +467,7 @@ fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<M
     let arcs: Vec<[f64; 2]> = make(before, &moves)
         .map(|(_, made)| made.into_iter().flat_map(|m| m.arcs).collect())
         .unwrap_or_default();
-    let probe = Probe::around(start, end, &arcs, true, compared_at());
+    let probe = Probe::around(start, end, &arcs, true, STACKED_SCALE);
     let angle_step = PI / DIRECTIONS as f64;
     let mut best = (cost(&probe, before, &moves), moves);
     let mut h = 0.5;
@@ -580,11 +568,16 @@ pub fn explain(
     let n = before.len();
     let Some(fold) = single.fold else { return StepFolds::default() };
     let direction = single.synthesis.as_ref().and_then(|s| s.direction);
-    let single_folding = || Folding { fold, arcs: single.arcs.clone(), line: fold.line_on(before, direction) };
+    let single_folding =
+        || Folding { fold, arcs: single.arcs.clone(), line: fold.line_on(before, direction) };
     if !super::is_flat(before) {
         // A stacked start keeps its one fold, judged by its own refinement.
         let explained = single.synthesis.as_ref().map_or(1.0, |s| {
-            if s.unfolded_mismatch > 0.0 { 1.0 - s.mismatch / s.unfolded_mismatch } else { 1.0 }
+            if s.unfolded_mismatch > 0.0 {
+                1.0 - s.mismatch / s.unfolded_mismatch
+            } else {
+                1.0
+            }
         });
         return StepFolds {
             folds: vec![ExplainedFold { folding: single_folding(), explained: Some(explained) }],
@@ -594,9 +587,9 @@ pub fn explain(
     }
     let strided = |samples: usize| all_pairs(&sampled_edges(n, samples));
     let probes = Probes {
-        screen: Probe::of(strided(SCREEN_SAMPLES), start, end, true, compared_at()),
-        judge: Probe::of(strided(SAMPLES), start, end, true, compared_at()),
-        order: Probe::of(strided(ORDER_SAMPLES), start, end, false, compared_at()),
+        screen: Probe::of(strided(SCREEN_SAMPLES), start, end, true, STACKED_SCALE),
+        judge: Probe::of(strided(SAMPLES), start, end, true, STACKED_SCALE),
+        order: Probe::of(strided(ORDER_SAMPLES), start, end, false, STACKED_SCALE),
     };
     let unfolded = probes.judge.unfolded();
     let share = |cost: f64| if unfolded > 0.0 { cost / unfolded } else { 0.0 };
@@ -608,10 +601,6 @@ pub fn explain(
     if max_folds >= 2 && left > EXPLAINED_BY_ONE {
         for (best, others) in search(before, start, end, &probes, max_folds.min(MAX_FOLDS)) {
             let now = share(best.cost);
-            if std::env::var("SEQ_DEBUG").is_ok() {
-                eprintln!("one fold leaves {left:.3}; {} folds leave {now:.3}: {:?}", best.made.len(), best.made.iter().map(|m| m.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>());
-                for o in &others { eprintln!("   other {:.3} {:?}", share(o.cost), o.made.iter().map(|m| m.arcs.iter().map(|a| [a[0].round(), a[1].round()]).collect::<Vec<_>>()).collect::<Vec<_>>()); }
-            }
             if now <= MARKEDLY * left && left - now >= MIN_GAIN {
                 left = now;
                 chosen = (best, others);
@@ -641,5 +630,69 @@ pub fn explain(
             .collect(),
         explained: 1.0 - left,
         unexplained: false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fold::{detect, FoldMethod};
+
+    /// A square of side 1 centred on the origin, `per_side` vertices a side.
+    fn square(per_side: usize) -> Vec<Point> {
+        let s = per_side as f64;
+        (0..4 * per_side)
+            .map(|k| {
+                let t = (k % per_side) as f64 / s;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
+                Point::new(x - 0.5, y - 0.5, 0.0)
+            })
+            .collect()
+    }
+
+    /// Every vertex left of the line through `a` at `angle`, whatever its layer, reflected
+    /// across it and laid on top (independent of [`Turned`]).
+    fn fold_all(state: &[Point], a: [f64; 2], angle: f64) -> Vec<Point> {
+        let u = [angle.cos(), angle.sin()];
+        let top = state.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+        state
+            .iter()
+            .map(|p| {
+                let (dx, dy) = (p.x - a[0], p.y - a[1]);
+                if u[0] * dy - u[1] * dx <= 0.0 {
+                    return *p;
+                }
+                let t = dx * u[0] + dy * u[1];
+                Point::new(
+                    a[0] + 2.0 * t * u[0] - dx,
+                    a[1] + 2.0 * t * u[1] - dy,
+                    2.0 * top + 0.004 - p.z,
+                )
+            })
+            .collect()
+    }
+
+    fn explained(before: &[Point], after: &[Point], max_folds: usize) -> StepFolds {
+        let (start, end) = (Disk::of_border(before), Disk::of_border(after));
+        let single = detect(before, &start, &end, FoldMethod::Cut);
+        explain(before, &start, &end, &single, max_folds)
+    }
+
+    #[test]
+    fn one_fold_stays_one_and_two_are_found_as_two() {
+        let flat = square(24);
+        let half = fold_all(&flat, [0.013, 0.0], PI / 2.0);
+        let once = explained(&flat, &half, 3);
+        assert_eq!(once.folds.len(), 1, "explained {}", once.explained);
+        assert!(!once.unexplained);
+        let quarters = fold_all(&half, [0.0, 0.013], 0.0);
+        let twice = explained(&flat, &quarters, 3);
+        assert_eq!(twice.folds.len(), 2, "explained {}", twice.explained);
+        assert!(twice.explained > 1.0 - EXPLAINED_BY_ONE, "{}", twice.explained);
+        // The folds' shares add up to the sequence's.
+        let sum: f64 = twice.folds.iter().filter_map(|f| f.explained).sum();
+        assert!((sum - twice.explained).abs() < 1e-9, "{sum} vs {}", twice.explained);
+        // One fold asked for: one fold given, whatever it leaves.
+        assert!(explained(&flat, &quarters, 1).folds.len() <= 1);
     }
 }

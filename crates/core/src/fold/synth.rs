@@ -751,8 +751,7 @@ mod tests {
             let axis = flap_axis(&before, LIFT);
             let folded = fold_by_hand(&before, s, axis);
             let (start, end) = (Disk::of_border(&before), Disk::of_border(&folded));
-            let probe =
-                Probe::around(&start, &end, &[s], flap_negates, scale_of(flap_negates));
+            let probe = Probe::around(&start, &end, &[s], flap_negates, scale_of(flap_negates));
             let line = line_of(&before, s, None).expect("two distinct fold points");
             let turned = Turned::new(&before, axis, &[s], &line);
             // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
