@@ -155,10 +155,14 @@ pub struct SequenceLabel {
 fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> SequenceLabel {
     let in_half: Vec<bool> =
         labels.iter().map(|l| (l.folded_percent - 50.0).abs() <= SEQUENCE_HALF_PERCENT).collect();
-    // A side folded in: less than half, its corners all on one side's ends.
+    // A side folded in: less than half, and no corner or diagonal fold (a third of a
+    // towel, 40 % of its border, is "folded in half" alone by the wider HALF_PERCENT).
     let side_in = |k: usize| {
         labels[k].folded_percent < 50.0 - SEQUENCE_HALF_PERCENT
-            && matches!(labels[k].class, FoldClass::OneSideFolded | FoldClass::OneSideAskew)
+            && !matches!(
+                labels[k].class,
+                FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
+            )
     };
     // Two folds turning disjoint ends of the start border (no vertex on both).
     let disjoint = |a: &Folding, b: &Folding| {
