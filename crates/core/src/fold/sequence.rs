@@ -621,8 +621,14 @@ pub fn explain(
             ..StepFolds::default()
         };
     }
+    let folds = if best.made.len() == 1 {
+        // The step's own fold as detected (not round-tripped through border parameters).
+        vec![ExplainedFold { folding: single_folding(), explained: Some(1.0 - left) }]
+    } else {
+        best.explained(&probes.judge, before, unfolded)
+    };
     StepFolds {
-        folds: best.explained(&probes.judge, before, unfolded),
+        folds,
         alternatives: others
             .iter()
             .filter(|o| o.cost <= (1.0 + ABOUT_AS_WELL) * best.cost)
