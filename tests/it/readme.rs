@@ -246,8 +246,57 @@ fn steps(name: &str) -> String {
     out
 }
 
+/// The MuJoCo fold loop's outcome per goal, from the `results.json` that
+/// `examples/fold_loop.py` wrote on its last run, checked in as `tests/snapshots/NAME.json`
+/// (MuJoCo and the Python package are not here at test time, so it is not rerun: a new run
+/// replaces the file, for review in its diff).
+fn fold_loop(name: &str) -> String {
+    let run = read_snapshot(name);
+    let results = run["results"].as_array().expect("results.json: a `results` list");
+    let mut out = String::from(
+        "| cloth (border N) | goal | after try 1: fold distance, shape distance | after try 2 | reached |\n|---|---|---|---|---|\n",
+    );
+    let after = |t: Option<&Value>| {
+        t.map_or("–".into(), |t| {
+            let d = &t["distance"];
+            let number = |v: &Value| v.as_f64().map_or("–".into(), |v| format!("{v:.3}"));
+            let verdict = if t["reached"] == true { "reached" } else { "not reached" };
+            format!("{verdict}: {}, {}", number(&d["folds"]), number(&d["geometric"]))
+        })
+    };
+    let within_two = |r: &Value| r["reached_within"].as_u64().is_some_and(|k| k <= 2);
+    for r in results {
+        let tries = r["tries"].as_array().map(Vec::as_slice).unwrap_or_default();
+        let reached = r["reached_within"].as_u64().map_or("no".into(), |k| format!("try {k}"));
+        out += &format!(
+            "| {} ({}) | {} | {} | {} | {reached} |\n",
+            r["cloth"].as_str().unwrap_or("?"),
+            r["n"],
+            r["goal"].as_str().unwrap_or("?").replace('_', " "),
+            after(tries.first()),
+            after(tries.get(1)),
+        );
+    }
+    let mut cloths: Vec<&str> = results.iter().filter_map(|r| r["cloth"].as_str()).collect();
+    cloths.dedup();
+    let shares: Vec<String> = cloths
+        .iter()
+        .map(|c| {
+            let of: Vec<&Value> = results.iter().filter(|r| r["cloth"] == *c).collect();
+            format!("{c} {} of {}", of.iter().filter(|r| within_two(r)).count(), of.len())
+        })
+        .collect();
+    out += &format!(
+        "| all | {} goals | | | {} within 2 tries ({}) |",
+        results.len(),
+        results.iter().filter(|r| within_two(r)).count(),
+        shares.join(", ")
+    );
+    out
+}
+
 /// The rendering a region's header names: `table NAME`, `methods NAME NAME`, `folds NAME`,
-/// `steps NAME`.
+/// `steps NAME`, `fold_loop NAME`.
 fn render(header: &str) -> String {
     let words: Vec<&str> = header.split_whitespace().collect();
     match words.as_slice() {
@@ -255,6 +304,7 @@ fn render(header: &str) -> String {
         ["methods", names @ ..] => methods(names),
         ["folds", name] => folds(name),
         ["steps", name] => steps(name),
+        ["fold_loop", name] => fold_loop(name),
         _ => panic!("README: unknown generated region {header:?}"),
     }
 }
