@@ -614,7 +614,7 @@ fn analysis_for(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<
         }),
         Err(_) => {
             let sample = sample_of(obj)?;
-            let options = options("default", None, None)?;
+            let options = options("default", None, None, close_core::DEFAULT_MAX_FOLDS)?;
             py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)
         }
     }
