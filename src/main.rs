@@ -52,6 +52,11 @@ enum Command {
         /// How fold points are chosen.
         #[arg(long, value_enum, default_value_t = Method::Cut)]
         method: Method,
+        /// Most folds one step may hold: a step whose end disk one fold cannot explain is
+        /// read as a sequence of up to K folds (1: one fold per step).
+        #[arg(long, value_name = "K", default_value_t = close::DEFAULT_MAX_FOLDS as u8,
+              value_parser = clap::value_parser!(u8).range(1..=close::fold::sequence::MAX_FOLDS as i64))]
+        max_folds: u8,
     },
     /// Evaluate every sample under the given files or folders, and every fold of every video
     /// of a VR-Folding Zarr store (or of one category folder of it).
@@ -732,10 +737,21 @@ fn serve(addr: &str, config: close::server::Config) -> CliResult {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
-        Some(Command::Analyze { files, video, fold, start, end, json: _, disks, method }) => {
+        Some(Command::Analyze {
+            files,
+            video,
+            fold,
+            start,
+            end,
+            json: _,
+            disks,
+            method,
+            max_folds,
+        }) => {
             let options = Options {
                 frames: FrameRange { start, end },
                 method: method.into(),
+                max_folds: usize::from(max_folds),
                 ..Options::default()
             };
             run_analyze(&files, video.as_deref(), usize::from(fold), options, disks)

@@ -85,9 +85,9 @@ class Analysis:
         """The object `close analyze --json` prints, key for key."""
     def to_json(self) -> str: ...
 
-def analyze(frames: Union[Frames, Sample], *, method: str = "default", start: Optional[int] = None, end: Optional[int] = None) -> Analysis:
+def analyze(frames: Union[Frames, Sample], *, method: str = "default", start: Optional[int] = None, end: Optional[int] = None, max_folds: int = 3) -> Analysis:
     """Analyse frames start → end as `close analyze --json` does (radians, vertex k at 2πk/N,
-    folded side anticlockwise from f1 to f2)."""
+    folded side anticlockwise from f1 to f2); a step holds up to `max_folds` folds (1 to 4)."""
 
 @overload
 def analyze_many(

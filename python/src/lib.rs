@@ -673,10 +673,16 @@ fn analyze_sample(sample: &Sample, options: &Options) -> Result<PyAnalysis, clos
     PyAnalysis::of(analysis_of(sample, options)?, options.method)
 }
 
-fn options(method_name: &str, start: Option<usize>, end: Option<usize>) -> PyResult<Options> {
+fn options(
+    method_name: &str,
+    start: Option<usize>,
+    end: Option<usize>,
+    max_folds: usize,
+) -> PyResult<Options> {
     Ok(Options {
         frames: FrameRange { start, end },
         method: method(method_name)?,
+        max_folds,
         budget: Budget::SERVER,
         ..Options::default()
     })
@@ -856,21 +862,24 @@ fn warn(py: Python<'_>, warnings: &[(String, Vec<usize>)], stacklevel: i32) -> P
 ///
 /// What the analysis repaired or changed (a clockwise border reversed, a closing vertex
 /// dropped, duplicate vertices merged) is issued as a `close.CloseWarning` through Python's
-/// `warnings` (and kept in `Analysis.warnings`). Ctrl-C stops a long analysis.
+/// `warnings` (and kept in `Analysis.warnings`). Ctrl-C stops a long analysis. `max_folds`:
+/// most folds one step may hold (1 to 4, as `close analyze --max-folds`): a step whose end
+/// one fold cannot explain is read as a sequence of folds (`steps[k].folds`).
 ///
 /// Raises `close.CloseError` (a ValueError) with the CLI's message on bad input, and on
 /// inputs over the server's limits (frames × N² dGLI cells).
 #[pyfunction]
-#[pyo3(signature = (frames, *, method = "default", start = None, end = None))]
+#[pyo3(signature = (frames, *, method = "default", start = None, end = None, max_folds = close_core::DEFAULT_MAX_FOLDS))]
 fn analyze(
     py: Python<'_>,
     frames: &Bound<'_, PyAny>,
     method: &str,
     start: Option<usize>,
     end: Option<usize>,
+    max_folds: usize,
 ) -> PyResult<PyAnalysis> {
     let deadline = Deadline::default();
-    let options = Options { deadline: deadline.clone(), ..options(method, start, end)? };
+    let options = Options { deadline: deadline.clone(), ..options(method, start, end, max_folds)? };
     let sample = sample_of(frames)?;
     let analysis = wait_for(py, None, &deadline, None, || analyze_sample(&sample, &options))?
         .map_err(close_error)?;
@@ -902,7 +911,7 @@ fn analyze_many<'py>(
         }
     };
     let threads = thread_count(threads)?;
-    let options = options(method, None, None)?;
+    let options = options(method, None, None, close_core::DEFAULT_MAX_FOLDS)?;
     let at = |k: usize, e: &dyn std::fmt::Display| CloseError::new_err(format!("item {k}: {e}"));
     // Items that are not samples fail here, before any work; in "raise" mode the first of
     // them bounds the work (nothing after it runs).
@@ -1128,7 +1137,7 @@ fn analysis_for(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Arc<Analysis
         Ok(a) => a.get().analysis(py),
         Err(_) => {
             let sample = sample_of(obj)?;
-            let options = options("default", None, None)?;
+            let options = options("default", None, None, close_core::DEFAULT_MAX_FOLDS)?;
             py.detach(|| analysis_of(&sample, &options)).map(Arc::new).map_err(close_error)
         }
     }

@@ -25,6 +25,7 @@ mod properties;
 mod readme;
 mod record;
 mod reference;
+mod sequences;
 mod unseen;
 mod verify;
 mod vrfolding;

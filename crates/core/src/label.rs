@@ -19,6 +19,14 @@
 //! analysis's `corner_vertices` values and its `predicted_end` rows (the input's own index
 //! is `border_indices[vertex]`).
 //!
+//! A sequence of two or more folds is also read as a whole, as a person would say it
+//! ([`SequenceClass`], our extension): each fold "in half" when it turns over half the
+//! border's vertices of the state it is made on (within [`SEQUENCE_HALF_PERCENT`]), "in
+//! quarters" for two such folds, "in eighths" for three; "in thirds" for two sides folded in
+//! alike (less than half each) at disjoint ends of the border; "both sides folded in, then
+//! folded in half" for those two and a fold in half after them. The sentence is made from the class,
+//! so the text and the structured field cannot disagree.
+//!
 //! ```
 //! use close_core::geometry::{Fold, Folding};
 //! use close_core::label::{label, FoldClass};
@@ -126,6 +134,92 @@ pub struct Label {
     pub corners: usize,
     pub circular: bool,
     pub folds: Vec<FoldLabel>,
+    /// The folds read as a whole, for two or more folds.
+    pub sequence: Option<SequenceLabel>,
+}
+
+/// A fold of a sequence turning this close to 50% of the border's vertices is "in half"
+/// (tighter than [`HALF_PERCENT`]: a towel's third, 40% of its border, is not a half).
+pub const SEQUENCE_HALF_PERCENT: f64 = 6.0;
+
+/// How a sequence of folds reads as a whole.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SequenceClass {
+    /// Two folds, each in half.
+    InQuarters,
+    /// Three folds, each in half.
+    InEighths,
+    /// Two sides folded in (less than half each, alike) at disjoint ends of the border.
+    InThirds,
+    /// Two sides folded in at disjoint ends, then a fold in half.
+    SidesInThenHalf,
+    /// Any other sequence, told fold by fold.
+    Folds,
+}
+
+/// A sequence of folds read as a whole.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SequenceLabel {
+    pub class: SequenceClass,
+    /// Whether each fold, in order, turned half the border over (within
+    /// [`SEQUENCE_HALF_PERCENT`]).
+    pub in_half: Vec<bool>,
+    pub text: String,
+}
+
+/// The sequence label of `folds` (two or more) and their labels.
+fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> SequenceLabel {
+    let in_half: Vec<bool> =
+        labels.iter().map(|l| (l.folded_percent - 50.0).abs() <= SEQUENCE_HALF_PERCENT).collect();
+    // A side folded in: less than half, and no corner or diagonal fold (a third of a
+    // towel, 40 % of its border, is "folded in half" alone by the wider HALF_PERCENT).
+    let side_in = |k: usize| {
+        labels[k].folded_percent < 50.0 - SEQUENCE_HALF_PERCENT
+            && !matches!(
+                labels[k].class,
+                FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
+            )
+    };
+    // Two folds turning disjoint ends of the start border (no vertex on both).
+    let disjoint = |a: &Folding, b: &Folding| {
+        !a.arcs.iter().any(|x| {
+            b.arcs.iter().any(|y| {
+                (0..n).any(|v| {
+                    x.folds_vertex(n, v, ON_LINE_EDGES) && y.folds_vertex(n, v, ON_LINE_EDGES)
+                })
+            })
+        })
+    };
+    let ends = folds.len() >= 2
+        && side_in(0)
+        && side_in(1)
+        && (labels[0].folded_percent - labels[1].folded_percent).abs() <= EVEN_PERCENT
+        && disjoint(&folds[0], &folds[1]);
+    let class = match (folds.len(), in_half.as_slice()) {
+        (2, [true, true]) => SequenceClass::InQuarters,
+        (3, [true, true, true]) => SequenceClass::InEighths,
+        (2, _) if ends => SequenceClass::InThirds,
+        (3, [_, _, true]) if ends => SequenceClass::SidesInThenHalf,
+        _ => SequenceClass::Folds,
+    };
+    let text = match class {
+        SequenceClass::InQuarters => {
+            "Folded in quarters (in half, then in half again).".to_string()
+        }
+        SequenceClass::InEighths => {
+            "Folded in eighths (in half, then in half again, and again).".to_string()
+        }
+        SequenceClass::InThirds => {
+            "Folded in thirds (one side folded in, then the other side over it).".to_string()
+        }
+        SequenceClass::SidesInThenHalf => "Both sides folded in, then folded in half.".to_string(),
+        SequenceClass::Folds => {
+            let phrases: Vec<&str> = labels.iter().map(|l| l.class.phrase()).collect();
+            format!("Folded {} times: {}.", labels.len(), phrases.join(", then "))
+        }
+    };
+    SequenceLabel { class, in_half, text }
 }
 
 /// Length of the overlap of two cyclic intervals [a, a+la] and [b, b+lb] on a circle of length n.
@@ -166,6 +260,11 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
     if fold_labels.is_empty() {
         text.push_str(" It is not folded.");
     }
+    let sequence = (fold_labels.len() >= 2).then(|| label_sequence(n, folds, &fold_labels));
+    if let Some(sequence) = &sequence {
+        text.push(' ');
+        text.push_str(&sequence.text);
+    }
     for (k, f) in fold_labels.iter().enumerate() {
         if fold_labels.len() > 1 {
             text.push_str(&format!(" Fold {}:", k + 1));
@@ -173,7 +272,7 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
         text.push(' ');
         text.push_str(&f.text);
     }
-    Label { text, corners: corner_vertices.len(), circular, folds: fold_labels }
+    Label { text, corners: corner_vertices.len(), circular, folds: fold_labels, sequence }
 }
 
 /// Prediction error (RMSE of the normalised XY border, once moved rigidly onto the observed
@@ -336,15 +435,29 @@ fn label_multi_arc(
     out.corner_sides.retain(|s| on_arcs(s.vertex));
     out.folded_percent =
         arcs.iter().map(|&Arc { a, b }| 100.0 * angle_to_param(b - a, n) / nf).sum();
+    // The sentence is told again from the fields kept: the spanning fold's own would name
+    // corners between the arcs, which do not turn.
+    let mut text = fold_text(
+        out.class,
+        out.folded_percent,
+        &out.folded_corners,
+        &out.corners_on_fold_line,
+        &out.corner_sides,
+        &out.cut_sides,
+    );
+    if circular {
+        text.push_str(&format!(
+            " The border from {:.0}° to {:.0}° is folded over.",
+            out.border_degrees[0], out.border_degrees[1]
+        ));
+    }
     let flaps = match arcs.len() {
         2 => "both".to_string(),
         k => format!("all {k}"),
     };
     out.text = format!(
-        "{} The fold line crosses the border {} times and {flaps} flaps on its folded side turn over together ({:.0}% of the border; a multi-arc fold).",
-        out.text,
+        "{text} The fold line crosses the border {} times and {flaps} flaps on its folded side turn over together (a multi-arc fold).",
         2 * arcs.len(),
-        out.folded_percent
     );
     out
 }
@@ -544,5 +657,57 @@ mod tests {
                 && (fold.border_degrees[1] - 270.0).abs() < 1e-9
         );
         assert!(fold.text.contains("The border from 90° to 270° is folded over."), "{}", fold.text);
+    }
+
+    /// A fold turning `arcs` (border parameters of 76 vertices) over together.
+    fn of_arcs(arcs: &[[f64; 2]]) -> Folding {
+        let arcs: Vec<Arc> = arcs.iter().map(|&[a, b]| Arc::new(angle(a), angle(b))).collect();
+        Folding { fold: Fold::span(&arcs).unwrap(), arcs, line: None }
+    }
+
+    #[test]
+    fn sequences_read_as_a_whole_and_the_text_says_the_class() {
+        // The square of 76 vertices: in half (left onto right), then its two top quarters
+        // (one of each layer) down.
+        let quarters = [of_arcs(&[[47.5, 9.5]]), of_arcs(&[[28.5, 47.5], [47.5, 66.5]])];
+        // Opposite ends in (a third of the width each), then in half across.
+        let third = |a: f64, b: f64| of_arcs(&[[a, b]]);
+        let sides = [third(50.7, 6.3), third(12.7, 44.3)];
+        let sides_in_then_half = [sides[0].clone(), sides[1].clone(), of_arcs(&[[9.5, 47.5]])];
+        // One side folded, then a corner: no name for the whole.
+        let other = [third(55.0, 2.0), of_arcs(&[[12.0, 26.0]])];
+        let cases: [(&[Folding], SequenceClass, &str); 4] = [
+            (
+                &quarters,
+                SequenceClass::InQuarters,
+                "Folded in quarters (in half, then in half again).",
+            ),
+            (&sides, SequenceClass::InThirds, "Folded in thirds"),
+            (
+                &sides_in_then_half,
+                SequenceClass::SidesInThenHalf,
+                "Both sides folded in, then folded in half.",
+            ),
+            (&other, SequenceClass::Folds, "Folded 2 times: one side folded, then corner folded."),
+        ];
+        for (folds, class, says) in cases {
+            let l = label(76, &SQUARE, folds);
+            let sequence = l.sequence.as_ref().expect("two folds or more");
+            assert_eq!(sequence.class, class, "{}", l.text);
+            assert!(sequence.text.starts_with(says), "{}", sequence.text);
+            assert!(l.text.contains(&sequence.text), "{}", l.text);
+            assert_eq!(sequence.in_half.len(), folds.len());
+        }
+        assert!(label(76, &SQUARE, &quarters[..1]).sequence.is_none());
+    }
+
+    #[test]
+    fn a_multi_arc_fold_names_only_the_corners_its_arcs_turn() {
+        // Two flaps, around corners 2 and 4; corner 3 lies between them and stays.
+        let l = label(76, &SQUARE, &[of_arcs(&[[12.0, 26.0], [50.0, 64.0]])]);
+        let fold = &l.folds[0];
+        assert_eq!(fold.folded_corners, vec![2, 4]);
+        assert!(fold.text.contains("Corners 2, 4 are folded"), "{}", fold.text);
+        assert!(!fold.text.contains("2, 3"), "{}", fold.text);
     }
 }

@@ -53,7 +53,7 @@ pub mod plan;
 pub mod rng;
 pub mod verify;
 
-pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
+pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options, DEFAULT_MAX_FOLDS};
 pub use error::{Error, Result};
 pub use fold::FoldMethod;
 pub use geometry::{Arc, Fold, Folding, Line};

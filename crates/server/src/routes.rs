@@ -165,6 +165,8 @@ pub(super) struct Loaded {
     frames: usize,
     border: BorderFrames,
     range: FrameRange,
+    /// Most folds one step may hold ([`Options::max_folds`]).
+    max_folds: usize,
     source: String,
     truth: Option<Truth>,
     /// A listed sample, whose answer includes the sample.
@@ -197,6 +199,7 @@ impl Loaded {
             frames: frame_count(sample),
             border: sample.border_frames()?,
             range,
+            max_folds: close_core::DEFAULT_MAX_FOLDS,
             source: source.to_string(),
             truth: sample.truth.clone(),
             listed,
@@ -222,6 +225,7 @@ impl Loaded {
     fn analyze(self, state: &AppState, deadline: &Deadline) -> Result<Analyzed, ApiError> {
         let options = Options {
             frames: self.range,
+            max_folds: self.max_folds,
             budget: state.config().budget,
             deadline: deadline.clone(),
             ..Options::default()
@@ -313,12 +317,14 @@ pub async fn not_found(uri: Uri) -> ApiError {
     ApiError::NotFound(format!("no route {}", uri.path()))
 }
 
-/// Optional frame range of `POST /api/analyze`.
+/// Optional frame range of `POST /api/analyze`, and the most folds one step may hold
+/// (`max_folds`, 1 to 4, default 3: `close analyze --max-folds`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RangeQuery {
     start: Option<usize>,
     end: Option<usize>,
+    max_folds: Option<usize>,
 }
 
 /// What an analyze request brought: a Sample JSON body, or named files.
@@ -396,7 +402,7 @@ impl Upload {
 
     /// Content key of the upload and the frame range.
     fn key(&self, range: &RangeQuery) -> String {
-        let range = format!("{:?}-{:?}", range.start, range.end);
+        let range = format!("{:?}-{:?}-{:?}", range.start, range.end, range.max_folds);
         match self {
             Upload::Json(bytes) => content_key(&[b"json", bytes, range.as_bytes()]),
             Upload::Files(files) => {
@@ -425,13 +431,14 @@ pub async fn analyze(
     let upload = Upload::from_request(request, &state).await?;
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
+    let max_folds = range.max_folds.unwrap_or(close_core::DEFAULT_MAX_FOLDS);
     let budget = state.config().budget;
     let job = state.clone();
     let done = analysis(&state, key, move |key, _| {
         let sample = upload.sample()?;
         let loaded = Loaded::of(key, &sample, frames, UPLOAD, None, &budget)?;
         job.keep_upload(&loaded.key, frames, sample);
-        Ok(loaded)
+        Ok(Loaded { max_folds, ..loaded })
     })
     .await?;
     Ok(JsonBytes(done.response.clone()))
