@@ -68,7 +68,7 @@ pub use routes::{Analyzed, Drawing};
 use close_core::budget::{Budget, Deadline};
 use close_io::cache::Lru;
 use close_io::dataset::{BuiltinSample, Dataset};
-use guard::{Doors, ServedAt, UploadBudget};
+use guard::{AnswerWatch, Doors, ServedAt, UploadBudget};
 use socket::Socket;
 use workers::Workers;
 
@@ -163,7 +163,7 @@ struct Inner {
     /// Bytes of bodies and answers in flight ([`guard::upload_budget`]).
     memory: Arc<UploadBudget>,
     /// The rows of `GET /api/samples`, built once: the datasets never change.
-    sample_list: OnceLock<Arc<Vec<routes::SampleRow>>>,
+    sample_list: OnceLock<Arc<datasets::Listing>>,
     /// The user's datasets, listed at start.
     catalog: Arc<close_io::catalog::Catalog>,
     /// The uploads kept on disk, with `--data-dir`.
@@ -246,12 +246,12 @@ impl AppState {
         &self.0.config
     }
 
-    /// The built-in dataset.
     /// The user's datasets.
     pub fn catalog(&self) -> &Arc<close_io::catalog::Catalog> {
         &self.0.catalog
     }
 
+    /// The built-in dataset.
     pub fn dataset(&self) -> &Dataset {
         &self.0.dataset
     }
@@ -284,6 +284,11 @@ impl AppState {
     /// Connections open now (each holds a connection slot).
     pub fn open_connections(&self) -> usize {
         self.config().max_connections.max(1) - self.0.connections.available_permits()
+    }
+
+    /// CPU jobs given to a worker so far, light and heavy.
+    pub fn worker_jobs(&self) -> usize {
+        self.0.light.started() + self.0.heavy.started()
     }
 
     /// CPU jobs that stopped at their deadline (a time-out, a request gone away) so far.
@@ -453,6 +458,7 @@ pub fn app(state: AppState) -> Router {
         grace: config.header_timeout,
         connections: state.0.connections.clone(),
         max_connections: config.max_connections.max(1),
+        timeout: config.timeout,
     };
     let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
@@ -511,7 +517,8 @@ pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
 /// At most [`Config::max_connections`] connections are served at once (the others wait in
 /// the listen queue); a connection that does not send a request's headers within
 /// [`Config::header_timeout`], first or between keep-alive requests, is closed; one whose
-/// answer is not read for [`Config::write_timeout`] is dropped. hyper's own answers to heads
+/// answer is not read for [`Config::write_timeout`] is dropped (for
+/// [`guard::CROWDED_GRACE`] when others wait for the memory the answer holds). hyper's own answers to heads
 /// it cannot read get the JSON error body too ([`socket`]).
 pub async fn serve_with(
     listener: TcpListener,
@@ -548,16 +555,20 @@ pub async fn serve_with(
         let served_at = stream.local_addr().ok().map(ServedAt);
         // Answers are small and written at once: do not wait for more to send.
         let _ = stream.set_nodelay(true);
+        // What the connection's answer holds of the budget, for its socket to see.
+        let watch = AnswerWatch::default();
+        let answers = watch.clone();
         let service = app.clone().map_request(
             move |mut request: axum::http::Request<hyper::body::Incoming>| {
                 if let Some(at) = served_at {
                     request.extensions_mut().insert(at);
                 }
+                request.extensions_mut().insert(answers.clone());
                 request
             },
         );
         let connection = graceful.watch(http.serve_connection(
-            TokioIo::new(Socket::new(stream, config.write_timeout)),
+            TokioIo::new(Socket::new(stream, config.write_timeout, watch)),
             hyper_util::service::TowerToHyperService::new(service),
         ));
         tokio::spawn(async move {

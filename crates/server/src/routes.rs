@@ -105,7 +105,7 @@ impl IntoResponse for JsonBytes {
     }
 }
 
-fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
+pub(super) fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
     serde_json::to_vec(value)
         .map(Bytes::from)
         .map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))
@@ -506,7 +506,7 @@ pub(super) struct SampleRow {
 }
 
 impl SampleRow {
-    fn builtin(e: &close_io::dataset::BuiltinSample) -> SampleRow {
+    pub(super) fn builtin(e: &close_io::dataset::BuiltinSample) -> SampleRow {
         let border = e.sample.border_frames();
         SampleRow::dataset(&close_io::catalog::Entry {
             id: e.id.clone(),
@@ -520,7 +520,7 @@ impl SampleRow {
         })
     }
 
-    fn dataset(e: &close_io::catalog::Entry) -> SampleRow {
+    pub(super) fn dataset(e: &close_io::catalog::Entry) -> SampleRow {
         SampleRow { entry: e.clone(), thumbnail: thumbnail(&e.id) }
     }
 }
@@ -528,24 +528,6 @@ impl SampleRow {
 /// The thumbnail URL of listed sample `id`: its analysis is cached under `sample:{id}`.
 fn thumbnail(id: &str) -> String {
     format!("/api/images/{SAMPLE_KEY}{id}/thumbnail.png?size={THUMBNAIL_SIZE}")
-}
-
-/// Every row of the sample list, built-in samples first, built once (a mesh's border
-/// vertex count takes finding its border: a worker's job).
-pub(super) async fn sample_rows(state: &AppState) -> Result<Arc<Vec<SampleRow>>, ApiError> {
-    if let Some(rows) = state.0.sample_list.get() {
-        return Ok(rows.clone());
-    }
-    let job = state.clone();
-    let rows = state
-        .run_cpu(Lane::Light, move |_| {
-            let builtin = job.entries().iter().map(SampleRow::builtin);
-            Ok(builtin
-                .chain(job.catalog().entries().iter().map(SampleRow::dataset))
-                .collect::<Vec<_>>())
-        })
-        .await?;
-    Ok(state.0.sample_list.get_or_init(|| Arc::new(rows)).clone())
 }
 
 fn unknown_sample(id: &str) -> ApiError {
@@ -828,10 +810,60 @@ struct InterpolateAnswer {
     states: Vec<close_render::cloth::Drawn>,
 }
 
+/// Largest angle (radians, either sign) an interpolation takes: past it a fold's angles
+/// lose their meaning to rounding, and their differences overflow.
+const MAX_ANGLE: f64 = 1e6;
+/// Largest coordinate of a fold line's point: the border is at most 10⁶ radii across.
+const MAX_LINE_POINT: f64 = 1e6;
+
+impl InterpolateRequest {
+    /// Refuse what cannot be a fold, as `/api/plan` refuses its goal: `from`, `to` and the
+    /// `arcs` need finite angles of at most [`MAX_ANGLE`]; a `line` a finite point within
+    /// [`MAX_LINE_POINT`] and a finite direction of some length.
+    fn check(&self) -> Result<(), ApiError> {
+        let angles = [("from", self.from), ("to", self.to)]
+            .into_iter()
+            .filter_map(|(name, fold)| fold.map(|f| (name, f.ends())))
+            .chain(self.arcs.iter().flatten().map(|a| ("arcs", [a.a, a.b])))
+            .chain(
+                self.prior.iter().flatten().flat_map(|p| &p.arcs).map(|a| ("prior", [a.a, a.b])),
+            );
+        for (name, fold) in angles {
+            if fold.iter().any(|a| !a.is_finite() || a.abs() > MAX_ANGLE) {
+                return Err(Error::InvalidArgument(format!(
+                    "\"{name}\" needs finite angles of at most {MAX_ANGLE:e} radians, got {fold:?}"
+                ))
+                .into());
+            }
+        }
+        let lines =
+            self.line.iter().chain(self.prior.iter().flatten().filter_map(|p| p.line.as_ref()));
+        for line in lines {
+            if line.point.iter().any(|c| !c.is_finite() || c.abs() > MAX_LINE_POINT) {
+                return Err(Error::InvalidArgument(format!(
+                    "\"line\": the point needs finite coordinates of at most {MAX_LINE_POINT:e}, got [{}, {}]",
+                    line.point.x, line.point.y
+                ))
+                .into());
+            }
+            let length = line.direction.x.hypot(line.direction.y);
+            if !length.is_finite() || length == 0.0 {
+                return Err(Error::InvalidArgument(format!(
+                    "\"line\": the direction has no length, or not a finite one: [{}, {}]",
+                    line.direction.x, line.direction.y
+                ))
+                .into());
+            }
+        }
+        Ok(())
+    }
+}
+
 pub async fn interpolate(
     State(state): State<AppState>,
     AppJson(req): AppJson<InterpolateRequest>,
 ) -> Result<Response, ApiError> {
+    req.check()?;
     let at = match (req.steps, req.at) {
         (Some(_), Some(_)) => {
             return Err(ApiError::BadRequest(

@@ -84,7 +84,8 @@ pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
 /// serde_json's error with its position moved into the typed `line` (the column stays in
 /// the reason); line 0 means serde_json knew no position.
 fn parse_error(e: &serde_json::Error) -> Error {
-    let message = e.to_string();
+    // serde's message may quote a string of the file.
+    let message = super::redact(&e.to_string());
     let position = format!(" at line {} column {}", e.line(), e.column());
     match message.strip_suffix(&position) {
         Some(reason) if e.line() > 0 => Error::parse_at(
