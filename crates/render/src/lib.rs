@@ -547,11 +547,13 @@ fn outward(theta: f64) -> (HPos, VPos) {
 impl Canvas {
     /// The title, centred at the top.
     fn title(&mut self, title: &str) {
-        let size = title_size(self.unit());
+        let unit = self.unit();
+        let size = title_size(unit);
+        let (text, fitted) = fit_title(title, unit, self.width as f64);
         self.text(
-            title,
+            &text,
             (self.width as f64 / 2.0, 0.9 * size),
-            size,
+            fitted,
             INK,
             (HPos::Center, VPos::Center),
         );
@@ -561,6 +563,26 @@ impl Canvas {
     fn title_band(&self) -> f64 {
         1.8 * title_size(self.unit())
     }
+}
+
+/// `title` as drawn across a picture `width` wide: at the title size when it fits, else
+/// smaller (down to the notes' size), and cut short with "…" when even that does not fit, so
+/// a long name never runs off the picture.
+fn fit_title(title: &str, unit: f64, width: f64) -> (String, f64) {
+    let room = 0.96 * width;
+    let size = title_size(unit);
+    let wide = raster::text_width(title, size);
+    if wide <= room {
+        return (title.to_string(), size);
+    }
+    let size = (size * room / wide).max(note_size(unit));
+    let mut chars: Vec<char> = title.chars().collect();
+    let mut text = title.to_string();
+    while raster::text_width(&text, size) > room && !chars.is_empty() {
+        chars.pop();
+        text = format!("{}…", chars.iter().collect::<String>().trim_end());
+    }
+    (text, size)
 }
 
 /// The narrowest a picture is shown, in CSS px per its shorter side: the web app's figures
@@ -637,6 +659,18 @@ pub(crate) mod tests {
     use close_core::geometry::{Fold, Folding};
     use close_core::{analyze, FrameRange};
     use std::f64::consts::PI;
+
+    #[test]
+    fn a_long_title_fits_its_picture() {
+        let short = fit_title("dGLI disk", 480.0, 480.0);
+        assert_eq!(short, ("dGLI disk".to_string(), title_size(480.0)));
+        let long = "napkin__half_then_half · after step 1 of 2 (frame 1) · a long name";
+        let (text, size) = fit_title(long, 480.0, 480.0);
+        assert!(size < title_size(480.0) && size >= note_size(480.0));
+        assert!(raster::text_width(&text, size) <= 0.96 * 480.0, "{text} at {size}");
+        let cut = fit_title(&long.repeat(3), 480.0, 480.0).0;
+        assert!(cut.ends_with('…') && cut.len() < 3 * long.len(), "{cut}");
+    }
 
     /// A square of `per_side` vertices per side, folded along `fold` with the folded arc
     /// lifted a little (as a real fold lies on top), analysed.

@@ -472,8 +472,15 @@ async fn kept_analysis(state: &AppState, key: &str) -> Result<Arc<Analyzed>, Api
     }
     let job = state.clone();
     analysis(state, key.to_string(), move |key, _| {
-        let stored =
-            job.uploads().and_then(|u| u.load(&key)).ok_or_else(|| upload_gone(&job, &key))?;
+        let stored = match job.uploads().map(|u| u.load(&key)) {
+            Some(Ok(Some(stored))) => stored,
+            Some(Err(why)) => {
+                return Err(ApiError::NotFound(format!(
+                    "the upload {key:?} cannot be read from the data folder: {why}"
+                )))
+            }
+            Some(Ok(None)) | None => return Err(upload_gone(&job, &key)),
+        };
         let frames = FrameRange { start: stored.start, end: stored.end };
         Loaded::of(key, &stored.sample, frames, UPLOAD, None, &job.config().budget)
     })
@@ -1186,7 +1193,7 @@ async fn drawing_of(state: &AppState, sample: Box<RawValue>) -> Result<Arc<Drawi
                         sample_analysis(state, &id).await?.drawing.clone()
                     }
                     None if state.uploads().is_some()
-                        && state.uploads().and_then(|u| u.load(&id)).is_some() =>
+                        && state.uploads().is_some_and(|u| u.has(&id)) =>
                     {
                         kept_analysis(state, &id).await?.drawing.clone()
                     }
