@@ -345,7 +345,14 @@ fn analyse_steps(
             previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
         let mut detection = detect(before_border, before, &after, options.method);
         let found = if options.method == FoldMethod::Cut {
-            explain(before_border, before, &after, &detection, options.max_folds)
+            explain(
+                before_border,
+                before,
+                &after,
+                &detection,
+                options.max_folds,
+                &options.deadline,
+            )?
         } else {
             StepFolds::default()
         };

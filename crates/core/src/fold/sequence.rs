@@ -48,7 +48,9 @@ use serde::Serialize;
 
 use crate::angle::{angle_to_param, param_to_angle, wrap_tau, ArcVertices};
 use crate::border::{point_at, Point};
+use crate::budget::Deadline;
 use crate::disk::Disk;
+use crate::error::Result;
 use crate::geometry::{Arc, Fold, Folding, Line, Point2};
 use crate::metrics::aligned_rmse_xy;
 
@@ -306,18 +308,20 @@ struct Probes {
 
 /// The best sequence of each length from two folds up to `max_folds`, judged on `probes`,
 /// with the sequences of its length judged about as well (its twins and alternatives).
+/// [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires: the search is checked between candidates.
 fn search(
     before: &[Point],
     start: &Disk,
     end: &Disk,
     probes: &Probes,
     max_folds: usize,
-) -> Vec<(Judged, Vec<Judged>)> {
+    deadline: &Deadline,
+) -> Result<Vec<(Judged, Vec<Judged>)>> {
     let n = before.len();
     let g = start.abs_diff(end);
     let offset: Vec<f64> =
         g.values().iter().zip(start.values()).map(|(c, s)| c - INFORMATION * s.abs()).collect();
-    let Ok(offset) = Disk::from_values(n, offset) else { return Vec::new() };
+    let Ok(offset) = Disk::from_values(n, offset) else { return Ok(Vec::new()) };
     // Cut points of as many arcs as the sequences could make: 2 per fold line on a flat
     // cloth, more where it crosses layers.
     let cut_sets: Vec<Vec<f64>> = [4usize, 6, 8]
@@ -330,6 +334,7 @@ fn search(
         .collect();
     let mut found = Vec::new();
     for level in 0..max_folds {
+        deadline.check()?;
         // Every fold through the free cut points on each state of the beam, screened.
         let mut scored: Vec<(f64, usize, Partial, Vec<u8>)> = beam
             .par_iter()
@@ -346,6 +351,9 @@ fn search(
                 )
             })
             .filter_map(|(p, partial)| {
+                if deadline.expired() {
+                    return None;
+                }
                 let (turned, _) = make(before, &partial.moves)?;
                 Some((probes.screen.cost(&turned), p, partial, turned.groups().to_vec()))
             })
@@ -388,6 +396,9 @@ fn search(
             chosen
                 .into_par_iter()
                 .filter_map(|moves| {
+                    if deadline.expired() {
+                        return None;
+                    }
                     let moves = refine(before, start, end, moves);
                     let (_, made) = make(before, &moves)?;
                     Some(judge_made(&probes.judge, before, made))
@@ -395,6 +406,7 @@ fn search(
                 .collect()
         };
         let mut judged = judge_all(chosen);
+        deadline.check()?;
         judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         // The best one's twins (another order of the same folds) are refined too, so that
         // the layer order can decide between them.
@@ -417,6 +429,7 @@ fn search(
             }
             let twins: Vec<Vec<Move>> = twins.into_iter().map(|t| t.0).collect();
             judged.extend(judge_all(twins));
+            deadline.check()?;
             judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
             // Refined from different starts, two may have become one.
             let mut groups: Vec<Vec<u8>> = Vec::new();
@@ -432,7 +445,7 @@ fn search(
         }
         beam = kept.into_iter().map(|k| k.2.clone()).collect();
     }
-    found
+    Ok(found)
 }
 
 /// Take out of `judged` (best first) the sequence of least mismatch, but that one which
@@ -557,16 +570,17 @@ impl Judged {
 /// model selection of the module's documentation.
 ///
 /// `before` is the step's start border (normalised as the disks were), `start` its disk,
-/// `end` the measured end disk.
+/// `end` the measured end disk. [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires.
 pub fn explain(
     before: &[Point],
     start: &Disk,
     end: &Disk,
     single: &FoldDetection,
     max_folds: usize,
-) -> StepFolds {
+    deadline: &Deadline,
+) -> Result<StepFolds> {
     let n = before.len();
-    let Some(fold) = single.fold else { return StepFolds::default() };
+    let Some(fold) = single.fold else { return Ok(StepFolds::default()) };
     let direction = single.synthesis.as_ref().and_then(|s| s.direction);
     let single_folding =
         || Folding { fold, arcs: single.arcs.clone(), line: fold.line_on(before, direction) };
@@ -579,11 +593,11 @@ pub fn explain(
                 1.0
             }
         });
-        return StepFolds {
+        return Ok(StepFolds {
             folds: vec![ExplainedFold { folding: single_folding(), explained: Some(explained) }],
             explained,
             ..StepFolds::default()
-        };
+        });
     }
     let strided = |samples: usize| all_pairs(&sampled_edges(n, samples));
     let probes = Probes {
@@ -593,13 +607,15 @@ pub fn explain(
     };
     let unfolded = probes.judge.unfolded();
     let share = |cost: f64| if unfolded > 0.0 { cost / unfolded } else { 0.0 };
-    let Some(line) = single_folding().line else { return StepFolds::default() };
+    let Some(line) = single_folding().line else { return Ok(StepFolds::default()) };
     let arcs = single.arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect();
     let one = judge_made(&probes.judge, before, vec![Made { line, arcs }]);
     let mut left = share(one.cost);
     let mut chosen = (one, Vec::new());
     if max_folds >= 2 && left > EXPLAINED_BY_ONE {
-        for (best, others) in search(before, start, end, &probes, max_folds.min(MAX_FOLDS)) {
+        for (best, others) in
+            search(before, start, end, &probes, max_folds.min(MAX_FOLDS), deadline)?
+        {
             let now = share(best.cost);
             if now <= MARKEDLY * left && left - now >= MIN_GAIN {
                 left = now;
@@ -615,11 +631,11 @@ pub fn explain(
         explained: 1.0 - share(j.cost),
     };
     if left > UNEXPLAINED {
-        return StepFolds {
+        return Ok(StepFolds {
             alternatives: vec![alternative(&best)],
             unexplained: true,
             ..StepFolds::default()
-        };
+        });
     }
     let folds = if best.made.len() == 1 {
         // The step's own fold as detected (not round-tripped through border parameters).
@@ -627,7 +643,7 @@ pub fn explain(
     } else {
         best.explained(&probes.judge, before, unfolded)
     };
-    StepFolds {
+    Ok(StepFolds {
         folds,
         alternatives: others
             .iter()
@@ -636,7 +652,7 @@ pub fn explain(
             .collect(),
         explained: 1.0 - left,
         unexplained: false,
-    }
+    })
 }
 
 #[cfg(test)]
@@ -681,7 +697,8 @@ mod tests {
     fn explained(before: &[Point], after: &[Point], max_folds: usize) -> StepFolds {
         let (start, end) = (Disk::of_border(before), Disk::of_border(after));
         let single = detect(before, &start, &end, FoldMethod::Cut);
-        explain(before, &start, &end, &single, max_folds)
+        explain(before, &start, &end, &single, max_folds, &Deadline::default())
+            .expect("no deadline")
     }
 
     #[test]
@@ -700,5 +717,17 @@ mod tests {
         assert!((sum - twice.explained).abs() < 1e-9, "{sum} vs {}", twice.explained);
         // One fold asked for: one fold given, whatever it leaves.
         assert!(explained(&flat, &quarters, 1).folds.len() <= 1);
+    }
+
+    #[test]
+    fn a_cancelled_deadline_stops_the_search() {
+        let flat = square(24);
+        let quarters = fold_all(&fold_all(&flat, [0.013, 0.0], PI / 2.0), [0.0, 0.013], 0.0);
+        let (start, end) = (Disk::of_border(&flat), Disk::of_border(&quarters));
+        let single = detect(&flat, &start, &end, FoldMethod::Cut);
+        let deadline = Deadline::default();
+        deadline.cancel();
+        let stopped = explain(&flat, &start, &end, &single, 3, &deadline);
+        assert!(matches!(stopped, Err(crate::error::Error::Cancelled)), "{stopped:?}");
     }
 }
