@@ -849,6 +849,10 @@ fn warn(py: Python<'_>, warnings: &[(String, Vec<usize>)], stacklevel: i32) -> P
     Ok(())
 }
 
+// `close.analyze`'s `max_folds` default is a literal, so that `inspect.signature` shows it
+// (a path shows as `...`); the assertion keeps it the library's.
+const _: () = assert!(close_core::DEFAULT_MAX_FOLDS == 3);
+
 /// Analyse frames `start` → `end` (default: first → last) of a sample, one fold per step
 /// between consecutive frames, exactly as `close analyze --json` does.
 ///
@@ -869,7 +873,7 @@ fn warn(py: Python<'_>, warnings: &[(String, Vec<usize>)], stacklevel: i32) -> P
 /// Raises `close.CloseError` (a ValueError) with the CLI's message on bad input, and on
 /// inputs over the server's limits (frames × N² dGLI cells).
 #[pyfunction]
-#[pyo3(signature = (frames, *, method = "default", start = None, end = None, max_folds = close_core::DEFAULT_MAX_FOLDS))]
+#[pyo3(signature = (frames, *, method = "default", start = None, end = None, max_folds = 3))]
 fn analyze(
     py: Python<'_>,
     frames: &Bound<'_, PyAny>,
