@@ -23,6 +23,10 @@ import close
 def threads():
     return len(os.listdir("/proc/self/task"))
 
+# Ctrl-C raises KeyboardInterrupt, as in a terminal, even when this test runs in the
+# background, where the shell starts it with SIGINT ignored and Python keeps that.
+signal.signal(signal.SIGINT, signal.default_int_handler)
+
 sample = close.load(sys.argv[1])
 call = sys.argv[2]
 items = [sample] * 40000
