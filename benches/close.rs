@@ -6,6 +6,10 @@
 //! sequences (1–3 folds each), beside the plainest distance one could take instead (the
 //! sum of the circular distances of the padded fold angles, the same pairs, one core): the
 //! ratio is what the edit distance's matching of missing and extra folds costs.
+//!
+//! Fold sequences in one step (issue 26): `analyze_quarters` is a napkin folded in
+//! quarters seen flat and folded (the sequence search runs), beside `analyze_fold` of one
+//! fold of the same napkin at the same N = 152: the ratio is what the search costs.
 
 use std::f64::consts::PI;
 
@@ -51,9 +55,36 @@ fn dgli_disk(bencher: divan::Bencher, n: usize) {
     bencher.bench(|| Disk::of_border(divan::black_box(&border)));
 }
 
-#[divan::bench(args = [76, 300, 1000])]
+#[divan::bench(args = [76, 152, 300, 1000])]
 fn analyze_fold(bencher: divan::Bencher, n: usize) {
     let frames = prepare(folded_frames(n)).unwrap();
+    bencher.bench(|| analyze(divan::black_box(&frames), FrameRange::default()).unwrap());
+}
+
+/// `state` with every vertex left of the line through `a` at `angle` reflected across it
+/// and laid on top (every layer there turns).
+fn fold_left_of(state: &[[f64; 3]], a: [f64; 2], angle: f64) -> Vec<[f64; 3]> {
+    let (ux, uy) = (angle.cos(), angle.sin());
+    let top = state.iter().map(|p| p[2]).fold(f64::NEG_INFINITY, f64::max);
+    state
+        .iter()
+        .map(|p| {
+            let (dx, dy) = (p[0] - a[0], p[1] - a[1]);
+            if ux * dy - uy * dx <= 0.0 {
+                return *p;
+            }
+            let t = dx * ux + dy * uy;
+            [a[0] + 2.0 * t * ux - dx, a[1] + 2.0 * t * uy - dy, 2.0 * top + 0.004 - p[2]]
+        })
+        .collect()
+}
+
+#[divan::bench(args = [152])]
+fn analyze_quarters(bencher: divan::Bencher, n: usize) {
+    let start: Vec<[f64; 3]> = napkin(n).iter().map(|p| [p.x, p.y, p.z]).collect();
+    let half = fold_left_of(&start, [0.013, 0.0], PI / 2.0);
+    let quarters = fold_left_of(&half, [0.0, 0.013], 0.0);
+    let frames = prepare(vec![start, quarters]).unwrap();
     bencher.bench(|| analyze(divan::black_box(&frames), FrameRange::default()).unwrap());
 }
 

@@ -7,7 +7,7 @@
 use std::time::Instant;
 
 use close::budget::Deadline;
-use close::render::{disk_png_scaled, DEFAULT_SIZE};
+use close::render::{render_disk, Output, DEFAULT_SIZE};
 
 /// The folded square of scripts/load.lua: (folded border, flat reference).
 fn load_body() -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
@@ -33,21 +33,16 @@ fn main() {
     let (repeats, size) = (number(0, 200), number(1, DEFAULT_SIZE));
     let (border, reference) = load_body();
     let disk = close::disk::of_state(border, Some(reference), &Deadline::default()).unwrap();
-    let (png, _) = disk_png_scaled(&disk, "dGLI disk · current state", None, size, size).unwrap();
+    let output = Output::png(size);
+    let (png, _) = render_disk(&disk, "dGLI disk · current state", None, &output).unwrap();
     if let Some(out) = args.get(2) {
         std::fs::write(out, &png).unwrap();
     }
     let start = Instant::now();
     for _ in 0..repeats {
         std::hint::black_box(
-            disk_png_scaled(
-                std::hint::black_box(&disk),
-                "dGLI disk · current state",
-                None,
-                size,
-                size,
-            )
-            .unwrap(),
+            render_disk(std::hint::black_box(&disk), "dGLI disk · current state", None, &output)
+                .unwrap(),
         );
     }
     let per = start.elapsed().as_secs_f64() / repeats as f64;

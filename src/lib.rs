@@ -27,7 +27,7 @@
 pub use close_core::{
     analysis, analyze, analyze_with, angle, border, budget, close, disk, distance, error, fold,
     geometry, gli, interpolate, label, metrics, plan, rng, verify, Analysis, Arc, Error, Fold,
-    FoldMethod, Folding, FrameRange, Line, Options, Result,
+    FoldMethod, Folding, FrameRange, Line, Options, Result, DEFAULT_MAX_FOLDS,
 };
 #[cfg(feature = "vrfolding")]
 pub use close_io::vrfolding;

@@ -52,6 +52,11 @@ enum Command {
         /// How fold points are chosen.
         #[arg(long, value_enum, default_value_t = Method::Cut)]
         method: Method,
+        /// Most folds one step may hold: a step whose end disk one fold cannot explain is
+        /// read as a sequence of up to K folds (1: one fold per step).
+        #[arg(long, value_name = "K", default_value_t = close::DEFAULT_MAX_FOLDS as u8,
+              value_parser = clap::value_parser!(u8).range(1..=close::fold::sequence::MAX_FOLDS as i64))]
+        max_folds: u8,
     },
     /// Evaluate every sample under the given files or folders, and every fold of every video
     /// of a VR-Folding Zarr store (or of one category folder of it).
@@ -171,6 +176,10 @@ struct ServeFlags {
     /// MiB of request bodies held at once across all requests [default: 256].
     #[arg(long, value_name = "MIB")]
     upload_budget: Option<usize>,
+    /// Keep uploads on disk in DIR (the 1000 most recent, 1 GiB at most; the oldest go
+    /// first), so their links survive a reload of the page and a restart of the server.
+    #[arg(long, value_name = "DIR")]
+    data_dir: Option<PathBuf>,
 }
 
 impl ServeFlags {
@@ -178,6 +187,7 @@ impl ServeFlags {
         let mut config = close::server::Config {
             allowed_hosts: self.allow_host,
             cors_origins: self.cors,
+            data_dir: self.data_dir,
             ..Default::default()
         };
         let secs = std::time::Duration::from_secs;
@@ -229,6 +239,9 @@ enum CliError {
     /// The server could not start (its address taken, say) or stopped serving.
     #[error(transparent)]
     Serve(close::server::ServeError),
+    /// Some of the files of an export could not be written (each was reported).
+    #[error("{0}")]
+    Incomplete(String),
 }
 
 impl CliError {
@@ -465,7 +478,8 @@ fn run_eval(paths: &[PathBuf], builtin: bool, json: bool, method: FoldMethod) ->
 }
 
 /// Write the samples into folder `out`, created when missing; one that already holds
-/// anything is refused unless `force`. Each file is written by [`write_file`].
+/// anything is refused unless `force`. Each file is written by [`write_file`], named by
+/// [`file_name`]; a file that cannot be written is reported and the others are written.
 fn run_dataset(out: &Path, from: &[PathBuf], force: bool) -> CliResult {
     std::fs::create_dir_all(out).map_err(file_error(out))?;
     let held = std::fs::read_dir(out).map_err(file_error(out))?.next().is_some();
@@ -475,69 +489,133 @@ fn run_dataset(out: &Path, from: &[PathBuf], force: bool) -> CliResult {
             out.display()
         )));
     }
-    let write = |name: &str, sample: &Sample| {
-        let path = out.join(format!("{}.json", name.replace(['/', '\\'], "_")));
-        write_file(&path, close::formats::json::to_json(sample).as_bytes(), true)
-    };
     if !from.is_empty() {
-        return export_stores(from, &write);
+        return export_stores(out, from);
     }
     let dataset = close::dataset::Dataset::builtin();
-    for entry in dataset.entries() {
-        write(&entry.id, &entry.sample)?;
+    let samples: Vec<(String, &Sample)> =
+        dataset.entries().iter().map(|e| (e.id.clone(), &e.sample)).collect();
+    let written = write_samples(out, &samples);
+    eprintln!("wrote {written} samples to {}", out.display());
+    finish(written, samples.len())
+}
+
+/// Most bytes of a written file's name before its extension: well inside every file
+/// system's 255.
+const MAX_NAME: usize = 100;
+
+/// The file name of sample `id`: the id itself when it is plain (ASCII letters, digits,
+/// `-`, `_`, `.`, not leading with a dot) and at most [`MAX_NAME`] bytes; otherwise its
+/// plain characters (others made `_`), cut to fit, then `-` and a hash of the whole id, so
+/// that two ids never share a name (`a/b` and `a_b`, two long ids alike at the start).
+fn file_name(id: &str) -> String {
+    let plain: String = id
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '_' })
+        .collect();
+    if plain == id && !id.is_empty() && !id.starts_with('.') && id.len() <= MAX_NAME {
+        return format!("{id}.json");
     }
-    eprintln!("wrote {} samples to {}", dataset.entries().len(), out.display());
-    Ok(())
+    // FNV-1a, 64 bits: the same name for the same id in every build.
+    let hash = id.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    let kept = plain.trim_start_matches('.');
+    format!("{}-{hash:016x}.json", &kept[..kept.len().min(MAX_NAME - 17)])
+}
+
+/// Write each `(id, sample)` into `out` as [`file_name`]`(id)`, in parallel; each failure
+/// is reported (`error: …`) and the rest are written. Returns how many were written.
+fn write_samples(out: &Path, samples: &[(String, &Sample)]) -> usize {
+    let mut names = std::collections::HashSet::new();
+    let named: Vec<(PathBuf, &Sample, bool)> = samples
+        .iter()
+        .map(|(id, sample)| {
+            let name = file_name(id);
+            let fresh = names.insert(name.clone());
+            (out.join(name), *sample, fresh)
+        })
+        .collect();
+    named
+        .par_iter()
+        .filter(|(path, sample, fresh)| {
+            let written = if *fresh {
+                write_file(path, close::formats::json::to_json(sample).as_bytes(), true)
+            } else {
+                Err(CliError::Usage(format!(
+                    "{}: two samples map to this name; the second is not written",
+                    path.display()
+                )))
+            };
+            written.map_err(|e| eprintln!("error: {e}")).is_ok()
+        })
+        .count()
+}
+
+/// Success when all `total` files were written, else the failure that says how many were.
+fn finish(written: usize, total: usize) -> CliResult {
+    if written == total {
+        return Ok(());
+    }
+    Err(CliError::Incomplete(format!(
+        "{} of {total} files could not be written (see the errors above)",
+        total - written
+    )))
 }
 
 /// Every usable fold of every video of the stores as Sample JSON (`<Category>_<video>_fold<k>`,
 /// category `<Category>/fold<k>`); broken folds and unreadable videos are reported and skipped.
 #[cfg(feature = "vrfolding")]
-fn export_stores(
-    from: &[PathBuf],
-    write: &(dyn Fn(&str, &Sample) -> CliResult + Sync),
-) -> CliResult {
-    let (work, rest) = close::batch::store_units(from)?;
-    if let Some(p) = rest.first() {
-        return Err(CliError::Usage(format!(
-            "{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)",
-            p.display()
-        )));
+fn export_stores(out: &Path, from: &[PathBuf]) -> CliResult {
+    let mut work = Vec::new();
+    for path in from {
+        if !close::catalog::walk::looks_like_store(path) {
+            return Err(CliError::Usage(format!(
+                "{}: --from takes VR-Folding Zarr stores (a folder with .zgroup)",
+                path.display()
+            )));
+        }
+        work.extend(close::batch::store_units(path)?);
     }
-    let counts = work
+    let read: Vec<Result<(close::vrfolding::VideoFolds, &close::vrfolding::Video), String>> = work
         .par_iter()
-        .map(|w| {
-            let close::batch::Unit::Video(store, video) = w else {
-                return Ok::<_, CliError>([0, 0, 0]);
-            };
-            match store.folds(video) {
-                Ok(folds) => {
-                    for k in 1..=folds.usable() {
-                        if let Some(sample) = folds.sample(video, k) {
-                            write(&format!("{}_{}_fold{k}", video.category, video.id), &sample)?;
-                        }
-                    }
-                    Ok([folds.usable(), folds.dropped(), 0])
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    Ok([0, 0, 1])
-                }
+        .filter_map(|w| match w {
+            close::batch::Unit::Video(store, video) => {
+                Some(store.folds(video).map(|f| (f, video)).map_err(|e| e.to_string()))
             }
+            close::batch::Unit::Failed(name, why) => Some(Err(format!("{name}: {why}"))),
+            _ => None,
         })
-        .try_reduce(|| [0, 0, 0], |a, b| Ok([a[0] + b[0], a[1] + b[1], a[2] + b[2]]))?;
+        .collect();
+    let mut samples = Vec::new();
+    let (mut dropped, mut unreadable) = (0, 0);
+    for found in &read {
+        match found {
+            Ok((folds, video)) => {
+                dropped += folds.dropped();
+                samples.extend((1..=folds.usable()).filter_map(|k| {
+                    let id = format!("{}_{}_fold{k}", video.category, video.id);
+                    folds.sample(video, k).map(|s| (id, s))
+                }));
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                unreadable += 1;
+            }
+        }
+    }
+    let borrowed: Vec<(String, &Sample)> = samples.iter().map(|(id, s)| (id.clone(), s)).collect();
+    let written = write_samples(out, &borrowed);
     eprintln!(
-        "wrote {} folds of {} videos ({} dropped: broken mesh; {} videos unreadable)",
-        counts[0],
+        "wrote {written} folds of {} videos to {} ({dropped} dropped: broken mesh; {unreadable} videos unreadable)",
         work.len(),
-        counts[1],
-        counts[2]
+        out.display(),
     );
-    Ok(())
+    finish(written, borrowed.len())
 }
 
 #[cfg(not(feature = "vrfolding"))]
-fn export_stores(_: &[PathBuf], _: &(dyn Fn(&str, &Sample) -> CliResult + Sync)) -> CliResult {
+fn export_stores(_: &Path, _: &[PathBuf]) -> CliResult {
     Err(CliError::Usage(NO_VRFOLDING.into()))
 }
 
@@ -559,22 +637,7 @@ fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }
-    let mut text = plan.case.as_str().to_string();
-    for (k, step) in plan.steps.iter().enumerate() {
-        text += &format!(
-            "\n{}. {} ({:.4}, {:.4}), corners {:?}",
-            k + 1,
-            step.action.as_str(),
-            step.fold.f1,
-            step.fold.f2,
-            step.corners
-        );
-        for p in &step.picks {
-            let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
-            text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
-        }
-    }
-    emit(&text)
+    emit(&close::plan::Plan { case: plan.case, steps: plan.steps }.text())
 }
 
 /// The folds of `--goal`: pairs `f1,f2` separated by `;`.
@@ -676,10 +739,21 @@ fn serve(addr: &str, config: close::server::Config) -> CliResult {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
-        Some(Command::Analyze { files, video, fold, start, end, json: _, disks, method }) => {
+        Some(Command::Analyze {
+            files,
+            video,
+            fold,
+            start,
+            end,
+            json: _,
+            disks,
+            method,
+            max_folds,
+        }) => {
             let options = Options {
                 frames: FrameRange { start, end },
                 method: method.into(),
+                max_folds: usize::from(max_folds),
                 ..Options::default()
             };
             run_analyze(&files, video.as_deref(), usize::from(fold), options, disks)

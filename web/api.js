@@ -35,9 +35,12 @@ export function errorText(status, statusText, body) {
   return `The server answered HTTP ${status}${statusText ? ` ${statusText}` : ""} without a message.`;
 }
 
-/** fetch on `channel` (aborting its previous request); resolves to the Response if ok. */
+/**
+ * fetch on `channel` (aborting its previous request), or with the caller's `options.signal`;
+ * resolves to the Response if ok.
+ */
 async function send(channel, url, options = {}) {
-  let signal;
+  let signal = options.signal;
   if (channel) {
     if (channels.has(channel)) channels.get(channel).abort();
     const controller = new AbortController();
@@ -58,9 +61,9 @@ async function send(channel, url, options = {}) {
   return res;
 }
 
-/** JSON of `url` (GET, or POST of `body` when given). */
-export async function json(channel, url, body) {
-  const options = body === undefined ? {} : post(body);
+/** JSON of `url` (GET, or POST of `body` when given); `signal` aborts it (without a channel). */
+export async function json(channel, url, body, signal) {
+  const options = { ...(body === undefined ? {} : post(body)), signal };
   const res = await send(channel, url, options);
   const text = await res.text();
   try {
@@ -78,7 +81,10 @@ function post(body) {
 export const samples = () => json("samples", "/api/samples");
 export const sample = (id, channel = "sample") => json(channel, `/api/samples/${encodeURIComponent(id)}`);
 export const analyze = (form) => json("analyze", "/api/analyze", form);
-export const interpolate = (request) => json("interpolate", "/api/interpolate", request);
+/** An analysis by its `key` (an upload's, kept by the server). */
+export const analysis = (key, channel = "analysis") => json(channel, `/api/analyses/${encodeURIComponent(key)}`);
+/** The states of a motion ({…, states}); `channel` names it (a newer request on it aborts it). */
+export const interpolate = (request, channel = "interpolate") => json(channel, "/api/interpolate", request);
 export const plan = (request) => json("plan", "/api/plan", request);
 
 /**
@@ -92,7 +98,7 @@ export async function disk(request, channel = "disk") {
   return { url, scale: Number.isFinite(s) && s > 0 ? { s, max } : null };
 }
 
-/** The cells of the disk `disk(request)` draws: {n, size, disk: {cx, cy, radius}, values} (condensed pairs). */
+/** The cells of the disk `disk(request)` draws: {n, size, disk: {cx, cy, radius}, values} (ring by ring). */
 export const diskCells = (request, channel = "disk-cells") => json(channel, "/api/disk/cells", request);
 
 /**
@@ -111,4 +117,32 @@ export function imageUrl(key, name, { step = null, size = 480, format = "png" } 
   if (step) query.set("step", String(step));
   if (format !== "png") query.set("format", format);
   return `/api/images/${encodeURIComponent(key)}/${name}.png?${query}`;
+}
+
+const cellMaps = new Map();
+
+/**
+ * Which cell each pixel of a `size` px disk picture of `n` edges shows, from the server's
+ * cell picture (GET /api/cells.png): per pixel, row by row, 1 + the cell's ring index (0 off
+ * the disk). One request per (n, size), kept.
+ */
+export function cellMap(n, size) {
+  const key = `${n}/${size}`;
+  if (!cellMaps.has(key)) {
+    const got = send(null, `/api/cells.png?${new URLSearchParams({ n: String(n), size: String(size) })}`)
+      .then((res) => res.blob())
+      .then((blob) => createImageBitmap(blob, { colorSpaceConversion: "none", premultiplyAlpha: "none" }))
+      .then((bitmap) => {
+        const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+        const ctx = canvas.getContext("2d", { willReadFrequently: true });
+        ctx.drawImage(bitmap, 0, 0);
+        const rgba = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
+        const codes = new Int32Array(bitmap.width * bitmap.height);
+        for (let p = 0; p < codes.length; p++) codes[p] = (rgba[4 * p] << 16) | (rgba[4 * p + 1] << 8) | rgba[4 * p + 2];
+        return codes;
+      });
+    got.catch(() => cellMaps.delete(key));
+    cellMaps.set(key, got);
+  }
+  return cellMaps.get(key);
 }

@@ -30,13 +30,19 @@ function noCloth() {
 const clothOf = (result) => (result.id ? { kind: "sample", id: result.id } : { kind: "upload", id: result.key });
 
 const resultActions = {
-  interpolate(result) {
-    store.set({ cloth: clothOf(result) });
-    router.go("interpolate");
+  /** Interpolate `result`'s fold `fold` (1-based, or "all": the sequence), as shown. */
+  interpolate(result, fold) {
+    const cloth = clothOf(result);
+    store.set({ cloth });
+    router.go("interpolate", null, new URLSearchParams({ cloth: `${cloth.kind}:${cloth.id}`, step: String(fold) }));
   },
   plan(result) {
     store.set({ cloth: clothOf(result) });
     router.go("plan");
+  },
+  /** Compare states `a` and `b` ("id", "name" or "…@k"). */
+  compare(a, b) {
+    router.go("compare", [a, b]);
   },
 };
 
@@ -62,7 +68,7 @@ function show({ view, id, ids, params }) {
       document.title = router.title("samples", $("#browse-result .result-name")?.textContent || "");
     }
   } else if (view === "upload") {
-    document.title = router.title("upload", upload.titleName());
+    upload.shown(params);
   } else if (view === "interpolate") {
     interpolate.shown(params);
   } else if (view === "plan") {
@@ -72,6 +78,14 @@ function show({ view, id, ids, params }) {
     compare.shown(ids, showError);
   }
 }
+
+// The skip link moves the focus to the view on screen without touching the hash route.
+document.querySelector(".skip-link").addEventListener("click", (e) => {
+  e.preventDefault();
+  const view = document.querySelector(".view:not([hidden])");
+  const first = view?.querySelector("input, select, button, a[href], [tabindex='0']");
+  (first || $("#main")).focus();
+});
 
 browse.setup(resultActions);
 upload.setup(resultActions, showError);

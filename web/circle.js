@@ -3,7 +3,9 @@
 // numbered dots, a fold (f1, f2) as the arc from f1 anticlockwise to f2 and its chord.
 // Handles are dragged with a pointer or focused (Tab) and moved with the arrow keys.
 
-import { TAU, wrap } from "./fold.mjs";
+export const TAU = 2 * Math.PI;
+/** An angle taken into [0, 2π). */
+export const wrap = (a) => ((a % TAU) + TAU) % TAU;
 
 const SVG = "http://www.w3.org/2000/svg";
 export const R = 100;
@@ -102,8 +104,11 @@ export function drawFoldCircle(root, corners, arcs, handles) {
   if (focused) root.querySelector(`.handle[data-id="${CSS.escape(focused)}"]`)?.focus();
 }
 
-/** Let the handles of the circle `root` be dragged round it or moved by arrow keys: `move(id, angle)`. */
-export function dragOnCircle(root, move) {
+/**
+ * Let the handles of the circle `root` be dragged round it or moved by arrow keys:
+ * `move(id, angle)`; `end()` once a drag lets go.
+ */
+export function dragOnCircle(root, move, end = () => {}) {
   let id = null;
   root.addEventListener("pointerdown", (e) => {
     const handle = e.target.closest(".handle");
@@ -119,7 +124,10 @@ export function dragOnCircle(root, move) {
     const p = pt.matrixTransform(root.getScreenCTM().inverse());
     move(id, wrap(Math.atan2(-p.y, p.x)));
   });
-  const stop = () => (id = null);
+  const stop = () => {
+    if (id !== null) end();
+    id = null;
+  };
   root.addEventListener("pointerup", stop);
   root.addEventListener("pointercancel", stop);
   root.addEventListener("keydown", (e) => {

@@ -3,38 +3,23 @@
 // for a diff also the start and end values), and the two edges are marked on a border
 // drawing (the border plot's picture, or the cloth Interpolate draws).
 //
-// The pictures are the server's PNGs. The server says where the disk lies on them (centre
-// and rim radius in the picture's pixels) and sends the disks' values (GET /api/readout,
-// POST /api/disk/cells); the cell under a point follows from its polar coordinates as the
-// server paints it (crates/render/src/render/sector_map.rs `sector_at`): with L = ⌊N/2⌋,
-// ring d = L + 1 − ⌈r·L⌉ (1 at the rim), and the sector of the pair (a, a + d) is centred at
-// θ = π(2a + d + 1)/N, one edge (2π/N) wide; angle 0 points right, angles grow anticlockwise.
+// The pictures are the server's, and so is every cell: which cell a pixel of a disk picture
+// shows is read off the server's cell picture (GET /api/cells.png, the painter's own rule),
+// whose pixel holds 1 + the cell's index; the values come ring by ring (GET /api/readout,
+// POST /api/disk/cells): index k = (d − 1)·N + a is the pair of edges (a, a + d mod N), d = 1
+// at the rim. Nothing here knows where a cell lies on the disk.
 
+import { cellMap } from "./api.js";
 import { el } from "./format.js";
 
-/** The cell {i, j, d} under picture pixel (x, y) of a disk of `n` edges at `disk` {cx, cy, radius}; null off the disk. */
-export function cellAt(disk, n, x, y) {
-  const [dx, dy] = [x - disk.cx, disk.cy - y];
-  const r = Math.hypot(dx, dy) / disk.radius;
-  if (r > 1 || n < 2) return null;
-  const l = Math.floor(n / 2);
-  const d = Math.min(l, Math.max(1, l + 1 - Math.ceil(r * l)));
-  const theta = (Math.atan2(dy, dx) + 2 * Math.PI) % (2 * Math.PI);
-  const a = Math.round(((theta * n) / Math.PI - d - 1) / 2);
-  return cell(n, a, d);
+/** The cell of ring index `k` on a disk of `n` edges: {k, i, j, d}. */
+function cell(n, k) {
+  const [a, d] = [k % n, Math.floor(k / n) + 1];
+  return { k, i: a, j: (a + d) % n, d };
 }
 
-/** The cell of ring `d` starting at edge `a` (any integer: taken mod n). */
-function cell(n, a, d) {
-  const i = ((a % n) + n) % n;
-  return { i, j: (i + d) % n, d };
-}
-
-/** Index of pair (i, j), i ≠ j, in a condensed pair vector of `n` edges (pairs i < j, row-major). */
-export function condensedIndex(n, i, j) {
-  const [a, b] = i < j ? [i, j] : [j, i];
-  return a * n - (a * (a + 1)) / 2 + b - a - 1;
-}
+/** The cell of ring `d` starting at edge `a` (any integer a: taken mod n). */
+const cellOf = (n, a, d) => cell(n, (d - 1) * n + (((a % n) + n) % n));
 
 /** A value with about three significant digits, as the colour bars print them. */
 export function fmtValue(v) {
@@ -64,9 +49,10 @@ const SHOWN = {
 
 /**
  * Make the picture `img` inside the focusable `button` readable: `kind` is a key of SHOWN;
- * `load()` resolves to {n, disk, size, values(i, j)} (called once, on first use; may be
- * called again after `reset`); `onCell(cell, loaded)` hears of the cell picked (null: none).
- * Gives {reset(), pick(cell)}: forget the loaded values (the picture changed), pick a cell.
+ * `load()` resolves to {n, size, values(k)} (values of ring index k; called once, on first
+ * use; may be called again after `reset`); `onCell(cell, loaded)` hears of the cell picked
+ * ({k, i, j, d}; null: none). Gives {reset(), pick(cell)}: forget the loaded values (the
+ * picture changed), pick a cell.
  */
 export function readable(button, img, kind, load, onCell = () => {}) {
   const out = el("output", { className: "cell-readout mono small" });
@@ -86,7 +72,11 @@ export function readable(button, img, kind, load, onCell = () => {}) {
   let current = null;
   const ready = () => {
     if (data) return Promise.resolve(data);
-    if (!pending) pending = load().then((d) => (data = d)).finally(() => (pending = null));
+    if (!pending) {
+      pending = load()
+        .then(async (d) => (data = { ...d, cells: await cellMap(d.n, d.size) }))
+        .finally(() => (pending = null));
+    }
     return pending;
   };
   const show = (c) => {
@@ -98,18 +88,19 @@ export function readable(button, img, kind, load, onCell = () => {}) {
       onCell(null, data);
       return;
     }
-    const shown = SHOWN[kind](data.values(c.i, c.j));
+    const shown = SHOWN[kind](data.values(c.k));
     out.textContent = `edges i = ${c.i}, j = ${c.j} · d = ${c.d} · ${shown.text}`;
     out.dataset.value = String(shown.value);
     outline(mark, data, c);
     onCell(c, data);
   };
-  /** The cell under a pointer event, in picture pixels. */
+  /** The cell under a pointer event: the cell picture's pixel there. */
   const under = async (e) => {
     const d = await ready();
     const r = img.getBoundingClientRect();
-    const [x, y] = [((e.clientX - r.left) * d.size) / r.width, ((e.clientY - r.top) * d.size) / r.height];
-    return cellAt(d.disk, d.n, x, y);
+    const [x, y] = [Math.floor(((e.clientX - r.left) * d.size) / r.width), Math.floor(((e.clientY - r.top) * d.size) / r.height)];
+    const code = x >= 0 && y >= 0 && x < d.size && y < d.size ? d.cells[y * d.size + x] : 0;
+    return code ? cell(d.n, code - 1) : null;
   };
   const fail = (e) => {
     if (e.name !== "AbortError") out.textContent = `(no readout: ${e.message})`;
@@ -147,16 +138,16 @@ export function readable(button, img, kind, load, onCell = () => {}) {
     },
     { capture: true },
   );
-  button.addEventListener("focus", () => ready().then(() => show(current || cell(data.n, 0, 1)), fail));
+  button.addEventListener("focus", () => ready().then(() => show(current || cell(data.n, 0)), fail));
   button.addEventListener("blur", () => show(null));
   button.addEventListener("keydown", (e) => {
     const step = { ArrowLeft: [1, 0], ArrowRight: [-1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[e.key];
     if (!step || !data) return;
     e.preventDefault();
-    const c = current || cell(data.n, 0, 1);
+    const c = current || cell(data.n, 0);
     const l = Math.floor(data.n / 2);
     // Left turns anticlockwise (as angles grow); up goes towards the rim (d = 1).
-    show(cell(data.n, c.i + step[0], Math.min(l, Math.max(1, c.d + step[1]))));
+    show(cellOf(data.n, c.i + step[0], Math.min(l, Math.max(1, c.d + step[1]))));
   });
   return {
     reset() {
@@ -167,25 +158,38 @@ export function readable(button, img, kind, load, onCell = () => {}) {
   };
 }
 
-/** Outline cell `c` on the canvas over the picture: its annular sector, in picture pixels. */
-function outline(canvas, { n, disk, size }, c) {
+/**
+ * Outline cell `c` on the canvas over the picture: the pixels of the cell picture that show
+ * it, within two pixels of another cell, dark, and the other cell's pixels there white.
+ */
+function outline(canvas, { size, cells }, c) {
   canvas.width = canvas.height = size;
   const ctx = canvas.getContext("2d");
-  const l = Math.floor(n / 2);
-  const [inner, outer] = [((l - c.d) / l) * disk.radius, ((l - c.d + 1) / l) * disk.radius];
-  // The sector of pair (a, a + d) with a = i: centred at π(2i + d + 1)/N; canvas angles turn clockwise.
-  const theta = (Math.PI * (2 * c.i + c.d + 1)) / n;
-  const [from, to] = [-(theta + Math.PI / n), -(theta - Math.PI / n)];
-  ctx.beginPath();
-  ctx.arc(disk.cx, disk.cy, outer, from, to);
-  ctx.arc(disk.cx, disk.cy, inner, to, from, true);
-  ctx.closePath();
-  ctx.lineJoin = "round";
-  for (const [colour, width] of [["#fff", (4 * size) / 480], ["#111", (2 * size) / 480]]) {
-    ctx.strokeStyle = colour;
-    ctx.lineWidth = width;
-    ctx.stroke();
+  const code = c.k + 1;
+  let [x0, y0, x1, y1] = [size, size, -1, -1];
+  for (let p = 0; p < cells.length; p++) {
+    if (cells[p] !== code) continue;
+    const [x, y] = [p % size, Math.floor(p / size)];
+    [x0, y0, x1, y1] = [Math.min(x0, x), Math.min(y0, y), Math.max(x1, x), Math.max(y1, y)];
   }
+  if (x1 < 0) return;
+  const reach = Math.max(2, Math.round((2 * size) / 480));
+  const [bx0, by0, bx1, by1] = [Math.max(0, x0 - reach), Math.max(0, y0 - reach), Math.min(size - 1, x1 + reach), Math.min(size - 1, y1 + reach)];
+  const [w, h] = [bx1 - bx0 + 1, by1 - by0 + 1];
+  const image = ctx.createImageData(w, h);
+  const inside = (x, y) => x >= 0 && y >= 0 && x < size && y < size && cells[y * size + x] === code;
+  for (let y = by0; y <= by1; y++) {
+    for (let x = bx0; x <= bx1; x++) {
+      const own = inside(x, y);
+      let near = false;
+      for (let dy = -reach; dy <= reach && !near; dy++) for (let dx = -reach; dx <= reach && !near; dx++) near = inside(x + dx, y + dy) !== own;
+      if (!near) continue;
+      const q = 4 * ((y - by0) * w + (x - bx0));
+      const v = own ? 17 : 255;
+      image.data.set([v, v, v, 255], q);
+    }
+  }
+  ctx.putImageData(image, bx0, by0);
 }
 
 /** The colours edge i and edge j are marked in. */

@@ -4,66 +4,14 @@
 
 import { imageUrl, readout } from "./api.js";
 import { deg, el, fmtFold, row } from "./format.js";
-import { condensedIndex, edgeOverlay, readable } from "./readout.js";
-
-/**
- * Limits past which a fold's evidence is weak. The cut's same-to-cross ratio is 0 for an
- * exact fold and about 1 for change with no side (the detector gives up at 2.5); its
- * residual is the share of the change the cut leaves unexplained; the orientation's flip
- * scores say which side turned over, and close scores are a guess. The step's RMSE compares
- * the prediction with the frame observed after the step: the disks can agree with a wrong
- * fold, and the observed frame then says so. Measured on the built-in set (150 fold steps,
- * GET /api/samples/{id}): same-to-cross at most 0.38, residual at most 0.52 (noisy samples,
- * predictions still right, RMSE ≤ 0.03), flip margin at least 0.75, no tie-break; RMSE at
- * most 0.073 except `trousers__legs_up_then_half` step 2 (0.227, visibly wrong), the one
- * step these limits flag. On a stacked start (a step without an orientation) the synthesis's
- * mismatch over the unfolded state's says how much of the change the line it found explains:
- * measured at most 0.49 on the physics and MuJoCo second folds, 0.73 and more for the wrong
- * lines found before the stacked probe scale was mended (a step past 0.8 has no fold).
- */
-export const WEAK = { sameToCross: 1.0, residual: 0.6, flipMargin: 0.25, rmse: 0.1, unexplained: 0.6 };
-
-/**
- * Why analysis step `step` is doubtful ([] when its evidence is strong): a fold's weak
- * evidence, or a step with no fold whose observed frame is far from the unchanged one (the
- * cloth changed beyond noise, but no fold explains it).
- */
-export function doubts(step) {
-  const out = [];
-  const { cut, orientation, metrics, synthesis } = step;
-  if (!step.fold) {
-    if (metrics && shapeError(metrics) > WEAK.rmse) out.push(`changed, but no fold found (the observed frame is ${shapeError(metrics).toFixed(3)} RMSE from the unchanged one once moved onto it, > ${WEAK.rmse})`);
-    return out;
-  }
-  if (synthesis && !orientation && synthesis.unfolded_mismatch > 0) {
-    const ratio = synthesis.mismatch / synthesis.unfolded_mismatch;
-    if (ratio > WEAK.unexplained) out.push(`the synthesised fold leaves ${(100 * ratio).toFixed(0)}% of the disks' mismatch unexplained (> ${100 * WEAK.unexplained}%)`);
-  }
-  if (cut && cut.same_to_cross > WEAK.sameToCross) out.push(`same-to-cross ratio ${cut.same_to_cross.toFixed(2)} > ${WEAK.sameToCross}`);
-  if (cut && cut.residual > WEAK.residual) out.push(`cut residual ${cut.residual.toFixed(2)} > ${WEAK.residual}`);
-  if (orientation) {
-    const margin = flipMargin(orientation);
-    if (orientation.tie_break) out.push("orientation decided by the tie-break");
-    else if (margin < WEAK.flipMargin) out.push(`orientation scores close (margin ${margin.toFixed(2)} < ${WEAK.flipMargin})`);
-  }
-  if (metrics && shapeError(metrics) > WEAK.rmse) out.push(`prediction ${shapeError(metrics).toFixed(3)} RMSE from the frame observed after the step, once moved onto it (> ${WEAK.rmse})`);
-  return out;
-}
+import { edgeOverlay, readable } from "./readout.js";
 
 /**
  * The error a step's disks can answer for: the RMSE once the prediction is moved rigidly
  * onto the observed frame (`aligned_rmse`). CloSE does not change when the whole cloth
  * slides across the table, so a slide is no evidence against the fold.
  */
-function shapeError(metrics) {
-  return metrics.aligned_rmse ?? metrics.rmse;
-}
-
-/** Relative gap between the two orientation flip scores (0: a tie, 1: one side only). */
-export function flipMargin(o) {
-  const [a, b] = [Math.abs(o.flip_forward), Math.abs(o.flip_backward)];
-  return Math.abs(a - b) / Math.max(a, b, 1e-12);
-}
+const shapeError = (metrics) => metrics.aligned_rmse ?? metrics.rmse;
 
 const PICTURES = [
   ["disk_start", "dGLI disk, start frame"],
@@ -103,25 +51,71 @@ function figure(key, name, caption, step, stem, enhance = null) {
   return node;
 }
 
-/** Where a result comes from, in words: built in, which dataset, or an upload. */
+/** Where a result comes from, in words: built in, which dataset (its folder or store, and the sample's id there), or an upload. */
 export function provenance(result) {
   if (result.source === "builtin") return "built-in sample";
   if (result.source === "upload" || !result.source) return "your upload";
-  return `dataset ${result.source}`;
+  return `dataset ${result.source} (sample ${result.id})`;
 }
 
-/** The exact calls that return this analysis from code: curl and Python. */
-function codePanel(result, stem) {
+/** `text` quoted for a POSIX shell. */
+const shellQuote = (text) => `'${String(text).replace(/'/g, "'\\''")}'`;
+
+/**
+ * Calls that run as they are, from a shell (curl) and from Python (its standard library
+ * alone): the analysis (a listed sample by its id; an upload from its files, `files`), a plan,
+ * an interpolation and a picture of it.
+ */
+function codePanel(result, files) {
   const origin = location.origin;
   const listed = Boolean(result.id);
-  const url = listed ? `${origin}/api/samples/${encodeURIComponent(result.id)}` : `${origin}/api/analyze`;
-  const curl = listed ? `curl -s ${url}` : `curl -s -F sample=@${stem || "sample.json"} ${url}`;
-  const python = listed
-    ? `import requests\nanalysis = requests.get("${url}").json()\nprint(analysis["label"]["text"], analysis["close"])`
-    : `import requests\nwith open("${stem || "sample.json"}", "rb") as f:\n    analysis = requests.post("${url}", files={"sample": f}).json()\nprint(analysis["label"]["text"], analysis["close"])`;
+  const analysisUrl = listed ? `${origin}/api/samples/${encodeURIComponent(result.id)}` : `${origin}/api/analyses/${encodeURIComponent(result.key)}`;
+  const goal = result.folds[0] || [0.5, 3.6];
+  const goalText = `[${goal.map((g) => g.toFixed(4)).join(", ")}]`;
+  const planBody = JSON.stringify({ sample: listed ? result.id : result.key, goal: goal.map((g) => Number(g.toFixed(4))) });
+  const picture = `${origin}${imageUrl(result.key, "diff", { size: 1400 })}`;
+  const upload = (files || []).map((f) => `-F sample=@${shellQuote(f)}`).join(" ");
+  const curl = [
+    "# The analysis (the JSON of `close analyze --json`, with its picture URLs)",
+    listed || !files?.length ? `curl -s ${shellQuote(analysisUrl)}` : `curl -s ${upload} ${shellQuote(`${origin}/api/analyze`)}`,
+    "# A plan to reach a goal fold (radians)",
+    `curl -s -H 'content-type: application/json' -d ${shellQuote(planBody)} ${shellQuote(`${origin}/api/plan`)}`,
+    "# A picture: the |diff| disk as PNG, and as SVG",
+    `curl -s -o diff.png ${shellQuote(picture)}`,
+    `curl -s -o diff.svg ${shellQuote(`${picture}&format=svg`)}`,
+  ].join("\n");
+  const python = [
+    "import json, urllib.request",
+    "",
+    `BASE = ${JSON.stringify(origin)}`,
+    "",
+    "def call(path, body=None):",
+    "    data = None if body is None else json.dumps(body).encode()",
+    '    request = urllib.request.Request(BASE + path, data=data, headers={"content-type": "application/json"})',
+    "    with urllib.request.urlopen(request) as answer:",
+    "        return json.load(answer)",
+    "",
+    `analysis = call(${JSON.stringify(analysisUrl.slice(origin.length))})`,
+    'print(analysis["label"]["text"], analysis["close"])',
+    "# The first fold turning over about its line, in 5 states",
+    'step = next((s for s in analysis["steps"] if s["fold"]), None)',
+    "if step:",
+    '    motion = call("/api/interpolate", {"border": analysis["start_border"], "arcs": step["arcs"], "line": step["line"], "steps": 5})',
+    '    print(len(motion["borders"]), "states")',
+    `plan = call("/api/plan", {"sample": analysis.get("id") or analysis["key"], "goal": ${goalText}})`,
+    'print(plan["case"], len(plan["steps"]), "steps")',
+    'urllib.request.urlretrieve(BASE + analysis["images"]["diff"], "diff.png")',
+  ].join("\n");
   const block = (lang, text) => el("pre", { className: `code code-${lang}` }, el("code", { textContent: text }));
   const details = el("details", { className: "use-code" }, el("summary", { textContent: "Use from code" }));
-  details.append(el("p", { className: "muted small", textContent: "The same JSON as `close analyze --json`, from the running server:" }), block("curl", curl), block("python", python));
+  const where = listed ? "" : files?.length ? " (run the shell lines where your files are)" : "";
+  details.append(
+    el("p", { className: "muted small", textContent: `The same JSON as \`close analyze --json\`, a plan, an interpolation and a picture, from the running server${where}:` }),
+    el("h3", { className: "code-title", textContent: "Shell (curl)" }),
+    block("curl", curl),
+    el("h3", { className: "code-title", textContent: "Python (standard library)" }),
+    block("python", python),
+  );
   return details;
 }
 
@@ -184,7 +178,7 @@ function cellReader(result) {
   let plot = null;
   const load = (step) => {
     if (!spans.has(step)) {
-      const got = readout(result.key, step).then((r) => ({ ...r, values: (i, j) => ({ start: r.start[condensedIndex(r.n, i, j)], end: r.end[condensedIndex(r.n, i, j)] }) }));
+      const got = readout(result.key, step).then((r) => ({ ...r, values: (k) => ({ start: r.start[k], end: r.end[k] }) }));
       got.catch(() => spans.delete(step));
       spans.set(step, got);
     }
@@ -239,15 +233,19 @@ function stepPictures(result, stem, cells, { step: wanted = null, onStep = null 
 }
 
 /**
- * Render `result` into `slot`; `actions` {interpolate(result), plan(result)} for its buttons;
- * `options` {step, onStep(step)}: the step pictures to show first, and who hears of a change.
+ * Render `result` into `slot`; `actions` {interpolate(result, fold), plan(result), compare(a, b)}
+ * for its buttons;
+ * `options` {step, onStep(step), files}: the step pictures to show first, who hears of a
+ * change, and an upload's file names (for its snippets).
  */
 export function renderResult(slot, result, displayName, actions, options = {}) {
   // The previous result's JSON download is no longer reachable.
   for (const a of slot.querySelectorAll("a.download-analysis")) URL.revokeObjectURL(a.href);
   const node = document.getElementById("result-template").content.firstElementChild.cloneNode(true);
   const $ = (sel) => node.querySelector(sel);
-  $(".result-name").textContent = displayName || result.name || "(unnamed)";
+  // A long name wraps after its underscores and dots, never inside a word.
+  const name = displayName || result.name || "(unnamed)";
+  name.split(/(?<=[_.])(?=[^_.])/).forEach((part, k) => $(".result-name").append(...(k ? [el("wbr"), part] : [part])));
   const reversed = result.reversed ? " · given clockwise, walked anticlockwise" : "";
   const source = result.border_source === "border" ? "border given" : `border from the ${result.border_source}`;
   $(".result-meta").textContent = `${provenance(result)} · ${result.category || "upload"} · N = ${result.n} vertices (${source}) · frames ${result.start_frame} → ${result.end_frame}${reversed}`;
@@ -279,9 +277,10 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
     if (s.cut) parts.push(`cut residual ${s.cut.residual.toFixed(3)}`, `same/cross ${s.cut.same_to_cross.toFixed(2)}`);
     if (s.orientation) parts.push(`flip scores ${s.orientation.flip_forward.toFixed(2)} / ${s.orientation.flip_backward.toFixed(2)}${s.orientation.tie_break ? " (tie-break)" : ""}`);
     if (s.metrics) parts.push(`RMSE ${s.metrics.rmse.toFixed(3)} (aligned ${shapeError(s.metrics).toFixed(3)})`);
-    const why = doubts(s);
+    // The server judges each step (close_core::confidence): its doubts, in words.
+    const why = (s.confidence?.doubts || []).map((d) => d.text);
     const tr = row(evidence, name, parts.join(" · ") || "—");
-    if (why.length) {
+    if (s.confidence?.level === "low") {
       flagged.push(`step ${k + 1}: ${why.join("; ")}`);
       tr.cells[0].append(el("span", { className: "badge low", textContent: "low confidence" }));
     }
@@ -302,7 +301,7 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem, name === "borders" ? cells.plot : null))));
   const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
-  images.append(el("p", { className: "small" }, jsonLink), codePanel(result, displayName));
+  images.append(el("p", { className: "small" }, jsonLink), codePanel(result, options.files));
 
   if (result.recording) {
     const file = `${result.id || "sample"}.rrd`;
@@ -314,7 +313,26 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   $(".warnings").textContent = (result.warnings || []).join(" ");
   const interp = $(".interp-this");
   interp.hidden = result.folds.length === 0;
-  interp.addEventListener("click", () => actions.interpolate(result));
+  // The fold of the step whose pictures are shown (the sequence for all of them).
+  interp.addEventListener("click", () => {
+    const shown = Number(node.querySelector(".segmented input:checked")?.dataset.step || 1);
+    const folds = (result.steps || []).slice(0, shown || result.steps.length).filter((s) => s.fold).length;
+    actions.interpolate(result, shown === 0 && result.folds.length > 1 ? "all" : Math.max(1, folds));
+  });
   $(".plan-this").addEventListener("click", () => actions.plan(result));
+  // Compare with another sample: this one's state after the step shown (or its last).
+  const compareWith = $(".compare-with");
+  const compareThis = $(".compare-this");
+  compareThis.hidden = !result.id;
+  compareThis.addEventListener("click", () => {
+    compareWith.hidden = !compareWith.hidden;
+    compareThis.setAttribute("aria-expanded", String(!compareWith.hidden));
+    if (!compareWith.hidden) compareWith.querySelector("input").focus();
+  });
+  compareWith.addEventListener("submit", (e) => {
+    e.preventDefault();
+    const shown = Number(node.querySelector(".segmented input:checked")?.dataset.step || 0);
+    actions.compare(shown ? `${result.id}@${shown}` : result.id, compareWith.querySelector("input").value.trim());
+  });
   slot.replaceChildren(node);
 }

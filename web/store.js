@@ -1,6 +1,8 @@
 // The app's one store: a plain state object replaced (never mutated) on every change, and
 // the views that listen to it. Server answers are kept as they came and never edited.
 
+import { analysis } from "./api.js";
+
 const listeners = new Set();
 
 let state = Object.freeze({
@@ -32,6 +34,18 @@ export function subscribe(listener) {
 export function addUpload(name, result) {
   const uploads = state.uploads.filter((u) => u.key !== result.key).concat([{ key: result.key, name, result }]);
   set({ uploads });
+}
+
+/**
+ * The analysis of upload `key`: the one this page holds, else the server's (it keeps
+ * uploads: a link to one works after a reload).
+ */
+export async function upload(key) {
+  const held = state.uploads.find((u) => u.key === key);
+  if (held) return held.result;
+  const result = await analysis(key);
+  addUpload(result.name || key, result);
+  return result;
 }
 
 /** The clothes Interpolate and Plan can use: every sample, then every upload. */

@@ -19,11 +19,11 @@ let openId = null;
 let shownId = null;
 let actions = null;
 
-/** The samples matching the filter boxes. */
+/** The samples matching the filter boxes (name, category, id or where it comes from). */
 function matching(samples) {
   const words = $("#sample-filter").value.trim().toLowerCase().split(/\s+/).filter(Boolean);
   const category = $("#sample-category").value;
-  return samples.filter((s) => (!category || s.category === category) && words.every((w) => `${s.name} ${s.category} ${s.id}`.toLowerCase().includes(w)));
+  return samples.filter((s) => (!category || s.category === category) && words.every((w) => `${s.name} ${s.category} ${s.id} ${origin(s)} ${s.source}`.toLowerCase().includes(w)));
 }
 
 /** A sample's name that wraps after its underscores ("napkin__half_" / "then_half"), not mid-word. */
@@ -33,8 +33,21 @@ function cardName(name) {
   return span;
 }
 
-/** Where a row comes from, shortly: "built-in", or the dataset folder's last part. */
-const origin = (s) => (s.source === "builtin" ? "built-in" : `dataset ${String(s.source || "").split(/[\\/]/).filter(Boolean).pop() || "?"}`);
+/** The path parts of a dataset's folder or store. */
+const parts = (source) => String(source || "").split(/[\\/]/).filter(Boolean);
+
+/**
+ * Where a row comes from, shortly: "built-in", or the dataset folder's last parts, as many
+ * as tell it from the other datasets listed ("physics/border", "physics-mujoco/border").
+ */
+export function origin(s) {
+  if (s.source === "builtin") return "built-in";
+  const mine = parts(s.source);
+  const others = [...new Set((store.get().samples || []).map((r) => r.source))].filter((o) => o !== s.source && o !== "builtin").map(parts);
+  let k = 1;
+  while (k < mine.length && others.some((o) => o.slice(-k).join("/") === mine.slice(-k).join("/"))) k += 1;
+  return `dataset ${mine.slice(-k).join("/") || "?"}`;
+}
 
 function card(s) {
   const n = s.n === null ? "N unknown" : `N = ${s.n}`;
@@ -73,7 +86,9 @@ export function drawList() {
   }
   const sections = [];
   for (const [category, members] of groups) {
-    const limit = shown.get(category) || PAGE;
+    // A sample opened by a link is shown even past the first page of its category.
+    const open = members.findIndex((s) => s.id === openId);
+    const limit = Math.max(shown.get(category) || PAGE, open + 1);
     const details = el("details", { className: "category", open: !closed.has(category) });
     details.addEventListener("toggle", () => (details.open ? closed.delete(category) : closed.add(category)));
     details.append(el("summary", { textContent: `${category} (${members.length})` }));
@@ -114,10 +129,13 @@ export async function loadSamples() {
   }
 }
 
-/** Scroll the open sample's card into view inside the list (wide windows: on a phone the result comes first). */
+/** Scroll the open sample's card into view inside the list (the list alone: the page stays). */
 function revealCard() {
   const active = document.querySelector(".sample-card.active");
-  if (active && !window.matchMedia("(max-width: 900px)").matches) active.scrollIntoView({ block: "nearest" });
+  const list = $("#sample-list");
+  if (!active) return;
+  const [card, box] = [active.getBoundingClientRect(), list.getBoundingClientRect()];
+  if (card.top < box.top || card.bottom > box.bottom) list.scrollTop += card.top - box.top - (box.height - card.height) / 2;
 }
 
 /** Show the pictures of step `step` ("all", "1", …) of the sample on screen, as a link to it asks. */

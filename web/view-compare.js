@@ -1,22 +1,34 @@
-// The Compare view: #/compare/{a}/{b}, two cloth states side by side on one colour scale.
-// A state is a sample id (its last analysed frame) or `id@k` (the state after step k;
-// k = 0 is the start). A sample folded more than once also gets a frame scrubber: frame
-// k − 1, frame k and the state the analysis predicts for frame k (its step k `predicted`:
-// the start folded by the folds found in steps 1…k), again on one colour scale, so a colour
-// means one value across the panels.
+// The Compare view: #/compare/{a}/{b}, two cloth states side by side. A state is a sample
+// (by id or by name: its last analysed frame) or `sample@k` (the state after step k; k = 0
+// is the start). Each side has its own title, disk and border; the two disks share one
+// colour scale, and the difference disk A − B (the server's) shows where they differ. A
+// sample folded more than once also gets a frame scrubber: frame k − 1, frame k and the
+// state the analysis predicts for frame k (its step k `predicted`), on one colour scale.
 
 import * as api from "./api.js";
+import * as store from "./store.js";
 import * as router from "./router.js";
+import { boundsOf, polygon, viewport } from "./draw.js";
 import { el } from "./format.js";
 import { enlarge } from "./result.js";
 
 const $ = (sel) => document.querySelector(sel);
 
-/** "id" or "id@k" as {id, step} (step null: the last). */
+/** "x" or "x@k" as {name, step} (step null: the last). */
 export function parseState(text) {
   const at = text.lastIndexOf("@");
   const k = text.slice(at + 1);
-  return at > 0 && /^\d+$/.test(k) ? { id: text.slice(0, at), step: Number(k) } : { id: text, step: null };
+  return at > 0 && /^\d+$/.test(k) ? { name: text.slice(0, at), step: Number(k) } : { name: text, step: null };
+}
+
+/**
+ * The sample a state names: an id, else a name (exactly, then ignoring case). Gives its id,
+ * or the name as given when the list does not hold it (the server then says what is wrong).
+ */
+function sampleId(name) {
+  const samples = store.get().samples || [];
+  const found = samples.find((s) => s.id === name) || samples.find((s) => s.name === name) || samples.find((s) => s.name.toLowerCase() === name.toLowerCase());
+  return found ? found.id : name;
 }
 
 /** The border of analysed frame `k` of a listed sample's answer, in border order. */
@@ -29,11 +41,26 @@ function borderAt(result, k) {
 /** Steps of an answer (analysed frames − 1). */
 const stepsOf = (result) => (result.steps || []).length;
 
+/** A disk picture that opens large; `request` is what POST /api/disk drew it from. */
+function diskFigure(url, caption, request, scale) {
+  const img = el("img", { src: url, alt: `dGLI disk: ${caption}`, width: 480, height: 480 });
+  img.dataset.scale = scale ? `${scale.s} ${scale.max}` : "";
+  img.dataset.picture = "disk";
+  const button = el("button", { type: "button", className: "zoom", title: "Open at full resolution" }, img);
+  button.setAttribute("aria-label", `${caption}: open at full resolution`);
+  button.addEventListener("click", async () => {
+    const large = await api.disk({ ...request, size: 1400 }, "compare-large");
+    enlarge(large.url, caption);
+  });
+  return el("figure", {}, button, el("figcaption", { textContent: caption }));
+}
+
 /**
- * Draw `states` ({border, reference, caption}) into `slot` as disks of one colour scale:
- * the largest of their own scales. `channel` names the requests (a newer draw aborts them).
+ * Draw `states` ({border, reference, caption, title}) into `slot` as disks of one colour
+ * scale (the largest of their own), then `extra` figures. `channel` names the requests (a
+ * newer draw aborts them).
  */
-async function drawShared(slot, states, channel) {
+async function drawShared(slot, states, channel, extra = []) {
   const scales = [];
   for (const [k, s] of states.entries()) {
     const { url, scale } = await api.disk({ border: s.border, reference: s.reference, size: 64 }, `${channel}-scale-${k}`);
@@ -43,29 +70,56 @@ async function drawShared(slot, states, channel) {
   const scale = scales.every(Boolean) ? { s: Math.max(...scales.map((s) => s.s)), max: Math.max(...scales.map((s) => s.max)) } : undefined;
   const figures = [];
   for (const [k, s] of states.entries()) {
-    const { url } = await api.disk({ border: s.border, reference: s.reference, size: 480, scale }, `${channel}-${k}`);
-    const img = el("img", { src: url, alt: `dGLI disk: ${s.caption}`, width: 480, height: 480 });
-    img.dataset.scale = scale ? `${scale.s} ${scale.max}` : "";
-    const button = el("button", { type: "button", className: "zoom", title: "Open at full resolution" }, img);
-    button.setAttribute("aria-label", `${s.caption}: open at full resolution`);
-    button.addEventListener("click", async () => {
-      const large = await api.disk({ border: s.border, reference: s.reference, size: 1400, scale }, `${channel}-large`);
-      enlarge(large.url, s.caption);
-    });
-    figures.push(el("figure", {}, button, el("figcaption", { textContent: s.caption })));
+    const request = { border: s.border, reference: s.reference, size: 480, scale, title: s.title };
+    const { url } = await api.disk(request, `${channel}-${k}`);
+    figures.push(diskFigure(url, s.caption, request, scale));
   }
+  for (const make of extra) figures.push(await make());
   for (const old of slot.querySelectorAll("img")) URL.revokeObjectURL(old.src);
   slot.replaceChildren(...figures);
   return scale;
 }
 
-/** The state {border, reference, caption} of `text` ("id" or "id@k") from its answer. */
-function stateOf(text, result) {
+/** The state {border, reference, caption, title, name} of `text` ("x" or "x@k") from its answer. */
+function stateOf(text, result, side) {
   const { step } = parseState(text);
   const last = stepsOf(result);
   const k = step === null ? last : step;
-  if (k > last) throw new Error(`${result.id} has steps 0…${last}: there is no state after step ${k}`);
-  return { border: borderAt(result, k), reference: borderAt(result, 0), caption: `${result.name} · after step ${k} of ${last} (frame ${result.start_frame + k})` };
+  if (k > last) throw new Error(`${result.name} has states 0…${last} (after each step): there is no state after step ${k}`);
+  const what = `after step ${k} of ${last} (frame ${result.start_frame + k})`;
+  return {
+    border: borderAt(result, k),
+    reference: borderAt(result, 0),
+    caption: `${side}: ${result.name} · ${what}`,
+    title: `${side} · ${result.name} · ${what}`.slice(0, 100),
+    name: result.name,
+  };
+}
+
+/** The two states' borders on one canvas: A blue, B orange, each as it lies. */
+function bordersFigure(a, b) {
+  const canvas = el("canvas", { width: 480, height: 480, className: "compare-borders" });
+  canvas.setAttribute("role", "img");
+  canvas.setAttribute("aria-label", `Borders: A (${a.name}) blue, B (${b.name}) orange`);
+  const ctx = canvas.getContext("2d");
+  const v = viewport(canvas, boundsOf([a.border, b.border]), 24);
+  polygon(ctx, v, a.border, { stroke: "#1f6feb", width: 3 });
+  polygon(ctx, v, b.border, { stroke: "#c05621", width: 2, dash: [6, 4] });
+  return el("figure", {}, canvas, el("figcaption", { textContent: `Borders: A ${a.name} (blue), B ${b.name} (orange, dashed)` }));
+}
+
+/** The difference disk A − B, from the server: the two states must have one vertex count. */
+async function differenceFigure(a, b, channel) {
+  const request = { border: a.border, reference: a.reference, minus: { border: b.border, reference: b.reference }, size: 480, title: "A − B: the difference of the two disks" };
+  try {
+    const { url } = await api.disk(request, `${channel}-difference`);
+    const figure = diskFigure(url, "A − B: where the two disks differ (own colour scale)", request, null);
+    figure.querySelector("img").dataset.picture = "difference";
+    return figure;
+  } catch (e) {
+    if (api.isAbort(e)) throw e;
+    return el("figure", {}, el("p", { className: "error-inline", textContent: `No difference disk: ${e.message}` }));
+  }
 }
 
 /** The scrubber of a sequence: frame k − 1, frame k and predicted k, for k = 1…steps. */
@@ -86,18 +140,19 @@ function scrubber(result) {
     const folds = result.steps.slice(0, k).filter((s) => s.fold).length;
     const how = folds ? `the start folded by the ${folds === 1 ? "fold" : `${folds} folds`} found in steps 1…${k}` : "no fold found yet: the start";
     const states = [
-      { border: before, reference, caption: `frame ${result.start_frame + k - 1} (before step ${k})` },
-      { border: after, reference, caption: `frame ${result.start_frame + k} (observed)` },
-      { border: step.predicted, reference, caption: `predicted frame ${result.start_frame + k} (the analysis's: ${how})` },
+      { border: before, reference, caption: `frame ${result.start_frame + k - 1} (before step ${k})`, title: `${result.name} · frame ${result.start_frame + k - 1}` },
+      { border: after, reference, caption: `frame ${result.start_frame + k} (observed)`, title: `${result.name} · frame ${result.start_frame + k} observed` },
+      { border: step.predicted, reference, caption: `predicted frame ${result.start_frame + k} (the analysis's: ${how})`, title: `${result.name} · frame ${result.start_frame + k} predicted` },
     ];
     try {
-      await drawShared(panels, states, "scrub");
+      // Each scrubber on its own channel: one does not abort the other's pictures.
+      await drawShared(panels, states, `scrub-${id}`);
     } catch (e) {
       if (!api.isAbort(e)) panels.replaceChildren(el("p", { className: "error-inline", textContent: e.message }));
     }
   };
   input.addEventListener("input", show);
-  box.append(el("h2", { className: "card-title", textContent: "Frame scrubber" }), el("div", { className: "row" }, label, input, out), panels);
+  box.append(el("h2", { className: "card-title", textContent: `Frame scrubber: ${result.name}` }), el("div", { className: "row" }, label, input, out), panels);
   show();
   return box;
 }
@@ -106,21 +161,23 @@ function scrubber(result) {
 export async function shown(ids, showError) {
   const slot = $("#compare-result");
   const [a, b] = ids;
+  fillNames();
   $("#compare-a").value = a || "";
   $("#compare-b").value = b || "";
   if (!a || !b) {
     document.title = router.title("compare");
-    slot.replaceChildren(el("p", { className: "hint", textContent: "Name two states to compare: a sample id, or id@k for the state after step k." }));
+    slot.replaceChildren(el("p", { className: "hint", textContent: "Name two states to compare: a sample (its id or its name), or sample@k for the state after step k. Or open a sample in Browse and choose “Compare with…”." }));
     return;
   }
   document.title = router.title("compare", `${a} vs ${b}`);
   slot.setAttribute("aria-busy", "true");
   try {
-    const [ra, rb] = await Promise.all([api.sample(parseState(a).id, "compare-a"), api.sample(parseState(b).id, "compare-b")]);
+    const [ra, rb] = await Promise.all([api.sample(sampleId(parseState(a).name), "compare-a"), api.sample(sampleId(parseState(b).name), "compare-b")]);
+    const [sa, sb] = [stateOf(a, ra, "A"), stateOf(b, rb, "B")];
     const pair = el("div", { className: "images compare-panels" });
-    const parts = [el("p", { className: "muted", textContent: "One colour scale for both disks: the larger of their own scales." }), pair];
+    const parts = [el("p", { className: "muted", textContent: "One colour scale for A and B: the larger of their own scales. The difference A − B has its own." }), pair];
     slot.replaceChildren(...parts);
-    await drawShared(pair, [stateOf(a, ra), stateOf(b, rb)], "compare");
+    await drawShared(pair, [sa, sb], "compare", [() => differenceFigure(sa, sb, "compare"), async () => bordersFigure(sa, sb)]);
     for (const r of [ra, rb].filter((r, k, all) => stepsOf(r) > 1 && all.findIndex((o) => o.id === r.id) === k)) slot.append(scrubber(r));
     showError("");
   } catch (e) {
@@ -132,9 +189,18 @@ export async function shown(ids, showError) {
   }
 }
 
+/** The sample names the boxes suggest. */
+function fillNames() {
+  const list = $("#compare-names");
+  const samples = store.get().samples || [];
+  if (list.options.length === samples.length) return;
+  list.replaceChildren(...samples.map((s) => new Option(`${s.category} · ${s.id}`, s.name)));
+}
+
 export function setup() {
   $("#compare-form").addEventListener("submit", (e) => {
     e.preventDefault();
     router.go("compare", [$("#compare-a").value.trim(), $("#compare-b").value.trim()]);
   });
+  store.subscribe(fillNames);
 }

@@ -1,30 +1,80 @@
-// The Interpolate view: a cloth's flat border folded by reflection, any fold of its
-// analysis (or the whole sequence) animated, the dGLI disk of each state beside it with one
-// colour scale for the whole motion.
+// The Interpolate view: a cloth's folds as the server moves them, the dGLI disk of each state
+// beside it on one colour scale for the whole motion.
+//
+// Two motions, labelled on screen. A fold the analysis found turns its flap over about its
+// line: t = 0 is the state before it (the flat cloth, or the earlier folds), t = 1 the
+// analysis's prediction. Moving a handle, or the free mode, gives the paper's interpolation
+// between two folds: each fold point moves along the border, and every state between is a
+// fold of its own. Every state drawn is the server's (POST /api/interpolate at the fraction
+// t: its border, layers, heights and fold line); the browser holds no fold geometry.
+// One request is in flight at a time and only the newest state wanted is asked next, so a
+// drag follows the pointer; a request left behind by a newer state for longer than
+// STALE_MS is aborted.
 
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
-import { applyFold, foldAt, foldPath, turnPath, wrap, TAU } from "./fold.mjs";
-import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { boundsOf, drawCloth, foldAll, labelCorners, line, made, stacked, textSize, viewport } from "./draw.js";
+import { AngleInputs, R, TAU, dragOnCircle, drawFoldCircle, wrap } from "./circle.js";
+import { boundsOf, drawCloth, labelCorners, line, textSize, viewport } from "./draw.js";
 import { fmtFold } from "./format.js";
 import { enlarge } from "./result.js";
-import { condensedIndex, markEdges, readable } from "./readout.js";
+import { markEdges, readable } from "./readout.js";
 
 const $ = (sel) => document.querySelector(sel);
 const SEQUENCE = "all";
+/** A request still unanswered this long after a newer state was wanted is given up. */
+const STALE_MS = 100;
+/** States asked for a motion's outline: its bounds and the colour scale's two ends. */
+const OUTLINE_AT = [0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1];
 let showError = () => {};
 
 /**
- * Keeps an <img> showing the dGLI disk of the latest border state asked for. One request is
- * in flight at a time and only the newest waiting state is kept, so dragging the slider
- * never queues up stale pictures. The colour scale is fixed per motion: the larger of the
- * scales of its two end states, so a colour means one value all the way through.
+ * Runs `run(job, signal)` for the newest job wanted, one at a time: a job wanted while
+ * another runs waits (replacing any job waiting before it); the running one is aborted once
+ * it has run STALE_MS past the moment a newer job was wanted. Jobs of one `key` run once.
+ */
+class Follower {
+  constructor(run) {
+    Object.assign(this, { run, next: null, running: null, done: null });
+  }
+
+  want(key, job) {
+    if (key === this.done && !this.running) return;
+    this.next = { key, job };
+    if (!this.running) return void this.pump();
+    const running = this.running;
+    clearTimeout(running.timer);
+    running.timer = setTimeout(() => running.controller.abort(), Math.max(0, running.started + STALE_MS - performance.now()));
+  }
+
+  async pump() {
+    while (this.next) {
+      const { key, job } = this.next;
+      this.next = null;
+      if (key === this.done) continue;
+      const controller = new AbortController();
+      this.running = { controller, started: performance.now(), timer: null };
+      try {
+        await this.run(job, controller.signal);
+        this.done = key;
+      } catch (e) {
+        if (!api.isAbort(e)) showError(e.message);
+      } finally {
+        clearTimeout(this.running.timer);
+        this.running = null;
+      }
+    }
+  }
+}
+
+/**
+ * Keeps an <img> showing the dGLI disk of the latest state asked for (one request at a
+ * time, the newest waiting). The colour scale is fixed per motion: the larger of the scales
+ * of its two end states, so a colour means one value all the way through.
  */
 class DiskFollower {
   constructor(img, status, size = 480) {
-    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null, job: null, large: null, onShown: null });
+    Object.assign(this, { img, status, size, busy: false, next: null, shown: null, url: null, motion: null, scale: null, job: null, onShown: null });
   }
 
   /** The request for `job`'s disk at `size` px, in the motion's colour scale. */
@@ -37,8 +87,6 @@ class DiskFollower {
     if (!this.job) return;
     try {
       const { url } = await api.disk(this.request(this.job, 1400), "disk-large");
-      if (this.large) URL.revokeObjectURL(this.large);
-      this.large = url;
       enlarge(url, caption);
     } catch (e) {
       if (!api.isAbort(e)) this.status.textContent = `(not drawn: ${e.message})`;
@@ -90,67 +138,72 @@ class DiskFollower {
 const view = {
   cloth: null,
   result: null,
+  /** The flat border (the analysis's start border). */
   border: null,
+  /** Corner vertices and angles. */
   corners: [],
-  /** Folds applied before the one animated. */
-  prior: [],
+  cornerAngles: [],
   from: [0, 0],
   to: [Math.PI / 4, (5 * Math.PI) / 4],
   /** The step animated ("1", "2", …), SEQUENCE, or "free". */
   mode: "1",
   tau: 0,
-  /** The disk cell read ({i, j, d}), whose edges are marked; null: none. */
+  /** The disk cell read ({k, i, j, d}), whose edges are marked; null: none. */
   cell: null,
   bounds: null,
   playing: false,
+  /** Counts motions: a new one (new folds, cloth or mode) fixes a new colour scale. */
   motion: 0,
+  /** The state drawn: {key, t, fold, border, state, now}. */
+  frame: null,
+  /** The motion's outline (OUTLINE_AT states), once it came: {motion, ends}. */
+  outline: null,
+  /** How the drag of a handle went: states wanted and drawn, each drawn one's wait (ms). */
+  stats: { asked: 0, shown: 0, waits: [] },
 };
 
-/** A fold's two angles, whether it is [f1, f2] or made along a line (see draw.js `made`). */
-const anglesOf = (f) => (Array.isArray(f) ? f : f.fold);
+/** The steps that found a fold, in order: fold k of the analysis is `folded()[k]`. */
+const folded = () => (view.result?.steps || []).filter((s) => s.fold);
+
+/** Folds 1…k of the analysis as the server takes them before a motion (`prior`). */
+const priorOf = (k) => folded().slice(0, k).map((s) => ({ arcs: s.arcs, line: s.line }));
+
+const sameFold = (a, b) => Math.abs(wrap(a[0]) - wrap(b[0])) < 1e-12 && Math.abs(wrap(a[1]) - wrap(b[1])) < 1e-12;
 
 /**
- * Fold k of the analysis as the analysis made it, turned the fraction `turn` of the way:
- * along the line it reports when the step's two fold points lie on top of each other (a fold
- * through stacked layers, where the line through them would point anywhere) or when it turns
- * several arcs (a multi-arc fold: only they turn, all about that line), so the motion ends
- * on the predicted state; otherwise on the fold circle from (f1, f1) to (f1, f2).
+ * What moves now, and at which fraction: {motion (the request's fields but `at`), t, fold
+ * (its number, 1-based, in sequence mode), kind ("turn" or "between")}.
  */
-function sampleFold(k, turn = 1) {
-  const f = view.result.folds[k];
-  const step = (view.result.steps || []).filter((s) => s.fold)[k];
-  const arcs = step?.arcs?.length > 1 ? step.arcs : [f];
-  if (step?.line && (step.synthesis?.direction || arcs.length > 1)) return { fold: f, arcs, line: step.line, turn };
-  return turn >= 1 ? f : foldAt([f[0], f[0]], f, turn);
-}
-
-const sameFold = (a, b) => Math.abs(a[0] - wrap(b[0])) < 1e-12 && Math.abs(a[1] - wrap(b[1])) < 1e-12;
-
-/** The folds of the state at the slider: prior folds and the animated one. */
-function foldsNow() {
+function current() {
+  const steps = folded();
   if (view.mode === SEQUENCE) {
-    const folds = view.result.folds;
-    const x = view.tau * folds.length;
-    const k = Math.min(Math.floor(x), folds.length - 1);
-    return [...folds.slice(0, k).map((_, i) => sampleFold(i)), sampleFold(k, x - k)];
+    const x = view.tau * steps.length;
+    const k = Math.min(Math.floor(x), steps.length - 1);
+    return { motion: { prior: priorOf(k), arcs: steps[k].arcs, line: steps[k].line }, t: x - k, fold: k + 1, kind: "turn" };
   }
-  const k = Number(view.mode) - 1;
-  // A step's own fold, its handles untouched, moves as the analysis made it.
-  const own = view.result && Number.isInteger(k) && view.result.folds[k] && view.from[0] === view.from[1] && sameFold(view.to, view.result.folds[k]);
-  return [...view.prior, own ? sampleFold(k, view.tau) : foldAt(view.from, view.to, view.tau)];
+  const k = Number(view.mode);
+  if (Number.isInteger(k) && steps[k - 1]) {
+    // The step's own fold, its handles untouched, turns over as the analysis made it.
+    const own = view.from[0] === view.from[1] && sameFold(view.to, steps[k - 1].fold);
+    const motion = own ? { arcs: steps[k - 1].arcs, line: steps[k - 1].line } : { from: view.from, to: view.to };
+    return { motion: { prior: priorOf(k - 1), ...motion }, t: view.tau, fold: k, kind: own ? "turn" : "between" };
+  }
+  return { motion: { prior: [], from: view.from, to: view.to }, t: view.tau, fold: null, kind: "between" };
 }
 
-/** Every state of the motion, coarsely, for the drawing's bounds. */
-function motionStates() {
-  return Array.from({ length: 41 }, (_, k) => foldsAtTau(k / 40));
+/** The request for the states at fractions `at` of `motion`. */
+function request(motion, at) {
+  const { prior, ...rest } = motion;
+  return { border: view.border, ...(prior.length ? { prior } : {}), ...rest, at, drawn: true };
 }
 
-function foldsAtTau(t) {
-  const keep = view.tau;
-  view.tau = t;
-  const folds = foldsNow();
-  view.tau = keep;
-  return folds;
+/** What the motion says it is, in words. */
+function motionText({ kind, fold }) {
+  if (kind === "turn") {
+    const which = fold > 1 ? `Fold ${fold}` : "The fold";
+    return `${which} as the analysis made it: its flap turns over about its line (t = 0 ${fold > 1 ? "the state before it" : "flat"}, t = 1 the analysis's prediction).`;
+  }
+  return "The paper's interpolation between two folds: each fold point moves along the border from “from” to “to”, and every state between is a fold of its own.";
 }
 
 function fillCloths() {
@@ -176,20 +229,19 @@ async function useCloth(cloth, params = null) {
   view.cloth = cloth;
   fillCloths();
   // The previous cloth's messages do not speak of this one.
-  $("#interp-check").textContent = "";
   $("#fold-input-status").textContent = "";
   try {
     let result;
     if (cloth.kind === "upload") {
-      result = store.get().uploads.find((u) => u.key === cloth.id)?.result;
-      if (!result) throw new Error("that upload is no longer in this page: upload it again");
+      result = await store.upload(cloth.id);
     } else {
       result = await api.sample(cloth.id, "interp-cloth");
     }
     if (view.cloth !== cloth) return;
     view.result = result;
     view.border = result.start_border;
-    view.corners = result.corners;
+    view.corners = result.corner_vertices;
+    view.cornerAngles = result.corners;
     view.mode = result.folds.length ? "1" : "free";
     fillSteps();
     setMode(view.mode);
@@ -204,17 +256,15 @@ async function useCloth(cloth, params = null) {
 /** Animate step `mode` of the cloth's folds (or the sequence, or free folds). */
 function setMode(mode) {
   view.mode = mode;
-  const folds = view.result.folds;
+  const steps = folded();
   const k = Number(mode);
-  if (Number.isInteger(k) && folds[k - 1]) {
-    view.prior = folds.slice(0, k - 1).map((_, i) => sampleFold(i));
-    view.to = [wrap(folds[k - 1][0]), wrap(folds[k - 1][1])];
+  if (Number.isInteger(k) && steps[k - 1]) {
+    view.to = steps[k - 1].fold.map(wrap);
     view.from = [view.to[0], view.to[0]];
-  } else if (mode === "free") {
-    view.prior = [];
   }
   const sequence = mode === SEQUENCE;
   for (const id of ["#from-1", "#from-2", "#to-1", "#to-2", "#swap-folds"]) $(id).disabled = sequence;
+  view.bounds = null;
   changed();
   setTau(0);
   keepUrl();
@@ -249,16 +299,49 @@ function applyParams(params) {
   if (params.has("t") && Number.isFinite(t)) setTau(t);
 }
 
-/** After folds or the cloth changed: new motion, bounds, inputs, circle. */
+/** After folds, the cloth or the mode changed: a new motion; its outline is asked for. */
 function changed() {
   if (!view.border) return;
-  // A check of another motion no longer holds.
-  $("#interp-check").textContent = "";
   view.motion += 1;
-  // The flat outline is drawn too: it must fit as well as every folded state.
-  view.bounds = boundsOf([view.border, ...motionStates().map((folds) => foldAll(view.border, folds))]);
+  view.outline = null;
   inputs.write({ "from-1": view.from[0], "from-2": view.from[1], "to-1": view.to[0], "to-2": view.to[1] });
+  $("#interp-motion").textContent = motionText(current());
+  // The sequence's outline is each of its folds' in turn.
+  const motions = view.mode === SEQUENCE ? folded().map((s, k) => ({ prior: priorOf(k), arcs: s.arcs, line: s.line })) : [current().motion];
+  outlines.want(`${view.motion}|${motionKey()}`, { motions, count: view.motion });
   draw();
+}
+
+/** The motions' states at OUTLINE_AT: the drawing's bounds and the disk's colour-scale ends (the first state and the last). */
+async function outlineOf({ motions, count }, signal) {
+  const answers = [];
+  for (const motion of motions) answers.push(await api.json(null, "/api/interpolate", request(motion, OUTLINE_AT), signal));
+  if (count !== view.motion) return;
+  for (const a of answers) grow(a.borders, a.states);
+  const [first, last] = [answers[0], answers[answers.length - 1]];
+  const end = last.borders.length - 1;
+  view.outline = { motion: count, ends: [lifted(first.borders[0], first.states[0].heights), lifted(last.borders[end], last.states[end].heights)] };
+  paint();
+}
+
+/** The border of a state as its disk sees it: each vertex at its height. */
+const lifted = (border, heights) => border.map((p, v) => [p[0], p[1], heights[v]]);
+
+/** Widen the drawing's bounds to hold `borders` and their `states`' layers (never narrowed within one motion's family). */
+function grow(borders, states) {
+  const shapes = [...borders, ...states.flatMap((s) => s.layers.map((l) => l.points))];
+  const b = boundsOf(view.bounds ? [view.border, ...shapes, [[view.bounds.x0, view.bounds.y0], [view.bounds.x1, view.bounds.y1]]] : [view.border, ...shapes]);
+  const same = view.bounds && ["x0", "x1", "y0", "y1"].every((k) => b[k] === view.bounds[k]);
+  view.bounds = b;
+  return !same;
+}
+
+/** Names the motion (not its t). */
+const motionKey = () => `${view.cloth?.kind}:${view.cloth?.id}|${view.mode}|${JSON.stringify(current().motion)}`;
+
+/** Names the state drawn: the cloth, the motion and t. */
+export function diskKey() {
+  return view.frame ? view.frame.key : "";
 }
 
 function setTau(tau) {
@@ -269,20 +352,34 @@ function setTau(tau) {
   if (!view.playing) keepUrl();
 }
 
-/** Names the state drawn: the cloth, the motion and the folds. */
-export function diskKey() {
-  const name = (f) => `${anglesOf(f).map((a) => a.toFixed(9)).join(",")}${Array.isArray(f) ? "" : `@${f.turn.toFixed(9)}`}`;
-  return `${view.cloth?.id}|${view.motion}|${foldsNow().map(name).join(";")}`;
+/** Ask for the state now on screen (one request at a time: see Follower). */
+function draw() {
+  if (!view.border) return;
+  const now = current();
+  drawCircle(now);
+  const key = `${motionKey()}|${now.t}`;
+  view.stats.asked += 1;
+  frames.want(key, { key, now, wanted: performance.now() });
 }
 
-function draw() {
-  if (!view.border || !view.bounds) return;
-  const folds = foldsNow();
+/** Fetch the state `job` wants and draw it. */
+async function fetchFrame({ key, now, wanted }, signal) {
+  const answer = await api.json(null, "/api/interpolate", request(now.motion, [now.t]), signal);
+  view.frame = { key, t: now.t, fold: answer.folds[0], border: answer.borders[0], state: answer.states[0], now };
+  view.stats.shown += 1;
+  view.stats.waits.push(performance.now() - wanted);
+  paint();
+}
+
+/** Draw the frame fetched last: the flat cloth dashed, the state's layers and outline, its fold line, corners and the cell's edges. */
+function paint() {
+  const frame = view.frame;
+  if (!frame) return;
+  grow([frame.border], [frame.state]);
   const canvas = $("#interp-canvas");
   const ctx = canvas.getContext("2d");
   ctx.clearRect(0, 0, canvas.width, canvas.height);
   const v = viewport(canvas, view.bounds, 40);
-  // The flat cloth dashed, then the layers of the folded one.
   ctx.setLineDash([6, 6]);
   ctx.strokeStyle = "#9aa4b2";
   ctx.lineWidth = 1.5;
@@ -291,55 +388,34 @@ function draw() {
   ctx.closePath();
   ctx.stroke();
   ctx.setLineDash([]);
-  const folded = drawCloth(ctx, v, view.border, folds);
+  drawCloth(ctx, v, frame.state.layers, frame.border);
   const size = textSize(canvas);
-  labelCorners(ctx, v, folded, view.corners, size);
-  // The edges of the disk cell read, on the state drawn.
-  markEdges(ctx, [folded], (p) => [v.X(p), v.Y(p)], view.cell, size / 15);
-  // The line of the fold animated, on the state it folds.
-  const last = folds[folds.length - 1];
-  const fold = anglesOf(last);
-  const { a, b: c } = made(foldAll(view.border, folds.slice(0, -1)), last);
-  line(ctx, v, a, c, "#d1495b", 3);
-  // A fold along a reported line has its two fold points on top of each other: no tags.
-  if (Array.isArray(last)) {
-    ctx.font = `${size}px system-ui, sans-serif`;
-    // A fold from flat starts with both points at one place: one tag, not two overprinted.
-    const one = Math.hypot(v.X(a) - v.X(c), v.Y(a) - v.Y(c)) < size;
-    for (const [p, label] of one ? [[a, "f₁·f₂"]] : [[a, "f₁"], [c, "f₂"]]) {
-      ctx.beginPath();
-      ctx.arc(v.X(p), v.Y(p), 6, 0, TAU);
-      ctx.fillStyle = "#d1495b";
-      ctx.fill();
-      ctx.fillText(label, v.X(p) + 8, v.Y(p) + 18);
-    }
-  }
-  drawCircle(fold);
-  // In sequence mode the (disabled) inputs show the fold playing now.
-  if (view.mode === SEQUENCE) inputs.write({ "from-1": fold[0], "from-2": fold[0], "to-1": fold[0], "to-2": fold[1] });
-  const which = view.mode === SEQUENCE ? `fold ${folds.length} of ${view.result.folds.length}` : "fold";
-  $("#interp-readout").textContent = `t = ${view.tau.toFixed(3)}   ${which} ${fmtFold(fold)}`;
+  labelCorners(ctx, v, frame.border, view.corners, size);
+  markEdges(ctx, [frame.border], (p) => [v.X(p), v.Y(p)], view.cell, size / 15);
+  const segment = frame.state.segment;
+  if (segment) line(ctx, v, segment[0], segment[1], "#d1495b", 3);
+  const which = frame.now.fold && view.mode === SEQUENCE ? `fold ${frame.now.fold} of ${folded().length}` : "fold";
+  $("#interp-readout").textContent = `t = ${view.tau.toFixed(3)}   ${which} ${fmtFold(frame.fold)}`;
+  canvas.dataset.key = frame.key;
   // The disk only while it is on screen; showing the view draws again.
-  if (!$("#view-interpolate").hidden) {
-    const ends = motionEnds();
-    disk.show(diskKey(), stacked(view.border, folds), view.border, view.motion, ends);
+  if (!$("#view-interpolate").hidden && view.outline && view.outline.motion === view.motion) {
+    disk.show(frame.key, lifted(frame.border, frame.state.heights), view.border, view.motion, view.outline.ends);
   }
 }
 
-/** The two end states of the motion, as the disk sees them. */
-function motionEnds() {
-  return [foldsAtTau(0), foldsAtTau(1)].map((folds) => stacked(view.border, folds));
-}
-
-function drawCircle(fold) {
+function drawCircle(now) {
   const handles = [];
   // Rings 2 handle radii apart: a "from" and a "to" handle at one angle do not overlap.
   for (const [which, color, r, word] of [["from", "#2b6cb0", R + 12, "from"], ["to", "#c05621", R + 32, "to"]]) {
     view[which].forEach((angle, k) => handles.push({ id: `${which}:${k}`, angle, color, label: k + 1, r, name: `${word} fold point ${k + 1}` }));
   }
-  const arcs = foldsNow().slice(0, -1).map((f) => ({ fold: anglesOf(f), color: "#9aa4b2" }));
-  arcs.push({ fold, color: "#d1495b" });
-  drawFoldCircle($("#fold-circle"), view.corners, arcs, view.mode === SEQUENCE ? [] : handles);
+  const steps = folded();
+  const before = now.motion.prior.length;
+  const arcs = steps.slice(0, before).map((s) => ({ fold: s.fold, color: "#9aa4b2" }));
+  const moving = now.kind === "turn" ? steps[(now.fold || 1) - 1].fold : view.frame?.fold || view.to;
+  arcs.push({ fold: moving, color: "#d1495b" });
+  drawFoldCircle($("#fold-circle"), view.cornerAngles, arcs, view.mode === SEQUENCE ? [] : handles);
+  if (view.mode === SEQUENCE) inputs.write({ "from-1": moving[0], "from-2": moving[0], "to-1": moving[0], "to-2": moving[1] });
 }
 
 function play() {
@@ -352,7 +428,7 @@ function play() {
   $("#interp-play").setAttribute("aria-label", "Pause");
   if (view.tau >= 1) setTau(0);
   let last = performance.now();
-  const seconds = 2.5 * (view.mode === SEQUENCE ? view.result.folds.length : 1);
+  const seconds = 2.5 * (view.mode === SEQUENCE ? folded().length : 1);
   const tick = (now) => {
     if (!view.playing) {
       $("#interp-play").textContent = "▶";
@@ -370,55 +446,24 @@ function play() {
   requestAnimationFrame(tick);
 }
 
-/** Ask the server for the same motion and report the largest difference. */
-async function checkServer() {
-  const out = $("#interp-check");
-  const steps = 41;
-  // The sequence is checked one fold at a time on the state before it: here, the current one.
-  const folds = foldsNow();
-  const prior = view.mode === SEQUENCE ? folds.slice(0, -1) : view.prior;
-  const last = folds[folds.length - 1];
-  const base = foldAll(view.border, prior);
-  // A fold made along a line of its own turns its arcs about it; any other moves on the circle.
-  const turned = !Array.isArray(last) && last.line;
-  const [from, to] = view.mode === SEQUENCE ? (() => {
-    const f = view.result.folds[folds.length - 1];
-    return [[f[0], f[0]], f];
-  })() : [view.from, view.to];
-  const motion = turned ? { arcs: last.arcs, line: last.line } : { from, to };
-  const path = turned ? null : foldPath(from, to, steps);
-  const ours = turned ? turnPath(base, last.arcs, last.line, steps).borders : path.map((f) => applyFold(base, f));
-  try {
-    const res = await api.interpolate({ border: base, reference: view.border, ...motion, steps });
-    let worst = 0;
-    path?.forEach((f, k) => {
-      worst = Math.max(worst, Math.abs(f[0] - res.folds[k][0]), Math.abs(f[1] - res.folds[k][1]));
-    });
-    ours.forEach((border, k) => {
-      border.forEach((p, v) => {
-        for (let c = 0; c < 3; c++) worst = Math.max(worst, Math.abs(p[c] - res.borders[k][v][c]));
-      });
-    });
-    out.textContent = `Server and browser agree on ${steps} steps: largest difference ${worst.toExponential(1)}.`;
-  } catch (e) {
-    if (!api.isAbort(e)) showError(e.message);
-  }
-}
-
 let disk = null;
 let inputs = null;
+let frames = null;
+let outlines = null;
 
 export function setup(errors, planGoal) {
   showError = errors;
+  frames = new Follower(fetchFrame);
+  outlines = new Follower(outlineOf);
   disk = new DiskFollower($("#interp-disk"), $("#interp-disk-status"));
   // The disk's cells read by hover, tap or arrow keys; their edges marked on the cloth.
   const cells = readable($("#interp-disk-zoom"), $("#interp-disk"), "state", async () => {
     if (!disk.job) throw new Error("no disk drawn yet");
     const r = await api.diskCells({ border: disk.job.border, reference: disk.job.reference, size: disk.size });
-    return { ...r, values: (i, j) => ({ value: r.values[condensedIndex(r.n, i, j)] }) };
+    return { ...r, values: (k) => ({ value: r.values[k] }) };
   }, (c) => {
     view.cell = c;
-    draw();
+    paint();
   });
   $("#interp-disk-zoom").classList.add("readable");
   // A new state's disk: the cell read keeps its place, its value is the new state's.
@@ -453,14 +498,12 @@ export function setup(errors, planGoal) {
     keepUrl();
   });
   $("#interp-disk-zoom").addEventListener("click", () => disk.enlarge(`dGLI disk of the state drawn (${$("#interp-readout").textContent.replace(/\s+/g, " ").trim()})`));
-  $("#check-server").addEventListener("click", checkServer);
   $("#plan-goal").addEventListener("click", () => planGoal(view.cloth, view.to));
   dragOnCircle($("#fold-circle"), (id, angle) => {
     const [which, k] = id.split(":");
     view[which] = view[which].map((a, i) => (i === Number(k) ? angle : a));
     changed();
-    keepUrl();
-  });
+  }, keepUrl);
   store.subscribe(() => fillCloths());
 }
 
@@ -484,11 +527,22 @@ export function shown(params = null) {
   else if (view.cloth) {
     document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
     if (linked && view.result) applyParams(params);
-    draw();
+    paint();
     keepUrl();
   } else document.title = router.title("interpolate");
 }
 
+/**
+ * How the view follows what is asked of it: the state wanted now and the one drawn (equal
+ * once it caught up), and the counts since `reset`: states asked for, shown, and each shown
+ * one's wait in ms.
+ */
+export function following(reset = false) {
+  if (reset) view.stats = { asked: 0, shown: 0, waits: [] };
+  const now = view.border ? `${motionKey()}|${current().t}` : null;
+  return { wanted: now, drawn: view.frame?.key || null, ...view.stats };
+}
+
 // For tests and the console.
-export const state = () => ({ ...view, folds: foldsNow(), drawn: foldAll(view.border, foldsNow()) });
-export { setTau, setMode };
+export const state = () => ({ ...view, drawn: view.frame?.border || null, disk: view.frame ? lifted(view.frame.border, view.frame.state.heights) : null });
+export { setTau, setMode, TAU };

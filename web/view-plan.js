@@ -4,9 +4,8 @@
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
-import { wrap } from "./fold.mjs";
-import { AngleInputs, R, dragOnCircle, drawFoldCircle } from "./circle.js";
-import { boundsOf, bowedArrow, cornerVertex, drawCloth, foldAll, labelCorners, line, made, polygon, textSize, viewport } from "./draw.js";
+import { AngleInputs, R, dragOnCircle, drawFoldCircle, wrap } from "./circle.js";
+import { boundsOf, bowedArrow, drawCloth, labelCorners, line, polygon, textSize, viewport } from "./draw.js";
 import { el, fmtDeg, fmtPoint } from "./format.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -19,20 +18,35 @@ const CASES = {
 };
 let showError = () => {};
 
-const view = { cloth: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], name: "" };
+const view = { cloth: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], cornerVertices: [], name: "" };
 let inputs = null;
 
-/** What a plan step does, in words; `cornerOf(vertex)` numbers a corner vertex. */
-function stepText(step, cornerOf) {
-  const moved = step.corners.length ? `moves corner${step.corners.length > 1 ? "s" : ""} ${step.corners.join(" and ")}` : "moves no corner";
+/** "a", "a and b", "a, b and c". */
+const listed = (items) => (items.length > 1 ? `${items.slice(0, -1).join(", ")} and ${items[items.length - 1]}` : items.join(""));
+
+/**
+ * What a plan step does, in words; `cornerOf(vertex)` numbers a corner vertex, `size` is the
+ * cloth's size (a grasp that moves a point less than 1 % of it moves nothing).
+ */
+function stepText(step, cornerOf, extent) {
+  const verb = ACTIONS[step.action] || step.action;
+  const moves = (p) => Math.hypot(p.to[0] - p.from[0], p.to[1] - p.from[1]) > 0.01 * size;
+  if (!step.corners.length && !step.picks.some(moves)) {
+    return `${verb} along ${fmtDeg(step.fold)}: this fold turns no part of the cloth over (its two points lie together or along an edge): nothing to do.`;
+  }
+  const grasped = [];
   const picks = step.picks.map((p) => {
     const corner = cornerOf(p.vertex);
+    if (corner) grasped.push(corner);
     const what = corner ? `corner ${corner} (vertex ${p.vertex})` : `vertex ${p.vertex}`;
     return step.action === "unfold" ? `grasp ${what} at ${fmtPoint(p.from)} and put it back at ${fmtPoint(p.to)}` : `grasp ${what} at ${fmtPoint(p.from)} and place it at ${fmtPoint(p.to)}`;
   });
+  const followers = step.corners.filter((c) => !grasped.includes(c));
+  const moved = step.corners.length ? `moves corner${step.corners.length > 1 ? "s" : ""} ${listed(step.corners)}` : "moves no corner";
+  const follow = followers.length ? `; corner${followers.length > 1 ? "s" : ""} ${listed(followers)} ${followers.length > 1 ? "follow" : "follows"} with the cloth` : "";
   // Points are the sample's own (x, y) coordinates, in whatever unit its file uses.
   const where = picks.length ? ` (x, y in the sample's units)` : "";
-  return `${ACTIONS[step.action] || step.action} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${where}.`;
+  return `${verb} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${follow}${where}.`;
 }
 
 function fillCloths() {
@@ -53,11 +67,11 @@ async function load(cloth, takeGoal) {
   view.cloth = cloth;
   fillCloths();
   try {
-    const result = cloth.kind === "upload" ? store.get().uploads.find((u) => u.key === cloth.id)?.result : await api.sample(cloth.id, "plan-cloth");
-    if (!result) throw new Error("that upload is no longer in this page: upload it again");
+    const result = cloth.kind === "upload" ? await store.upload(cloth.id) : await api.sample(cloth.id, "plan-cloth");
     if (view.cloth !== cloth) return;
     view.folds = result.folds;
     view.corners = result.corners;
+    view.cornerVertices = result.corner_vertices;
     view.name = $("#plan-sample").selectedOptions[0]?.textContent || result.name;
     $("#plan-now").textContent = `${view.name}: N = ${result.n}, ${result.corners.length} corners, now ${result.folds.length ? result.folds.map(fmtDeg).join(" then ") : "flat"}.`;
     if (takeGoal && result.corners.length >= 2) {
@@ -135,43 +149,25 @@ async function plan() {
   }
 }
 
-/**
- * The states the plan goes through, from now, as fold lists: an unfold takes the last fold
- * off, a fold folds the flat cloth ("direct" replaces the current folds by the goal at once).
- */
-function states(res) {
-  // The current folds along the lines the analysis made them along (a fold through stacked
-  // layers has no line of its own through its two points).
-  let applied = res.folds.map((fold, k) => (res.lines?.[k] ? { fold, line: res.lines[k] } : fold));
-  const out = [{ folds: applied }];
-  for (const step of res.steps) {
-    const before = applied;
-    if (step.action === "unfold") applied = applied.slice(0, -1);
-    else applied = res.case === "direct" ? [step.fold] : [...applied, step.fold];
-    out.push({ step, before, folds: applied });
-  }
-  return out;
-}
-
-/** Add a card per state of the plan to `list`, each drawn once on the page: its labels sized for the width it is shown at. */
+/** Add a card per state of the plan (the server draws them: `res.states`) to `list`, each drawn once on the page: its labels sized for the width it is shown at. */
 function stepCards(res, list) {
   const flat = res.start_border;
   const n = flat.length;
-  const at = (folds) => foldAll(flat, folds);
-  const all = states(res);
-  const bounds = boundsOf([flat, ...all.map((s) => at(s.folds)), ...res.steps.flatMap((s) => s.picks.map((p) => [p.from, p.to]))]);
+  const bounds = boundsOf([flat, ...res.states.flatMap((s) => [s.border, ...s.layers.map((l) => l.points)]), ...res.steps.flatMap((s) => s.picks.map((p) => [p.from, p.to]))]);
+  const flatBounds = boundsOf([flat]);
+  const extent = Math.hypot(flatBounds.x1 - flatBounds.x0, flatBounds.y1 - flatBounds.y0);
   // Input vertex (what picks name) → 1-based corner number.
-  const cornerVertices = res.corners.map((c) => cornerVertex(c, n));
   const cornerOf = (vertex) => {
     const border = res.border_indices ? res.border_indices.indexOf(vertex) : vertex;
-    const i = cornerVertices.indexOf(border);
+    const i = view.cornerVertices.indexOf(border);
     return i >= 0 ? i + 1 : null;
   };
-  all.forEach(({ step, before, folds }, k) => {
+  res.states.forEach((state, k) => {
+    const step = k ? res.steps[k - 1] : null;
     const canvas = el("canvas", { width: 520, height: 420 });
     canvas.setAttribute("role", "img");
     const title = el("h3", { textContent: step ? `Step ${k} · ${ACTIONS[step.action] || step.action}` : "Now" });
-    const words = el("p", { textContent: step ? stepText(step, cornerOf) : res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat." });
+    const words = el("p", { textContent: step ? stepText(step, cornerOf, extent) : res.folds.length ? `Folded along ${res.folds.map(fmtDeg).join(", then ")}.` : "Flat." });
     canvas.setAttribute("aria-label", words.textContent);
     const li = el("li", { className: "plan-step" }, canvas, el("div", {}, title, words));
     if (step) li.dataset.picks = step.picks.length;
@@ -181,15 +177,13 @@ function stepCards(res, list) {
     // Room round the cloth for the corner labels.
     const v = viewport(canvas, bounds, 28 + size);
     polygon(ctx, v, flat, { stroke: "#cbd2dc", width: 1.2, dash: [5, 5] });
-    if (before) polygon(ctx, v, at(before), { stroke: "#6b7280", width: 1.5, dash: [2, 4] });
-    const state = drawCloth(ctx, v, flat, folds);
-    labelCorners(ctx, v, state, res.corners, size);
+    if (step) polygon(ctx, v, res.states[k - 1].border, { stroke: "#6b7280", width: 1.5, dash: [2, 4] });
+    drawCloth(ctx, v, state.layers, state.border);
+    labelCorners(ctx, v, state.border, view.cornerVertices, size);
     if (step) {
-      // The line a fold step folds along lies on the border it folds (the flat cloth); an
-      // unfold's on the state it goes back to.
-      const undone = before[before.length - 1];
-      const { a, b } = step.action === "unfold" ? made(state, undone) : made(flat, step.fold);
-      line(ctx, v, a, b, "#d1495b", 2.5);
+      // The line a fold step folds along, across the cloth it folds (an unfold's across the
+      // state it goes back to).
+      if (state.segment) line(ctx, v, state.segment[0], state.segment[1], "#d1495b", 2.5);
       // Bowed away from the cloth's middle, so an arrow along an edge is not hidden by it.
       const centre = [0, 1].map((c) => flat.reduce((sum, p) => sum + p[c], 0) / n);
       const mids = step.picks.map((pick) => bowedArrow(ctx, v, pick.from, pick.to, centre, "#2f855a"));
@@ -227,7 +221,8 @@ export function shown(goal = null, linked = null) {
   const { cloth } = store.get();
   const wanted = cloth || store.cloths()[0] || null;
   if (goal) view.goal = [wrap(goal[0]), wrap(goal[1])];
-  if (wanted && (!view.cloth || view.cloth.kind !== wanted.kind || view.cloth.id !== wanted.id)) load(wanted, !goal);
+  let ready = Promise.resolve();
+  if (wanted && (!view.cloth || view.cloth.kind !== wanted.kind || view.cloth.id !== wanted.id)) ready = load(wanted, !goal);
   else {
     fillCloths();
     if (view.cloth) {
@@ -237,4 +232,6 @@ export function shown(goal = null, linked = null) {
     }
     document.title = router.title("plan", view.name);
   }
+  // A goal given (a link, Interpolate's "to") is planned at once: the plan shows what it asks.
+  if (goal) ready.then(() => view.cloth && plan());
 }

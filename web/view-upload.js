@@ -37,7 +37,10 @@ async function upload(fileList) {
     const result = await api.analyze(form);
     const name = uploadName(files);
     store.addUpload(name, result);
-    renderResult(slot, result, name, actions);
+    renderResult(slot, result, name, actions, { files: files.map((f) => f.name) });
+    shownKey = result.key;
+    // The upload's own URL: a reload (or a link) shows it again while the server keeps it.
+    router.keep("upload", new URLSearchParams({ key: result.key }));
     document.title = router.title("upload", name);
     status.textContent = `Done: ${files.map((f) => f.name).join(", ")}`;
     showError("");
@@ -75,4 +78,30 @@ export function setup(resultActions, errors) {
 /** The title of the view: the upload shown, if any. */
 export function titleName() {
   return $("#upload-result .result-name")?.textContent || "";
+}
+
+/** The upload whose result is on screen (its key). */
+let shownKey = null;
+
+/** The view came on screen; a link's `key` shows that upload (the server's, after a reload). */
+export async function shown(params) {
+  const key = params.get("key");
+  if (!key || key === shownKey) return void (document.title = router.title("upload", titleName()));
+  const slot = $("#upload-result");
+  const status = $("#upload-status");
+  status.textContent = "Loading the upload…";
+  try {
+    const result = await store.upload(key);
+    const name = store.get().uploads.find((u) => u.key === key)?.name || result.name;
+    renderResult(slot, result, name, actions);
+    shownKey = key;
+    status.textContent = "";
+    document.title = router.title("upload", name);
+    showError("");
+  } catch (e) {
+    if (api.isAbort(e)) return;
+    status.textContent = "";
+    slot.replaceChildren();
+    showError(e.message);
+  }
 }

@@ -10,7 +10,7 @@ generated from the Rust types), and `tests/it/schema.rs` checks their keys again
 
 import os
 from concurrent.futures import Executor
-from typing import Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -53,6 +53,8 @@ class SideFoldDict(TypedDict):
 
     from_corner: int
     to_corner: int
+    from_vertex: int
+    to_vertex: int
     folded_percent: float
 
 class FoldedCornerDict(TypedDict):
@@ -80,13 +82,22 @@ FoldLabelDict = TypedDict(
     {
         "class": FoldClass,
         "folded_corners": List[int],
+        "folded_corner_vertices": List[int],
         "corners_on_fold_line": List[int],
+        "corner_vertices_on_fold_line": List[int],
         "corner_sides": List[FoldedCornerDict],
         "cut_sides": List[SideFoldDict],
         "folded_percent": float,
         "border_degrees": Pair,
         "text": str,
     },
+)
+
+SequenceClass = Literal["in_quarters", "in_eighths", "in_thirds", "sides_in_then_half", "folds"]
+
+# How a sequence of folds reads as a whole. schema/analysis.json#/$defs/SequenceLabel
+SequenceLabelDict = TypedDict(
+    "SequenceLabelDict", {"class": SequenceClass, "in_half": List[bool], "text": str}
 )
 
 class LabelDict(TypedDict):
@@ -96,6 +107,7 @@ class LabelDict(TypedDict):
     corners: int
     circular: bool
     folds: List[FoldLabelDict]
+    sequence: Optional[SequenceLabelDict]
 
 class CurveDict(TypedDict):
     """A fold curve θ = a0 + a1·r on the diff disk (schema/analysis.json#/$defs/Curve)."""
@@ -131,6 +143,44 @@ class SynthesisDict(TypedDict):
     mismatch: float
     unfolded_mismatch: float
 
+class ExplainedFoldDict(TypedDict):
+    """One fold of a step's sequence (schema/analysis.json#/$defs/ExplainedFold)."""
+
+    fold: Pair
+    arcs: List[Pair]
+    line: Optional[LineDict]
+    explained: Optional[float]
+
+class AlternativeDict(TypedDict):
+    """Another sequence that reads the step almost as well (schema/analysis.json#/$defs/Alternative)."""
+
+    folds: List[ExplainedFoldDict]
+    explained: float
+
+Reason = Literal[
+    "same_to_cross",
+    "residual",
+    "changed_without_fold",
+    "unexplained",
+    "tie_break",
+    "flip_margin",
+    "prediction",
+]
+
+class DoubtDict(TypedDict):
+    """schema/analysis.json#/$defs/Doubt"""
+
+    reason: Reason
+    value: float
+    limit: float
+    text: str
+
+class ConfidenceDict(TypedDict):
+    """How sure a step's fold is (schema/analysis.json#/$defs/Confidence)."""
+
+    level: Literal["high", "low"]
+    doubts: List[DoubtDict]
+
 class StepDict(TypedDict):
     """`steps[k]`: frame k−1 → k (schema/analysis.json#/$defs/Step)."""
 
@@ -142,9 +192,14 @@ class StepDict(TypedDict):
     cut: Optional[CutDict]
     orientation: Optional[OrientationDict]
     synthesis: Optional[SynthesisDict]
+    folds: List[ExplainedFoldDict]
+    alternatives: List[AlternativeDict]
+    explained: float
+    unexplained: bool
     line: Optional[LineDict]
     metrics: MetricsDict
     predicted: List[Point3]
+    confidence: ConfidenceDict
 
 class AnalysisDict(TypedDict):
     """What `close analyze --json` prints (schema/analysis.json)."""
@@ -177,6 +232,7 @@ class PlanStepDict(TypedDict):
     action: Literal["fold", "unfold"]
     fold: Pair
     corners: List[int]
+    corner_vertices: List[int]
     picks: List[PickDict]
 
 class PlanDict(TypedDict):
@@ -264,6 +320,7 @@ class TruthDict(TypedDict):
 
     folds: List[Pair]
     folded_vertices: NotRequired[List[int]]
+    folded_vertices_per_fold: NotRequired[List[List[int]]]
 
 class MeshDict(TypedDict):
     """A mesh sample's mesh: faces and (F, V, 3) vertex frames."""
@@ -278,8 +335,14 @@ class MetaDict(TypedDict, total=False):
     category: str
     fold: int
 
+Progress = Union[bool, None, Callable[[int, int], Any]]
+
 class CloseError(ValueError):
     """Bad input, with the message the `close` command line prints."""
+
+class CloseWarning(UserWarning):
+    """What an analysis repaired or changed in its input (a clockwise border reversed, a
+    closing vertex dropped, duplicate vertices merged)."""
 
 class Sample:
     """A cloth sample: border frames (or a mesh), frame 0 the flat start."""
@@ -299,6 +362,9 @@ class Sample:
     @property
     def meta(self) -> MetaDict: ...
     def to_json(self) -> str: ...
+    @classmethod
+    def from_json(cls, text: Union[str, bytes]) -> "Sample":
+        """A sample from Sample JSON text, checked as `Sample(...)` checks its frames."""
 
 class Analysis:
     """What `close analyze --json` reports about a sample."""
@@ -319,19 +385,52 @@ class Analysis:
     def metrics(self) -> Optional[MetricsDict]: ...
     @property
     def border_indices(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def corner_vertices(self) -> npt.NDArray[np.int64]:
+        """Border vertex of each corner: "corner k" (1-based) is `corners[k - 1]` at `corner_vertices[k - 1]`."""
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def reversed(self) -> bool: ...
+    @property
+    def input_folds(self) -> Optional[List[Tuple[float, float]]]:
+        """The folds in the input's own vertex order (None for a mesh sample)."""
+    def disk(self, k: int = 0) -> FloatArray:
+        """The dGLI disk of analysed frame k (0 the start, -1 the end), as `--disks`."""
     def to_dict(self) -> AnalysisDict:
         """The object `close analyze --json` prints, key for key."""
     def to_json(self) -> str: ...
 
-def analyze(frames: Union[Frames, Sample], *, method: str = "default", start: Optional[int] = None, end: Optional[int] = None) -> Analysis:
+def analyze(frames: Union[Frames, Sample], *, method: str = "default", start: Optional[int] = None, end: Optional[int] = None, max_folds: int = 3) -> Analysis:
     """Analyse frames start → end as `close analyze --json` does (radians, vertex k at 2πk/N,
-    folded side anticlockwise from f1 to f2)."""
+    folded side anticlockwise from f1 to f2); a step holds up to `max_folds` folds (1 to 4)."""
 
-def analyze_many(items: Iterable[Union[Frames, Sample]], *, threads: Optional[int] = None, method: str = "default") -> List[Analysis]:
-    """`analyze` of every item on native threads, the GIL released."""
+@overload
+def analyze_many(
+    items: Iterable[Union[Frames, Sample]],
+    *,
+    threads: Optional[int] = None,
+    method: str = "default",
+    progress: Progress = None,
+    errors: Literal["raise"] = "raise",
+) -> List[Analysis]:
+    """`analyze` of every item on native threads, the GIL released; Ctrl-C stops it."""
+@overload
+def analyze_many(
+    items: Iterable[Union[Frames, Sample]],
+    *,
+    threads: Optional[int] = None,
+    method: str = "default",
+    progress: Progress = None,
+    errors: Literal["return"],
+) -> List[Union[Analysis, CloseError]]:
+    """`analyze` of every item; a failed item's place holds its `CloseError`."""
+def to_arrays(results: Iterable[Union[Analysis, BaseException]]) -> Dict[str, Any]:
+    """A batch's results as NaN-padded numpy arrays (`corners` (B, C), `folds` (B, F, 2),
+    `rmse`, `frechet`, `aligned_rmse`, `n`, `corner_count`, `fold_count` (B,)) and `error`."""
 
 def load(*paths: PathLike) -> Sample:
-    """Read a sample from files (Sample JSON, .mat, text/CSV per frame, OBJ/PLY per frame)."""
+    """Read a sample from files (Sample JSON, .mat, text/CSV per frame, OBJ/PLY per frame, .npy/.npz)."""
 
 def dgli_disk(border: npt.ArrayLike, *, reference: Optional[npt.ArrayLike] = None) -> FloatArray:
     """The condensed dGLI pair vector of one (N, 3) border state, as `close analyze --disks`."""
@@ -388,5 +487,6 @@ def evaluate(
     threads: Optional[int] = None,
     executor: Optional[Executor] = None,
     method: str = "default",
+    progress: Progress = None,
 ) -> EvaluationDict:
     """The object `close eval --json` prints; `executor`: any concurrent.futures.Executor."""

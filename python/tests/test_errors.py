@@ -85,7 +85,7 @@ def test_a_bad_store_is_a_close_error():
     "frames, message",
     [
         (np.zeros((2, 4)), "expected an (F, N, 3) array"),
-        ([np.zeros((4, 2))], "frame 0: expected an (N, 3) array"),
+        ([np.zeros((4, 4))], "frame 0: expected an (N, 3) array"),
         ([SQUARE, SQUARE[:3]], "frame 1 has 3 vertices but frame 0 has 4"),
         (np.array([SQUARE, SQUARE * np.nan]), "non-finite coordinate in frame 1, vertex 0"),
         (SQUARE[None, :3], "too few vertices"),
@@ -129,14 +129,6 @@ def test_the_servers_limits_hold():
     # Over the interpolation budget (vertices × steps > 2·10⁶).
     with pytest.raises(close.CloseError, match="too much work"):
         close.interpolate(np.zeros((5000, 3)), (0.0, 3.1), (0.5, 3.6), 401)
-
-
-def test_plan_needs_the_analysis_itself():
-    import pickle
-
-    analysis = close.analyze(np.array([SQUARE, SQUARE]))
-    with pytest.raises(close.CloseError, match="unpickled"):
-        close.plan(pickle.loads(pickle.dumps(analysis)), (0.0, 3.1))
 
 
 def test_a_rust_panic_is_an_exception_not_an_abort():

@@ -619,6 +619,19 @@ fn peak_rss_kib() -> usize {
         .unwrap_or(0)
 }
 
+/// Whether `answer` holds a whole HTTP answer: its head and as many body bytes as its
+/// `content-length` says (an answer without one ends when the server closes).
+fn answer_is_whole(answer: &[u8]) -> bool {
+    let Some(end) = answer.windows(4).position(|w| w == b"\r\n\r\n") else {
+        return false;
+    };
+    let head = String::from_utf8_lossy(&answer[..end]).to_ascii_lowercase();
+    head.lines()
+        .find_map(|l| l.strip_prefix("content-length:"))
+        .and_then(|l| l.trim().parse::<usize>().ok())
+        .is_some_and(|length| answer.len() >= end + 4 + length)
+}
+
 /// A real server on an ephemeral loopback port; stopped when dropped.
 struct Server {
     addr: SocketAddr,
@@ -641,15 +654,25 @@ impl Server {
         Server { addr, stop: Some(stop) }
     }
 
-    /// Send raw bytes, then read the answer until the server closes: (status, whole answer).
+    /// Send raw bytes, then read the answer until its announced length has come or the
+    /// server closes: (status, whole answer). No clock but [`HANG`]: building a large
+    /// answer on a loaded machine may take many seconds.
     async fn raw(&self, request: &[u8]) -> (u16, String) {
         let mut stream = TcpStream::connect(self.addr).await.expect("connect");
         // A server that refuses an oversized head answers and closes before it has read it
         // all, so the rest may not be sent: the answer is what counts.
         let _ = stream.write_all(request).await;
         let mut answer = Vec::new();
-        let _ =
-            tokio::time::timeout(Duration::from_secs(10), stream.read_to_end(&mut answer)).await;
+        let _ = tokio::time::timeout(HANG, async {
+            let mut chunk = vec![0u8; 1 << 16];
+            while let Ok(read @ 1..) = stream.read(&mut chunk).await {
+                answer.extend_from_slice(&chunk[..read]);
+                if answer_is_whole(&answer) {
+                    break;
+                }
+            }
+        })
+        .await;
         let text = String::from_utf8_lossy(&answer).into_owned();
         let status = text.split_whitespace().nth(1).and_then(|s| s.parse().ok()).unwrap_or(0);
         (status, text)
@@ -1030,8 +1053,10 @@ async fn eventually(case: &str, mut holds: impl FnMut() -> bool) {
 // Issue 18 item 8: an answer nobody reads holds its length of the memory budget while it
 // waits, and its connection is dropped at the write time-out (here 1 s), which frees it.
 async fn an_unread_answer_is_counted_then_dropped() {
+    // A request time-out far past `HANG`: building the answer (seconds) never races it.
     let state = AppState::with_config(Config {
         write_timeout: Duration::from_secs(1),
+        timeout: Duration::from_secs(300),
         ..Config::default()
     });
     let server = Server::start_with(state.clone()).await;
@@ -1136,6 +1161,322 @@ async fn the_http_layers_own_errors_are_json() {
     assert_eq!(status, 400);
     assert!(answer.contains("more than one Host"), "{answer}");
     assert_eq!(server.healthz().await, 200, "served right after");
+}
+
+// Issue 27 item 2: `q` of 32,000 'Σ' cost 0.4 s of CPU on the async threads, per request. A
+// query is capped (characters, words) before any row is looked at, and filtered on a
+// worker (the select and the answer are two worker jobs), every word matched.
+async fn samples_queries_are_capped_and_filtered_on_a_worker() {
+    let (app, state) = test_state(Config::default());
+    let get = |uri: String| Request::get(uri).body(Body::empty()).unwrap();
+    // 10,000 'Σ': 60 KB of target (what an in-process request may carry).
+    let long = "%CE%A3".repeat(10_000);
+    let answer = send(&app, get(format!("/api/samples?q={long}"))).await;
+    let error = answer.refusal(&[StatusCode::BAD_REQUEST]);
+    assert!(error.contains("10000 characters") && error.contains("256"), "{error}");
+    let answer = send(&app, get("/api/samples?q=a+b+c+d+e+f+g+h+i".into())).await;
+    assert!(answer.refusal(&[StatusCode::BAD_REQUEST]).contains("9 words"));
+    // The list is built once (a job), then each query is two.
+    send(&app, get("/api/samples?limit=1".into())).await;
+    let before = state.worker_jobs();
+    let answer = send(&app, get("/api/samples?q=NAPKIN%20Half".into())).await;
+    assert_eq!(answer.status, StatusCode::OK, "{}", answer.text());
+    assert_eq!(state.worker_jobs(), before + 2, "the query ran on the workers");
+    let list: Value = serde_json::from_slice(&answer.body).unwrap();
+    let rows = list["samples"].as_array().unwrap();
+    assert!(!rows.is_empty() && rows.len() as u64 == list["total"].as_u64().unwrap());
+    for row in rows {
+        let text = format!("{} {} {}", row["id"], row["name"], row["category"]).to_lowercase();
+        assert!(text.contains("napkin") && text.contains("half"), "{row}");
+    }
+}
+
+// Issue 27 item 11: answers of `GET /api/samples` were counted only once built, so 64 large
+// lists at once took a gigabyte. The answer's size is known from the rows chosen and
+// taken from the budget first: while the budget is held, a list is chosen (a worker job)
+// but not built (no second job) until the budget frees.
+async fn a_sample_list_is_counted_before_it_is_built() {
+    let dir = crate::common::TempDir::new("abuse-list");
+    // Every row names its dataset folder: one of 3,000 characters makes 400 rows a list of
+    // more than 1 MiB.
+    let data = (0..15).fold(dir.0.clone(), |p, k| p.join(format!("{k}{}", "f".repeat(199))));
+    std::fs::create_dir_all(&data).unwrap();
+    for k in 0..400 {
+        let mut sample = normal_sample(&format!("list {k}"));
+        sample["category"] = "long".into();
+        std::fs::write(data.join(format!("{k}.json")), sample.to_string()).unwrap();
+    }
+    // Pools of 1 MiB (answers up to 1 MiB) and 1 MiB (larger ones: this one); a JSON body is
+    // at most 16 KiB, so an answer may reserve 1008 KiB.
+    let config = Config {
+        upload_budget: 2 << 20,
+        json_body_limit: 16 << 10,
+        datasets: vec![data],
+        ..Config::default()
+    };
+    let (app, state) = test_state(config);
+    let list = || Request::get("/api/samples?category=long").body(Body::empty()).unwrap();
+    // An answer whose body is not read yet holds the whole large pool.
+    let first = app.clone().oneshot(list()).await.unwrap();
+    assert_eq!(first.status(), StatusCode::OK);
+    assert!(axum::body::HttpBody::size_hint(first.body()).exact().is_some_and(|b| b > 1 << 20));
+    let before = state.worker_jobs();
+    let second = tokio::spawn({
+        let app = app.clone();
+        async move { send(&app, list()).await }
+    });
+    // The second's rows are chosen (a job), and its answer, which cannot be counted while
+    // the first is held, is not built (no second job): both hold until the first is read.
+    eventually("the second list's rows are chosen", || state.worker_jobs() == before + 1).await;
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    assert!(!second.is_finished());
+    assert_eq!(state.worker_jobs(), before + 1, "the answer was built before it was counted");
+    let first = to_bytes(first.into_body(), usize::MAX).await.unwrap();
+    let second = tokio::time::timeout(HANG, second).await.expect("answered").unwrap();
+    assert_eq!(second.status, StatusCode::OK);
+    assert_eq!((state.worker_jobs(), second.body), (before + 2, first));
+}
+
+// Issue 27 item 11: 64 `/api/disk` bodies of 8 MiB were parsed on the async threads. A body
+// over 64 KiB is parsed on a worker: one job more than the same request's small body.
+async fn large_json_bodies_are_parsed_on_a_worker() {
+    let (app, state) = test_state(Config::default());
+    let ask = |body: String| {
+        Request::post("/api/disk/cells")
+            .header(header::CONTENT_TYPE, "application/json")
+            .body(Body::from(body))
+            .unwrap()
+    };
+    let small = json!({"border": circle(76, 1.0)}).to_string();
+    let before = state.worker_jobs();
+    assert_eq!(send(&app, ask(small)).await.status, StatusCode::OK);
+    let small_jobs = state.worker_jobs() - before;
+    // The same kind of request (another border, not cached), padded past 64 KiB with the
+    // white space JSON allows.
+    let large = format!("{}{}", json!({"border": circle(76, 2.0)}), " ".repeat(100_000));
+    let before = state.worker_jobs();
+    assert_eq!(send(&app, ask(large)).await.status, StatusCode::OK);
+    assert_eq!(
+        state.worker_jobs() - before,
+        small_jobs + 1,
+        "the large body was parsed off a worker"
+    );
+}
+
+// Issue 27 item 8: `from: [1e308, -1e308]` gave folds of null, `line.point: [1e308, 1e308]`
+// 46 null coordinates. Angles and lines are checked as the plan checks its goal.
+async fn interpolation_refuses_folds_and_lines_that_cannot_be() {
+    let (app, _) = test_state(Config::default());
+    let border = circle(40, 1.0);
+    let ask = |body: Value| post(&app, "/api/interpolate", "application/json", body.to_string());
+    for (body, words) in [
+        (json!({"border": border, "from": [1e308, -1e308], "to": [0, 1]}), "\"from\""),
+        (json!({"border": border, "from": [0, 1], "to": [0, 2e6]}), "\"to\""),
+        (json!({"border": border, "arcs": [[0, 1e300]]}), "\"arcs\""),
+        (
+            json!({"border": border, "arcs": [[0, 3]], "line": {"point": [1e308, 1e308], "direction": [1, 0]}}),
+            "point",
+        ),
+        (
+            json!({"border": border, "arcs": [[0, 3]], "line": {"point": [0, 0], "direction": [0, 0]}}),
+            "direction",
+        ),
+    ] {
+        let answer = ask(body).await;
+        let error = answer.refusal(&[StatusCode::BAD_REQUEST]);
+        assert!(error.contains(words), "{words}: {error}");
+    }
+    // Sane ones: every number of the answer is a number.
+    for body in [
+        json!({"border": border, "from": [-7.0, 20.0], "to": [1, 2], "steps": 5}),
+        json!({"border": border, "arcs": [[0, 3]], "line": {"point": [0, 0], "direction": [1, 0]}, "steps": 5}),
+    ] {
+        let answer = ask(body).await;
+        assert_eq!(answer.status, StatusCode::OK, "{}", answer.text());
+        assert!(!answer.text().contains("null"), "{}", answer.text());
+    }
+}
+
+/// A connection that posts the head of a `length`-byte JSON body to `path`, then sends
+/// `chunk` bytes of it every `every` (at most the whole body); what it was answered, and
+/// when.
+async fn paced_body(
+    addr: SocketAddr,
+    path: &str,
+    length: usize,
+    chunk: usize,
+    every: Duration,
+) -> (String, Duration) {
+    let mut stream = TcpStream::connect(addr).await.unwrap();
+    let head = format!("POST {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {length}\r\nConnection: close\r\n\r\n");
+    stream.write_all(head.as_bytes()).await.unwrap();
+    let t = Instant::now();
+    let (mut sent, mut answer, mut buf) = (0, Vec::new(), [0u8; 4096]);
+    while t.elapsed() < 2 * HANG {
+        match tokio::time::timeout(every, stream.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => break,
+            Ok(Ok(k)) => answer.extend_from_slice(&buf[..k]),
+            Err(_) if sent < length => {
+                let k = chunk.min(length - sent);
+                if stream.write_all(&vec![b' '; k]).await.is_err() {
+                    break;
+                }
+                sent += k;
+            }
+            Err(_) => {}
+        }
+    }
+    (String::from_utf8_lossy(&answer).into_owned(), t.elapsed())
+}
+
+/// A raw request with a whole body, and its answer.
+fn raw_post(addr: SocketAddr, path: &str, body: &str) -> Vec<u8> {
+    format!(
+        "POST {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        body.len()
+    )
+    .into_bytes()
+}
+
+// Issue 27 item 5: bodies announced large and sent slowly held the whole budget, and every
+// other POST waited behind them. Small requests (≤ 1 MiB) have a pool of their own: here
+// four bodies take the large pool, a fifth waits for it, all at a pace they keep, and a
+// small POST is answered while the fifth still waits.
+async fn a_small_post_is_never_queued_behind_large_bodies() {
+    let long = Duration::from_secs(300);
+    let config = Config {
+        upload_budget: 16 << 20,
+        header_timeout: long,
+        timeout: long,
+        ..Config::default()
+    };
+    let state = AppState::with_config(config);
+    let server = Server::start_with(state.clone()).await;
+    let total = state.free_budget();
+    // 3.5 MiB each, 8 KiB every 100 ms: ahead of their pace (16 KiB/s) however busy the
+    // machine, and minutes from done.
+    let large: Vec<_> = (0..5)
+        .map(|_| {
+            tokio::spawn(paced_body(
+                server.addr,
+                "/api/analyze",
+                3584 << 10,
+                8 << 10,
+                Duration::from_millis(100),
+            ))
+        })
+        .collect();
+    // Four hold the large pool (14 MiB); the fifth waits.
+    eventually("the large pool is taken", || total - state.free_budget() >= 14 << 20).await;
+    let body = json!({"border": circle(76, 1.0)}).to_string();
+    let (status, answer) =
+        tokio::time::timeout(HANG, server.raw(&raw_post(server.addr, "/api/disk/cells", &body)))
+            .await
+            .expect("the small POST waited as long as a hang");
+    assert_eq!(status, 200, "{answer:.300}");
+    assert!(large.iter().all(|l| !l.is_finished()), "a large body finished first");
+    assert!(total - state.free_budget() >= 14 << 20, "the large bodies still hold their pool");
+    large.iter().for_each(|l| l.abort());
+}
+
+// Issue 27 item 5: a body that trickles cannot be read within the request time-out anyway;
+// while a request waits for its pool, it loses its grace (1 s) and its share, and the
+// waiting upload is served. Here the time-outs are 300 s, far past `HANG`: only that rule
+// lets the upload in.
+async fn trickled_bodies_give_way_to_a_waiting_upload() {
+    let long = Duration::from_secs(300);
+    let config = Config {
+        upload_budget: 16 << 20,
+        header_timeout: long,
+        timeout: long,
+        ..Config::default()
+    };
+    let state = AppState::with_config(config);
+    let server = Server::start_with(state.clone()).await;
+    let total = state.free_budget();
+    let trickles: Vec<_> = (0..4)
+        .map(|_| {
+            tokio::spawn(paced_body(
+                server.addr,
+                "/api/analyze",
+                3584 << 10,
+                1,
+                Duration::from_millis(100),
+            ))
+        })
+        .collect();
+    eventually("the large pool is taken", || total - state.free_budget() >= 14 << 20).await;
+    // A normal analysis, padded to 2 MiB (a large body), sent whole.
+    let body = format!("{}{}", normal_sample("after trickles"), " ".repeat(2 << 20));
+    let (status, answer) =
+        tokio::time::timeout(HANG, server.raw(&raw_post(server.addr, "/api/analyze", &body)))
+            .await
+            .expect("the upload waited as long as a hang");
+    assert_eq!(status, 200, "{answer:.300}");
+    let mut cut = 0;
+    for trickle in trickles {
+        if trickle.is_finished() {
+            let (text, took) = trickle.await.unwrap();
+            assert!(
+                text.starts_with("HTTP/1.1 408") && text.contains("slower than"),
+                "after {took:?}: {text:.300}"
+            );
+            cut += 1;
+        } else {
+            trickle.abort();
+        }
+    }
+    assert!(cut >= 1, "no trickle lost its share");
+}
+
+// Issue 27 item 5: six clients that never read a 91 MB interpolation held every POST for
+// 25 s. An answer not read while others wait for its pool is dropped after 1 s (here the
+// write time-out is 300 s): the waiting request is served.
+async fn unread_answers_give_way_to_a_waiting_request() {
+    // A large pool of 147 MiB: an answer's reservation (its estimate, about 99 MiB) fits
+    // beside one unread answer (43 MiB), not beside two.
+    let state = AppState::with_config(Config {
+        upload_budget: 168 << 20,
+        write_timeout: Duration::from_secs(300),
+        timeout: Duration::from_secs(300),
+        ..Config::default()
+    });
+    let server = Server::start_with(state.clone()).await;
+    let total = state.free_budget();
+    // 1000 vertices × 1000 steps: an answer of about 45 MB, far past what loopback buffers.
+    let body =
+        json!({"border": circle(1000, 1.0), "from": [0.1, 3.0], "to": [1.0, 4.0], "steps": 1000})
+            .to_string();
+    let mut unread = Vec::new();
+    for _ in 0..2 {
+        let mut stream = TcpStream::connect(server.addr).await.unwrap();
+        stream.write_all(&raw_post(server.addr, "/api/interpolate", &body)).await.unwrap();
+        let mut status = [0u8; 12];
+        tokio::time::timeout(HANG, stream.read_exact(&mut status))
+            .await
+            .expect("answered")
+            .unwrap();
+        assert_eq!(&status, b"HTTP/1.1 200");
+        unread.push(stream);
+    }
+    assert!(total - state.free_budget() >= 80 << 20, "two unread answers hold their length");
+    // A third asks for as much: it waits for the pool, so the unread answers are dropped.
+    let (status, whole) =
+        tokio::time::timeout(HANG, server.raw(&raw_post(server.addr, "/api/interpolate", &body)))
+            .await
+            .expect("the third waited as long as a hang");
+    assert_eq!(status, 200);
+    let (_, json) = whole.split_once("\r\n\r\n").expect("a body");
+    serde_json::from_str::<Value>(json).expect("the whole answer");
+    // One unread answer was cut short (what loopback buffers held, megabytes, came) to let
+    // the third in; once nobody waited, the other could stay.
+    let mut cut = 0;
+    for mut stream in unread {
+        let mut rest = Vec::new();
+        tokio::time::timeout(HANG, stream.read_to_end(&mut rest)).await.expect("closed").ok();
+        cut += usize::from(rest.len() + 12 < whole.len());
+    }
+    assert!(cut >= 1, "no unread answer gave way");
 }
 
 /// Run one case on its own runtime, and do not wait for its blocking threads when it ends:
@@ -1289,5 +1630,40 @@ mod cases {
     #[test]
     fn trickling_connections_do_not_keep_new_clients_out() {
         super::run(super::trickling_connections_do_not_keep_new_clients_out());
+    }
+
+    #[test]
+    fn samples_queries_are_capped_and_filtered_on_a_worker() {
+        super::run(super::samples_queries_are_capped_and_filtered_on_a_worker());
+    }
+
+    #[test]
+    fn a_sample_list_is_counted_before_it_is_built() {
+        super::run(super::a_sample_list_is_counted_before_it_is_built());
+    }
+
+    #[test]
+    fn large_json_bodies_are_parsed_on_a_worker() {
+        super::run(super::large_json_bodies_are_parsed_on_a_worker());
+    }
+
+    #[test]
+    fn interpolation_refuses_folds_and_lines_that_cannot_be() {
+        super::run(super::interpolation_refuses_folds_and_lines_that_cannot_be());
+    }
+
+    #[test]
+    fn a_small_post_is_never_queued_behind_large_bodies() {
+        super::run(super::a_small_post_is_never_queued_behind_large_bodies());
+    }
+
+    #[test]
+    fn trickled_bodies_give_way_to_a_waiting_upload() {
+        super::run(super::trickled_bodies_give_way_to_a_waiting_upload());
+    }
+
+    #[test]
+    fn unread_answers_give_way_to_a_waiting_request() {
+        super::run(super::unread_answers_give_way_to_a_waiting_request());
     }
 }

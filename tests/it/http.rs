@@ -141,7 +141,6 @@ async fn the_app_and_its_assets_are_served() {
         assert!(html.contains(asset), "index does not load {asset}");
         assert_eq!(get(&app, asset).await.status, StatusCode::OK, "{asset}");
     }
-    assert!(get(&app, "/assets/fold.mjs").await.content_type.starts_with("text/javascript"));
     assert!(get(&app, "/assets/nope.js").await.error(StatusCode::NOT_FOUND).contains("nope.js"));
     assert!(get(&app, "/no/such/route")
         .await
@@ -332,7 +331,7 @@ async fn image_urls_outlive_the_analysis_cache() {
     }
     let gone = get(&app, images["close"].as_str().expect("a URL")).await;
     assert!(
-        gone.error(StatusCode::NOT_FOUND).contains("expired"),
+        gone.error(StatusCode::NOT_FOUND).contains("Upload the sample again"),
         "{}",
         String::from_utf8_lossy(&gone.body)
     );
@@ -633,6 +632,83 @@ async fn interpolation_turns_a_folds_arcs_over() {
     assert_healthy(&app).await;
 }
 
+/// A motion after earlier folds (`prior`), at any fractions (`at`): its states are the
+/// analysis's own at the ends, and each comes with the cloth as drawn (layers, heights, line).
+#[tokio::test]
+async fn interpolation_after_prior_folds_at_any_fraction_comes_with_its_layers() {
+    let app = test_app();
+    let entry =
+        dataset::Dataset::builtin().get("napkin__half_then_half").expect("a second fold").clone();
+    let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
+    let start: Vec<[f64; 3]> = analysis.start_border().iter().map(close::border::to_xyz).collect();
+    let steps = serde_json::to_value(&analysis.steps).unwrap();
+    let (first, second) = (&steps[0], &steps[1]);
+    let body = json!({
+        "border": start,
+        "prior": [{"arcs": first["arcs"], "line": first["line"]}],
+        "arcs": second["arcs"],
+        "line": second["line"],
+        "at": [1.0, 0.0, 0.5],
+        "drawn": true,
+    });
+    let v = post_json(&app, "/api/interpolate", &body).await.json();
+    let borders: Vec<Vec<[f64; 3]>> = serde_json::from_value(v["borders"].clone()).unwrap();
+    assert_eq!((borders.len(), v["turns"].clone()), (3, json!([1.0, 0.0, 0.5])));
+    // t = 1: the analysis's prediction; t = 0: the state the first fold left.
+    let off = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        a.iter().zip(b).map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1])).fold(0.0, f64::max)
+    };
+    assert!(off(&borders[0], &analysis.predicted_end) < 1e-9);
+    assert!(off(&borders[1], &analysis.steps[0].predicted) < 1e-9);
+    let states = v["states"].as_array().expect("states");
+    assert_eq!(states.len(), 3);
+    // Folded twice: four layers at the end, two (base and flap) at its start.
+    let flips = |k: usize| -> Vec<u64> {
+        states[k]["layers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|l| l["flips"].as_u64().unwrap())
+            .collect()
+    };
+    assert_eq!(flips(0).len(), 4, "{:?}", flips(0));
+    assert_eq!(flips(1), [0, 1]);
+    let heights: Vec<f64> = serde_json::from_value(states[0]["heights"].clone()).unwrap();
+    assert_eq!(heights.len(), analysis.n);
+    assert!(heights.iter().any(|&h| h > 0.0), "turned layers lie above the table");
+    assert!(states[2]["segment"].is_array(), "the fold's line: {}", states[2]["segment"]);
+    // Not asked to draw, the answer is the motion's alone.
+    let mut plain = body.clone();
+    plain.as_object_mut().unwrap().remove("drawn");
+    let plain = post_json(&app, "/api/interpolate", &plain).await.json();
+    assert!(plain.get("states").is_none() && plain["borders"] == v["borders"]);
+    for (body, words) in [
+        (
+            json!({"border": start, "from": [0, 1], "to": [1, 2], "steps": 3, "at": [0.5]}),
+            "not both",
+        ),
+        (json!({"border": start, "from": [0, 1], "to": [1, 2], "at": [1.5]}), "from 0 to 1"),
+        (json!({"border": start, "from": [0, 1], "to": [1, 2], "at": []}), "fractions"),
+        (
+            json!({"border": start, "reference": start, "prior": [], "from": [0, 1], "to": [1, 2]}),
+            "`reference`",
+        ),
+        (json!({"border": start, "prior": [{"arcs": []}], "from": [0, 1], "to": [1, 2]}), "no arc"),
+    ] {
+        let error = post_json(&app, "/api/interpolate", &body).await.error(StatusCode::BAD_REQUEST);
+        assert!(error.contains(words), "{error:?} should name {words:?}");
+    }
+    // A plan comes with the states it goes through as drawn: now, then one per step.
+    let plan =
+        post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [0.3, 3.4]})).await.json();
+    let states = plan["states"].as_array().expect("plan states");
+    assert_eq!(states.len(), plan["steps"].as_array().unwrap().len() + 1);
+    let now: Vec<[f64; 3]> = serde_json::from_value(states[0]["border"].clone()).unwrap();
+    assert!(off(&now, &analysis.predicted_end) < 1e-9, "now is the analysed state");
+    assert!(states.iter().skip(1).all(|s| s["segment"].is_array()));
+    assert_healthy(&app).await;
+}
+
 #[tokio::test]
 async fn plans_reach_the_goal_with_input_vertex_indices() {
     let app = test_app();
@@ -742,13 +818,14 @@ async fn the_disk_of_any_border_state_is_a_png() {
             .await;
     assert_eq!(
         end,
-        close::render::disk_png(
+        close::render::render_disk(
             &analysis.disk(analysis.frames.len() - 1).unwrap(),
             "dGLI disk · current state",
-            200,
-            200
+            None,
+            &close::render::Output::png(200)
         )
         .unwrap()
+        .0
     );
     // The disk does not depend on where the cloth lies, but does on the picture's size.
     let shifted: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] + 3.0, p[1] - 1.0, p[2]]).collect();
@@ -1049,10 +1126,15 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
         .expect("a built-in second fold")
         .clone();
     let analysis = analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
-    let close_to = |got: &Value, want: &[f64]| {
+    // Values come ring by ring (close::render::readout::rings).
+    let close_to = |got: &Value, want: &close::disk::Disk| {
         let got: Vec<f64> = serde_json::from_value(got.clone()).expect("numbers");
+        let want = close::render::readout::rings(want);
         got.len() == want.len()
-            && got.iter().zip(want).all(|(a, b)| (a - b).abs() <= 1e-6 * b.abs().max(1e-3))
+            && got
+                .iter()
+                .zip(&want)
+                .all(|(a, &b)| (a - b as f64).abs() <= 1e-6 * (b as f64).abs().max(1e-3))
     };
     // Step 2 compares analysed frames 1 and 2; the whole span, the first and the last.
     for (step, (from, to)) in [("&step=2", (1, 2)), ("", (0, 2))] {
@@ -1062,8 +1144,8 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
             (Some(analysis.n as u64), Some(from as u64), Some(to as u64))
         );
         assert!(
-            close_to(&r["start"], analysis.disk(from).unwrap().values())
-                && close_to(&r["end"], analysis.disk(to).unwrap().values()),
+            close_to(&r["start"], &analysis.disk(from).unwrap())
+                && close_to(&r["end"], &analysis.disk(to).unwrap()),
             "step {step:?}"
         );
         let layout = close::render::disk_picture::Layout::of(300, 300);
@@ -1081,7 +1163,7 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
     assert!(get(&app, "/api/readout/0123abcd")
         .await
         .error(StatusCode::NOT_FOUND)
-        .contains("analyse the sample again"));
+        .contains("Upload the sample again"));
     assert!(get(&app, &format!("/api/readout/sample:{}?colour=red", entry.id))
         .await
         .error(StatusCode::BAD_REQUEST)
@@ -1096,7 +1178,12 @@ async fn a_readout_gives_the_disks_values_and_where_the_pictures_draw_them() {
     )
     .await
     .json();
-    assert!(close_to(&cells["values"], analysis.disk(analysis.frames.len() - 1).unwrap().values()));
+    assert!(close_to(&cells["values"], &analysis.disk(analysis.frames.len() - 1).unwrap()));
+    // Which cell each pixel shows: the cell picture of that N and size.
+    let picture = get(&app, &format!("/api/cells.png?n={}&size=200", analysis.n)).await;
+    assert_eq!((picture.status, picture.content_type.as_str()), (StatusCode::OK, "image/png"));
+    assert_eq!(picture.body, close::render::readout::cell_picture(analysis.n, 200).unwrap());
+    assert!(get(&app, "/api/cells.png?n=2").await.error(StatusCode::BAD_REQUEST).contains("edges"));
     assert_eq!(
         cells["disk"]["cx"].as_f64(),
         Some(close::render::disk_picture::Layout::of(200, 200).cx)

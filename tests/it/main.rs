@@ -2,8 +2,8 @@
 //! and one shared evaluation of the built-in set ([`common::builtin`]) for every test that
 //! reads it. Each module is one area; `cargo test --test it MODULE::` runs one of them.
 //!
-//! `browser` and `interpolate_parity` need Chromium and node, so their tests are ignored by
-//! default: `cargo test -- --ignored` runs them (`.ci/run` does).
+//! `browser` needs Chromium and chromedriver, so its test is ignored by default:
+//! `cargo test -- --ignored` runs it (`.ci/run` does).
 
 mod common;
 
@@ -15,7 +15,6 @@ mod dataset;
 mod dataset_hostile;
 mod formats;
 mod http;
-mod interpolate_parity;
 mod invariance;
 mod modules;
 mod mujoco;
@@ -27,6 +26,7 @@ mod readme;
 mod record;
 mod reference;
 mod schema;
+mod sequences;
 mod unseen;
 mod verify;
 mod vrfolding;

@@ -89,8 +89,13 @@ fn every_second_fold_is_found_near_its_floor() {
                 sample.name
             );
             // The fold circle draws each arc.
-            let png = close::render::render_png(analysis, close::render::Picture::Close, 400, 400)
-                .unwrap();
+            let png = close::render::render(
+                analysis,
+                &close::render::View::whole(close::render::Picture::Close),
+                &close::render::Output::png(400),
+                Default::default(),
+            )
+            .unwrap();
             assert!(png.starts_with(b"\x89PNG"), "{}", sample.name);
         }
         let fold = step.fold.unwrap();

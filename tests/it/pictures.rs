@@ -317,3 +317,92 @@ fn every_reported_fold_point_ends_a_drawn_curve() {
     assert!(steps > 150, "only {steps} fold steps");
     assert!(misses.is_empty(), "{misses:#?}");
 }
+
+/// Issue 28 item 2: a fold of several arcs (a leg folded over the other) is compared with its
+/// truth by its line and the vertices it folds, not by its two points, which two folds
+/// along one line may name in another order.
+#[test]
+fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/physics-mujoco/border/trousers_q1_leg_over_leg_then_half.json");
+    let sample = close::formats::json::parse_sample(&std::fs::read(path).expect("the fixture"))
+        .expect("a sample");
+    let analysis = close::analyze(&sample.border_frames().expect("frames"), Default::default())
+        .expect("analysed");
+    let truth = close::render::truth::Truth::of(sample.truth.as_ref().expect("its truth"));
+    assert!(analysis.foldings().iter().any(|f| f.arcs.len() > 1), "a multi-arc fold is found");
+    let lines = close::render::truth::true_lines(&analysis, &truth);
+    let foldings = analysis.foldings();
+    for (k, (line, _)) in lines.iter().enumerate() {
+        let agreement =
+            close::render::truth::agreement(&analysis, &truth, k, line.as_ref()).expect("compared");
+        println!("fold {}: {agreement}", k + 1);
+        if foldings[k].arcs.len() > 1 {
+            let close::render::truth::Agreement::Line { angle, offset, shared } = agreement else {
+                panic!("fold {}: compared by its points: {agreement}", k + 1);
+            };
+            assert!(angle < 5.0 && offset < 0.05, "fold {}: {agreement}", k + 1);
+            assert!(shared.is_some_and(|s| s > 0.9), "fold {}: {agreement}", k + 1);
+        }
+    }
+    // The legend says so.
+    let svg = close::render::render(
+        &analysis,
+        &close::render::View::whole(close::render::Picture::Borders),
+        &close::render::Output::svg(480),
+        close::render::Known { truth: &truth, mesh: None },
+    )
+    .expect("the border plot");
+    let svg = String::from_utf8(svg).expect("text");
+    assert!(svg.contains("true fold 2 (line"), "{}", &svg[svg.len().saturating_sub(3000)..]);
+}
+
+/// Compare's pictures: a disk titled as asked, and the difference of two states' disks.
+#[tokio::test]
+async fn a_disk_takes_a_title_and_a_state_to_subtract() {
+    let app = app(AppState::new());
+    let flat = square();
+    let moved: Vec<[f64; 3]> = flat.iter().map(|p| [p[0] * 1.1, p[1], p[2]]).collect();
+    let svg = |body: Value| {
+        let app = app.clone();
+        async move {
+            let request = Request::builder()
+                .method(Method::POST)
+                .uri("/api/disk?format=svg")
+                .header(header::CONTENT_TYPE, "application/json")
+                .body(Body::from(body.to_string()))
+                .unwrap();
+            let (status, _, _, body) = send_typed(&app, request).await;
+            (status, String::from_utf8_lossy(&body).into_owned())
+        }
+    };
+    let (status, titled) = svg(json!({"border": flat, "title": "A · napkin after step 1"})).await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(titled.contains("A · napkin after step 1"), "the title is not drawn");
+    // The difference of a state with itself is zero everywhere; with another, it is not.
+    let cells = |minus: &[[f64; 3]]| {
+        let app = app.clone();
+        let body = json!({"border": flat, "minus": {"border": minus}, "size": 120});
+        async move {
+            let request = Request::builder()
+                .method(Method::POST)
+                .uri("/api/disk/cells")
+                .header(header::CONTENT_TYPE, "application/json")
+                .body(Body::from(body.to_string()))
+                .unwrap();
+            let (status, _, body) = send(&app, request).await;
+            assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&body));
+            let v: Value = serde_json::from_slice(&body).unwrap();
+            serde_json::from_value::<Vec<f64>>(v["values"].clone()).unwrap()
+        }
+    };
+    assert!(cells(&flat).await.iter().all(|&v| v == 0.0));
+    assert!(cells(&moved).await.iter().any(|&v| v.abs() > 1e-3));
+    let (status, error) =
+        svg(json!({"border": flat, "minus": {"border": &flat[..flat.len() - 1]}})).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(error.contains("as many vertices"), "{error}");
+    let (status, error) = svg(json!({"border": flat, "title": "x".repeat(121)})).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(error.contains("at most 120"), "{error}");
+}

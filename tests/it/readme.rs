@@ -366,3 +366,32 @@ fn readme_tables_are_rendered_from_the_snapshots() {
         .collect();
     assert!(loose.is_empty(), "README tables written by hand: {loose:#?}");
 }
+
+/// The README's Set-up says how many tests are `#[ignore]`d (they need programs beyond Rust):
+/// that number is the count of `#[ignore` attributes under `tests/`, `src/` and `crates/`.
+#[test]
+fn readme_counts_the_ignored_tests() {
+    fn count(dir: &Path) -> usize {
+        let Ok(entries) = std::fs::read_dir(dir) else { return 0 };
+        entries
+            .flatten()
+            .map(|e| e.path())
+            .map(|p| match p.extension() {
+                _ if p.is_dir() => count(&p),
+                Some(ext) if ext == "rs" => std::fs::read_to_string(&p).map_or(0, |text| {
+                    text.lines().filter(|l| l.trim_start().starts_with("#[ignore")).count()
+                }),
+                _ => 0,
+            })
+            .sum()
+    }
+    let ignored: usize = ["tests", "src", "crates"].iter().map(|d| count(&root().join(d))).sum();
+    let words = ["No", "One", "Two", "Three", "Four", "Five", "Six", "Seven", "Eight", "Nine"];
+    let said = words.get(ignored).map_or_else(|| ignored.to_string(), |w| w.to_string());
+    let readme = std::fs::read_to_string(root().join("README.md")).expect("README.md");
+    let sentence = format!("{said} {}", if ignored == 1 { "test needs" } else { "tests need" });
+    assert!(
+        readme.contains(&sentence),
+        "README.md should say \"{sentence}…\": {ignored} tests are #[ignore]d"
+    );
+}

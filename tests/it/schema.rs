@@ -31,6 +31,7 @@ const SCHEMAS: &[(&str, Generate)] = &[
     ("evaluation", generate::<close::eval::Report>),
     ("sample", generate::<close::Sample>),
     ("api-analysis", generate::<close::server::answer::AnalyzeAnswer<'static>>),
+    ("api-plan", generate::<close::server::answer::PlanAnswer>),
     ("error", generate::<close::server::answer::ErrorBody>),
 ];
 
@@ -310,7 +311,8 @@ async fn the_servers_answers_fit_their_schemas() {
     let plan =
         request(&app, "POST", "/api/plan", Some(&json!({"sample": sample, "goal": [0.5, 3.6]})))
             .await;
-    assert_fits("plan", &plan, "POST /api/plan");
+    assert!(plan.get("states").is_some(), "{plan:.200}");
+    assert_fits("api-plan", &plan, "POST /api/plan");
     let border = &analysis["start_border"];
     let between = json!({"border": border, "from": [0.5, 3.6], "to": [1.0, 4.0], "steps": 5});
     let interpolation = request(&app, "POST", "/api/interpolate", Some(&between)).await;

@@ -91,6 +91,7 @@ fn random_sample(rng: &mut SplitMix64, index: usize) -> Sample {
     sample.truth = Some(Truth {
         folds: vec![close::Fold::new(TAU * f1 / n, TAU * f2 / n)],
         folded_vertices: None,
+        folded_vertices_per_fold: None,
     });
     sample
 }

@@ -2,16 +2,21 @@
 //!
 //! Frames K_start … K_end of a prepared sample are each turned into a dGLI disk, on
 //! borders normalised by the START frame's transform (dGLI scales with 1/size). Step k
-//! (frame k−1 → k) gives at most one fold. The predicted end applies the folds in order to
-//! the start border, in the input's coordinates.
+//! (frame k−1 → k) gives one fold, or, from a flat start whose end disk one fold cannot
+//! explain, a sequence of up to [`Options::max_folds`] folds ([`crate::fold::sequence`]).
+//! The predicted end applies the folds in order to the start border, in the input's
+//! coordinates.
 
 use serde::{Deserialize, Serialize};
 
+use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
 use crate::budget::{Budget, Deadline};
 use crate::close::{corners, Close};
+use crate::confidence::{judge, Confidence};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
+use crate::fold::sequence::{explain, Alternative, ExplainedFold, StepFolds, MAX_FOLDS};
 use crate::fold::{apply, detect, FoldDetection, FoldMethod};
 use crate::geometry::{Fold, Folding, Line};
 use crate::label::{label, Label, CHANGED_RMSE};
@@ -24,11 +29,17 @@ pub struct FrameRange {
     pub end: Option<usize>,
 }
 
+/// Folds one step may hold by default ([`Options::max_folds`]).
+pub const DEFAULT_MAX_FOLDS: usize = 3;
+
 /// How to analyse: which frames, how fold points are chosen, and what it may cost.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Options {
     pub frames: FrameRange,
     pub method: FoldMethod,
+    /// Most folds one step may hold (1: one fold per step, as the paper reads a step; at most
+    /// [`crate::fold::sequence::MAX_FOLDS`]). Default [`DEFAULT_MAX_FOLDS`].
+    pub max_folds: usize,
     /// Checked while the disks are computed and between steps: once expired, the analysis
     /// stops with [`Error::Cancelled`]. The default never expires.
     pub deadline: Deadline,
@@ -37,20 +48,48 @@ pub struct Options {
     pub budget: Budget,
 }
 
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            frames: FrameRange::default(),
+            method: FoldMethod::default(),
+            max_folds: DEFAULT_MAX_FOLDS,
+            deadline: Deadline::default(),
+            budget: Budget::default(),
+        }
+    }
+}
+
 /// One step between consecutive frames.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Step {
     pub from_frame: usize,
     pub to_frame: usize,
+    /// The one-fold detection and its evidence; its `fold` and `arcs` are the step's first
+    /// fold (`folds[0]`), none when the step has no fold.
     #[serde(flatten)]
     pub detection: FoldDetection,
-    /// The line this step's fold was applied along in `predicted_end` (input coordinates,
-    /// XY: a point and a unit direction): through the border points at f1 and f2 of the
-    /// predicted state, or, when those coincide, through their midpoint in the direction the
-    /// disks gave on the observed frame, turned by the rigid motion that best brings that
-    /// frame onto the predicted state (a cloth may turn on the table between folds, which
-    /// no disk sees). `None` without a fold.
+    /// The step's folds in the order made, each with the line it was applied along in
+    /// `predicted` and the share of the step's end-disk mismatch it explained: one fold, or
+    /// a sequence when one fold left the end disk unexplained.
+    pub folds: Vec<ExplainedFold>,
+    /// Other fold sequences that explain the step's end disk about as well (two
+    /// perpendicular half folds done in either order can land alike), with their shares;
+    /// when `unexplained`, the best candidate found.
+    pub alternatives: Vec<Alternative>,
+    /// Share of the step's end-disk mismatch its folds explain.
+    pub explained: f64,
+    /// True when the best fold or sequence found left the end disk unexplained: the step
+    /// changed, but no fold found explains it, and none is reported.
+    pub unexplained: bool,
+    /// The line this step's first fold was applied along in `predicted_end` (input
+    /// coordinates, XY: a point and a unit direction): through the border points at f1 and
+    /// f2 of the predicted state, or, when those coincide (and for every fold of a
+    /// sequence), through their midpoint in the direction the disks gave on the observed
+    /// frame, turned by the rigid motion that best brings that frame onto the predicted
+    /// state (a cloth may turn on the table between folds, which no disk sees). `None`
+    /// without a fold.
     pub line: Option<Line>,
     /// The start border with the folds found up to this step applied, against this
     /// step's true end frame.
@@ -59,14 +98,15 @@ pub struct Step {
     /// coordinates, border order): the last step's is `predicted_end`. A frame scrubber
     /// shows it beside the observed frame.
     pub predicted: Vec<[f64; 3]>,
+    /// How strong the disks' evidence for this step's fold (or for no fold) is, and why
+    /// not, when it is weak ([`crate::confidence`]).
+    pub confidence: Confidence,
 }
 
 impl Step {
-    /// The fold this step found, as it was made in `predicted`: its fold, its arcs and its
-    /// line; `None` without a fold.
-    pub fn folding(&self) -> Option<Folding> {
-        let fold = self.detection.fold?;
-        Some(Folding { fold, arcs: self.detection.arcs.clone(), line: self.line })
+    /// The folds this step found, as they were made in `predicted`, in order.
+    pub fn foldings(&self) -> impl Iterator<Item = &Folding> {
+        self.folds.iter().map(|f| &f.folding)
     }
 }
 
@@ -118,10 +158,52 @@ impl Analysis {
         &self.frames[self.frames.len() - 1]
     }
 
-    /// Each fold of [`Analysis::folds`] as it was made ([`Step::folding`] of the steps that
-    /// found one), in fold order: its arcs and the line of `predicted_end`.
+    /// Each fold of [`Analysis::folds`] as it was made ([`Step::foldings`] of every step),
+    /// in fold order: its arcs and the line of `predicted_end`.
     pub fn foldings(&self) -> Vec<Folding> {
-        self.steps.iter().filter_map(Step::folding).collect()
+        self.steps.iter().flat_map(Step::foldings).cloned().collect()
+    }
+
+    /// The folds in the caller's own vertex order: each fold point as the angle 2πt/M of
+    /// its fractional INPUT vertex index t (M input vertices, a closing repeat of vertex 0
+    /// not counted), the folded side running from the first to the second in the input's
+    /// order. For an anticlockwise input without merged duplicates these are
+    /// [`Analysis::folds`]; a clockwise input was walked the other way round, so its
+    /// points are mirrored and swapped. `None` for a mesh, whose vertices have no border
+    /// order of their own.
+    ///
+    /// ```
+    /// use close_core::{analyze, border, FrameRange};
+    /// # let square: Vec<[f64; 3]> = (0..40)
+    /// #     .map(|k| { let t = (k % 10) as f64 / 10.0; [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10] })
+    /// #     .map(|[x, y]| [x, y, 0.0]).collect();
+    /// # let folded: Vec<[f64; 3]> = square.iter().map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] }).collect();
+    /// // The same folded square, its vertices listed clockwise from vertex 0.
+    /// let clockwise = |f: &[[f64; 3]]| (0..40).map(|i| f[(40 - i) % 40]).collect::<Vec<_>>();
+    /// let frames = border::prepare(vec![clockwise(&square), clockwise(&folded)])?;
+    /// let analysis = analyze(&frames, FrameRange::default())?;
+    /// let [f1, f2] = analysis.folds[0].ends();
+    /// let [g1, g2] = analysis.input_folds().unwrap()[0].ends();
+    /// // Border vertex k is input vertex 40 − k: angle f is 2π − f in the input's order.
+    /// let tau = std::f64::consts::TAU;
+    /// assert!((g1 - (tau - f2)).abs() < 1e-9 && (g2 - (tau - f1)).abs() < 1e-9);
+    /// # Ok::<(), close_core::Error>(())
+    /// ```
+    pub fn input_folds(&self) -> Option<Vec<Fold>> {
+        if self.border_source != "border" {
+            return None;
+        }
+        let m = self.border_indices.iter().max().map_or(0, |&v| v + 1);
+        let input = |f: f64| input_angle(&self.border_indices, self.reversed, m, f);
+        let mapped = |f: &Fold| {
+            let [g1, g2] = [input(f.f1), input(f.f2)];
+            if self.reversed {
+                Fold::new(g2, g1)
+            } else {
+                Fold::new(g1, g2)
+            }
+        };
+        Some(self.folds.iter().map(mapped).collect())
     }
 
     /// The dGLI disk of analysed frame `k` (0 = the start frame), on the border normalised
@@ -129,6 +211,20 @@ impl Analysis {
     pub fn disk(&self, k: usize) -> Option<Disk> {
         self.frames.get(k).map(|frame| Disk::of_border(&self.normalisation.apply_all(frame)))
     }
+}
+
+/// The angle 2πt/m, in the input's own order, of border angle `f`: t runs from input
+/// vertex `indices[k]` to `indices[k + 1]` as the border parameter runs from k to k + 1,
+/// one step of the walk (forwards through the input, or backwards when it was `reversed`;
+/// a merged duplicate makes the step longer).
+fn input_angle(indices: &[usize], reversed: bool, m: usize, f: f64) -> f64 {
+    let n = indices.len();
+    let s = angle_to_param(f, n);
+    let k = (s.floor() as usize).min(n - 1);
+    let (a, b) = (indices[k] as f64, indices[(k + 1) % n] as f64);
+    let mf = m as f64;
+    let step = if reversed { -(a - b).rem_euclid(mf) } else { (b - a).rem_euclid(mf) };
+    wrap_tau(param_to_angle((a + (s - k as f64) * step).rem_euclid(mf), m))
 }
 
 /// Analyse frames `range` of a prepared sample.
@@ -175,6 +271,12 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
             "end frame {end} comes before start frame {start}"
         )));
     }
+    if !(1..=MAX_FOLDS).contains(&options.max_folds) {
+        return Err(Error::InvalidArgument(format!(
+            "max_folds {} is out of range: a step holds 1 to {MAX_FOLDS} folds",
+            options.max_folds
+        )));
+    }
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;
@@ -186,7 +288,7 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
         || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options),
     );
     let (steps, predicted) = steps?;
-    let foldings: Vec<Folding> = steps.iter().filter_map(Step::folding).collect();
+    let foldings: Vec<Folding> = steps.iter().flat_map(Step::foldings).cloned().collect();
     let folds: Vec<Fold> = foldings.iter().map(|f| f.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
@@ -195,7 +297,9 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let changed: Vec<usize> = steps
         .iter()
         .enumerate()
-        .filter(|(_, s)| s.detection.fold.is_none() && s.metrics.aligned_rmse > CHANGED_RMSE)
+        .filter(|(_, s)| {
+            s.unexplained || (s.folds.is_empty() && s.metrics.aligned_rmse > CHANGED_RMSE)
+        })
         .map(|(k, _)| k + 1)
         .collect();
     label.changed_without_fold(&changed);
@@ -241,32 +345,74 @@ fn analyse_steps(
         let after = Disk::of_border_until(&after_border, &options.deadline)?;
         let (before_border, before) =
             previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
-        let detection = detect(before_border, before, &after, options.method);
+        let mut detection = detect(before_border, before, &after, options.method);
+        let found = if options.method == FoldMethod::Cut {
+            explain(
+                before_border,
+                before,
+                &after,
+                &detection,
+                options.max_folds,
+                &options.deadline,
+            )?
+        } else {
+            StepFolds::default()
+        };
         options.deadline.check()?;
-        let line = detection.fold.and_then(|fold| {
-            let direction = detection.synthesis.as_ref().and_then(|s| s.direction);
+        let StepFolds { folds: mut explained_folds, alternatives, explained, unexplained } = found;
+        if options.method != FoldMethod::Cut {
+            // The paper's curves: the one fold as detected.
+            explained_folds = detection
+                .fold
+                .map(|fold| ExplainedFold {
+                    folding: Folding { fold, arcs: detection.arcs.clone(), line: None },
+                    explained: None,
+                })
+                .into_iter()
+                .collect();
+        }
+        // A sequence's folds all carry their direction; one fold, only when its points
+        // coincide (its line otherwise runs through them, on the predicted state as on the
+        // observed one).
+        let single_direction = detection.synthesis.as_ref().and_then(|s| s.direction);
+        let sequence = explained_folds.len() > 1;
+        let turn = placement(before_border, &norm.apply_all(&predicted), &unmoved);
+        let mut folds = Vec::with_capacity(explained_folds.len());
+        for step_fold in explained_folds {
+            let Folding { fold, arcs, line } = step_fold.folding;
             // A direction read on the observed frame turns with the predicted state, which may
             // lie rotated from it (a cloth that slid as it folded).
-            let direction = direction
-                .map(|d| placement(before_border, &norm.apply_all(&predicted), &unmoved).rotate(d));
-            let line = fold.line_on(&predicted, direction)?;
-            let folding = Folding { fold, arcs: detection.arcs.clone(), line: Some(line) };
+            let direction = if sequence { line.map(|l| l.direction) } else { single_direction };
+            let Some(line) = fold.line_on(&predicted, direction.map(|d| turn.rotate(d))) else {
+                continue;
+            };
+            let folding = Folding { fold, arcs, line: Some(line) };
             predicted = apply(&predicted, &folding);
-            for arc in &detection.arcs {
+            for arc in &folding.arcs {
                 for v in arc.folded_vertices(predicted.len()) {
                     unmoved[v] = false;
                 }
             }
-            Some(line)
-        });
+            folds.push(ExplainedFold { folding, explained: step_fold.explained });
+        }
+        // The detection names the step's first fold.
+        detection.fold = folds.first().map(|f| f.folding.fold);
+        detection.arcs = folds.first().map(|f| f.folding.arcs.clone()).unwrap_or_default();
+        let line = folds.first().and_then(|f| f.folding.line);
         let metrics = Metrics::measure(norm, &predicted, frame);
+        let confidence = judge(&detection, &metrics);
         steps.push(Step {
             from_frame: first + k - 1,
             to_frame: first + k,
             detection,
+            folds,
+            alternatives,
+            explained,
+            unexplained,
             line,
             metrics,
             predicted: predicted.iter().map(to_xyz).collect(),
+            confidence,
         });
         previous = Some((after_border, after));
     }
@@ -294,6 +440,7 @@ fn placement(observed: &[Point], predicted: &[Point], unmoved: &[bool]) -> Rigid
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::TAU;
 
     #[test]
     fn a_sample_without_frames_is_an_error_not_a_panic() {
@@ -305,6 +452,25 @@ mod tests {
             warnings: Vec::new(),
         };
         assert!(matches!(analyze(&empty, FrameRange::default()), Err(Error::Empty { .. })));
+    }
+
+    #[test]
+    fn border_angles_map_to_the_inputs_own_order() {
+        let at = |indices: &[usize], reversed: bool, m: usize, s: f64| {
+            let n = indices.len();
+            input_angle(indices, reversed, m, param_to_angle(s, n)) * m as f64 / TAU
+        };
+        let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        // Reversed (vertex 0 kept first): border k is input 10 − k.
+        let reversed = [0, 9, 8, 7, 6, 5, 4, 3, 2, 1];
+        assert!(near(at(&reversed, true, 10, 2.5), 7.5));
+        assert!(near(at(&reversed, true, 10, 0.5), 9.5));
+        assert!(near(at(&reversed, true, 10, 9.5), 0.5));
+        // Input vertex 5 merged into 4: the border's edge 4 spans two input edges.
+        let merged = [0, 1, 2, 3, 4, 6, 7, 8, 9, 10];
+        assert!(near(at(&merged, false, 11, 4.5), 5.0));
+        assert!(near(at(&merged, false, 11, 9.5), 10.5));
+        assert!(near(at(&merged, false, 11, 3.0), 3.0));
     }
 
     fn square_frames(frames: usize) -> BorderFrames {

@@ -24,6 +24,9 @@
 //! made along the line through the border points at the first arc's start and the last
 //! arc's end, as the analysis makes it ([`Fold::line_on`]).
 //!
+//! The web app draws the states the server computes with these functions (`POST
+//! /api/interpolate`, at any fractions of the way: [`motion_at`]); it has no copy of them.
+//!
 //! `web/fold.mjs` implements the same rules for the browser (a test checks parity).
 //!
 //! The border goes through [`interpolate`], the one entry: it is validated and oriented by
@@ -127,20 +130,28 @@ pub fn displacements(from: Fold, to: Fold) -> [f64; 2] {
     [best, best + span_change]
 }
 
+/// The fold at fraction `tau` of the way from `from` to `to`, in [0, 2π): τ ≤ 0 gives
+/// `from` and τ ≥ 1 gives `to` exactly.
+pub fn fold_at(from: Fold, to: Fold, tau: f64) -> Fold {
+    if tau <= 0.0 {
+        return from.wrapped();
+    }
+    if tau >= 1.0 {
+        return to.wrapped();
+    }
+    let [d1, d2] = displacements(from, to);
+    Fold::new(wrap_tau(from.f1 + tau * d1), wrap_tau(from.f2 + tau * d2))
+}
+
+/// The fractions of `steps` evenly spaced states, t/(steps − 1), both ends included.
+pub fn fractions(steps: usize) -> Vec<f64> {
+    let last = steps.saturating_sub(1).max(1) as f64;
+    (0..steps).map(|t| t as f64 / last).collect()
+}
+
 /// `steps` folds from `from` to `to` (both included), each in [0, 2π).
 pub fn fold_path(from: Fold, to: Fold, steps: usize) -> Vec<Fold> {
-    let [d1, d2] = displacements(from, to);
-    let last = steps.saturating_sub(1).max(1) as f64;
-    (0..steps)
-        .map(|t| match t {
-            0 => from.wrapped(),
-            t if t + 1 == steps => to.wrapped(),
-            t => {
-                let tau = t as f64 / last;
-                Fold::new(wrap_tau(from.f1 + tau * d1), wrap_tau(from.f2 + tau * d2))
-            }
-        })
-        .collect()
+    fractions(steps).into_iter().map(|tau| fold_at(from, to, tau)).collect()
 }
 
 /// `p` turned about the XY `line` (unit direction) by the fraction `turn` of a half turn,
@@ -183,8 +194,8 @@ fn turn_line(border: &[Point], arcs: &[Arc], line: Option<Line>) -> Result<Line>
     })
 }
 
-/// The checks every motion makes of its border and step count.
-fn check(border: &[Point], steps: usize) -> Result<()> {
+/// The checks every motion makes of its step count.
+fn check_steps(steps: usize) -> Result<()> {
     if !STEPS.contains(&steps) {
         return Err(Error::InvalidArgument(format!(
             "steps must be in {}..={}, got {steps}",
@@ -192,6 +203,29 @@ fn check(border: &[Point], steps: usize) -> Result<()> {
             STEPS.end()
         )));
     }
+    Ok(())
+}
+
+/// The states asked for by their fractions `at`: as many as [`STEPS`] allows (one at
+/// least), each in [0, 1].
+fn check_fractions(at: &[f64]) -> Result<()> {
+    if at.is_empty() || at.len() > *STEPS.end() {
+        return Err(Error::InvalidArgument(format!(
+            "`at` must hold 1 to {} fractions, got {}",
+            STEPS.end(),
+            at.len()
+        )));
+    }
+    match at.iter().find(|t| !(0.0..=1.0).contains(*t)) {
+        Some(bad) => Err(Error::InvalidArgument(format!(
+            "`at` holds fractions of the motion, from 0 to 1: got {bad}"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The checks every motion makes of its border.
+fn check_border(border: &[Point]) -> Result<()> {
     if border.len() < MIN_VERTICES {
         return Err(Error::TooFewVertices { got: border.len(), min: MIN_VERTICES });
     }
@@ -214,12 +248,11 @@ fn finite_angles(angles: &[f64], what: &str) -> Result<()> {
     }
 }
 
-/// The border folded along each fold of [`fold_path`]; `border` is taken as given (an
-/// anticlockwise border), checked for size and finite coordinates only.
-fn between(border: &[Point], from: Fold, to: Fold, steps: usize) -> Result<Interpolation> {
-    check(border, steps)?;
+/// The border folded along the fold at each fraction `at` of the way (see [`fold_at`]);
+/// `border` is taken as given (an anticlockwise border).
+fn between(border: &[Point], from: Fold, to: Fold, at: &[f64]) -> Result<Interpolation> {
     finite_angles(&[from.f1, from.f2, to.f1, to.f2], "fold angles")?;
-    let folds = fold_path(from, to, steps);
+    let folds: Vec<Fold> = at.iter().map(|&tau| fold_at(from, to, tau)).collect();
     let borders = folds
         .iter()
         .map(|&f| apply(border, &Folding::new(f)).iter().map(to_xyz).collect())
@@ -233,11 +266,15 @@ fn between(border: &[Point], from: Fold, to: Fold, steps: usize) -> Result<Inter
     })
 }
 
-/// `steps` states of the fold that turns `arcs` of `border` over about `line` (see the
-/// module doc): turn t/(steps−1) each, the first `border` itself and the last
-/// [`crate::fold::apply`] exactly. `border` is taken as [`between`] takes it.
-fn turn(border: &[Point], arcs: &[Arc], line: Option<Line>, steps: usize) -> Result<Interpolation> {
-    check(border, steps)?;
+/// The states of the fold that turns `arcs` of `border` over about `line` (see the module
+/// doc), turned by each of `turns`: 0 `border` itself and 1 [`crate::fold::apply`] exactly.
+/// `border` is taken as [`between`] takes it.
+fn turn(
+    border: &[Point],
+    arcs: &[Arc],
+    line: Option<Line>,
+    turns: &[f64],
+) -> Result<Interpolation> {
     if arcs.is_empty() {
         return Err(Error::InvalidArgument("a fold to turn over needs at least one arc".into()));
     }
@@ -260,8 +297,6 @@ fn turn(border: &[Point], arcs: &[Arc], line: Option<Line>, steps: usize) -> Res
     let mut moved: Vec<usize> = arcs.iter().flat_map(|a| a.folded_vertices(border.len())).collect();
     moved.sort_unstable();
     moved.dedup();
-    let last = (steps - 1) as f64;
-    let turns: Vec<f64> = (0..steps).map(|t| t as f64 / last).collect();
     let borders = turns
         .iter()
         .map(|&turn| {
@@ -279,20 +314,35 @@ fn turn(border: &[Point], arcs: &[Arc], line: Option<Line>, steps: usize) -> Res
         })
         .collect();
     Ok(Interpolation {
-        folds: vec![folding.fold.wrapped(); steps],
-        turns: Some(turns),
+        folds: vec![folding.fold.wrapped(); turns.len()],
+        turns: Some(turns.to_vec()),
         line: Some(line),
         borders,
         border_indices: (0..border.len()).collect(),
     })
 }
 
-/// The motion on `border` as given (an anticlockwise border), checked for size and finite
-/// numbers only.
-fn on_state(border: &[Point], motion: &Motion, steps: usize) -> Result<Interpolation> {
+/// The states of `motion` on `border` as given (an anticlockwise border, e.g. an analysis's
+/// start border; checked for size and finite numbers only) at fractions `at` of the way
+/// (each in [0, 1]: 0 the start, 1 the end exactly), in the order given.
+///
+/// ```
+/// use close_core::border::Point;
+/// use close_core::geometry::Fold;
+/// use close_core::interpolate::{fractions, motion_at, Motion};
+/// let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+///     .iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
+/// let motion = Motion::Between { from: Fold::new(0.0, 3.1), to: Fold::new(0.5, 3.6) };
+/// let three = motion_at(&square, &motion, &fractions(3)).unwrap();
+/// let middle = motion_at(&square, &motion, &[0.5]).unwrap();
+/// assert_eq!(middle.borders[0], three.borders[1]);
+/// ```
+pub fn motion_at(border: &[Point], motion: &Motion, at: &[f64]) -> Result<Interpolation> {
+    check_border(border)?;
+    check_fractions(at)?;
     match motion {
-        Motion::Between { from, to } => between(border, *from, *to, steps),
-        Motion::Turn { arcs, line } => turn(border, arcs, *line, steps),
+        Motion::Between { from, to } => between(border, *from, *to, at),
+        Motion::Turn { arcs, line } => turn(border, arcs, *line, at),
     }
 }
 
@@ -330,7 +380,8 @@ pub fn interpolate(
     let prepared = prepare(frames)?;
     // prepare gives one frame per frame given: the state is the last.
     let state = prepared.frames.last().map_or(&[][..], Vec::as_slice);
-    let motion = on_state(state, motion, steps)?;
+    check_steps(steps)?;
+    let motion = motion_at(state, motion, &fractions(steps))?;
     Ok(Interpolation { border_indices: prepared.border_indices, ..motion })
 }
 
@@ -348,6 +399,28 @@ mod tests {
                 Point::new(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1), 0.0)
             })
             .collect()
+    }
+
+    /// `steps` evenly spaced states of a turned fold, as [`interpolate`] asks for them.
+    fn turn_steps(
+        border: &[Point],
+        arcs: &[Arc],
+        line: Option<Line>,
+        steps: usize,
+    ) -> Result<Interpolation> {
+        check_steps(steps)?;
+        motion_at(border, &Motion::Turn { arcs: arcs.to_vec(), line }, &fractions(steps))
+    }
+
+    /// `steps` evenly spaced states between two folds, as [`interpolate`] asks for them.
+    fn between_steps(
+        border: &[Point],
+        from: Fold,
+        to: Fold,
+        steps: usize,
+    ) -> Result<Interpolation> {
+        check_steps(steps)?;
+        motion_at(border, &Motion::Between { from, to }, &fractions(steps))
     }
 
     fn motion() -> Motion {
@@ -414,7 +487,7 @@ mod tests {
         let (legs, arcs) = two_legs();
         let line = x_axis();
         let steps = 9;
-        let motion = turn(&legs, &arcs, Some(line), steps).unwrap();
+        let motion = turn_steps(&legs, &arcs, Some(line), steps).unwrap();
         let below: Vec<bool> = legs.iter().map(|p| p.y < 0.0).collect();
         assert!(below.iter().filter(|&&b| b).count() > 10);
         // The ends exactly: the border as given, and the analysis's reflection.
@@ -445,14 +518,18 @@ mod tests {
     #[test]
     fn a_turned_fold_without_a_line_folds_along_its_span() {
         let (legs, arcs) = two_legs();
-        let motion = turn(&legs, &arcs, None, 3).unwrap();
+        let motion = turn_steps(&legs, &arcs, None, 3).unwrap();
         let line = Fold::new(arcs[0].a, arcs[1].b).line_on(&legs, None).unwrap();
         assert_eq!(motion.line, Some(line));
         assert_eq!(motion.borders[2], folded(&legs, &arcs, line));
         // A given line is made unit.
-        let long =
-            turn(&legs, &arcs, Some(Line { direction: Vector2::new(3.0, 0.0), ..x_axis() }), 3)
-                .unwrap();
+        let long = turn_steps(
+            &legs,
+            &arcs,
+            Some(Line { direction: Vector2::new(3.0, 0.0), ..x_axis() }),
+            3,
+        )
+        .unwrap();
         assert_eq!(long.line.map(|l| l.direction), Some(Vector2::new(1.0, 0.0)));
     }
 
@@ -460,28 +537,56 @@ mod tests {
     fn bad_turns_are_named() {
         let (legs, arcs) = two_legs();
         let flat = Line { direction: Vector2::new(0.0, 0.0), ..x_axis() };
-        assert!(turn(&legs, &arcs, Some(flat), 3).unwrap_err().to_string().contains("no length"));
+        assert!(turn_steps(&legs, &arcs, Some(flat), 3)
+            .unwrap_err()
+            .to_string()
+            .contains("no length"));
         let nan = Line { point: crate::geometry::Point2::new(f64::NAN, 0.0), ..x_axis() };
-        assert!(turn(&legs, &arcs, Some(nan), 3).unwrap_err().to_string().contains("finite"));
-        assert!(turn(&legs, &[], None, 3).unwrap_err().to_string().contains("at least one arc"));
-        assert!(turn(&legs, &[Arc::new(0.0, f64::INFINITY)], None, 3)
+        assert!(turn_steps(&legs, &arcs, Some(nan), 3).unwrap_err().to_string().contains("finite"));
+        assert!(turn_steps(&legs, &[], None, 3)
+            .unwrap_err()
+            .to_string()
+            .contains("at least one arc"));
+        assert!(turn_steps(&legs, &[Arc::new(0.0, f64::INFINITY)], None, 3)
             .unwrap_err()
             .to_string()
             .contains("arc angles"));
-        assert!(turn(&legs, &vec![Arc::new(0.0, 1.0); legs.len() + 1], None, 3)
+        assert!(turn_steps(&legs, &vec![Arc::new(0.0, 1.0); legs.len() + 1], None, 3)
             .unwrap_err()
             .to_string()
             .contains("arcs on a border"));
-        assert!(turn(&legs, &arcs, None, 1).unwrap_err().to_string().contains("steps"));
+        assert!(turn_steps(&legs, &arcs, None, 1).unwrap_err().to_string().contains("steps"));
         // Two fold points on top of each other give no line: the error asks for one.
         let mut stacked = legs.clone();
         let n = legs.len();
         stacked[n / 2] = stacked[0];
         let q = TAU / n as f64;
-        assert!(turn(&stacked, &[Arc::new(0.0, (n / 2) as f64 * q)], None, 3)
+        assert!(turn_steps(&stacked, &[Arc::new(0.0, (n / 2) as f64 * q)], None, 3)
             .unwrap_err()
             .to_string()
             .contains("`line`"));
+    }
+
+    #[test]
+    fn states_at_any_fractions_are_the_evenly_spaced_ones_there() {
+        let (legs, arcs) = two_legs();
+        for motion in [motion(), Motion::Turn { arcs, line: None }] {
+            let even = motion_at(&legs, &motion, &fractions(9)).unwrap();
+            let at = motion_at(&legs, &motion, &[0.5, 0.0, 1.0, 0.125]).unwrap();
+            for (k, t) in [4, 0, 8, 1].into_iter().enumerate() {
+                assert_eq!(at.borders[k], even.borders[t], "{motion:?} at state {t}");
+                assert_eq!(at.folds[k], even.folds[t]);
+            }
+        }
+        for (bad, says) in [
+            (&[][..], "1 to 1000"),
+            (&[0.5, 1.5][..], "from 0 to 1"),
+            (&[f64::NAN][..], "from 0 to 1"),
+        ] {
+            let err = motion_at(&legs, &motion(), bad).unwrap_err().to_string();
+            assert!(err.contains(says), "{bad:?}: {err}");
+        }
+        assert!(motion_at(&legs, &motion(), &vec![0.5; 1001]).is_err());
     }
 
     #[test]
@@ -584,9 +689,13 @@ mod tests {
     #[test]
     fn a_square_folds_continuously() {
         let sq = square(8);
-        let motion =
-            between(&sq, Fold::new(PI / 4.0 + 0.01, 1.25 * PI + 0.01), Fold::new(0.0, PI), 61)
-                .unwrap();
+        let motion = between_steps(
+            &sq,
+            Fold::new(PI / 4.0 + 0.01, 1.25 * PI + 0.01),
+            Fold::new(0.0, PI),
+            61,
+        )
+        .unwrap();
         assert_eq!(motion.borders.len(), 61);
         for w in motion.borders.windows(2) {
             let jump = w[0]
@@ -607,12 +716,12 @@ mod tests {
     fn bad_arguments_are_named() {
         let sq = square(2);
         let (f, g) = (Fold::new(0.0, 1.0), Fold::new(1.0, 2.0));
-        assert!(between(&sq, f, g, 1).unwrap_err().to_string().contains("steps"));
-        assert!(between(&sq, Fold::new(f64::NAN, 1.0), g, 5)
+        assert!(between_steps(&sq, f, g, 1).unwrap_err().to_string().contains("steps"));
+        assert!(between_steps(&sq, Fold::new(f64::NAN, 1.0), g, 5)
             .unwrap_err()
             .to_string()
             .contains("finite"));
-        assert!(matches!(between(&sq[..3], f, g, 5), Err(Error::TooFewVertices { .. })));
+        assert!(matches!(between_steps(&sq[..3], f, g, 5), Err(Error::TooFewVertices { .. })));
     }
 
     #[test]
@@ -646,7 +755,9 @@ mod tests {
         let half_points: Vec<Point> = half.iter().map(crate::border::from_xyz).collect();
         assert_eq!(
             on.borders,
-            between(&half_points, Fold::new(0.0, 1.0), Fold::new(1.0, 2.0), 5).unwrap().borders
+            between_steps(&half_points, Fold::new(0.0, 1.0), Fold::new(1.0, 2.0), 5)
+                .unwrap()
+                .borders
         );
         assert!(matches!(
             interpolate(half, Some(raw[..6].to_vec()), &motion(), 5),

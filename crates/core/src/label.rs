@@ -11,6 +11,22 @@
 //!
 //! The classes are those of Kamat, Borràs, Torras, "CloSE", Sec. IV (semantic labelling).
 //!
+//! **Numbering.** The sentence names corner k by its 1-based number in border order, as a
+//! person counts ("corner 1" is the first corner, `corner_vertices[0]` of an analysis).
+//! Every structured field that holds such a number has the corner's border vertex index
+//! beside it (`folded_corner_vertices` beside `folded_corners`, `from_vertex` beside
+//! `from_corner`, …): the 0-based index of the vertex in border order, the index into an
+//! analysis's `corner_vertices` values and its `predicted_end` rows (the input's own index
+//! is `border_indices[vertex]`).
+//!
+//! A sequence of two or more folds is also read as a whole, as a person would say it
+//! ([`SequenceClass`], our extension): each fold "in half" when it turns over half the
+//! border's vertices of the state it is made on (within [`SEQUENCE_HALF_PERCENT`]), "in
+//! quarters" for two such folds, "in eighths" for three; "in thirds" for two sides folded in
+//! alike (less than half each) at disjoint ends of the border; "both sides folded in, then
+//! folded in half" for those two and a fold in half after them. The sentence is made from the class,
+//! so the text and the structured field cannot disagree.
+//!
 //! ```
 //! use close_core::geometry::{Fold, Folding};
 //! use close_core::label::{label, FoldClass};
@@ -74,6 +90,9 @@ pub struct SideFold {
     /// 1-based corner numbers at the side's ends.
     pub from_corner: usize,
     pub to_corner: usize,
+    /// Border vertex indices (0-based) of those two corners.
+    pub from_vertex: usize,
+    pub to_vertex: usize,
     pub folded_percent: f64,
 }
 
@@ -81,7 +100,9 @@ pub struct SideFold {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FoldedCorner {
+    /// 1-based corner number.
     pub corner: usize,
+    /// Its border vertex index (0-based).
     pub vertex: usize,
     pub before: SideFold,
     pub after: SideFold,
@@ -94,8 +115,12 @@ pub struct FoldLabel {
     pub class: FoldClass,
     /// 1-based numbers of the corners strictly inside the folded arc.
     pub folded_corners: Vec<usize>,
+    /// Their border vertex indices (0-based), in the same order.
+    pub folded_corner_vertices: Vec<usize>,
     /// 1-based numbers of corners lying on the fold line.
     pub corners_on_fold_line: Vec<usize>,
+    /// Their border vertex indices (0-based), in the same order.
+    pub corner_vertices_on_fold_line: Vec<usize>,
     pub corner_sides: Vec<FoldedCorner>,
     /// Sides cut by the fold line (where the fold points lie), with their folded share.
     pub cut_sides: Vec<SideFold>,
@@ -114,6 +139,94 @@ pub struct Label {
     pub corners: usize,
     pub circular: bool,
     pub folds: Vec<FoldLabel>,
+    /// The folds read as a whole, for two or more folds.
+    pub sequence: Option<SequenceLabel>,
+}
+
+/// A fold of a sequence turning this close to 50% of the border's vertices is "in half"
+/// (tighter than `HALF_PERCENT`: a towel's third, 40% of its border, is not a half).
+pub const SEQUENCE_HALF_PERCENT: f64 = 6.0;
+
+/// How a sequence of folds reads as a whole.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum SequenceClass {
+    /// Two folds, each in half.
+    InQuarters,
+    /// Three folds, each in half.
+    InEighths,
+    /// Two sides folded in (less than half each, alike) at disjoint ends of the border.
+    InThirds,
+    /// Two sides folded in at disjoint ends, then a fold in half.
+    SidesInThenHalf,
+    /// Any other sequence, told fold by fold.
+    Folds,
+}
+
+/// A sequence of folds read as a whole.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct SequenceLabel {
+    pub class: SequenceClass,
+    /// Whether each fold, in order, turned half the border over (within
+    /// [`SEQUENCE_HALF_PERCENT`]).
+    pub in_half: Vec<bool>,
+    pub text: String,
+}
+
+/// The sequence label of `folds` (two or more) and their labels.
+fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> SequenceLabel {
+    let in_half: Vec<bool> =
+        labels.iter().map(|l| (l.folded_percent - 50.0).abs() <= SEQUENCE_HALF_PERCENT).collect();
+    // A side folded in: less than half, and no corner or diagonal fold (a third of a
+    // towel, 40 % of its border, is "folded in half" alone by the wider HALF_PERCENT).
+    let side_in = |k: usize| {
+        labels[k].folded_percent < 50.0 - SEQUENCE_HALF_PERCENT
+            && !matches!(
+                labels[k].class,
+                FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
+            )
+    };
+    // Two folds turning disjoint ends of the start border (no vertex on both).
+    let disjoint = |a: &Folding, b: &Folding| {
+        !a.arcs.iter().any(|x| {
+            b.arcs.iter().any(|y| {
+                (0..n).any(|v| {
+                    x.folds_vertex(n, v, ON_LINE_EDGES) && y.folds_vertex(n, v, ON_LINE_EDGES)
+                })
+            })
+        })
+    };
+    let ends = folds.len() >= 2
+        && side_in(0)
+        && side_in(1)
+        && (labels[0].folded_percent - labels[1].folded_percent).abs() <= EVEN_PERCENT
+        && disjoint(&folds[0], &folds[1]);
+    let class = match (folds.len(), in_half.as_slice()) {
+        (2, [true, true]) => SequenceClass::InQuarters,
+        (3, [true, true, true]) => SequenceClass::InEighths,
+        (2, _) if ends => SequenceClass::InThirds,
+        (3, [_, _, true]) if ends => SequenceClass::SidesInThenHalf,
+        _ => SequenceClass::Folds,
+    };
+    let text = match class {
+        SequenceClass::InQuarters => {
+            "Folded in quarters (in half, then in half again).".to_string()
+        }
+        SequenceClass::InEighths => {
+            "Folded in eighths (in half, then in half again, and again).".to_string()
+        }
+        SequenceClass::InThirds => {
+            "Folded in thirds (one side folded in, then the other side over it).".to_string()
+        }
+        SequenceClass::SidesInThenHalf => "Both sides folded in, then folded in half.".to_string(),
+        SequenceClass::Folds => {
+            let phrases: Vec<&str> = labels.iter().map(|l| l.class.phrase()).collect();
+            format!("Folded {} times: {}.", labels.len(), phrases.join(", then "))
+        }
+    };
+    SequenceLabel { class, in_half, text }
 }
 
 /// Length of the overlap of two cyclic intervals [a, a+la] and [b, b+lb] on a circle of length n.
@@ -154,6 +267,11 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
     if fold_labels.is_empty() {
         text.push_str(" It is not folded.");
     }
+    let sequence = (fold_labels.len() >= 2).then(|| label_sequence(n, folds, &fold_labels));
+    if let Some(sequence) = &sequence {
+        text.push(' ');
+        text.push_str(&sequence.text);
+    }
     for (k, f) in fold_labels.iter().enumerate() {
         if fold_labels.len() > 1 {
             text.push_str(&format!(" Fold {}:", k + 1));
@@ -161,7 +279,7 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
         text.push(' ');
         text.push_str(&f.text);
     }
-    Label { text, corners: corner_vertices.len(), circular, folds: fold_labels }
+    Label { text, corners: corner_vertices.len(), circular, folds: fold_labels, sequence }
 }
 
 /// Prediction error (RMSE of the normalised XY border, once moved rigidly onto the observed
@@ -218,6 +336,8 @@ fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLa
         SideFold {
             from_corner: k + 1,
             to_corner: (k + 1) % nc + 1,
+            from_vertex: corners[k],
+            to_vertex: corners[(k + 1) % nc],
             folded_percent: 100.0 * overlap(nf, a, len, s1, span) / len,
         }
     };
@@ -285,9 +405,12 @@ fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLa
             border_degrees[0], border_degrees[1]
         ));
     }
+    let vertices = |numbers: &[usize]| numbers.iter().map(|&c| corners[c - 1]).collect();
     FoldLabel {
         class,
+        folded_corner_vertices: vertices(&folded_corners),
         folded_corners,
+        corner_vertices_on_fold_line: vertices(&on_line),
         corners_on_fold_line: on_line,
         corner_sides,
         cut_sides,
@@ -315,18 +438,33 @@ fn label_multi_arc(
         })
     };
     out.folded_corners.retain(|&c| on_arcs(corners[c - 1]));
+    out.folded_corner_vertices.retain(|&v| on_arcs(v));
     out.corner_sides.retain(|s| on_arcs(s.vertex));
     out.folded_percent =
         arcs.iter().map(|&Arc { a, b }| 100.0 * angle_to_param(b - a, n) / nf).sum();
+    // The sentence is told again from the fields kept: the spanning fold's own would name
+    // corners between the arcs, which do not turn.
+    let mut text = fold_text(
+        out.class,
+        out.folded_percent,
+        &out.folded_corners,
+        &out.corners_on_fold_line,
+        &out.corner_sides,
+        &out.cut_sides,
+    );
+    if circular {
+        text.push_str(&format!(
+            " The border from {:.0}° to {:.0}° is folded over.",
+            out.border_degrees[0], out.border_degrees[1]
+        ));
+    }
     let flaps = match arcs.len() {
         2 => "both".to_string(),
         k => format!("all {k}"),
     };
     out.text = format!(
-        "{} The fold line crosses the border {} times and {flaps} flaps on its folded side turn over together ({:.0}% of the border; a multi-arc fold).",
-        out.text,
+        "{text} The fold line crosses the border {} times and {flaps} flaps on its folded side turn over together (a multi-arc fold).",
         2 * arcs.len(),
-        out.folded_percent
     );
     out
 }
@@ -424,9 +562,29 @@ mod tests {
         let l = label(76, &SQUARE, &folds(&[[angle(12.0), angle(26.0)]]));
         let c = &l.folds[0].corner_sides[0];
         assert_eq!((c.corner, c.vertex), (2, 19));
+        // Each 1-based corner number has its border vertex beside it.
+        assert_eq!((c.before.from_corner, c.before.from_vertex), (1, 0));
+        assert_eq!((c.before.to_corner, c.before.to_vertex), (2, 19));
+        assert_eq!((c.after.from_corner, c.after.from_vertex), (2, 19));
+        assert_eq!((c.after.to_corner, c.after.to_vertex), (3, 38));
+        assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
         assert!((c.before.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
         assert!((c.after.folded_percent - 100.0 * 7.0 / 19.0).abs() < 1e-9);
         assert!(l.text.contains("Corner 2 is folded"), "{}", l.text);
+    }
+
+    #[test]
+    fn a_multi_arc_fold_keeps_each_corner_number_beside_its_vertex() {
+        // The pair spans corners 2 and 3, its arcs hold corner 2 alone.
+        let arcs = [[angle(12.0), angle(26.0)], [angle(40.0), angle(45.0)]];
+        let folding = Folding {
+            fold: Fold::new(angle(12.0), angle(45.0)),
+            arcs: arcs.iter().map(|&a| a.into()).collect(),
+            line: None,
+        };
+        let l = label(76, &SQUARE, &[folding]);
+        assert_eq!(l.folds[0].folded_corners, vec![2]);
+        assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
     }
 
     #[test]
@@ -436,6 +594,8 @@ mod tests {
             let l = label(76, &SQUARE, &folds(&[[angle(eps), angle(38.0 - eps)]]));
             assert_eq!(l.folds[0].folded_corners, vec![2]);
             assert_eq!(l.folds[0].corners_on_fold_line, vec![1, 3]);
+            assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
+            assert_eq!(l.folds[0].corner_vertices_on_fold_line, vec![0, 38]);
         }
     }
 
@@ -504,5 +664,57 @@ mod tests {
                 && (fold.border_degrees[1] - 270.0).abs() < 1e-9
         );
         assert!(fold.text.contains("The border from 90° to 270° is folded over."), "{}", fold.text);
+    }
+
+    /// A fold turning `arcs` (border parameters of 76 vertices) over together.
+    fn of_arcs(arcs: &[[f64; 2]]) -> Folding {
+        let arcs: Vec<Arc> = arcs.iter().map(|&[a, b]| Arc::new(angle(a), angle(b))).collect();
+        Folding { fold: Fold::span(&arcs).unwrap(), arcs, line: None }
+    }
+
+    #[test]
+    fn sequences_read_as_a_whole_and_the_text_says_the_class() {
+        // The square of 76 vertices: in half (left onto right), then its two top quarters
+        // (one of each layer) down.
+        let quarters = [of_arcs(&[[47.5, 9.5]]), of_arcs(&[[28.5, 47.5], [47.5, 66.5]])];
+        // Opposite ends in (a third of the width each), then in half across.
+        let third = |a: f64, b: f64| of_arcs(&[[a, b]]);
+        let sides = [third(50.7, 6.3), third(12.7, 44.3)];
+        let sides_in_then_half = [sides[0].clone(), sides[1].clone(), of_arcs(&[[9.5, 47.5]])];
+        // One side folded, then a corner: no name for the whole.
+        let other = [third(55.0, 2.0), of_arcs(&[[12.0, 26.0]])];
+        let cases: [(&[Folding], SequenceClass, &str); 4] = [
+            (
+                &quarters,
+                SequenceClass::InQuarters,
+                "Folded in quarters (in half, then in half again).",
+            ),
+            (&sides, SequenceClass::InThirds, "Folded in thirds"),
+            (
+                &sides_in_then_half,
+                SequenceClass::SidesInThenHalf,
+                "Both sides folded in, then folded in half.",
+            ),
+            (&other, SequenceClass::Folds, "Folded 2 times: one side folded, then corner folded."),
+        ];
+        for (folds, class, says) in cases {
+            let l = label(76, &SQUARE, folds);
+            let sequence = l.sequence.as_ref().expect("two folds or more");
+            assert_eq!(sequence.class, class, "{}", l.text);
+            assert!(sequence.text.starts_with(says), "{}", sequence.text);
+            assert!(l.text.contains(&sequence.text), "{}", l.text);
+            assert_eq!(sequence.in_half.len(), folds.len());
+        }
+        assert!(label(76, &SQUARE, &quarters[..1]).sequence.is_none());
+    }
+
+    #[test]
+    fn a_multi_arc_fold_names_only_the_corners_its_arcs_turn() {
+        // Two flaps, around corners 2 and 4; corner 3 lies between them and stays.
+        let l = label(76, &SQUARE, &[of_arcs(&[[12.0, 26.0], [50.0, 64.0]])]);
+        let fold = &l.folds[0];
+        assert_eq!(fold.folded_corners, vec![2, 4]);
+        assert!(fold.text.contains("Corners 2, 4 are folded"), "{}", fold.text);
+        assert!(!fold.text.contains("2, 3"), "{}", fold.text);
     }
 }

@@ -16,7 +16,7 @@
 //!
 //! The modules import one way; each uses only those to its left: [`border`] (validation,
 //! normalisation) → [`geometry`] (fold, arc, line) → [`gli`] → [`disk`] (the dGLI disk) → [`fold`] (fold coordinates, a fold
-//! applied) → [`close`] (corners, the CloSE value) / [`label`] / [`metrics`] /
+//! applied) → [`close`] (corners, the CloSE value) / [`label`] / [`metrics`] / [`confidence`] /
 //! [`interpolate`] → [`analysis`] (the whole pipeline) → [`plan`]. Below them all: [`angle`],
 //! [`error`], [`budget`], [`rng`].
 //! `tests/it/modules.rs` keeps the imports inside this crate one-way.
@@ -39,6 +39,7 @@ pub mod angle;
 pub mod border;
 pub mod budget;
 pub mod close;
+pub mod confidence;
 pub mod disk;
 pub mod distance;
 pub mod error;
@@ -52,7 +53,7 @@ pub mod plan;
 pub mod rng;
 pub mod verify;
 
-pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options};
+pub use analysis::{analyze, analyze_with, Analysis, FrameRange, Options, DEFAULT_MAX_FOLDS};
 pub use error::{Error, Result};
 pub use fold::FoldMethod;
 pub use geometry::{Arc, Fold, Folding, Line};

@@ -114,8 +114,12 @@ pub struct PlanStep {
     pub action: Action,
     /// The fold (f1, f2) in angles.
     pub fold: Fold,
-    /// 1-based numbers of every corner the step moves.
+    /// 1-based numbers of every corner the step moves (corner k is the k-th corner in
+    /// border order, `corners[k - 1]` of the analysis).
     pub corners: Vec<usize>,
+    /// Their vertex indices (0-based), in the same order: border vertices, which
+    /// [`plan_for`] maps to the input's indices as it maps each pick's `vertex`.
+    pub corner_vertices: Vec<usize>,
     /// At most two grasps.
     pub picks: Vec<Pick>,
 }
@@ -126,6 +130,29 @@ pub struct PlanStep {
 pub struct Plan {
     pub case: Case,
     pub steps: Vec<PlanStep>,
+}
+
+impl Plan {
+    /// The plan as `close plan` prints it without `--json`: the case, then one line per
+    /// step (its fold, the 1-based corners it moves) and one per grasp (vertex, from → to).
+    pub fn text(&self) -> String {
+        let mut text = self.case.as_str().to_string();
+        let xyz = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
+        for (k, step) in self.steps.iter().enumerate() {
+            text += &format!(
+                "\n{}. {} ({:.4}, {:.4}), corners {:?}",
+                k + 1,
+                step.action.as_str(),
+                step.fold.f1,
+                step.fold.f2,
+                step.corners
+            );
+            for p in &step.picks {
+                text += &format!("\n   vertex {}: {} -> {}", p.vertex, xyz(p.from), xyz(p.to));
+            }
+        }
+        text
+    }
 }
 
 /// A current fold within this many edges of the goal at both ends is the goal.
@@ -231,7 +258,13 @@ fn step(
         })
         .collect();
     let number = |c: usize| corners.iter().position(|&k| k == c).map_or(0, |i| i + 1);
-    PlanStep { action, fold, corners: moved.iter().map(|&c| number(c)).collect(), picks }
+    PlanStep {
+        action,
+        fold,
+        corners: moved.iter().map(|&c| number(c)).collect(),
+        corner_vertices: moved,
+        picks,
+    }
 }
 
 fn check_fold(name: &str, fold: Fold, n: usize) -> Result<()> {
@@ -336,20 +369,28 @@ pub fn plan(
 
 /// Plan from an analysis to the goal fold: from its start border, corners and folds (each
 /// along the line the analysis reports for it, so the plan starts from its predicted end), with
-/// every pick's `vertex` given as the index in the analysis's INPUT (through
-/// `border_indices`: the input vertex for a border, the mesh vertex for a mesh).
+/// every pick's `vertex` and every step's `corner_vertices` given as indices in the
+/// analysis's INPUT (through `border_indices`: the input vertex for a border, the mesh
+/// vertex for a mesh).
 pub fn plan_for(analysis: &Analysis, goal: Fold) -> Result<Plan> {
     // Each fold along the line the analysis made it along (its `predicted_end`).
     let mut plan =
         plan(analysis.start_border(), &analysis.corner_vertices, &analysis.foldings(), goal)?;
-    for pick in plan.steps.iter_mut().flat_map(|s| s.picks.iter_mut()) {
-        pick.vertex = analysis.border_indices.get(pick.vertex).copied().ok_or_else(|| {
+    let input = |v: usize| {
+        analysis.border_indices.get(v).copied().ok_or_else(|| {
             Error::InvalidArgument(format!(
-                "border vertex {} has no input index ({} known)",
-                pick.vertex,
+                "border vertex {v} has no input index ({} known)",
                 analysis.border_indices.len()
             ))
-        })?;
+        })
+    };
+    for step in &mut plan.steps {
+        for pick in &mut step.picks {
+            pick.vertex = input(pick.vertex)?;
+        }
+        for v in &mut step.corner_vertices {
+            *v = input(*v)?;
+        }
     }
     Ok(plan)
 }
@@ -455,9 +496,56 @@ mod tests {
         let p = plan_folds(&sq, &corners, &[], [angle(2.0, 16), angle(10.0, 16)]).unwrap();
         let s = &p.steps[0];
         assert_eq!(s.corners, vec![2, 3]);
+        assert_eq!(s.corner_vertices, vec![4, 8]);
         assert_eq!(s.picks.len(), 2);
         assert_pick(&s.picks[0], 4, [1.0, 0.0], [0.0, 0.0]);
         assert_pick(&s.picks[1], 8, [1.0, 1.0], [0.0, 1.0]);
+        assert_eq!(
+            p.text(),
+            "fold\n1. fold (0.7854, 3.9270), corners [2, 3]\n   \
+             vertex 4: (1.0000, 0.0000, 0.0000) -> (0.0000, 0.0000, 0.0000)\n   \
+             vertex 8: (1.0000, 1.0000, 0.0000) -> (0.0000, 1.0000, 0.0000)"
+        );
+    }
+
+    #[test]
+    fn a_plan_of_a_clockwise_input_names_the_inputs_vertices() {
+        // A square of 40 vertices with its right half folded onto the left, given
+        // anticlockwise and then clockwise (vertex 0 first, then the others in the reverse
+        // order: the same border once walked anticlockwise).
+        let flat: Vec<[f64; 3]> = (0..40)
+            .map(|k| {
+                let t = (k % 10) as f64 / 10.0;
+                let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10];
+                [x, y, 0.0]
+            })
+            .collect();
+        let fold = |p: &[f64; 3]| if p[0] > 0.5 { [1.0 - p[0], p[1], 0.01] } else { *p };
+        let folded: Vec<[f64; 3]> = flat.iter().map(fold).collect();
+        let reversed = |f: &[[f64; 3]]| (0..40).map(|i| f[(40 - i) % 40]).collect::<Vec<_>>();
+        let goal = [0.0, PI];
+        let plan_of = |frames: Vec<Vec<[f64; 3]>>| {
+            let frames = crate::border::prepare(frames).unwrap();
+            plan_for(&crate::analysis::analyze(&frames, Default::default()).unwrap(), goal.into())
+                .unwrap()
+        };
+        let ccw = plan_of(vec![flat.clone(), folded.clone()]);
+        let cw = plan_of(vec![reversed(&flat), reversed(&folded)]);
+        assert!(!ccw.steps.is_empty() && ccw.steps.len() == cw.steps.len());
+        for (a, b) in ccw.steps.iter().zip(&cw.steps) {
+            // Input vertex v of the anticlockwise list is vertex 40 − v of the clockwise one.
+            let mut mirrored: Vec<usize> =
+                a.corner_vertices.iter().map(|v| (40 - v) % 40).collect();
+            let mut got = b.corner_vertices.clone();
+            mirrored.sort_unstable();
+            got.sort_unstable();
+            assert!(!got.is_empty());
+            assert_eq!(got, mirrored);
+            assert_eq!(a.corners.len(), a.corner_vertices.len());
+            for pick in &b.picks {
+                assert!(b.corner_vertices.contains(&pick.vertex), "{pick:?} of {b:?}");
+            }
+        }
     }
 
     #[test]

@@ -183,13 +183,16 @@ fn observed_lines(observed: &Analysis) -> Vec<LineOf> {
     observed
         .steps
         .iter()
-        .filter(|s| s.detection.fold.is_some())
-        .map(|s| {
-            let from_disks = s.detection.synthesis.as_ref().is_some_and(|x| x.direction.is_some());
-            match s.line {
+        .flat_map(|s| {
+            // A step's one fold took the disks' direction only where its points coincide;
+            // every fold of a sequence did.
+            let sequence = s.folds.len() > 1;
+            let from_disks =
+                sequence || s.detection.synthesis.as_ref().is_some_and(|x| x.direction.is_some());
+            s.foldings().map(move |f| match f.line {
                 Some(line) if from_disks => LineOf::Direction([line.direction.x, line.direction.y]),
                 _ => LineOf::Points,
-            }
+            })
         })
         .collect()
 }

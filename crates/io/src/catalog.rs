@@ -10,10 +10,14 @@
 //! hide the others.
 //!
 //! The folder is the user's, but not trusted: it is walked once per folder and never left
-//! ([`walk`]); only regular files are read, each through a byte cap, and a sample's files
-//! together are capped at [`MAX_SAMPLE_BYTES`] from their sizes before any is read; a load
-//! checks its deadline between files; a load that fails (other than by its deadline) is
-//! remembered, so asking again costs nothing.
+//! ([`walk`]); what it holds is split into [`items`] (a sample file, a folder of frame
+//! files, a store nested in it, what could not be walked), the same split `close eval`
+//! scores ([`crate::batch`]), and every item is listed, an error row for what cannot be
+//! read. Only regular files are read, each through a byte cap, opened without following a
+//! link and checked to be the file the walk listed ([`crate::formats::read_listed`]), and a
+//! sample's files together are capped at [`MAX_SAMPLE_BYTES`] from their sizes before any
+//! is read; a load checks its deadline between files; a load that fails (other than by its
+//! deadline) is remembered, so asking again costs nothing.
 //!
 //! ```
 //! use close_io::catalog::{Catalog, Query};
@@ -24,7 +28,8 @@
 //! std::fs::write(dir.join("broken.json"), "{").unwrap();
 //! let catalog = Catalog::open(&[dir.clone()]);
 //! assert_eq!(catalog.entries().len(), 2);
-//! let napkins = catalog.filter(&Query { category: Some("napkin".into()), ..Query::default() });
+//! let napkins =
+//!     catalog.filter(&Query { category: Some("napkin".into()), ..Query::default() }).unwrap();
 //! assert_eq!((napkins[0].n, napkins[0].frames), (Some(4), 1));
 //! assert!(catalog.entries().iter().any(|e| e.error.is_some()));
 //! assert_eq!(catalog.load(&napkins[0].id, &Default::default()).unwrap().name, "square");
@@ -41,10 +46,14 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::cache::Lru;
-use crate::formats::{read_file, read_files, Sample, MAX_FILE_BYTES};
+use crate::formats::{read_files, read_listed, Sample, MAX_FILE_BYTES};
 use close_core::budget::Deadline;
 use close_core::error::{Error, Result};
-use walk::{Folder, Node};
+use walk::{Folder, Listed, Node};
+
+/// Why a store cannot be read by a build without the `vrfolding` feature.
+pub const NO_VRFOLDING: &str =
+    "this close was built without the `vrfolding` feature: it cannot read Zarr stores";
 
 /// Samples kept loaded at once.
 const CACHED_SAMPLES: usize = 64;
@@ -83,30 +92,68 @@ pub struct Entry {
 pub struct Query {
     /// Exact category.
     pub category: Option<String>,
-    /// Case-insensitive text in the name, id or category.
+    /// Words (separated by white space), each found case-insensitively in the name, id or
+    /// category: at most [`MAX_QUERY_CHARS`] characters and [`MAX_QUERY_TERMS`] words.
     pub q: Option<String>,
     #[serde(default)]
     pub offset: usize,
     pub limit: Option<usize>,
 }
 
+/// Longest `q` (characters) a query may have.
+pub const MAX_QUERY_CHARS: usize = 256;
+/// Most words a `q` may have.
+pub const MAX_QUERY_TERMS: usize = 8;
+
+/// A query's filters, checked and made ready: matching a row costs at most
+/// [`MAX_QUERY_TERMS`] substring searches of its text, each in time linear in the text.
+#[derive(Debug, Clone)]
+pub struct Filter {
+    category: Option<String>,
+    /// The words of `q`, lower case.
+    terms: Vec<String>,
+}
+
 impl Query {
-    /// Whether a sample with this name, id and category passes the filters.
-    pub fn matches(&self, id: &str, name: &str, category: &str) -> bool {
-        let category_ok = self.category.as_deref().is_none_or(|c| c.is_empty() || c == category);
-        let text_ok = self
-            .q
-            .as_deref()
-            .map(str::to_lowercase)
-            .is_none_or(|q| [id, name, category].iter().any(|t| t.to_lowercase().contains(&q)));
-        category_ok && text_ok
+    /// The filters of this query; a `q` over [`MAX_QUERY_CHARS`] characters or
+    /// [`MAX_QUERY_TERMS`] words is refused.
+    pub fn filter(&self) -> Result<Filter> {
+        let q = self.q.as_deref().unwrap_or_default();
+        let chars = q.chars().count();
+        if chars > MAX_QUERY_CHARS {
+            return Err(Error::InvalidArgument(format!(
+                "the search `q` has {chars} characters: at most {MAX_QUERY_CHARS}"
+            )));
+        }
+        let terms: Vec<String> = q.split_whitespace().map(str::to_lowercase).collect();
+        if terms.len() > MAX_QUERY_TERMS {
+            return Err(Error::InvalidArgument(format!(
+                "the search `q` has {} words: at most {MAX_QUERY_TERMS}",
+                terms.len()
+            )));
+        }
+        let category = self.category.clone().filter(|c| !c.is_empty());
+        Ok(Filter { category, terms })
+    }
+}
+
+impl Filter {
+    /// What a row's words are searched in: its id, name and category, lower case.
+    pub fn text(id: &str, name: &str, category: &str) -> String {
+        format!("{id}\n{name}\n{category}").to_lowercase()
+    }
+
+    /// Whether a row of this `category` and [`Filter::text`] `text` passes.
+    pub fn matches(&self, category: &str, text: &str) -> bool {
+        self.category.as_deref().is_none_or(|c| c == category)
+            && self.terms.iter().all(|t| text.contains(t.as_str()))
     }
 }
 
 /// Where an entry's sample comes from.
 enum Origin {
     /// The files of one sample (one Sample JSON / .mat, or one file per frame).
-    Files(Vec<PathBuf>),
+    Files(Vec<Listed>),
     /// Fold `fold` of video `video` of store `store`.
     #[cfg(feature = "vrfolding")]
     Fold { store: usize, video: usize, fold: usize },
@@ -131,6 +178,16 @@ fn extension(path: &Path) -> String {
     path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default()
 }
 
+/// Most characters of a listed name or category.
+const MAX_LISTED_CHARS: usize = 256;
+/// Most characters of an id's stem (its prefix and a number keep it unique).
+const MAX_ID_STEM: usize = 96;
+
+/// `text`, cut to its first `chars` characters.
+fn clipped(text: &str, chars: usize) -> String {
+    text.char_indices().nth(chars).map_or(text, |(cut, _)| &text[..cut]).to_string()
+}
+
 /// `text` made safe for a URL path segment.
 fn slug(text: &str) -> String {
     text.chars()
@@ -139,10 +196,10 @@ fn slug(text: &str) -> String {
 }
 
 /// Read a sample's files into a sample: their total size is checked against
-/// [`MAX_SAMPLE_BYTES`] before any is read, each is read as a regular file through its cap
-/// ([`read_file`]), and `deadline` is checked between files.
-fn read_sample(files: &[PathBuf], deadline: &Deadline) -> Result<Sample> {
-    let size = |p: &PathBuf| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0);
+/// [`MAX_SAMPLE_BYTES`] before any is read, each is read as the file the walk listed, a
+/// regular file, through its cap ([`read_listed`]), and `deadline` is checked between files.
+pub(crate) fn read_sample(files: &[Listed], deadline: &Deadline) -> Result<Sample> {
+    let size = |f: &Listed| std::fs::symlink_metadata(&f.path).map(|m| m.len()).unwrap_or(0);
     let total = files.iter().map(size).fold(0u64, u64::saturating_add);
     if total > MAX_SAMPLE_BYTES {
         return Err(Error::TooLarge {
@@ -154,9 +211,9 @@ fn read_sample(files: &[PathBuf], deadline: &Deadline) -> Result<Sample> {
     let mut read = 0u64;
     let named = files
         .iter()
-        .map(|p| {
+        .map(|f| {
             deadline.check()?;
-            let bytes = read_file(p)?;
+            let bytes = read_listed(&f.path, f.id)?;
             // Sizes may change between the check and the read: count what was read.
             read += bytes.len() as u64;
             if read > MAX_SAMPLE_BYTES {
@@ -166,7 +223,7 @@ fn read_sample(files: &[PathBuf], deadline: &Deadline) -> Result<Sample> {
                     limit: MAX_SAMPLE_BYTES,
                 });
             }
-            Ok((p.display().to_string(), bytes))
+            Ok((f.path.display().to_string(), bytes))
         })
         .collect::<Result<Vec<_>>>()?;
     deadline.check()?;
@@ -178,43 +235,94 @@ fn sample_file(path: &Path) -> bool {
     SAMPLE_FILES.contains(&extension(path).as_str())
 }
 
-/// One thing found in a dataset folder: its files (or why it could not be walked), where it
-/// is (the file or frame folder) and its category (the sub-folder it is in).
-type Found = (std::result::Result<Vec<PathBuf>, String>, PathBuf, String);
+/// One thing a dataset folder holds ([`items`]): what the catalog lists as entries and
+/// `close eval` scores as rows.
+#[derive(Debug)]
+pub enum Item {
+    /// One sample's files (one sample file, or the frame files of a folder), where it is
+    /// (the file or folder) and its category (the sub-folder it is in).
+    Sample { files: Vec<Listed>, at: PathBuf, category: String },
+    /// A VR-Folding store inside the folder (or a broken one: a `.zarr` folder, say).
+    Store(PathBuf),
+    /// What could not be walked, and why.
+    Unreadable { at: PathBuf, why: String, category: String },
+}
 
-/// What a walked dataset folder holds: each sample file, each sub-folder of frame files (a
-/// sub-folder holding sample files is a folder of samples itself, named as a category), and
-/// each entry that could not be walked, with the category (sub-folder) it is in.
-fn file_samples(root: &Path, folder: &Folder, out: &mut Vec<Found>) {
+/// Everything dataset folder `root` holds, walked once ([`walk`]): each sample file; each
+/// sub-folder of frame files (a sub-folder holding a Sample JSON or `.mat` file is a folder
+/// of samples itself, named as a category), whose own sub-folders are walked on; each
+/// store; each entry that could not be walked. Fails only when `root` cannot be listed.
+pub fn items(root: &Path) -> std::io::Result<Vec<Item>> {
+    let tree = walk::walk(root, &sample_file)?;
+    let mut out = Vec::new();
+    collect(root, &tree, true, &mut out);
+    Ok(out)
+}
+
+/// The items of walked `folder` into `out`; its files too when `files`.
+fn collect(root: &Path, folder: &Folder, files: bool, out: &mut Vec<Item>) {
     let category =
         folder.path.strip_prefix(root).ok().map(|r| r.display().to_string()).unwrap_or_default();
     for node in &folder.entries {
         match node {
             Node::Folder(sub) => {
-                let files: Vec<&PathBuf> = sub
+                let listed: Vec<&Listed> = sub
                     .entries
                     .iter()
-                    .filter_map(|n| if let Node::File(p) = n { Some(p) } else { None })
+                    .filter_map(|n| if let Node::File(f) = n { Some(f) } else { None })
                     .collect();
-                let frames: Vec<PathBuf> = files
+                let frames: Vec<Listed> = listed
                     .iter()
-                    .filter(|p| FRAME_FILES.contains(&extension(p).as_str()))
-                    .map(|p| p.to_path_buf())
+                    .filter(|f| FRAME_FILES.contains(&extension(&f.path).as_str()))
+                    .map(|f| (*f).clone())
                     .collect();
-                if files.iter().any(|p| ["json", "mat"].contains(&extension(p).as_str()))
-                    || frames.is_empty()
-                {
-                    file_samples(root, sub, out);
+                let samples =
+                    listed.iter().any(|f| ["json", "mat"].contains(&extension(&f.path).as_str()));
+                if samples || frames.is_empty() {
+                    collect(root, sub, true, out);
                 } else {
-                    out.push((Ok(frames), sub.path.clone(), category.clone()));
+                    let at = sub.path.clone();
+                    out.push(Item::Sample { files: frames, at, category: category.clone() });
+                    // Its sub-folders, stores and errors are items too: nothing is dropped.
+                    collect(root, sub, false, out);
                 }
             }
-            Node::File(path) => out.push((Ok(vec![path.clone()]), path.clone(), category.clone())),
-            Node::Unreadable(path, why) => {
-                out.push((Err(why.clone()), path.clone(), category.clone()))
-            }
+            Node::File(f) if files => out.push(Item::Sample {
+                files: vec![f.clone()],
+                at: f.path.clone(),
+                category: category.clone(),
+            }),
+            Node::File(_) => {}
+            Node::Store(at) => out.push(Item::Store(at.clone())),
+            Node::Unreadable(at, why) => out.push(Item::Unreadable {
+                at: at.clone(),
+                why: why.clone(),
+                category: category.clone(),
+            }),
         }
     }
+}
+
+/// The name and category a sample read from item files is listed under: its own, else
+/// the place it was found (`name`, the path in the dataset) and its sub-folder (`folder`,
+/// the dataset's name at the top).
+pub fn listed_as(sample: &Sample, files: &[Listed], name: &str, folder: &str) -> (String, String) {
+    let category = if sample.category.is_empty() || sample.category == "upload" {
+        folder.to_string()
+    } else {
+        sample.category.clone()
+    };
+    let first = files
+        .first()
+        .and_then(|f| f.path.file_name())
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let shown = if sample.name.is_empty() || sample.name == first {
+        name.to_string()
+    } else {
+        sample.name.clone()
+    };
+    (shown, category)
 }
 
 impl Catalog {
@@ -232,13 +340,12 @@ impl Catalog {
         for (k, path) in paths.iter().enumerate() {
             let source = path.display().to_string();
             let prefix = format!("d{k}");
-            #[cfg(feature = "vrfolding")]
-            if crate::vrfolding::is_store(path) {
+            if walk::looks_like_store(path) {
                 catalog.add_store(&prefix, path);
                 continue;
             }
-            let tree = match walk::walk(path, &sample_file) {
-                Ok(tree) => tree,
+            let found = match items(path) {
+                Ok(found) => found,
                 Err(e) => {
                     catalog.push(
                         &prefix,
@@ -252,72 +359,53 @@ impl Catalog {
                     continue;
                 }
             };
-            let mut samples = Vec::new();
-            file_samples(path, &tree, &mut samples);
-            let fallback =
+            let top =
                 path.file_name().map_or("dataset".into(), |n| n.to_string_lossy().to_string());
-            let listed: Vec<Entry> = samples
+            let name_of = |at: &Path| at.strip_prefix(path).unwrap_or(at).display().to_string();
+            let folder_of = |category: &str| {
+                if category.is_empty() {
+                    top.clone()
+                } else {
+                    category.to_string()
+                }
+            };
+            let listed: Vec<Option<Entry>> = found
                 .par_iter()
-                .map(|(files, at, folder)| {
-                    let name = at.strip_prefix(path).unwrap_or(at).display().to_string();
-                    let fallback =
-                        if folder.is_empty() { fallback.clone() } else { folder.clone() };
-                    let read = files.as_ref().map_err(Clone::clone).and_then(|files| {
-                        read_sample(files, &Deadline::default()).map_err(|e| e.to_string())
-                    });
-                    match read {
-                        Ok(sample) => {
-                            let frames = sample
-                                .mesh
-                                .as_ref()
-                                .map_or(sample.frames.len(), |m| m.frames.len());
-                            let category =
-                                if sample.category.is_empty() || sample.category == "upload" {
-                                    fallback
-                                } else {
-                                    sample.category.clone()
-                                };
-                            let (n, error) = match sample.border_frames() {
-                                Ok(b) => (Some(b.len()), None),
-                                Err(e) => (None, Some(e.to_string())),
-                            };
-                            let first = files
-                                .as_ref()
-                                .ok()
-                                .and_then(|f| f.first())
-                                .and_then(|f| f.file_name())
-                                .map(|n| n.to_string_lossy().to_string())
-                                .unwrap_or_default();
-                            let shown = if sample.name.is_empty() || sample.name == first {
-                                name.clone()
-                            } else {
-                                sample.name.clone()
-                            };
-                            Entry {
-                                id: String::new(),
-                                name: shown,
-                                category,
-                                n,
-                                frames,
-                                mesh: sample.mesh.is_some(),
-                                source: source.clone(),
-                                error,
-                            }
-                        }
-                        Err(e) => Entry { category: fallback, ..Entry::broken(&name, &source, e) },
+                .map(|item| match item {
+                    Item::Sample { files, at, category } => {
+                        let (name, folder) = (name_of(at), folder_of(category));
+                        Some(match read_sample(files, &Deadline::default()) {
+                            Ok(sample) => Entry::of(&sample, files, &name, &folder, &source),
+                            Err(e) => Entry {
+                                category: folder,
+                                ..Entry::broken(&name, &source, e.to_string())
+                            },
+                        })
                     }
+                    Item::Unreadable { at, why, category } => Some(Entry {
+                        category: folder_of(category),
+                        ..Entry::broken(&name_of(at), &source, why.clone())
+                    }),
+                    Item::Store(_) => None,
                 })
                 .collect();
-            for ((files, _, _), entry) in samples.into_iter().zip(listed) {
-                let stem = entry.name.clone();
-                let origin = files.map_or(Origin::Broken, Origin::Files);
-                catalog.push_named(&prefix, &stem, entry, origin);
+            for (item, entry) in found.into_iter().zip(listed) {
+                match (item, entry) {
+                    (Item::Sample { files, .. }, Some(entry)) => {
+                        let stem = entry.name.clone();
+                        catalog.push_named(&prefix, &stem, entry, Origin::Files(files));
+                    }
+                    (Item::Store(at), _) => catalog.add_store(&prefix, &at),
+                    (_, Some(entry)) => catalog.push(&prefix, entry, Origin::Broken),
+                    (_, None) => {}
+                }
             }
         }
         catalog
     }
 
-    /// The videos of a store, cut into folds from their grips (in parallel).
+    /// The videos of a store, cut into folds from their grips (in parallel, within the
+    /// store's listing budget: [`crate::vrfolding::Store::cut_all`]).
     #[cfg(feature = "vrfolding")]
     fn add_store(&mut self, prefix: &str, path: &Path) {
         use crate::vrfolding::{Store, FOLDS};
@@ -341,14 +429,13 @@ impl Catalog {
             };
             self.push(prefix, Entry::broken(&name, &source, e.to_string()), Origin::Broken);
         }
-        let cuts: Vec<Result<usize>> =
-            videos.par_iter().map(|v| store.cut(v).map(|c| c.actions.len().min(FOLDS))).collect();
+        let cuts = store.cut_all(&videos);
         let index = self.stores.len();
         for (v, (video, cut)) in videos.iter().zip(cuts).enumerate() {
             let name = format!("{}/{}", video.category, video.id);
             match cut {
-                Ok(folds) => {
-                    for fold in 1..=folds {
+                Ok(cut) => {
+                    for fold in 1..=cut.actions.len().min(FOLDS) {
                         let entry = Entry {
                             id: String::new(),
                             name: format!("{name} fold {fold}"),
@@ -381,6 +468,13 @@ impl Catalog {
         self.stores.push((store, videos));
     }
 
+    /// Without the `vrfolding` feature a store is one error row.
+    #[cfg(not(feature = "vrfolding"))]
+    fn add_store(&mut self, prefix: &str, path: &Path) {
+        let source = path.display().to_string();
+        self.push(prefix, Entry::broken(&source, &source, NO_VRFOLDING.into()), Origin::Broken);
+    }
+
     fn push(&mut self, prefix: &str, entry: Entry, origin: Origin) {
         let stem = entry.name.clone();
         self.push_named(prefix, &stem, entry, origin);
@@ -389,11 +483,15 @@ impl Catalog {
     /// Add an entry under a unique id `<prefix>-<slug of stem>`. A sequence (more than two
     /// frames: a fold after a fold) is filed under `<category>_second_fold`, as the built-in
     /// sequences are.
+    /// A name or category longer than [`MAX_LISTED_CHARS`] (a sample's own name may be
+    /// megabytes) is cut, and so is the id's stem at [`MAX_ID_STEM`] characters.
     fn push_named(&mut self, prefix: &str, stem: &str, mut entry: Entry, origin: Origin) {
+        entry.name = clipped(&entry.name, MAX_LISTED_CHARS);
+        entry.category = clipped(&entry.category, MAX_LISTED_CHARS);
         if entry.frames > 2 && !entry.category.ends_with(SECOND_FOLD) {
             entry.category.push_str(SECOND_FOLD);
         }
-        let base = format!("{prefix}-{}", slug(stem));
+        let base = format!("{prefix}-{}", clipped(&slug(stem), MAX_ID_STEM));
         let mut id = base.clone();
         let mut k = 1;
         while self.index.contains_key(&id) {
@@ -417,9 +515,14 @@ impl Catalog {
     }
 
     /// The entries that pass `query`'s filters (paging is left to the caller, which may
-    /// merge other lists first).
-    pub fn filter(&self, query: &Query) -> Vec<&Entry> {
-        self.entries.iter().filter(|e| query.matches(&e.id, &e.name, &e.category)).collect()
+    /// merge other lists first); a query over its limits is refused ([`Query::filter`]).
+    pub fn filter(&self, query: &Query) -> Result<Vec<&Entry>> {
+        let filter = query.filter()?;
+        Ok(self
+            .entries
+            .iter()
+            .filter(|e| filter.matches(&e.category, &Filter::text(&e.id, &e.name, &e.category)))
+            .collect())
     }
 
     /// Load sample `id` (cached), stopping with [`Error::Cancelled`] once `deadline`
@@ -477,6 +580,27 @@ impl Catalog {
 }
 
 impl Entry {
+    /// The entry of `sample`, read from `files` found at `name` in sub-folder `folder` of
+    /// dataset `source` ([`listed_as`]).
+    fn of(sample: &Sample, files: &[Listed], name: &str, folder: &str, source: &str) -> Entry {
+        let (name, category) = listed_as(sample, files, name, folder);
+        let frames = sample.mesh.as_ref().map_or(sample.frames.len(), |m| m.frames.len());
+        let (n, error) = match sample.border_frames() {
+            Ok(b) => (Some(b.len()), None),
+            Err(e) => (None, Some(e.to_string())),
+        };
+        Entry {
+            id: String::new(),
+            name,
+            category,
+            n,
+            frames,
+            mesh: sample.mesh.is_some(),
+            source: source.to_string(),
+            error,
+        }
+    }
+
     fn broken(name: &str, source: &str, error: String) -> Entry {
         Entry {
             id: String::new(),
@@ -544,12 +668,25 @@ mod tests {
     }
 
     #[test]
-    fn queries_filter_by_category_and_text() {
-        let q =
-            Query { category: Some("napkin".into()), q: Some("DIAG".into()), ..Query::default() };
-        assert!(q.matches("d0-x", "napkin_diag_half", "napkin"));
-        assert!(!q.matches("d0-x", "napkin_half", "napkin"));
-        assert!(!q.matches("d0-x", "towel_diag", "towel"));
-        assert!(Query::default().matches("a", "b", "c"));
+    fn queries_filter_by_category_and_every_word_within_their_caps() {
+        let q = Query {
+            category: Some("napkin".into()),
+            q: Some(" DIAG  half ".into()),
+            ..Query::default()
+        };
+        let f = q.filter().unwrap();
+        let text = |id, name, category| Filter::text(id, name, category);
+        assert!(f.matches("napkin", &text("d0-x", "napkin_diag_half", "napkin")));
+        assert!(!f.matches("napkin", &text("d0-x", "napkin_diag", "napkin")));
+        assert!(!f.matches("towel", &text("d0-x", "towel_diag_half", "towel")));
+        assert!(Query::default().filter().unwrap().matches("c", &text("a", "b", "c")));
+        // The caps: a 64 KB search, or nine words, is refused before any row is looked at.
+        let long = Query { q: Some("Σ".repeat(32_000)), ..Query::default() };
+        let e = long.filter().unwrap_err().to_string();
+        assert!(e.contains("32000 characters") && e.contains("256"), "{e}");
+        let many = Query { q: Some("a b c d e f g h i".into()), ..Query::default() };
+        assert!(many.filter().unwrap_err().to_string().contains("9 words"));
+        let most = Query { q: Some("a b c d e f g h".into()), ..Query::default() };
+        assert!(most.filter().is_ok());
     }
 }

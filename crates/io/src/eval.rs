@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::formats::Sample;
 #[cfg(feature = "vrfolding")]
-use crate::vrfolding::{Store, Video};
+use crate::vrfolding::{Store, Video, FOLDS};
 use close_core::analysis::{analyze_with, Analysis, Options};
 use close_core::angle;
 use close_core::error::Error;
@@ -283,7 +283,8 @@ pub fn evaluate_steps(sample: &Sample, method: FoldMethod) -> Vec<SampleResult> 
 
 /// The Table I rows of one VR-Folding video: `<Category>/fold1`, `<Category>/fold2` from one analysis of
 /// (start, end of action 1, end of action 2); a fold with a broken mesh is dropped; a video
-/// that cannot be read is one error in its category's fold-1 row.
+/// whose meshes cannot be read is an error row for each fold its grips cut it into, as the
+/// server lists them (one, fold 1's, when its grips cannot be read either).
 #[cfg(feature = "vrfolding")]
 pub fn evaluate_video(store: &Store, video: &Video, method: FoldMethod) -> Vec<SampleResult> {
     let name = |k: usize| format!("{}/fold{k}", video.id);
@@ -291,10 +292,14 @@ pub fn evaluate_video(store: &Store, video: &Video, method: FoldMethod) -> Vec<S
     let folds = match store.folds(video) {
         Ok(folds) => folds,
         Err(e) => {
-            return vec![SampleResult {
-                category: category(1),
-                ..SampleResult::unreadable(&name(1), &e.to_string())
-            }]
+            // A row per fold the server lists (its grips cut it), so none is dropped unseen.
+            let listed = store.cut(video).map_or(1, |cut| cut.actions.len().clamp(1, FOLDS));
+            return (1..=listed)
+                .map(|k| SampleResult {
+                    category: category(k),
+                    ..SampleResult::unreadable(&name(k), &e.to_string())
+                })
+                .collect();
         }
     };
     let usable = folds.usable();

@@ -20,17 +20,15 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::cloth::{across, layers, make};
 use super::raster::text_width;
+use super::truth::{agreement, true_lines, Truth};
 use super::{
     fold_colour, label_size, line_width, note_size, plot, text_style, Canvas, INK, MUTED,
     MUTED_TEXT, PAPER,
 };
 use close_core::analysis::Analysis;
-use close_core::angle;
-use close_core::border::Point;
 use close_core::error::Result;
-use close_core::fold::apply;
-use close_core::geometry::{Fold, Folding, Line};
 
 /// One border to draw: vertices (x, y, z), colour, line width in pixels, legend name.
 struct Trace {
@@ -49,39 +47,9 @@ struct FoldMark {
     name: String,
 }
 
-/// The segment of `line` across `points`: from the least to the greatest projection of a
-/// point on the line's direction.
-fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
-    let (px, py) = (line.point.x, line.point.y);
-    let (dx, dy) = (line.direction.x, line.direction.y);
-    let t = points.iter().map(|p| (p.x - px) * dx + (p.y - py) * dy);
-    let (lo, hi) = t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-    [[px + lo * dx, py + lo * dy], [px + hi * dx, py + hi * dy]]
-}
-
-/// The line of each fold of `folds` across the cloth it folds: fold k on `start` with folds
-/// 0…k−1 applied, along `lines[k]` when given (the found folds' lines), else through its two
-/// fold points; `None` for a fold whose points coincide and has no line.
-fn fold_segments(
-    start: &[Point],
-    folds: &[Fold],
-    lines: &[Option<Line>],
-) -> Vec<Option<[[f64; 2]; 2]>> {
-    let mut state = start.to_vec();
-    folds
-        .iter()
-        .enumerate()
-        .map(|(k, &fold)| {
-            let line = lines.get(k).copied().flatten().or_else(|| fold.line_on(&state, None))?;
-            let segment = across(&state, &line);
-            state = apply(&state, &Folding { fold, arcs: vec![fold.arc()], line: Some(line) });
-            Some(segment)
-        })
-        .collect()
-}
-
-/// The found folds' lines, and the true folds' beside them with the found fold's angle errors.
-fn fold_marks(analysis: &Analysis, truth: &[Fold]) -> Vec<FoldMark> {
+/// The found folds' lines, and the true folds' beside them with how each found fold agrees
+/// ([`super::truth`]: by its points, or for a fold of several arcs by its line and folded set).
+fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
     let numbered = |what: &str, k: usize, count: usize| {
         if count > 1 {
             format!("{what} {}", k + 1)
@@ -89,9 +57,17 @@ fn fold_marks(analysis: &Analysis, truth: &[Fold]) -> Vec<FoldMark> {
             what.to_string()
         }
     };
-    let lines: Vec<Option<Line>> = analysis.foldings().iter().map(|f| f.line).collect();
-    let found = fold_segments(analysis.start_border(), &analysis.folds, &lines);
-    let true_lines = fold_segments(analysis.start_border(), truth, &[]);
+    // Each found fold's line across the state it folded, as the analysis made it.
+    let found: Vec<Option<[[f64; 2]; 2]>> =
+        match make(analysis.start_border(), &analysis.foldings()) {
+            Ok((_, made)) => {
+                layers(analysis.start_border(), &made).lines.into_iter().map(Some).collect()
+            }
+            Err(_) => Vec::new(),
+        };
+    let true_lines = true_lines(analysis, truth);
+    let true_segments: Vec<Option<[[f64; 2]; 2]>> =
+        true_lines.iter().map(|(line, state)| line.as_ref().map(|l| across(state, l))).collect();
     let mut marks = Vec::new();
     for (k, segment) in found.into_iter().enumerate() {
         if let Some(ends) = segment {
@@ -103,23 +79,15 @@ fn fold_marks(analysis: &Analysis, truth: &[Fold]) -> Vec<FoldMark> {
             });
         }
     }
-    for (k, (segment, t)) in true_lines.into_iter().zip(truth).enumerate() {
-        let error = analysis.folds.get(k).map_or_else(
-            || "not found".to_string(),
-            |f| {
-                format!(
-                    "{:.1}°, {:.1}° off",
-                    angle::distance(f.f1, t.f1).to_degrees(),
-                    angle::distance(f.f2, t.f2).to_degrees()
-                )
-            },
-        );
+    for (k, segment) in true_segments.into_iter().enumerate() {
+        let error = agreement(analysis, truth, k, true_lines[k].0.as_ref())
+            .map_or_else(|| "not found".to_string(), |a| a.to_string());
         if let Some(ends) = segment {
             marks.push(FoldMark {
                 ends,
                 truth: true,
                 colour: fold_colour(k),
-                name: format!("{} ({error})", numbered("true fold", k, truth.len())),
+                name: format!("{} ({error})", numbered("true fold", k, truth.folds.len())),
             });
         }
     }
@@ -206,7 +174,7 @@ impl Mapping {
 
 /// Draw the border plot of `analysis`, with the `truth` folds (when known) beside the found
 /// ones; gives how it mapped data to pixels.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[Fold]) -> Result<Mapping> {
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> Result<Mapping> {
     let unit = canvas.unit();
     let traces = traces(analysis, unit);
     let marks = fold_marks(analysis, truth);
@@ -475,8 +443,8 @@ mod tests {
             close_core::FrameRange::default(),
         )
         .unwrap();
-        let truth = entry.sample.truth.as_ref().unwrap().folds.clone();
-        assert_eq!((analysis.folds.len(), truth.len()), (2, 2));
+        let truth = Truth::of(entry.sample.truth.as_ref().unwrap());
+        assert_eq!((analysis.folds.len(), truth.folds.len()), (2, 2));
         let marks = fold_marks(&analysis, &truth);
         let (found, true_ones): (Vec<&FoldMark>, Vec<&FoldMark>) =
             marks.iter().partition(|m| !m.truth);
@@ -485,8 +453,8 @@ mod tests {
         let size = size.1 - size.0;
         for (k, (f, t)) in found.iter().zip(&true_ones).enumerate() {
             let off = |e: usize| {
-                let pair = |f: Fold| [f.f1, f.f2];
-                close_core::angle::distance(pair(analysis.folds[k])[e], pair(truth[k])[e])
+                let pair = |f: close_core::geometry::Fold| [f.f1, f.f2];
+                close_core::angle::distance(pair(analysis.folds[k])[e], pair(truth.folds[k])[e])
                     .to_degrees()
             };
             let errors = format!("{:.1}°, {:.1}° off", off(0), off(1));
@@ -498,20 +466,17 @@ mod tests {
                 .min(d(f.ends[0], t.ends[1]) + d(f.ends[1], t.ends[0]));
             assert!(apart < 0.1 * size, "fold {k}: the true line is {apart} away");
         }
-        let picture = |truth: &[Fold]| {
+        let picture = |truth: &Truth| {
             let known = super::super::Known { truth, mesh: None };
-            super::super::render_step(
+            super::super::render(
                 &analysis,
-                super::super::Picture::Borders,
-                None,
-                480,
-                480,
-                super::super::Format::Png,
+                &super::super::View::whole(super::super::Picture::Borders),
+                &super::super::Output::png(480),
                 known,
             )
             .unwrap()
         };
-        let (with, without) = (picture(&truth), picture(&[]));
+        let (with, without) = (picture(&truth), picture(&Truth::default()));
         assert_ne!(with, without, "the truth draws nothing");
         super::super::tests::preview("borders_truth.png", &with);
     }

@@ -21,12 +21,12 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::raster::text_width;
+use super::truth::{agreement, true_lines, Truth};
 use super::{
     endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas, INK,
     MUTED, MUTED_TEXT, PAPER,
 };
 use close_core::analysis::Analysis;
-use close_core::angle;
 use close_core::error::Result;
 use close_core::geometry::{Arc, Fold};
 
@@ -44,18 +44,16 @@ pub fn folded_arc(Arc { a: f1, b: f2 }: Arc, points: usize) -> Vec<f64> {
 /// known, the found fold's angle errors against the true one (drawn as ○); a true fold not
 /// found gets its own line. Each line is wrapped to `width` (the corners and folds are named
 /// on the circle; the label sentence is the page's).
-fn caption(analysis: &Analysis, truth: &[Fold], size: f64, width: f64) -> Vec<(String, [u8; 3])> {
+fn caption(analysis: &Analysis, truth: &Truth, size: f64, width: f64) -> Vec<(String, [u8; 3])> {
     let mut lines = Vec::new();
     let count = analysis.folds.len();
+    let true_lines = true_lines(analysis, truth);
     for (k, f) in analysis.folds.iter().enumerate() {
         let names = [endpoint_name(k, 0, count), endpoint_name(k, 1, count)];
-        let error = truth.get(k).map_or_else(String::new, |t| {
-            format!(
-                " · ○ {:.1}°, {:.1}° off",
-                angle::distance(f.f1, t.f1).to_degrees(),
-                angle::distance(f.f2, t.f2).to_degrees()
-            )
-        });
+        // Compared by its points, or for a fold of several arcs by its line and folded set.
+        let line = true_lines.get(k).and_then(|(line, _)| line.as_ref());
+        let error =
+            agreement(analysis, truth, k, line).map_or_else(String::new, |a| format!(" · ○ {a}"));
         lines.push((
             format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f.f1, names[1], f.f2),
             fold_colour(k),
@@ -64,7 +62,7 @@ fn caption(analysis: &Analysis, truth: &[Fold], size: f64, width: f64) -> Vec<(S
     if count == 0 {
         lines.push(("no fold detected".into(), MUTED_TEXT));
     }
-    for (k, t) in truth.iter().enumerate().skip(count) {
+    for (k, t) in truth.folds.iter().enumerate().skip(count) {
         lines.push((
             format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t.f1, t.f2),
             fold_colour(k),
@@ -212,7 +210,7 @@ impl Layout {
     /// The fold circle of `analysis` with `truth` on a `width`×`height` canvas: the title,
     /// the caption at the bottom, the circle as large as the rest allows with a margin for
     /// the labels, which are placed round it without overlapping.
-    fn of(width: u32, height: u32, analysis: &Analysis, truth: &[Fold]) -> Layout {
+    fn of(width: u32, height: u32, analysis: &Analysis, truth: &Truth) -> Layout {
         let (w, h) = (width as f64, height as f64);
         let unit = w.min(h);
         let size = label_size(unit);
@@ -271,7 +269,7 @@ fn labels(analysis: &Analysis) -> Vec<Label> {
 
 /// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
 /// markers joined by a thin chord beside the found ones.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[Fold]) -> Result<()> {
+pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> Result<()> {
     let unit = canvas.unit();
     let layout = Layout::of(canvas.width, canvas.height, analysis, truth);
     let frame = layout.frame;
@@ -285,7 +283,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &[Fold]) -> 
         INK,
     );
     draw_corners(canvas, &analysis.corners, &frame);
-    draw_truth(canvas, truth, &frame);
+    draw_truth(canvas, &truth.folds, &frame);
     draw_folds(canvas, analysis, &frame);
     for placed in &layout.labels {
         let [x0, y0, x1, y1] = placed.bounds;
@@ -402,14 +400,14 @@ mod tests {
     }
 
     /// The analysis of a built-in sample and its true folds.
-    fn builtin(id: &str) -> (Analysis, Vec<Fold>) {
+    fn builtin(id: &str) -> (Analysis, Truth) {
         let entry = close_io::dataset::Dataset::builtin().get(id).unwrap().clone();
         let analysis = close_core::analyze(
             &entry.sample.border_frames().unwrap(),
             close_core::FrameRange::default(),
         )
         .unwrap();
-        (analysis, entry.sample.truth.map(|t| t.folds).unwrap_or_default())
+        (analysis, entry.sample.truth.as_ref().map(Truth::of).unwrap_or_default())
     }
 
     #[test]
@@ -423,13 +421,10 @@ mod tests {
             let (analysis, truth) = builtin(id);
             let layout = Layout::of(size, size, &analysis, &truth);
             let known = super::super::Known { truth: &truth, mesh: None };
-            let png = super::super::render_step(
+            let png = super::super::render(
                 &analysis,
-                super::super::Picture::Close,
-                None,
-                size,
-                size,
-                super::super::Format::Png,
+                &super::super::View::whole(super::super::Picture::Close),
+                &super::super::Output::png(size),
                 known,
             )
             .unwrap();

@@ -227,8 +227,8 @@ fn draw_frame(canvas: &mut Canvas, layout: &Layout) {
     }
 }
 
-/// Outline, ticks and value labels of the colour bar: 0, ±s (the robust scale) and ±max.
-fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi): (f64, f64)) {
+/// Outline, ticks and value labels of the colour bar (see [`bar_labels`]).
+fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, range: (f64, f64)) {
     let [left, top, right, bottom] = layout.bar.map(|v| v as f64);
     canvas.stroke(
         &[(left, top), (right, top), (right, bottom), (left, bottom), (left, top)],
@@ -236,29 +236,81 @@ fn draw_bar_ticks(canvas: &mut Canvas, layout: &Layout, scale: &Scale, (lo, hi):
         MUTED,
     );
     let size = label_size(canvas.unit());
-    let y_of = |t: f64| top + (hi - t) / (hi - lo) * (bottom - top);
-    let mut ticks = vec![(hi, scale.max)];
-    if lo < 0.0 {
-        ticks.push((lo, -scale.max));
-    }
-    ticks.push((0.0, 0.0));
-    for t in [scale.squash(scale.s), -scale.squash(scale.s)] {
-        let clear = ticks.iter().all(|&(u, _)| (y_of(u) - y_of(t)).abs() > 1.2 * size);
-        if clear && t >= lo && t <= hi {
-            ticks.push((t, scale.unsquash(t)));
-        }
-    }
-    for (t, value) in ticks {
-        let y = y_of(t);
-        canvas.stroke(&[(right, y), (right + 0.4 * size, y)], 1.0, INK);
+    for label in bar_labels(scale, range, (top, bottom), size) {
+        // The tick at its value, a leader to its label when the label had to move.
+        canvas.stroke(
+            &[
+                (right, label.tick),
+                (right + 0.4 * size, label.tick),
+                (right + 0.6 * size, label.at),
+            ],
+            1.0,
+            INK,
+        );
         canvas.text(
-            &format_value(value),
-            (right + 0.6 * size, y),
+            &format_value(label.value),
+            (right + 0.7 * size, label.at),
             size,
             INK,
             (HPos::Left, VPos::Center),
         );
     }
+}
+
+/// A colour-bar value: where its tick is (pixel y), where its label is, and the value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct BarLabel {
+    tick: f64,
+    at: f64,
+    value: f64,
+}
+
+/// The colour bar's labelled values, on a bar from pixel `top` to `bottom` showing t in
+/// `(lo, hi)`: ±max, 0, ±s and ±2s (the colour saturates near 2s, so that is where a reader
+/// needs values), each tick where its value is and each label moved apart from the others by
+/// at least a line (`size`), within the bar; ±2s dropped when there is no room for all.
+fn bar_labels(
+    scale: &Scale,
+    (lo, hi): (f64, f64),
+    (top, bottom): (f64, f64),
+    size: f64,
+) -> Vec<BarLabel> {
+    let y_of = |t: f64| top + (hi - t) / (hi - lo) * (bottom - top);
+    let gap = 1.05 * size;
+    let signs: &[f64] = if lo < 0.0 { &[1.0, -1.0] } else { &[1.0] };
+    let mut wanted: Vec<(f64, f64)> = vec![(0.0, 0.0)];
+    for &sign in signs {
+        wanted.push((sign * hi.abs().max(lo.abs()), sign * scale.max));
+    }
+    let inside = |t: f64| t > lo && t < hi;
+    for multiple in [1.0, 2.0] {
+        let before = wanted.len();
+        for &sign in signs {
+            let value = sign * multiple * scale.s;
+            let t = scale.squash(value);
+            // Only below the largest value shown, and clear of its tick.
+            if inside(t) && value.abs() < scale.max && (y_of(t) - y_of(sign * hi.abs())).abs() > 1.0
+            {
+                wanted.push((t, value));
+            }
+        }
+        if wanted.len() as f64 * gap > bottom - top + gap && multiple > 1.0 {
+            wanted.truncate(before);
+        }
+    }
+    let mut labels: Vec<BarLabel> =
+        wanted.iter().map(|&(t, value)| BarLabel { tick: y_of(t), at: y_of(t), value }).collect();
+    labels.sort_by(|a, b| a.tick.total_cmp(&b.tick));
+    // Apart downwards from the top, then upwards from the bottom, within the bar.
+    for k in 0..labels.len() {
+        let floor = if k == 0 { top } else { labels[k - 1].at + gap };
+        labels[k].at = labels[k].at.max(floor);
+    }
+    for k in (0..labels.len()).rev() {
+        let ceiling = if k + 1 == labels.len() { bottom } else { labels[k + 1].at - gap };
+        labels[k].at = labels[k].at.min(ceiling);
+    }
+    labels
 }
 
 /// Under the colour bar: the transform that maps a value to a colour (tanh, so the ticks
@@ -367,9 +419,38 @@ fn draw_marks(canvas: &mut Canvas, layout: &Layout, marks: &Marks, layers: usize
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{colours, decode, folded_square, preview};
-    use super::super::{disk_png, render_png, Picture};
+    use super::super::tests::{colours, decode, disk_png, folded_square, png, preview};
+    use super::super::Picture;
     use super::*;
+
+    #[test]
+    fn the_colour_bar_reads_values_at_s_and_2s_and_its_labels_keep_apart() {
+        let scale = Scale { s: 3.76, max: 132.0 };
+        let size = 20.0;
+        for (range, count) in
+            [(bar_range(Ramp::Diverging, &scale), 7), (bar_range(Ramp::Sequential, &scale), 4)]
+        {
+            let labels = bar_labels(&scale, range, (100.0, 300.0), size);
+            let values: Vec<f64> = labels.iter().map(|l| l.value).collect();
+            assert_eq!(labels.len(), count, "{values:?}");
+            for v in [3.76, 7.52, 132.0, 0.0] {
+                assert!(values.contains(&v), "{v} not labelled: {values:?}");
+            }
+            for pair in labels.windows(2) {
+                assert!(pair[1].at - pair[0].at >= 1.05 * size - 1e-9, "{labels:?}");
+            }
+            assert!(labels.iter().all(|l| (100.0..=300.0).contains(&l.at)));
+            // Each tick of ±s, ±2s and 0 is where its value's colour is.
+            let (lo, hi) = range;
+            for l in labels.iter().filter(|l| l.value.abs() < scale.max) {
+                let y = 100.0 + (hi - scale.squash(l.value)) / (hi - lo) * 200.0;
+                assert!((l.tick - y).abs() < 1e-9, "{l:?}");
+            }
+        }
+        // A short bar keeps ±max, 0 and ±s, and drops ±2s.
+        let short = bar_labels(&scale, bar_range(Ramp::Diverging, &scale), (100.0, 200.0), size);
+        assert_eq!(short.len(), 5, "{short:?}");
+    }
     use close_core::disk::{condensed_index, position};
 
     /// The colour of the pixel at polar point (r, θ) of a decoded picture.
@@ -428,7 +509,7 @@ mod tests {
         let disk = &analysis.disk(0).unwrap();
         let n = disk.n();
         let (w, h) = (400, 360);
-        let (_, _, rgb) = decode(&disk_png(disk, "start", w, h).unwrap());
+        let (_, _, rgb) = decode(&disk_png(disk, "start", (w, h)));
         let layout = Layout::of(w, h);
         let scale = Scale::of(disk.values());
         let (mut white, mut strong) = (0, 0);
@@ -455,7 +536,7 @@ mod tests {
         values[condensed_index(8, 0, 1)] = 1.0;
         values[condensed_index(8, 2, 3)] = -1.0;
         let disk = Disk::from_values(8, values).unwrap();
-        let (_, _, rgb) = decode(&disk_png(&disk, "signs", 300, 300).unwrap());
+        let (_, _, rgb) = decode(&disk_png(&disk, "signs", (300, 300)));
         let layout = Layout::of(300, 300);
         let [r, _, b] = sample(&rgb, 300, &layout, 0.9, position(8, 0, 1).angle);
         assert!(r > 150 && b < 100, "positive should be orange, got {r}, {b}");
@@ -467,21 +548,21 @@ mod tests {
     #[test]
     fn odd_disks_never_panic() {
         let zeros = Disk::from_values(50, vec![0.0; 50 * 49 / 2]).unwrap();
-        let (_, _, rgb) = decode(&disk_png(&zeros, "zeros", 120, 100).unwrap());
+        let (_, _, rgb) = decode(&disk_png(&zeros, "zeros", (120, 100)));
         let layout = Layout::of(120, 100);
         assert!(is_whiteish(sample(&rgb, 120, &layout, 0.5, 1.0)));
         let four = Disk::from_values(4, vec![1.0, -1.0, 0.5, 0.0, 2.0, f64::NAN]).unwrap();
-        decode(&disk_png(&four, "", 64, 64).unwrap());
+        decode(&disk_png(&four, "", (64, 64)));
         let big: Vec<f64> = (0..1000 * 999 / 2).map(|k| ((k % 97) as f64 - 48.0) / 10.0).collect();
         let big = Disk::from_values(1000, big).unwrap();
-        decode(&disk_png(&big, "N = 1000", 160, 160).unwrap());
+        decode(&disk_png(&big, "N = 1000", (160, 160)));
     }
 
     #[test]
     fn large_pictures_are_drawn_at_their_size_and_the_diff_differs_from_the_disk() {
         let analysis = folded_square(10, [0.3, 0.3 + std::f64::consts::PI]);
         for picture in Picture::ALL {
-            let png = render_png(&analysis, picture, 1200, 900).unwrap();
+            let png = png(&analysis, picture, None, (1200, 900)).unwrap();
             let (w, h, rgb) = decode(&png);
             assert_eq!((w, h), (1200, 900), "{picture:?}");
             assert!(colours(&rgb) > 10, "{picture:?} is (nearly) one flat colour");
@@ -489,8 +570,8 @@ mod tests {
         }
         let big = folded_square(25, [1.0, 4.0]);
         let (start, diff) = (
-            render_png(&big, Picture::DiskStart, 480, 480).unwrap(),
-            render_png(&big, Picture::Diff, 480, 480).unwrap(),
+            png(&big, Picture::DiskStart, None, (480, 480)).unwrap(),
+            png(&big, Picture::Diff, None, (480, 480)).unwrap(),
         );
         assert_ne!(
             decode(&start).2,

@@ -13,16 +13,21 @@
 //! is sized for the narrowest width a picture is shown at ([`note_size`]) and darkened to AA
 //! contrast on the paper ([`readable`]).
 //!
+//! Two functions draw them all: [`render`] a picture of an analysis ([`View`]: which picture,
+//! of which step) and [`render_disk`] the disk of any one border state, each written as
+//! [`Output`] says (size, PNG or SVG, print resolution).
+//!
 //! ```
-//! use close_render::{disk_png, Picture};
+//! use close_render::{render_disk, Output, Picture};
 //! let disk = close_core::disk::Disk::from_values(4, vec![1.0, -0.5, 0.0, 0.0, 0.2, 2.0]).unwrap();
-//! let png = disk_png(&disk, "a disk", 100, 80).unwrap();
+//! let (png, _) = render_disk(&disk, "a disk", None, &Output { height: 80, ..Output::png(100) }).unwrap();
 //! assert_eq!(&png[1..4], b"PNG");
 //! assert_eq!(Picture::from_name("signed_diff"), Some(Picture::SignedDiff));
 //! ```
 
 pub mod borders;
 pub mod circle;
+pub mod cloth;
 pub mod colour;
 pub mod disk_picture;
 pub mod mesh_picture;
@@ -32,6 +37,7 @@ pub mod readout;
 pub mod record;
 mod sector_map;
 pub mod svg;
+pub mod truth;
 
 use std::sync::OnceLock;
 
@@ -122,54 +128,85 @@ impl Format {
     }
 }
 
-/// Draw one picture of `analysis` as a PNG of `width`×`height` pixels (each clamped to
-/// [`MIN_SIZE`]…[`MAX_SIZE`]): the whole analysis, start frame → end frame.
-pub fn render_png(
-    analysis: &Analysis,
-    picture: Picture,
-    width: u32,
-    height: u32,
-) -> Result<Vec<u8>> {
-    render_step_png(analysis, picture, None, width, height)
+/// How a picture is written: its size in pixels (each side clamped to
+/// [`MIN_SIZE`]…[`MAX_SIZE`]), its format, and for a PNG the print resolution it states.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Output {
+    pub width: u32,
+    pub height: u32,
+    pub format: Format,
+    /// Dots per inch written in a PNG (its `pHYs` chunk: the size it prints at); none by
+    /// default. An SVG is sized in pixels.
+    pub dpi: Option<u32>,
 }
 
-/// Draw one picture of `analysis`; with `step` = Some(k) (1-based, step k goes from
-/// analysed frame k − 1 to frame k), the disk pictures of that step alone: its two disks
-/// and its diffs, with the fold curves fitted on that step. The start and end disks of a
-/// picture pair share one colour scale, so a colour means one value in both panels.
-pub fn render_step_png(
-    analysis: &Analysis,
-    picture: Picture,
-    step: Option<usize>,
-    width: u32,
-    height: u32,
-) -> Result<Vec<u8>> {
-    render_step(analysis, picture, step, width, height, Format::Png, Known::default())
+impl Output {
+    /// A square PNG of `size` pixels.
+    pub fn png(size: u32) -> Output {
+        Output { width: size, height: size, format: Format::Png, dpi: None }
+    }
+
+    /// A square SVG of `size` pixels.
+    pub fn svg(size: u32) -> Output {
+        Output { format: Format::Svg, ..Output::png(size) }
+    }
+}
+
+/// Which picture of an analysis, of which part of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct View {
+    pub picture: Picture,
+    /// With `Some(k)` (1-based: step k goes from analysed frame k − 1 to frame k), the disk
+    /// pictures of that step alone (its two disks and its diffs, with the fold curves
+    /// fitted on that step); `None`, the whole analysis, start frame → end frame.
+    pub step: Option<usize>,
+}
+
+impl View {
+    /// `picture` of the whole analysis.
+    pub fn whole(picture: Picture) -> View {
+        View { picture, step: None }
+    }
+
+    /// `picture` of step `k` alone.
+    pub fn step(picture: Picture, k: usize) -> View {
+        View { picture, step: Some(k) }
+    }
 }
 
 /// What is known of a sample beyond its analysis, for the pictures that draw it.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct Known<'a> {
     /// The sample's true folds (may be empty), drawn beside the found ones on the fold
-    /// circle and the borders.
-    pub truth: &'a [close_core::geometry::Fold],
+    /// circle and the borders, with how each found fold agrees ([`truth`]).
+    pub truth: &'a truth::Truth,
     /// A mesh sample's mesh, which [`Picture::Mesh`] draws.
     pub mesh: Option<&'a mesh_picture::MeshView>,
 }
 
-/// [`render_step_png`] written as `format`: the same drawing as a PNG or an SVG, with what
-/// is `known` of the sample.
-pub fn render_step(
-    analysis: &Analysis,
-    picture: Picture,
-    step: Option<usize>,
-    width: u32,
-    height: u32,
-    format: Format,
-    known: Known,
-) -> Result<Vec<u8>> {
-    let mut canvas = Canvas::new(width, height)?;
-    if format == Format::Svg {
+impl Default for Known<'_> {
+    /// Nothing known beyond the analysis.
+    fn default() -> Self {
+        static NOTHING: truth::Truth = truth::Truth { folds: Vec::new(), folded: Vec::new() };
+        Known { truth: &NOTHING, mesh: None }
+    }
+}
+
+/// Draw picture `view` of `analysis` as `output` says, with what is `known` of the sample.
+/// The start and end disks of a picture pair share one colour scale, so a colour means one
+/// value in both panels; a PNG and an SVG are the same drawing.
+///
+/// ```
+/// use close_render::{render, Output, Picture, View};
+/// # let analysis = close_core::analyze(&close_core::border::prepare(vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]; 2]).unwrap(), Default::default()).unwrap();
+/// let png = render(&analysis, &View::whole(Picture::Close), &Output::png(200), Default::default()).unwrap();
+/// assert_eq!(&png[1..4], b"PNG");
+/// ```
+pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -> Result<Vec<u8>> {
+    let (picture, step) = (view.picture, view.step);
+    let mut canvas = Canvas::new(output.width, output.height)?;
+    canvas.dpi = output.dpi;
+    if output.format == Format::Svg {
         canvas.vector = Some(svg::Vector::default());
     }
     match picture {
@@ -305,39 +342,26 @@ impl StepSpan {
     }
 }
 
-/// Draw a dGLI disk alone (diverging map, colour bar, `title`) as a PNG.
-pub fn disk_png(
-    disk: &close_core::disk::Disk,
-    title: &str,
-    width: u32,
-    height: u32,
-) -> Result<Vec<u8>> {
-    disk_png_scaled(disk, title, None, width, height).map(|(png, _)| png)
-}
-
-/// Draw a dGLI disk alone with a colour `scale` (its own when `None`, as [`disk_png`]);
-/// gives the PNG and the scale used, so a caller can keep one scale through an animation.
-pub fn disk_png_scaled(
-    disk: &close_core::disk::Disk,
-    title: &str,
-    scale: Option<Scale>,
-    width: u32,
-    height: u32,
-) -> Result<(Vec<u8>, Scale)> {
-    disk_scaled(disk, title, scale, width, height, Format::Png)
-}
-
-/// [`disk_png_scaled`] written as `format`: the same drawing as a PNG or an SVG.
-pub fn disk_scaled(
+/// Draw a dGLI disk alone (diverging map, colour bar, `title`) as `output` says, with a colour
+/// `scale` (its own when `None`); gives the file and the scale used, so a caller can keep one
+/// scale through an animation.
+///
+/// ```
+/// use close_render::{render_disk, Output};
+/// let disk = close_core::disk::Disk::from_values(4, vec![1.0, -0.5, 0.0, 0.0, 0.2, 2.0]).unwrap();
+/// let (png, scale) = render_disk(&disk, "a disk", None, &Output::png(100)).unwrap();
+/// assert_eq!(&png[1..4], b"PNG");
+/// assert_eq!(scale.max, 2.0);
+/// ```
+pub fn render_disk(
     disk: &close_core::disk::Disk,
     title: &str,
     scale: Option<Scale>,
-    width: u32,
-    height: u32,
-    format: Format,
+    output: &Output,
 ) -> Result<(Vec<u8>, Scale)> {
-    let mut canvas = Canvas::new(width, height)?;
-    if format == Format::Svg {
+    let mut canvas = Canvas::new(output.width, output.height)?;
+    canvas.dpi = output.dpi;
+    if output.format == Format::Svg {
         canvas.vector = Some(svg::Vector::default());
     }
     let scale = scale.unwrap_or_else(|| Scale::of(disk.values()));
@@ -379,6 +403,8 @@ pub(crate) struct Canvas {
     recording: Option<raster::Recording>,
     /// On an SVG canvas, strokes and text as vector elements instead of pixels.
     vector: Option<svg::Vector>,
+    /// The print resolution a PNG states, if any.
+    dpi: Option<u32>,
 }
 
 impl Canvas {
@@ -393,6 +419,7 @@ impl Canvas {
             png_filter: png::FilterType::Sub,
             recording: None,
             vector: None,
+            dpi: None,
         })
     }
 
@@ -440,6 +467,15 @@ impl Canvas {
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_compression(png::Compression::Fast);
         encoder.set_filter(self.png_filter);
+        if let Some(dpi) = self.dpi {
+            // pHYs counts pixels per metre.
+            let per_metre = (f64::from(dpi) / 0.0254).round() as u32;
+            encoder.set_pixel_dims(Some(png::PixelDimensions {
+                xppu: per_metre,
+                yppu: per_metre,
+                unit: png::Unit::Meter,
+            }));
+        }
         let mut writer = encoder.write_header().map_err(fail)?;
         writer.write_image_data(&self.rgb).map_err(fail)?;
         writer.finish().map_err(fail)?;
@@ -511,11 +547,13 @@ fn outward(theta: f64) -> (HPos, VPos) {
 impl Canvas {
     /// The title, centred at the top.
     fn title(&mut self, title: &str) {
-        let size = title_size(self.unit());
+        let unit = self.unit();
+        let size = title_size(unit);
+        let (text, fitted) = fit_title(title, unit, self.width as f64);
         self.text(
-            title,
+            &text,
             (self.width as f64 / 2.0, 0.9 * size),
-            size,
+            fitted,
             INK,
             (HPos::Center, VPos::Center),
         );
@@ -525,6 +563,26 @@ impl Canvas {
     fn title_band(&self) -> f64 {
         1.8 * title_size(self.unit())
     }
+}
+
+/// `title` as drawn across a picture `width` wide: at the title size when it fits, else
+/// smaller (down to the notes' size), and cut short with "…" when even that does not fit, so
+/// a long name never runs off the picture.
+fn fit_title(title: &str, unit: f64, width: f64) -> (String, f64) {
+    let room = 0.96 * width;
+    let size = title_size(unit);
+    let wide = raster::text_width(title, size);
+    if wide <= room {
+        return (title.to_string(), size);
+    }
+    let size = (size * room / wide).max(note_size(unit));
+    let mut chars: Vec<char> = title.chars().collect();
+    let mut text = title.to_string();
+    while raster::text_width(&text, size) > room && !chars.is_empty() {
+        chars.pop();
+        text = format!("{}…", chars.iter().collect::<String>().trim_end());
+    }
+    (text, size)
 }
 
 /// The narrowest a picture is shown, in CSS px per its shorter side: the web app's figures
@@ -602,6 +660,18 @@ pub(crate) mod tests {
     use close_core::{analyze, FrameRange};
     use std::f64::consts::PI;
 
+    #[test]
+    fn a_long_title_fits_its_picture() {
+        let short = fit_title("dGLI disk", 480.0, 480.0);
+        assert_eq!(short, ("dGLI disk".to_string(), title_size(480.0)));
+        let long = "napkin__half_then_half · after step 1 of 2 (frame 1) · a long name";
+        let (text, size) = fit_title(long, 480.0, 480.0);
+        assert!(size < title_size(480.0) && size >= note_size(480.0));
+        assert!(raster::text_width(&text, size) <= 0.96 * 480.0, "{text} at {size}");
+        let cut = fit_title(&long.repeat(3), 480.0, 480.0).0;
+        assert!(cut.ends_with('…') && cut.len() < 3 * long.len(), "{cut}");
+    }
+
     /// A square of `per_side` vertices per side, folded along `fold` with the folded arc
     /// lifted a little (as a real fold lies on top), analysed.
     pub(crate) fn folded_square(per_side: usize, fold: [f64; 2]) -> Analysis {
@@ -626,6 +696,26 @@ pub(crate) mod tests {
         let raw =
             [flat, folded].iter().map(|f| f.iter().map(|p| [p.x, p.y, p.z]).collect()).collect();
         analyze(&prepare(raw).unwrap(), FrameRange::default()).unwrap()
+    }
+
+    /// Picture `picture` of `analysis` (step `step`) as a `w`×`h` PNG.
+    pub(crate) fn png(
+        analysis: &Analysis,
+        picture: Picture,
+        step: Option<usize>,
+        (w, h): (u32, u32),
+    ) -> Result<Vec<u8>> {
+        let output = Output { width: w, height: h, ..Output::png(w) };
+        render(analysis, &View { picture, step }, &output, Known::default())
+    }
+
+    /// A disk alone as a `w`×`h` PNG, on its own colour scale.
+    pub(crate) fn disk_png(
+        disk: &close_core::disk::Disk,
+        title: &str,
+        (w, h): (u32, u32),
+    ) -> Vec<u8> {
+        render_disk(disk, title, None, &Output { width: w, height: h, ..Output::png(w) }).unwrap().0
     }
 
     /// Decode a PNG into (width, height, RGB pixels).
@@ -670,7 +760,7 @@ pub(crate) mod tests {
         assert_eq!(analysis.folds.len(), 1, "the test square should show one fold");
         for picture in Picture::ALL.into_iter().chain([Picture::Thumbnail]) {
             for (w, h) in [(200, 150), (DEFAULT_SIZE, DEFAULT_SIZE)] {
-                let png_bytes = render_png(&analysis, picture, w, h).unwrap();
+                let png_bytes = png(&analysis, picture, None, (w, h)).unwrap();
                 let (dw, dh, rgb) = decode(&png_bytes);
                 assert_eq!((dw, dh), (w, h), "{picture:?}");
                 assert!(colours(&rgb) > 10, "{picture:?} is (nearly) one flat colour");
@@ -692,21 +782,20 @@ pub(crate) mod tests {
         let analysis = builtin("napkin__half_then_half");
         assert_eq!(analysis.steps.len(), 2);
         for picture in [Picture::DiskStart, Picture::DiskEnd, Picture::Diff, Picture::SignedDiff] {
-            let whole = render_step_png(&analysis, picture, None, 240, 240).unwrap();
-            let steps: Vec<Vec<u8>> = (1..=2)
-                .map(|k| render_step_png(&analysis, picture, Some(k), 240, 240).unwrap())
-                .collect();
+            let whole = png(&analysis, picture, None, (240, 240)).unwrap();
+            let steps: Vec<Vec<u8>> =
+                (1..=2).map(|k| png(&analysis, picture, Some(k), (240, 240)).unwrap()).collect();
             // Step 2's start disk is frame 1's, a disk the whole-analysis pictures never show.
             assert_ne!(steps[0], steps[1], "{picture:?}");
             assert_ne!(whole, steps[1], "{picture:?}");
             preview(&format!("step2_{}.png", picture.name()), &steps[1]);
         }
         for bad in [0, 3] {
-            let err = render_step_png(&analysis, Picture::Diff, Some(bad), 100, 100).unwrap_err();
+            let err = png(&analysis, Picture::Diff, Some(bad), (100, 100)).unwrap_err();
             assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
         }
         assert!(matches!(
-            render_step_png(&analysis, Picture::Close, Some(1), 100, 100),
+            png(&analysis, Picture::Close, Some(1), (100, 100)),
             Err(Error::InvalidArgument(_))
         ));
     }
@@ -723,7 +812,7 @@ pub(crate) mod tests {
         let size = 400;
         let layout = disk_picture::Layout::of(size, size);
         let pictures = [Picture::DiskStart, Picture::DiskEnd]
-            .map(|p| decode(&render_png(&analysis, p, size, size).unwrap()).2);
+            .map(|p| decode(&png(&analysis, p, None, (size, size)).unwrap()).2);
         // Cells of equal value in both frames get the same colour in both panels.
         let n = start.n();
         let mut compared = 0;
@@ -792,13 +881,13 @@ pub(crate) mod tests {
             analyze(&entry.sample.border_frames().unwrap(), FrameRange::default()).unwrap();
         let view = mesh_picture::MeshView::of(entry.sample.mesh.as_ref().unwrap(), &mesh_analysis)
             .unwrap();
-        let truth = entry.sample.truth.as_ref().unwrap().folds.clone();
+        let truth = truth::Truth::of(entry.sample.truth.as_ref().unwrap());
         let known = Known { truth: &truth, mesh: Some(&view) };
         for size in [420, 480, 1400] {
             let mut texts = 0;
             for picture in Picture::ALL.into_iter().chain([Picture::Mesh]) {
                 let svg = String::from_utf8(
-                    render_step(&mesh_analysis, picture, None, size, size, Format::Svg, known)
+                    render(&mesh_analysis, &View::whole(picture), &Output::svg(size), known)
                         .unwrap(),
                 )
                 .unwrap();
@@ -830,7 +919,7 @@ pub(crate) mod tests {
         let analysis = folded_square(3, [0.0, PI]);
         for ((w, h), want) in [((1, 10_000), (MIN_SIZE, MAX_SIZE)), ((0, 0), (MIN_SIZE, MIN_SIZE))]
         {
-            let (dw, dh, _) = decode(&render_png(&analysis, Picture::Close, w, h).unwrap());
+            let (dw, dh, _) = decode(&png(&analysis, Picture::Close, None, (w, h)).unwrap());
             assert_eq!((dw, dh), want);
         }
     }

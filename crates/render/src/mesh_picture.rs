@@ -371,7 +371,7 @@ fn draw_bar(
 #[cfg(test)]
 mod tests {
     use super::super::tests::{decode, preview};
-    use super::super::{render_step, Format, Known, Picture};
+    use super::super::{render, Known, Output, Picture, View};
     use super::*;
 
     /// The analysis of a built-in mesh sample and its view.
@@ -401,9 +401,9 @@ mod tests {
     fn the_mesh_is_inked_inside_its_border_in_height_colours() {
         let (analysis, view) = mesh_sample(&first_mesh_id());
         let size = 480;
-        let known = Known { truth: &[], mesh: Some(&view) };
+        let known = Known { mesh: Some(&view), ..Known::default() };
         let png =
-            render_step(&analysis, Picture::Mesh, None, size, size, Format::Png, known).unwrap();
+            render(&analysis, &View::whole(Picture::Mesh), &Output::png(size), known).unwrap();
         preview("mesh.png", &png);
         let (_, _, rgb) = decode(&png);
         let colour_at = |(x, y): (f64, f64)| {
@@ -461,14 +461,14 @@ mod tests {
     fn a_mesh_picture_needs_the_mesh_of_its_analysis() {
         let (analysis, mut view) = mesh_sample(&first_mesh_id());
         view.start.truncate(3);
-        let known = Known { truth: &[], mesh: Some(&view) };
+        let known = Known { mesh: Some(&view), ..Known::default() };
         assert!(matches!(
-            render_step(&analysis, Picture::Mesh, None, 200, 200, Format::Png, known),
+            render(&analysis, &View::whole(Picture::Mesh), &Output::png(200), known),
             Err(Error::Render(_))
         ));
-        let none = Known { truth: &[], mesh: None };
+        let none = Known::default();
         assert!(matches!(
-            render_step(&analysis, Picture::Mesh, None, 200, 200, Format::Png, none),
+            render(&analysis, &View::whole(Picture::Mesh), &Output::png(200), none),
             Err(Error::InvalidArgument(_))
         ));
     }

@@ -94,6 +94,7 @@ impl Canvas {
             png_filter: png::FilterType::Sub,
             recording: Some(Recording::default()),
             vector: None,
+            dpi: None,
         };
         draw(&mut canvas);
         canvas.recording.unwrap_or_default()

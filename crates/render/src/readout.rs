@@ -1,35 +1,40 @@
-//! What a viewer needs to read values off the pictures: where the disk lies on a disk
-//! picture, how the border plot maps data to pixels, and the values of the disks a picture
-//! draws.
+//! What a viewer needs to read values off the pictures: which cell each pixel of a disk
+//! picture shows, how the border plot maps data to pixels, and the values of the disks a
+//! picture draws.
 //!
-//! The web app shows the server's PNGs. To say which cell is under the pointer it needs the
-//! disk's centre and rim radius in the picture's pixels ([`super::disk_picture::Layout`]); the cell
-//! of a point then follows from its polar coordinates ([`super::disk_picture::sector_at`]: ring d
-//! from the radius, first edge a from the angle). To mark a cell's two edges on the border
-//! plot it needs that plot's data → pixel map, which plotters works out while it lays out
-//! the axes: it is taken from a drawing of the plot at the same size. The values are the
-//! condensed pair vectors (pairs (i, j), i < j, row-major, [`close_core::disk::condensed_index`])
-//! of the two frames a step's pictures compare; the diffs follow from them as the pictures
-//! compute them (| |end| − |start| | and end − start). Values are sent as `f32`: seven
-//! significant digits, more than a readout shows, in half the JSON.
-//! A readout of more than [`MAX_VALUES`] values is refused: past N ≈ 1000 a cell is
-//! narrower than a pixel of any picture served, and the JSON would weigh tens of megabytes.
+//! The web app shows the server's pictures and computes no geometry of its own. Which cell
+//! is under the pointer it reads off a *cell picture* ([`cell_picture`]): a PNG of the disk
+//! picture's size whose pixel holds, as a 24-bit number (red · 2¹⁶ + green · 2⁸ + blue),
+//! 1 + the index of the cell the disk picture paints there (0 off the disk), found by the
+//! painter's own rule ([`super::disk_picture::sector_at`]). The values come ring by ring
+//! ([`rings`]): index (d − 1)·N + a holds the pair of edges (a, a + d mod N), d = 1 at the
+//! rim … L = ⌊N/2⌋ at the centre, so a cell's edges, its pair distance and its neighbours
+//! follow from its index. To mark a cell's two edges on the border plot a viewer needs that
+//! plot's data → pixel map, which plotters works out while it lays out the axes: it is
+//! taken from a drawing of the plot at the same size. The values are those of the two
+//! frames a step's pictures compare; the diffs follow from them as the pictures compute
+//! them (| |end| − |start| | and end − start). Values are sent as `f32`: seven significant
+//! digits, more than a readout shows, in half the JSON. A readout of more than
+//! [`MAX_VALUES`] values is refused: past N ≈ 1000 a cell is narrower than a pixel of any
+//! picture served, and the JSON would weigh tens of megabytes.
 
 use serde::Serialize;
 
-use super::disk_picture::Layout;
+use std::f64::consts::TAU;
+
+use super::disk_picture::{sector_at, Layout};
+use super::truth::Truth;
 use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
 use close_core::analysis::Analysis;
 use close_core::disk::Disk;
 use close_core::error::{Error, Result};
-use close_core::geometry::Fold;
 
 /// Most disk values one readout sends (about 10 MB of JSON): two disks of N = 1000.
 pub const MAX_VALUES: usize = 1_000_000;
 
-/// Refuse `disks` disks of `n` edges over [`MAX_VALUES`].
+/// Refuse `disks` disks of `n` edges over [`MAX_VALUES`] (counted ring by ring: N·⌊N/2⌋ each).
 pub fn within_limit(disks: usize, n: usize) -> Result<()> {
-    let values = disks * n * n.saturating_sub(1) / 2;
+    let values = disks.saturating_mul(n).saturating_mul(n / 2);
     if values > MAX_VALUES {
         return Err(Error::too_large("disk values in a readout", values, MAX_VALUES));
     }
@@ -66,7 +71,7 @@ pub struct PlotTransform {
 impl PlotTransform {
     /// The map of the border plot of `analysis` drawn `size`×`size` (clamped as pictures are),
     /// with the `truth` folds it draws (they take legend rows, so they move the plot).
-    pub fn of_borders(analysis: &Analysis, truth: &[Fold], size: u32) -> Result<PlotTransform> {
+    pub fn of_borders(analysis: &Analysis, truth: &Truth, size: u32) -> Result<PlotTransform> {
         let mut canvas = Canvas::new(size, size)?;
         let (x, y) = borders::draw(&mut canvas, analysis, truth)?.affine();
         Ok(PlotTransform { x, y })
@@ -86,18 +91,18 @@ pub struct Readout {
     pub disk: DiskGeometry,
     /// The border plot's map (the plot shows the whole analysis, whatever the span).
     pub borders: PlotTransform,
-    /// The start disk's condensed pair vector.
+    /// The start disk's values, ring by ring ([`rings`]).
     pub start: Vec<f32>,
     /// The end disk's.
     pub end: Vec<f32>,
 }
 
 /// The readout of the disk pictures of `analysis` for `step` (1-based; `None`: the whole
-/// analysis, as [`super::render_step`] takes it) drawn `size`×`size`, its border plot
+/// analysis, as [`super::View`] takes it) drawn `size`×`size`, its border plot
 /// drawn with the `truth` folds.
 pub fn readout(
     analysis: &Analysis,
-    truth: &[Fold],
+    truth: &Truth,
     step: Option<usize>,
     size: u32,
 ) -> Result<Readout> {
@@ -114,8 +119,8 @@ pub fn readout(
         to_frame: analysis.start_frame + span.to,
         disk: DiskGeometry::of(size),
         borders: PlotTransform::of_borders(analysis, truth, size)?,
-        start: single(&start),
-        end: single(&end),
+        start: rings(&start),
+        end: rings(&end),
     })
 }
 
@@ -125,7 +130,7 @@ pub struct DiskCells {
     pub n: usize,
     pub size: u32,
     pub disk: DiskGeometry,
-    /// The condensed pair vector.
+    /// The values, ring by ring ([`rings`]).
     pub values: Vec<f32>,
 }
 
@@ -137,69 +142,126 @@ impl DiskCells {
             n: disk.n(),
             size: size.clamp(MIN_SIZE, MAX_SIZE),
             disk: DiskGeometry::of(size),
-            values: single(disk),
+            values: rings(disk),
         })
     }
 }
 
-/// The values of `disk` as `f32` (see the module doc).
-fn single(disk: &Disk) -> Vec<f32> {
-    disk.values().iter().map(|&v| v as f32).collect()
+/// The values of `disk` ring by ring, as `f32`: index (d − 1)·N + a holds the pair
+/// (a, a + d mod N), d = 1 … ⌊N/2⌋, a = 0 … N − 1 (for even N the pairs of the innermost
+/// ring come twice, at a and a + N/2, as the picture paints them).
+///
+/// ```
+/// use close_core::disk::Disk;
+/// use close_render::readout::rings;
+/// let disk = Disk::from_values(4, vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0]).unwrap();
+/// // Ring 1: pairs (0,1) (1,2) (2,3) (3,0); ring 2: (0,2) (1,3) (2,0) (3,1).
+/// assert_eq!(rings(&disk), [1.0, 4.0, 6.0, 3.0, 2.0, 5.0, 2.0, 5.0]);
+/// ```
+pub fn rings(disk: &Disk) -> Vec<f32> {
+    let n = disk.n();
+    (1..=n / 2).flat_map(|d| (0..n).map(move |a| disk.get(a, (a + d) % n) as f32)).collect()
+}
+
+/// The cell picture of a `size`×`size` disk picture (clamped as pictures are) of N = `n`:
+/// an RGB PNG whose pixel is 1 + the [`rings`] index of the cell the picture paints there
+/// (rim pixels, partly painted, included), 0 off the disk.
+pub fn cell_picture(n: usize, size: u32) -> Result<Vec<u8>> {
+    if !(close_core::border::MIN_VERTICES..=close_core::border::MAX_VERTICES).contains(&n) {
+        return Err(Error::InvalidArgument(format!(
+            "a disk has {} to {} edges, not {n}",
+            close_core::border::MIN_VERTICES,
+            close_core::border::MAX_VERTICES
+        )));
+    }
+    let mut canvas = Canvas::new(size, size)?;
+    let layout = Layout::of(canvas.width, canvas.height);
+    let width = canvas.width as usize;
+    canvas.rgb.fill(0);
+    for (k, pixel) in canvas.rgb.chunks_exact_mut(3).enumerate() {
+        let (x, y) = ((k % width) as f64 + 0.5, (k / width) as f64 + 0.5);
+        let (dx, dy) = (x - layout.cx, layout.cy - y);
+        let dist = dx.hypot(dy);
+        // Painted pixels only: the rim's coverage rule of the disk picture.
+        if layout.radius + 0.5 - dist <= 0.0 {
+            continue;
+        }
+        let (d, a) = sector_at(n, (dist / layout.radius).min(1.0), dy.atan2(dx).rem_euclid(TAU));
+        let code = ((d - 1) * n + a + 1) as u32;
+        pixel.copy_from_slice(&code.to_be_bytes()[1..]);
+    }
+    // Runs of one cell along a row: the Sub filter makes them zeros.
+    canvas.png_filter = png::FilterType::Sub;
+    canvas.png()
 }
 
 #[cfg(test)]
 mod tests {
     use super::super::colour::{Ramp, Scale};
-    use super::super::tests::{decode, folded_square};
-    use super::super::{render_png, render_step_png, Picture};
+    use super::super::tests::{decode, disk_png, folded_square, png};
+    use super::super::Picture;
     use super::*;
-    use close_core::disk::{condensed_index, position};
     use std::f64::consts::PI;
 
     #[test]
-    fn the_values_are_the_step_disks_and_each_cell_is_where_the_picture_paints_it() {
+    fn the_values_are_the_step_disks_ring_by_ring() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
-        let size = 400;
-        let readout = readout(&analysis, &[], Some(1), size).unwrap();
+        let readout = readout(&analysis, &Truth::default(), Some(1), 400).unwrap();
         let (start, end) = (analysis.disk(0).unwrap(), analysis.disk(1).unwrap());
         assert_eq!((readout.n, readout.from_frame, readout.to_frame), (32, 0, 1));
-        let close = |a: &[f32], b: &[f64]| {
-            a.len() == b.len()
-                && a.iter().zip(b).all(|(&x, &y)| (x as f64 - y).abs() <= 1e-6 * y.abs().max(1e-3))
-        };
-        assert!(close(&readout.start, start.values()) && close(&readout.end, end.values()));
-        // The signed diff's picture paints the cell of the largest |Δ| in that value's colour
-        // at the point the geometry gives for the middle of that cell.
         let n = readout.n;
-        let (mut best, mut at) = (0.0, (0, 1));
-        for i in 0..n {
-            for j in i + 1..n {
-                let delta = (end.get(i, j) - start.get(i, j)).abs();
-                if delta > best {
-                    (best, at) = (delta, (i, j));
+        assert_eq!(readout.start.len(), n * (n / 2));
+        for d in 1..=n / 2 {
+            for a in 0..n {
+                let k = (d - 1) * n + a;
+                for (got, disk) in [(readout.start[k], &start), (readout.end[k], &end)] {
+                    let want = disk.get(a, (a + d) % n);
+                    assert!((got as f64 - want).abs() <= 1e-6 * want.abs().max(1e-3), "({d}, {a})");
                 }
             }
         }
-        let cell = position(n, at.0, at.1);
-        let r = cell.radius - 0.5 / (n / 2) as f64;
-        let g = readout.disk;
-        let (x, y) =
-            (g.cx + g.radius * r * cell.angle.cos(), g.cy - g.radius * r * cell.angle.sin());
-        let (_, _, rgb) =
-            decode(&render_step_png(&analysis, Picture::SignedDiff, Some(1), size, size).unwrap());
-        let pixel = &rgb[(y as usize * size as usize + x as usize) * 3..][..3];
-        let diff = start.signed_diff(&end);
-        let want = Ramp::Diverging
-            .colour(Scale::of(diff.values()).squash(diff.values()[condensed_index(n, at.0, at.1)]));
-        assert_eq!(pixel, want, "cell {at:?}");
+    }
+
+    #[test]
+    fn the_cell_picture_names_the_cell_each_pixel_is_painted_with() {
+        for (n, size) in [(32, 400), (13, 300), (200, 480)] {
+            // Every pair of its own value: a pixel's colour names its cell.
+            let disk =
+                Disk::from_values(n, (0..n * (n - 1) / 2).map(|k| k as f64).collect()).unwrap();
+            let scale = Scale::of(disk.values());
+            let (_, _, painted) = decode(&disk_png(&disk, "", (size, size)));
+            let (_, _, cells) = decode(&cell_picture(n, size).unwrap());
+            let values = rings(&disk);
+            let layout = Layout::of(size, size);
+            let (mut inside, mut off) = (0, 0);
+            for (k, (cell, colour)) in cells.chunks(3).zip(painted.chunks(3)).enumerate() {
+                let code = u32::from_be_bytes([0, cell[0], cell[1], cell[2]]) as usize;
+                let (x, y) = ((k % size as usize) as f64 + 0.5, (k / size as usize) as f64 + 0.5);
+                let dist = (x - layout.cx).hypot(y - layout.cy);
+                if dist > layout.radius + 0.5 {
+                    assert_eq!(code, 0, "({x}, {y}) off the disk, N = {n}");
+                    off += 1;
+                    continue;
+                }
+                assert!(code >= 1 && code <= values.len(), "({x}, {y}): {code}");
+                // Inside the rim's anti-aliasing, the colour is the cell's value's.
+                if dist < layout.radius - 1.5 {
+                    let want = Ramp::Diverging.colour(scale.squash(values[code - 1] as f64));
+                    assert_eq!(colour, want, "({x}, {y}), N = {n}, cell {}", code - 1);
+                    inside += 1;
+                }
+            }
+            assert!(inside > 1000 && off > 1000, "N = {n}: {inside} inside, {off} off");
+        }
+        assert!(cell_picture(3, 100).is_err() && cell_picture(5001, 100).is_err());
     }
 
     #[test]
     fn the_border_transform_puts_vertex_0_on_its_mark() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
         let size = 360;
-        let t = PlotTransform::of_borders(&analysis, &[], size).unwrap();
-        let (_, _, rgb) = decode(&render_png(&analysis, Picture::Borders, size, size).unwrap());
+        let t = PlotTransform::of_borders(&analysis, &Truth::default(), size).unwrap();
+        let (_, _, rgb) = decode(&png(&analysis, Picture::Borders, None, (size, size)).unwrap());
         let p = analysis.start_border()[0];
         let (x, y) = (t.x[0] * p.x + t.x[1], t.y[0] * p.y + t.y[1]);
         assert!(
@@ -221,6 +283,9 @@ mod tests {
     #[test]
     fn a_step_that_does_not_exist_is_refused() {
         let analysis = folded_square(4, [0.0, PI]);
-        assert!(matches!(readout(&analysis, &[], Some(2), 200), Err(Error::InvalidArgument(_))));
+        assert!(matches!(
+            readout(&analysis, &Truth::default(), Some(2), 200),
+            Err(Error::InvalidArgument(_))
+        ));
     }
 }

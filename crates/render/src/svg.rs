@@ -9,9 +9,9 @@
 //! stays text.
 //!
 //! ```
-//! use close_render::{render_step, Format, Picture};
+//! use close_render::{render, Output, Picture, View};
 //! # let analysis = close_core::analyze(&close_core::border::prepare(vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]; 2]).unwrap(), Default::default()).unwrap();
-//! let svg = String::from_utf8(render_step(&analysis, Picture::Close, None, 300, 300, Format::Svg, Default::default()).unwrap()).unwrap();
+//! let svg = String::from_utf8(render(&analysis, &View::whole(Picture::Close), &Output::svg(300), Default::default()).unwrap()).unwrap();
 //! assert!(svg.starts_with("<svg") && svg.contains("<text"));
 //! ```
 

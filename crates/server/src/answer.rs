@@ -50,6 +50,17 @@ pub struct ListedFields<'a> {
     pub recording: Option<String>,
 }
 
+/// `POST /api/plan`: the plan ([`close_core::plan::Answer`], as the CLI and Python give
+/// it) and the states it goes through as the web app draws them
+/// ([`close_render::cloth::plan_states`]).
+#[derive(Debug, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PlanAnswer {
+    #[serde(flatten)]
+    pub answer: close_core::plan::Answer,
+    pub states: Vec<close_render::cloth::Pictured>,
+}
+
 /// The body of every failure: a 4xx (or, for a fault of the server, 5xx) status and
 /// `{"error": "..."}`, the message naming the problem.
 #[derive(Debug, Serialize)]

@@ -12,7 +12,7 @@ const JS: &str = "text/javascript; charset=utf-8";
 
 /// (file name, content type, content) of every file under `web/` but `index.html`: the
 /// stylesheet, the favicon and the ES modules (no build step: the browser loads them as they are).
-const FILES: [(&str, &str, &str); 17] = [
+const FILES: [(&str, &str, &str); 16] = [
     ("app.css", CSS, include_str!("../../../web/app.css")),
     ("favicon.svg", "image/svg+xml", include_str!("../../../web/favicon.svg")),
     ("app.js", JS, include_str!("../../../web/app.js")),
@@ -29,7 +29,6 @@ const FILES: [(&str, &str, &str); 17] = [
     ("view-interpolate.js", JS, include_str!("../../../web/view-interpolate.js")),
     ("view-plan.js", JS, include_str!("../../../web/view-plan.js")),
     ("view-compare.js", JS, include_str!("../../../web/view-compare.js")),
-    ("fold.mjs", JS, include_str!("../../../web/fold.mjs")),
 ];
 
 const INDEX: &str = include_str!("../../../web/index.html");

@@ -6,66 +6,60 @@
 //! ([`SampleRow`]): `source` is `"builtin"` or the dataset's folder or store, `error` says
 //! why a dataset entry cannot be read. Every listed id is answered, pictured and planned by
 //! the same handlers (`routes::sample_analysis`).
+//!
+//! The work is bounded and counted: the list is built once, each row's JSON written then
+//! with its lower-case text; a query is checked against its caps first
+//! ([`close_io::catalog::Query::filter`]: 400 past them), the rows are filtered on a worker
+//! under the request's deadline, and the answer's size, known from the rows chosen, is
+//! taken from the memory budget before the answer is put together (on a worker too).
+
+use std::sync::Arc;
 
 use axum::extract::State;
-use serde::Serialize;
+use axum::response::{IntoResponse, Response};
 
 use super::answer::SampleRow;
-use super::routes::{sample_rows, JsonBytes};
+use super::listing::Listing;
+use super::routes::JsonBytes;
+use super::state::Lane;
 use super::{ApiError, AppQuery, AppState};
 use close_io::catalog;
 
-/// A category and how many rows of the whole list it holds.
-#[derive(Serialize)]
-struct Category<'a> {
-    name: &'a str,
-    count: usize,
-}
-
-/// The answer of `GET /api/samples`.
-#[derive(Serialize)]
-struct SampleList<'a> {
-    samples: Vec<&'a SampleRow>,
-    /// Rows that pass the filters (before paging).
-    total: usize,
-    offset: usize,
-    limit: Option<usize>,
-    /// Every category of the whole list, in first-seen order.
-    categories: Vec<Category<'a>>,
-}
-
-/// Categories of `rows` with their counts, in first-seen order.
-fn categories(rows: &[SampleRow]) -> Vec<Category<'_>> {
-    let mut out: Vec<Category> = Vec::new();
-    for row in rows {
-        match out.iter_mut().find(|c| c.name == row.entry.category) {
-            Some(c) => c.count += 1,
-            None => out.push(Category { name: &row.entry.category, count: 1 }),
-        }
+/// The listing, built once (a mesh's border vertex count takes finding its border: a
+/// worker's job).
+pub(super) async fn listing(state: &AppState) -> Result<Arc<Listing>, ApiError> {
+    if let Some(listing) = state.0.sample_list.get() {
+        return Ok(listing.clone());
     }
-    out
+    let job = state.clone();
+    let listing = state
+        .run_cpu(Lane::Light, move |_| {
+            let builtin = job.entries().iter().map(SampleRow::builtin);
+            let rows: Vec<SampleRow> =
+                builtin.chain(job.catalog().entries().iter().map(SampleRow::dataset)).collect();
+            Listing::of(&rows)
+                .map_err(|e| ApiError::Internal(format!("could not write the sample list: {e}")))
+        })
+        .await?;
+    Ok(state.0.sample_list.get_or_init(|| Arc::new(listing)).clone())
 }
 
 pub async fn samples(
     State(state): State<AppState>,
     AppQuery(query): AppQuery<catalog::Query>,
-) -> Result<JsonBytes, ApiError> {
-    let rows = sample_rows(&state).await?;
-    let matching: Vec<&SampleRow> = rows
-        .iter()
-        .filter(|r| query.matches(&r.entry.id, &r.entry.name, &r.entry.category))
-        .collect();
-    let total = matching.len();
-    let page =
-        matching.into_iter().skip(query.offset).take(query.limit.unwrap_or(usize::MAX)).collect();
-    let list = SampleList {
-        samples: page,
-        total,
-        offset: query.offset,
-        limit: query.limit,
-        categories: categories(&rows),
-    };
-    let body = serde_json::to_vec(&list)
-        .map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))?;
-    Ok(JsonBytes(body.into()))
+) -> Result<Response, ApiError> {
+    let filter = query.filter()?;
+    let (offset, limit) = (query.offset, query.limit);
+    let listing = listing(&state).await?;
+    let job = listing.clone();
+    let selection = state
+        .run_cpu(Lane::Light, move |deadline| Ok(job.select(&filter, offset, limit, deadline)?))
+        .await?;
+    // Counted before it is built: many large lists at once wait for the budget.
+    let reserved = state.0.memory.reserve(selection.bytes).await?;
+    let answer =
+        state.run_cpu(Lane::Light, move |_| Ok(listing.answer(&selection, offset, limit))).await?;
+    let mut response = JsonBytes(answer).into_response();
+    response.extensions_mut().insert(reserved);
+    Ok(response)
 }

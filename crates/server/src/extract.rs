@@ -1,5 +1,6 @@
 //! Extractors that reject with [`ApiError`], as in axum's error-handling example: handlers
-//! take `AppJson<T>`, `AppPath<T>`, `AppQuery<T>` and never see a rejection.
+//! take `AppJson<T>`, `AppPath<T>`, `AppQuery<T>` and never see a rejection. `AppJson`
+//! parses a large body on a worker of the app ([`AppState`]).
 //!
 //! ```
 //! use close_server::AppJson;
@@ -18,12 +19,18 @@ use axum::http::{header, HeaderMap, StatusCode};
 use axum::Json;
 use serde::de::DeserializeOwned;
 
-use super::ApiError;
+use super::state::Lane;
+use super::{ApiError, AppState};
 use close_io::formats::json::check_nesting;
 
 /// A JSON body of type `T`, nested at most [`close_io::formats::json::MAX_NESTING`] deep
-/// anywhere (inside an unknown key too).
+/// anywhere (inside an unknown key too). A body larger than 64 KiB is checked and parsed
+/// on a worker, under the request's deadline, never on the async threads: many large
+/// bodies at once then wait for the workers instead of holding every other request.
 pub struct AppJson<T>(pub T);
+
+/// Bodies up to this size are parsed where they arrive (microseconds of work).
+pub(crate) const PARSED_INLINE: usize = 64 * 1024;
 
 /// Whether the body says it is JSON: `application/json` or `application/…+json`.
 fn is_json(headers: &HeaderMap) -> bool {
@@ -37,10 +44,17 @@ fn is_json(headers: &HeaderMap) -> bool {
         || (essence.starts_with("application/") && essence.ends_with("+json"))
 }
 
-impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for AppJson<T> {
+/// Check a body's nesting and parse it as a `T`.
+fn parse<T: DeserializeOwned>(bytes: &Bytes) -> Result<T, ApiError> {
+    check_nesting(bytes).map_err(|e| ApiError::Rejected(StatusCode::BAD_REQUEST, e.to_string()))?;
+    let Json(value) = Json::<T>::from_bytes(bytes)?;
+    Ok(value)
+}
+
+impl<T: DeserializeOwned + Send + 'static> FromRequest<AppState> for AppJson<T> {
     type Rejection = ApiError;
 
-    async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
+    async fn from_request(request: Request, state: &AppState) -> Result<Self, ApiError> {
         if !is_json(request.headers()) {
             return Err(ApiError::Rejected(
                 StatusCode::UNSUPPORTED_MEDIA_TYPE,
@@ -48,10 +62,10 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for AppJson<T> {
             ));
         }
         let bytes = Bytes::from_request(request, state).await?;
-        check_nesting(&bytes)
-            .map_err(|e| ApiError::Rejected(StatusCode::BAD_REQUEST, e.to_string()))?;
-        let Json(value) = Json::<T>::from_bytes(&bytes)?;
-        Ok(AppJson(value))
+        if bytes.len() <= PARSED_INLINE {
+            return parse(&bytes).map(AppJson);
+        }
+        state.run_cpu(Lane::Light, move |_| parse(&bytes)).await.map(AppJson)
     }
 }
 

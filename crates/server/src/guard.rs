@@ -14,18 +14,27 @@
 //!   authority as `Host`) nor one given with `--cors` is refused with 403; so is one that
 //!   carries no `Origin` but a `Sec-Fetch-Site` saying it comes from another site.
 //! - **Upload budget**: every request with a body holds, while it is served, permits for
-//!   its announced length (or its route's body limit when it announces none) from one
-//!   semaphore of [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead
-//!   of multiplying the memory they take; after a large one, freed memory goes back to the
-//!   OS. A body announced over its route's own limit (uploads to `/api/analyze`: the body
+//!   its announced length (or its route's body limit when it announces none) from a budget
+//!   of [`super::Config::upload_budget`] bytes, so concurrent uploads wait instead of
+//!   multiplying the memory they take; after a large one, freed memory goes back to the OS.
+//!   A body announced over its route's own limit (uploads to `/api/analyze`: the body
 //!   limit; the JSON routes: the JSON limit) is refused at once, holding nothing. Answers
 //!   count too: an answer of 64 KiB or more holds permits for its length until it is
-//!   written or its connection dropped (at the write time-out of the server's socket module when its
-//!   client does not read), and an answer whose size is known beforehand (an
-//!   interpolation's) is reserved before it is built.
+//!   written or its connection dropped, and an answer whose size is known beforehand (an
+//!   interpolation's, a sample list's) is reserved before it is built.
+//! - **A fair budget**: the budget is two pools. Bodies and answers of at most
+//!   [`SMALL_REQUEST`] (1 MiB) take from a pool of their own (an eighth of the budget), so a
+//!   small request never waits behind large ones; larger ones share the rest. Whatever holds
+//!   a pool must not hold it idle while others wait for it: a body must keep the pace that
+//!   finishes it within the request time-out (its length over the time-out, at least
+//!   [`MIN_BODY_RATE`]), and while anyone waits for its pool its grace is
+//!   [`CROWDED_GRACE`]; an answer its client does not read for [`CROWDED_GRACE`] while
+//!   anyone waits for its pool is dropped with its connection ([`AnswerWatch`], checked by
+//!   the socket). A connection thus holds at most one body and one answer, and only while
+//!   it uses them.
 //! - **Body rate**: a body must keep arriving. After a grace of the header time-out (of
-//!   [`CROWDED_GRACE`] while nearly every connection slot is taken), it must have come at
-//!   [`MIN_BODY_RATE`] bytes a second on average, or the read fails (408) and the
+//!   [`CROWDED_GRACE`] while nearly every connection slot is taken, or its pool is waited
+//!   for), it must have come at its pace on average, or the read fails (408) and the
 //!   connection, its budget share and its worker are freed: a client trickling a body
 //!   cannot hold them for the whole request time-out, and trickling connections cannot keep
 //!   new clients out.
@@ -39,7 +48,8 @@
 use std::future::Future;
 use std::net::{IpAddr, SocketAddr};
 use std::pin::Pin;
-use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 use std::task::{Context, Poll};
 use std::time::Duration;
 
@@ -165,12 +175,60 @@ pub async fn doors(State(doors): State<Arc<Doors>>, request: Request, next: Next
     }
 }
 
-/// Bytes of request bodies that may be held at once, counted in KiB permits.
+/// Bodies and answers of at most this many bytes take from the small requests' pool.
+pub const SMALL_REQUEST: usize = 1 << 20;
+
+/// One pool of the budget: KiB permits, and how many wait for them now.
+#[derive(Debug)]
+pub struct Pool {
+    permits: Arc<Semaphore>,
+    /// All its permits: no single request asks for more.
+    total_kib: u32,
+    waiting: AtomicUsize,
+}
+
+/// Counts a wait for a pool while it lasts (a wait given up when its request is dropped too).
+struct Waiting<'a>(&'a AtomicUsize);
+
+impl Drop for Waiting<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::Relaxed);
+    }
+}
+
+impl Pool {
+    fn new(kib: u32) -> Pool {
+        let kib = kib.clamp(1, Semaphore::MAX_PERMITS as u32);
+        Pool { permits: Arc::new(Semaphore::new(kib as usize)), total_kib: kib, waiting: 0.into() }
+    }
+
+    /// KiB permits for `bytes`: at least one, at most all.
+    fn kib(&self, bytes: usize) -> u32 {
+        u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, self.total_kib)
+    }
+
+    /// Take `kib` permits, after those who wait already; counted as waiting meanwhile.
+    async fn take(&self, kib: u32) -> Result<OwnedSemaphorePermit, ApiError> {
+        if let Ok(permits) = self.permits.clone().try_acquire_many_owned(kib) {
+            return Ok(permits);
+        }
+        self.waiting.fetch_add(1, Ordering::Relaxed);
+        let _waiting = Waiting(&self.waiting);
+        self.permits.clone().acquire_many_owned(kib).await.map_err(|_| closed())
+    }
+
+    /// Whether anyone waits for this pool now: what holds it must then use it or let go.
+    pub fn crowded(&self) -> bool {
+        self.waiting.load(Ordering::Relaxed) > 0
+    }
+}
+
+/// Bytes of request bodies and answers that may be held at once, counted in KiB permits,
+/// in two pools: small requests' and large ones'.
 #[derive(Debug)]
 pub struct UploadBudget {
-    permits: Arc<Semaphore>,
-    /// All permits: no single request asks for more.
-    total_kib: u32,
+    small: Arc<Pool>,
+    large: Arc<Pool>,
     /// What an upload to `/api/analyze` may hold.
     body_limit: usize,
     /// What the body of any other route may hold.
@@ -181,13 +239,14 @@ pub struct UploadBudget {
 const UPLOAD_ROUTE: &str = "/api/analyze";
 
 impl UploadBudget {
+    /// A budget of `bytes`: an eighth (at least [`SMALL_REQUEST`], at most half) for small
+    /// requests, the rest for large ones.
     pub fn new(bytes: usize, body_limit: usize, json_body_limit: usize) -> Self {
-        let total_kib = u32::try_from(bytes.div_ceil(1024))
-            .unwrap_or(u32::MAX)
-            .clamp(1, Semaphore::MAX_PERMITS as u32);
+        let total_kib = u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).max(2);
+        let small_kib = (total_kib / 8).max((SMALL_REQUEST / 1024) as u32).min(total_kib / 2);
         UploadBudget {
-            permits: Arc::new(Semaphore::new(total_kib as usize)),
-            total_kib,
+            small: Arc::new(Pool::new(small_kib)),
+            large: Arc::new(Pool::new(total_kib - small_kib)),
             body_limit,
             json_body_limit,
         }
@@ -202,10 +261,28 @@ impl UploadBudget {
         }
     }
 
+    /// The pool a body or answer of `bytes` takes from.
+    fn pool(&self, bytes: usize) -> &Arc<Pool> {
+        if bytes <= SMALL_REQUEST {
+            &self.small
+        } else {
+            &self.large
+        }
+    }
+
     /// Bytes of the budget not held by a request now.
     pub fn available(&self) -> usize {
-        self.permits.available_permits() * 1024
+        (self.small.permits.available_permits() + self.large.permits.available_permits()) * 1024
     }
+}
+
+/// What a body holds of the budget, for the pace it must keep ([`BodyRate`]): put in the
+/// request's extensions by [`upload_budget`].
+#[derive(Clone, Debug)]
+pub struct Pace {
+    /// Bytes held for it.
+    bytes: usize,
+    pool: Arc<Pool>,
 }
 
 /// Middleware: hold the request's share of the budget until its answer is ready, then the
@@ -215,6 +292,7 @@ pub async fn upload_budget(
     request: Request,
     next: Next,
 ) -> Response {
+    let watch = request.extensions().get::<AnswerWatch>().cloned();
     let response = if matches!(*request.method(), Method::GET | Method::HEAD | Method::OPTIONS) {
         next.run(request).await
     } else {
@@ -222,14 +300,14 @@ pub async fn upload_budget(
             Ok(response) | Err(response) => response,
         }
     };
-    hold_answer(&budget, response).await
+    hold_answer(&budget, response, watch).await
 }
 
 /// Serve `request` holding permits for its announced length (its route's limit when it
 /// announces none); `Err` when it is refused, over the limit, or the budget is closed.
 async fn hold_request(
     budget: &UploadBudget,
-    request: Request,
+    mut request: Request,
     next: Next,
 ) -> Result<Response, Response> {
     let announced = request
@@ -244,13 +322,11 @@ async fn hold_request(
         )
         .into_response());
     }
-    let kib = budget.kib(announced.unwrap_or(limit));
-    let held = budget
-        .permits
-        .clone()
-        .acquire_many_owned(kib)
-        .await
-        .map_err(|_| closed().into_response())?;
+    let bytes = announced.unwrap_or(limit);
+    let pool = budget.pool(bytes);
+    let kib = pool.kib(bytes);
+    let held = pool.take(kib).await.map_err(IntoResponse::into_response)?;
+    request.extensions_mut().insert(Pace { bytes, pool: pool.clone() });
     let response = next.run(request).await;
     drop(held);
     if kib >= RELEASE_AFTER_KIB {
@@ -271,33 +347,49 @@ const COUNTED_ANSWER: usize = 64 * 1024;
 /// put in the answer's extensions: `hold_answer` keeps them, resized to the answer's
 /// length, until the answer is written.
 #[derive(Clone)]
-pub struct Reserved(Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>>);
+pub struct Reserved(Arc<Mutex<Option<Hold>>>);
+
+/// Permits held, and the pool they are of.
+type Hold = (OwnedSemaphorePermit, Arc<Pool>);
 
 impl Reserved {
-    fn take(&self) -> Option<OwnedSemaphorePermit> {
+    fn take(&self) -> Option<Hold> {
         self.0.lock().unwrap_or_else(|e| e.into_inner()).take()
     }
 }
 
 impl UploadBudget {
-    /// KiB permits for `bytes`: at least one, at most all.
-    fn kib(&self, bytes: usize) -> u32 {
-        u32::try_from(bytes.div_ceil(1024)).unwrap_or(u32::MAX).clamp(1, self.total_kib)
-    }
-
     /// Take `bytes` of the budget for the answer a JSON route is about to build, waiting
     /// until they are free: an answer whose size is known beforehand (an interpolation's)
-    /// is then never built while the budget is spent. At most the budget less the largest
-    /// JSON body is taken, which the request may hold itself while it waits.
+    /// is then never built while the budget is spent. At most its pool less the largest
+    /// JSON body of that pool is taken, which the request may hold itself while it waits.
     pub async fn reserve(&self, bytes: usize) -> Result<Reserved, ApiError> {
-        let most = self.total_kib.saturating_sub(self.kib(self.json_body_limit)).max(1);
-        let permits = self
-            .permits
-            .clone()
-            .acquire_many_owned(self.kib(bytes).min(most))
-            .await
-            .map_err(|_| closed())?;
-        Ok(Reserved(Arc::new(std::sync::Mutex::new(Some(permits)))))
+        let pool = self.pool(bytes);
+        let body = pool.kib(self.json_body_limit.min(if bytes <= SMALL_REQUEST {
+            SMALL_REQUEST
+        } else {
+            usize::MAX
+        }));
+        let most = pool.total_kib.saturating_sub(body).max(1);
+        let permits = pool.take(pool.kib(bytes).min(most)).await?;
+        Ok(Reserved(Arc::new(Mutex::new(Some((permits, pool.clone()))))))
+    }
+}
+
+/// Which pool a connection's answer holds while it is written, if any: shared by the
+/// answer's body (`Held`) and the connection's socket, which drops a stalled answer
+/// early when others wait for that pool ([`AnswerWatch::crowded`]).
+#[derive(Clone, Debug, Default)]
+pub struct AnswerWatch(Arc<Mutex<Option<Arc<Pool>>>>);
+
+impl AnswerWatch {
+    fn set(&self, pool: Option<Arc<Pool>>) {
+        *self.0.lock().unwrap_or_else(|e| e.into_inner()) = pool;
+    }
+
+    /// Whether the answer being written holds a pool that someone waits for.
+    pub fn crowded(&self) -> bool {
+        self.0.lock().unwrap_or_else(|e| e.into_inner()).as_ref().is_some_and(|p| p.crowded())
     }
 }
 
@@ -305,37 +397,51 @@ impl UploadBudget {
 /// is dropped, e.g. at the write time-out): with permits the handler reserved, resized to
 /// the length, or with permits waited for now. Answers nobody reads thus hold at most the
 /// budget, and further requests wait, instead of each keeping its answer in memory.
-async fn hold_answer(budget: &UploadBudget, mut response: Response) -> Response {
+async fn hold_answer(
+    budget: &UploadBudget,
+    mut response: Response,
+    watch: Option<AnswerWatch>,
+) -> Response {
     let reserved = response.extensions_mut().remove::<Reserved>().and_then(|r| r.take());
     let Some(bytes) = response.body().size_hint().exact().and_then(|b| usize::try_from(b).ok())
     else {
         return match reserved {
-            Some(permits) => response.map(|body| axum::body::Body::new(Held::new(body, permits))),
+            Some((permits, pool)) => {
+                response.map(|body| axum::body::Body::new(Held::new(body, permits, pool, watch)))
+            }
             None => response,
         };
     };
     if bytes < COUNTED_ANSWER && reserved.is_none() {
         return response;
     }
-    let kib = budget.kib(bytes);
-    let permits = match reserved {
-        Some(mut permits) if permits.num_permits() >= kib as usize => {
-            let surplus = permits.num_permits() - kib as usize;
-            drop(permits.split(surplus));
-            Ok(permits)
+    let (permits, pool) = match reserved {
+        Some((mut permits, pool)) => {
+            let kib = pool.kib(bytes) as usize;
+            if permits.num_permits() >= kib {
+                drop(permits.split(permits.num_permits() - kib));
+                (Ok(permits), pool)
+            } else {
+                let more = pool.take((kib - permits.num_permits()) as u32).await;
+                (
+                    more.map(|more| {
+                        permits.merge(more);
+                        permits
+                    }),
+                    pool,
+                )
+            }
         }
-        Some(mut permits) => {
-            let more = (kib as usize - permits.num_permits()) as u32;
-            budget.permits.clone().acquire_many_owned(more).await.map(|more| {
-                permits.merge(more);
-                permits
-            })
+        None => {
+            let pool = budget.pool(bytes).clone();
+            (pool.take(pool.kib(bytes)).await, pool)
         }
-        None => budget.permits.clone().acquire_many_owned(kib).await,
     };
     match permits {
-        Ok(permits) => response.map(|body| axum::body::Body::new(Held::new(body, permits))),
-        Err(_) => closed().into_response(),
+        Ok(permits) => {
+            response.map(|body| axum::body::Body::new(Held::new(body, permits, pool, watch)))
+        }
+        Err(e) => e.into_response(),
     }
 }
 
@@ -344,17 +450,27 @@ async fn hold_answer(budget: &UploadBudget, mut response: Response) -> Response 
 /// of it is out.
 const ANSWER_SLICE: usize = 64 * 1024;
 
-/// An answer's body holding its share of the budget until it is dropped.
+/// An answer's body holding its share of the budget until it is dropped, and telling its
+/// connection's socket so meanwhile ([`AnswerWatch`]).
 struct Held {
     inner: axum::body::Body,
     /// The rest of a data frame larger than [`ANSWER_SLICE`].
     rest: axum::body::Bytes,
     permits: OwnedSemaphorePermit,
+    watch: Option<AnswerWatch>,
 }
 
 impl Held {
-    fn new(inner: axum::body::Body, permits: OwnedSemaphorePermit) -> Held {
-        Held { inner, rest: axum::body::Bytes::new(), permits }
+    fn new(
+        inner: axum::body::Body,
+        permits: OwnedSemaphorePermit,
+        pool: Arc<Pool>,
+        watch: Option<AnswerWatch>,
+    ) -> Held {
+        if let Some(watch) = &watch {
+            watch.set(Some(pool));
+        }
+        Held { inner, rest: axum::body::Bytes::new(), permits, watch }
     }
 
     /// The next slice of `rest`.
@@ -405,6 +521,9 @@ impl hyper::body::Body for Held {
 
 impl Drop for Held {
     fn drop(&mut self) {
+        if let Some(watch) = &self.watch {
+            watch.set(None);
+        }
         if self.permits.num_permits() >= RELEASE_AFTER_KIB as usize {
             release_memory();
         }
@@ -412,16 +531,18 @@ impl Drop for Held {
 }
 
 /// Slowest average a request body may arrive at, after the grace: 16 KiB/s, so a 64 MiB
-/// upload may take about an hour, and a trickle of a byte now and then is cut.
+/// upload may take about an hour (as far as its request time-out allows), and a trickle of
+/// a byte now and then is cut.
 pub const MIN_BODY_RATE: u64 = 16 * 1024;
 
-/// The grace of a body while the server is crowded (`BodyRate::crowded`): trickled bodies
-/// that hold the connection slots are then cut within a second or two, so new clients (a
-/// `/healthz`, a normal analysis) get in instead of waiting out the header time-out.
+/// The grace of a body while the server is crowded (fewer than an eighth of the connection slots free) or its pool is
+/// waited for, and how long an answer may go unread while its pool is waited for: trickled
+/// bodies and unread answers that hold what others need are then cut within a second or
+/// two, so new clients (a `/healthz`, a normal analysis) get in instead of waiting.
 pub const CROWDED_GRACE: Duration = Duration::from_secs(1);
 
-/// What the body rate is checked against: the grace of a body, and the connection slots
-/// whose crowding shortens it.
+/// What the body rate is checked against: the grace of a body, the connection slots whose
+/// crowding shortens it, and the request time-out that sets a body's pace.
 #[derive(Clone)]
 pub struct BodyRate {
     /// The grace while the server is not crowded (the header time-out).
@@ -429,6 +550,8 @@ pub struct BodyRate {
     /// The connection slots ([`super::Config::max_connections`] permits; a connection holds one).
     pub connections: Arc<Semaphore>,
     pub max_connections: usize,
+    /// The request time-out: a body must come fast enough to finish within it.
+    pub timeout: Duration,
 }
 
 impl BodyRate {
@@ -436,37 +559,40 @@ impl BodyRate {
     fn crowded(&self) -> bool {
         self.connections.available_permits().saturating_mul(8) < self.max_connections
     }
-
-    /// The grace that applies now.
-    fn grace(&self) -> Duration {
-        if self.crowded() {
-            CROWDED_GRACE.min(self.grace)
-        } else {
-            self.grace
-        }
-    }
 }
 
-/// A request body that fails once it falls behind [`MIN_BODY_RATE`]: by the grace after it
-/// started plus the time its bytes so far were due at that rate. The grace is the one that
-/// applies when the body is checked, and a body behind is checked at least every
-/// [`CROWDED_GRACE`], so crowding that comes later shortens it too.
+/// A request body that fails once it falls behind its pace: by the grace after it started
+/// plus the time its bytes so far were due at that pace. The pace is the body's held length
+/// over the request time-out (a body slower than that could not be read in time anyway),
+/// at least [`MIN_BODY_RATE`]. The grace is the one that applies when the body is checked
+/// ([`CROWDED_GRACE`] while the server is crowded or the body's pool is waited for), and a
+/// body behind is checked at least every [`CROWDED_GRACE`], so crowding that comes later
+/// shortens it too.
 struct MinRate {
     inner: axum::body::Body,
     check: Pin<Box<tokio::time::Sleep>>,
     started: tokio::time::Instant,
     rate: BodyRate,
+    /// Bytes a second it must keep on average.
+    pace: f64,
+    /// The pool its budget comes from.
+    pool: Option<Arc<Pool>>,
     received: u64,
 }
 
 impl MinRate {
-    fn new(inner: axum::body::Body, rate: BodyRate) -> MinRate {
+    fn new(inner: axum::body::Body, rate: BodyRate, held: Option<Pace>) -> MinRate {
         let started = tokio::time::Instant::now();
+        let timeout = rate.timeout.as_secs_f64().max(1.0);
+        let pace =
+            held.as_ref().map_or(0.0, |h| h.bytes as f64 / timeout).max(MIN_BODY_RATE as f64);
         let mut body = MinRate {
             inner,
             check: Box::pin(tokio::time::sleep_until(started)),
             started,
             rate,
+            pace,
+            pool: held.map(|h| h.pool),
             received: 0,
         };
         let first = body.next_check(started);
@@ -474,11 +600,18 @@ impl MinRate {
         body
     }
 
+    /// The grace that applies now.
+    fn grace(&self) -> Duration {
+        if self.rate.crowded() || self.pool.as_ref().is_some_and(|p| p.crowded()) {
+            CROWDED_GRACE.min(self.rate.grace)
+        } else {
+            self.rate.grace
+        }
+    }
+
     /// When the body must have arrived so far, with the grace that applies now.
     fn due(&self) -> tokio::time::Instant {
-        self.started
-            + self.rate.grace()
-            + Duration::from_secs_f64(self.received as f64 / MIN_BODY_RATE as f64)
+        self.started + self.grace() + Duration::from_secs_f64(self.received as f64 / self.pace)
     }
 
     /// When to check next, from `now`: at the due time, or sooner to notice crowding.
@@ -509,7 +642,8 @@ impl hyper::body::Body for MinRate {
                 }
                 let now = tokio::time::Instant::now();
                 if now >= this.due() {
-                    return Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow(MIN_BODY_RATE)))));
+                    let pace = this.pace as u64;
+                    return Poll::Ready(Some(Err(axum::Error::new(BodyTooSlow(pace)))));
                 }
                 let next = this.next_check(now);
                 this.check.as_mut().reset(next);
@@ -527,9 +661,11 @@ impl hyper::body::Body for MinRate {
     }
 }
 
-/// Middleware: read every request body through `MinRate`.
+/// Middleware: read every request body through `MinRate`, at the pace of what it holds
+/// of the budget ([`Pace`]).
 pub async fn body_rate(State(rate): State<BodyRate>, request: Request, next: Next) -> Response {
-    let request = request.map(|body| axum::body::Body::new(MinRate::new(body, rate)));
+    let held = request.extensions().get::<Pace>().cloned();
+    let request = request.map(|body| axum::body::Body::new(MinRate::new(body, rate, held)));
     next.run(request).await
 }
 
@@ -627,9 +763,33 @@ mod tests {
     }
 
     #[test]
-    fn the_upload_budget_counts_kib() {
+    fn the_upload_budget_counts_kib_in_two_pools() {
         let b = UploadBudget::new(10 * 1024, 64 * 1024, 8 * 1024);
-        assert_eq!((b.total_kib, b.available()), (10, 10 * 1024));
+        assert_eq!((b.small.total_kib, b.large.total_kib, b.available()), (5, 5, 10 * 1024));
         assert_eq!((b.limit_of("/api/analyze"), b.limit_of("/api/plan")), (64 * 1024, 8 * 1024));
+        let b = UploadBudget::new(256 << 20, 64 << 20, 8 << 20);
+        assert_eq!((b.small.total_kib, b.large.total_kib), (32 << 10, 224 << 10));
+        assert!(Arc::ptr_eq(b.pool(SMALL_REQUEST), &b.small));
+        assert!(Arc::ptr_eq(b.pool(SMALL_REQUEST + 1), &b.large));
+    }
+
+    #[tokio::test]
+    async fn a_pool_is_crowded_while_someone_waits_for_it() {
+        let pool = Arc::new(Pool::new(4));
+        let all = pool.take(4).await.unwrap();
+        assert!(!pool.crowded());
+        let waiter = tokio::spawn({
+            let pool = pool.clone();
+            async move { pool.take(1).await.map(drop) }
+        });
+        while !pool.crowded() {
+            tokio::task::yield_now().await;
+        }
+        // A wait given up is no longer counted.
+        waiter.abort();
+        let _ = waiter.await;
+        assert!(!pool.crowded());
+        drop(all);
+        assert_eq!(pool.permits.available_permits(), 4);
     }
 }

@@ -4,8 +4,9 @@
 //! `GET /api/samples` (one typed row per built-in or dataset sample), `GET /api/samples/{id}`
 //! (either kind), `GET /api/images/{key}/{picture}.png` (`?format=svg`: the same drawing as SVG),
 //! `POST /api/interpolate`, `POST /api/disk` (the dGLI disk PNG of any border state; `?format=svg`: SVG),
-//! `POST /api/disk/cells` and `GET /api/readout/{key}` (a disk's values and where the
-//! pictures draw them, for reading values off them: [`close_render::readout`]),
+//! `POST /api/disk/cells`, `GET /api/readout/{key}` and `GET /api/cells.png` (a disk's
+//! values and which cell each pixel of its picture shows, for reading values off the
+//! pictures: [`close_render::readout`]),
 //! `POST /api/plan`, `GET /api/samples/{id}/recording.rrd` (a Rerun recording; with the
 //! `rerun` feature, else a 404 saying so). Every error is a 4xx (or, for a server fault,
 //! 5xx) with `{"error": "..."}`. Analyses, renders and large answers run on CPU workers
@@ -34,9 +35,11 @@ mod datasets;
 mod error;
 mod extract;
 pub mod guard;
+mod listing;
 mod routes;
 mod socket;
 mod state;
+mod uploads;
 mod workers;
 
 use std::future::Future;
@@ -64,7 +67,7 @@ pub use error::ApiError;
 pub use extract::{AppJson, AppPath, AppQuery};
 pub use state::{Analyzed, AppState, Config, Drawing};
 
-use guard::{Doors, ServedAt};
+use guard::{AnswerWatch, Doors, ServedAt};
 use socket::Socket;
 
 /// Give every error response that is not JSON yet (a layer's or axum's own: 405, 408, 413…)
@@ -139,6 +142,7 @@ pub fn app(state: AppState) -> Router {
         grace: config.header_timeout,
         connections: state.0.connections.clone(),
         max_connections: config.max_connections.max(1),
+        timeout: config.timeout,
     };
     let small_bodies = DefaultBodyLimit::max(config.json_body_limit);
     Router::new()
@@ -146,6 +150,7 @@ pub fn app(state: AppState) -> Router {
         .route("/assets/{file}", get(assets::asset))
         .route("/healthz", get(routes::healthz))
         .route("/api/analyze", post(routes::analyze))
+        .route("/api/analyses/{key}", get(routes::analysis_by_key))
         .route("/api/samples", get(datasets::samples))
         .route("/api/samples/{id}", get(routes::sample))
         .route("/api/samples/{id}/recording.rrd", get(routes::recording))
@@ -154,6 +159,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/disk", post(routes::disk).layer(small_bodies))
         .route("/api/disk/cells", post(routes::disk_cells).layer(small_bodies))
         .route("/api/readout/{key}", get(routes::readout))
+        .route("/api/cells.png", get(routes::cell_picture))
         .route("/api/plan", post(routes::plan).layer(small_bodies))
         .route("/api/verify", post(routes::verify).layer(small_bodies))
         .route("/api/distance", post(routes::distance).layer(small_bodies))
@@ -195,8 +201,9 @@ pub async fn serve(addr: SocketAddr, state: AppState) -> std::io::Result<()> {
 /// At most [`Config::max_connections`] connections are served at once (the others wait in
 /// the listen queue); a connection that does not send a request's headers within
 /// [`Config::header_timeout`], first or between keep-alive requests, is closed; one whose
-/// answer is not read for [`Config::write_timeout`] is dropped. hyper's own answers to heads
-/// it cannot read get the JSON error body too (the server's socket module).
+/// answer is not read for [`Config::write_timeout`] is dropped (for
+/// [`guard::CROWDED_GRACE`] when others wait for the memory the answer holds). hyper's own
+/// answers to heads it cannot read get the JSON error body too (the server's socket module).
 pub async fn serve_with(
     listener: TcpListener,
     state: AppState,
@@ -232,16 +239,20 @@ pub async fn serve_with(
         let served_at = stream.local_addr().ok().map(ServedAt);
         // Answers are small and written at once: do not wait for more to send.
         let _ = stream.set_nodelay(true);
+        // What the connection's answer holds of the budget, for its socket to see.
+        let watch = AnswerWatch::default();
+        let answers = watch.clone();
         let service = app.clone().map_request(
             move |mut request: axum::http::Request<hyper::body::Incoming>| {
                 if let Some(at) = served_at {
                     request.extensions_mut().insert(at);
                 }
+                request.extensions_mut().insert(answers.clone());
                 request
             },
         );
         let connection = graceful.watch(http.serve_connection(
-            TokioIo::new(Socket::new(stream, config.write_timeout)),
+            TokioIo::new(Socket::new(stream, config.write_timeout, watch)),
             hyper_util::service::TowerToHyperService::new(service),
         ));
         tokio::spawn(async move {

@@ -12,7 +12,7 @@ use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 
-use super::answer::{AnalyzeAnswer, ListedFields, SampleRow};
+use super::answer::{AnalyzeAnswer, ListedFields, PlanAnswer, SampleRow};
 use super::{ApiError, AppJson, AppPath, AppQuery};
 use crate::state::{Analyzed, AppState, Drawing, Lane};
 use close_core::analysis::{analyze_with, Analysis, FrameRange, Options};
@@ -25,7 +25,7 @@ use close_io::formats::{json::parse_sample, read_files, Sample, Truth};
 use close_render::colour::Scale;
 use close_render::mesh_picture::MeshView;
 use close_render::{
-    disk_scaled, render_step, Format, Known, Picture, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE,
+    render, render_disk, Format, Known, Output, Picture, View, DEFAULT_SIZE, MAX_SIZE, MIN_SIZE,
 };
 
 /// Thumbnail size in the sample list.
@@ -42,7 +42,7 @@ impl IntoResponse for JsonBytes {
     }
 }
 
-fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
+pub(super) fn to_json<T: Serialize>(value: &T) -> Result<Bytes, ApiError> {
     serde_json::to_vec(value)
         .map(Bytes::from)
         .map_err(|e| ApiError::Internal(format!("could not write the answer: {e}")))
@@ -68,6 +68,8 @@ pub(super) struct Loaded {
     frames: usize,
     border: BorderFrames,
     range: FrameRange,
+    /// Most folds one step may hold ([`Options::max_folds`]).
+    max_folds: usize,
     source: String,
     truth: Option<Truth>,
     /// A listed sample, whose answer includes the sample.
@@ -100,6 +102,7 @@ impl Loaded {
             frames: frame_count(sample),
             border: sample.border_frames()?,
             range,
+            max_folds: close_core::DEFAULT_MAX_FOLDS,
             source: source.to_string(),
             truth: sample.truth.clone(),
             listed,
@@ -125,6 +128,7 @@ impl Loaded {
     fn analyze(self, state: &AppState, deadline: &Deadline) -> Result<Analyzed, ApiError> {
         let options = Options {
             frames: self.range,
+            max_folds: self.max_folds,
             budget: state.config().budget,
             deadline: deadline.clone(),
             ..Options::default()
@@ -163,7 +167,7 @@ impl Loaded {
             truth: self.truth.as_ref(),
             listed,
         })?;
-        let truth = self.truth.map(|t| t.folds).unwrap_or_default();
+        let truth = self.truth.as_ref().map(close_render::truth::Truth::of).unwrap_or_default();
         Ok(Analyzed { key, drawing: Arc::new(Drawing::new(analysis, truth, mesh)), response })
     }
 }
@@ -216,12 +220,14 @@ pub async fn not_found(uri: Uri) -> ApiError {
     ApiError::NotFound(format!("no route {}", uri.path()))
 }
 
-/// Optional frame range of `POST /api/analyze`.
+/// Optional frame range of `POST /api/analyze`, and the most folds one step may hold
+/// (`max_folds`, 1 to 4, default 3: `close analyze --max-folds`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RangeQuery {
     start: Option<usize>,
     end: Option<usize>,
+    max_folds: Option<usize>,
 }
 
 /// What an analyze request brought: a Sample JSON body, or named files.
@@ -299,7 +305,7 @@ impl Upload {
 
     /// Content key of the upload and the frame range.
     fn key(&self, range: &RangeQuery) -> String {
-        let range = format!("{:?}-{:?}", range.start, range.end);
+        let range = format!("{:?}-{:?}-{:?}", range.start, range.end, range.max_folds);
         match self {
             Upload::Json(bytes) => content_key(&[b"json", bytes, range.as_bytes()]),
             Upload::Files(files) => {
@@ -328,12 +334,72 @@ pub async fn analyze(
     let upload = Upload::from_request(request, &state).await?;
     let key = upload.key(&range);
     let frames = FrameRange { start: range.start, end: range.end };
+    let max_folds = range.max_folds.unwrap_or(close_core::DEFAULT_MAX_FOLDS);
     let budget = state.config().budget;
+    let job = state.clone();
     let done = analysis(&state, key, move |key, _| {
-        Loaded::of(key, &upload.sample()?, frames, UPLOAD, None, &budget)
+        let sample = upload.sample()?;
+        let loaded = Loaded::of(key, &sample, frames, UPLOAD, None, &budget)?;
+        job.keep_upload(&loaded.key, frames, sample);
+        Ok(Loaded { max_folds, ..loaded })
     })
     .await?;
     Ok(JsonBytes(done.response.clone()))
+}
+
+/// Why upload `key` cannot be found: the server keeps uploads in memory only, or its data
+/// folder no longer holds this one.
+fn upload_gone(state: &AppState, key: &str) -> ApiError {
+    ApiError::NotFound(match state.uploads() {
+        Some(uploads) => {
+            let (files, bytes) = uploads.bounds();
+            format!(
+                "the upload {key:?} is gone: this server keeps its {files} most recent uploads (at most {} MB) in {}, and newer ones took its place. Upload the sample again.",
+                bytes >> 20,
+                uploads.dir().display()
+            )
+        }
+        None => format!(
+            "no analysis {key:?}: this server keeps uploads in memory only, and no longer has this one (it restarted, or newer analyses took its place; `close serve --data-dir DIR` keeps uploads on disk). Upload the sample again."
+        ),
+    })
+}
+
+/// The analysis of upload `key`: cached, or analysed again from the data folder.
+async fn kept_analysis(state: &AppState, key: &str) -> Result<Arc<Analyzed>, ApiError> {
+    if let Some(hit) = state.cached_analysis(key) {
+        return Ok(hit);
+    }
+    if state.uploads().is_none() {
+        return Err(upload_gone(state, key));
+    }
+    let job = state.clone();
+    analysis(state, key.to_string(), move |key, _| {
+        let stored = match job.uploads().map(|u| u.load(&key)) {
+            Some(Ok(Some(stored))) => stored,
+            Some(Err(why)) => {
+                return Err(ApiError::NotFound(format!(
+                    "the upload {key:?} cannot be read from the data folder: {why}"
+                )))
+            }
+            Some(Ok(None)) | None => return Err(upload_gone(&job, &key)),
+        };
+        let frames = FrameRange { start: stored.start, end: stored.end };
+        Loaded::of(key, &stored.sample, frames, UPLOAD, None, &job.config().budget)
+    })
+    .await
+}
+
+/// `GET /api/analyses/{key}`: an analysis still kept, by the `key` its answer gave (an
+/// upload's, so that a link to it outlives the page that uploaded it).
+pub async fn analysis_by_key(
+    State(state): State<AppState>,
+    AppPath(key): AppPath<String>,
+) -> Result<JsonBytes, ApiError> {
+    if let Some(id) = key.strip_prefix(SAMPLE_KEY) {
+        return Ok(JsonBytes(sample_analysis(&state, id).await?.response.clone()));
+    }
+    Ok(JsonBytes(kept_analysis(&state, &key).await?.response.clone()))
 }
 
 /// dGLI cells of the pictures of `analysis` (two disks at most).
@@ -347,7 +413,7 @@ fn frame_count(sample: &Sample) -> usize {
 }
 
 impl SampleRow {
-    fn builtin(e: &close_io::dataset::BuiltinSample) -> SampleRow {
+    pub(super) fn builtin(e: &close_io::dataset::BuiltinSample) -> SampleRow {
         let border = e.sample.border_frames();
         SampleRow::dataset(&close_io::catalog::Entry {
             id: e.id.clone(),
@@ -361,7 +427,7 @@ impl SampleRow {
         })
     }
 
-    fn dataset(e: &close_io::catalog::Entry) -> SampleRow {
+    pub(super) fn dataset(e: &close_io::catalog::Entry) -> SampleRow {
         SampleRow { entry: e.clone(), thumbnail: thumbnail(&e.id) }
     }
 }
@@ -369,24 +435,6 @@ impl SampleRow {
 /// The thumbnail URL of listed sample `id`: its analysis is cached under `sample:{id}`.
 fn thumbnail(id: &str) -> String {
     format!("/api/images/{SAMPLE_KEY}{id}/thumbnail.png?size={THUMBNAIL_SIZE}")
-}
-
-/// Every row of the sample list, built-in samples first, built once (a mesh's border
-/// vertex count takes finding its border: a worker's job).
-pub(super) async fn sample_rows(state: &AppState) -> Result<Arc<Vec<SampleRow>>, ApiError> {
-    if let Some(rows) = state.0.sample_list.get() {
-        return Ok(rows.clone());
-    }
-    let job = state.clone();
-    let rows = state
-        .run_cpu(Lane::Light, move |_| {
-            let builtin = job.entries().iter().map(SampleRow::builtin);
-            Ok(builtin
-                .chain(job.catalog().entries().iter().map(SampleRow::dataset))
-                .collect::<Vec<_>>())
-        })
-        .await?;
-    Ok(state.0.sample_list.get_or_init(|| Arc::new(rows)).clone())
 }
 
 fn unknown_sample(id: &str) -> ApiError {
@@ -500,9 +548,7 @@ async fn drawing_by_key(state: &AppState, key: &str) -> Result<Arc<Drawing>, Api
     match (state.drawing(key), key.strip_prefix(SAMPLE_KEY)) {
         (Some(hit), _) => Ok(hit),
         (None, Some(id)) => Ok(sample_analysis(state, id).await?.drawing.clone()),
-        (None, None) => Err(ApiError::NotFound(format!(
-            "no analysis {key:?} (it may have expired): analyse the sample again"
-        ))),
+        (None, None) => Ok(kept_analysis(state, key).await?.drawing.clone()),
     }
 }
 
@@ -526,7 +572,8 @@ pub async fn image(
             cells(&drawing.analysis),
             move |_| {
                 let known = Known { truth: &drawing.truth, mesh: drawing.mesh.as_ref() };
-                Ok(render_step(&drawing.analysis, picture, step, size, size, format, known)?)
+                let output = Output { format, ..Output::png(size) };
+                Ok(render(&drawing.analysis, &View { picture, step }, &output, known)?)
             },
         )
         .await?;
@@ -576,8 +623,34 @@ pub async fn readout(
     Ok(JsonBytes(answer))
 }
 
-fn default_steps() -> usize {
-    60
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CellsQuery {
+    /// The disk's edge count N.
+    n: usize,
+    size: Option<u32>,
+}
+
+/// `GET /api/cells.png?n=&size=`: which cell each pixel of a disk picture of N = `n` and that
+/// size shows ([`close_render::readout::cell_picture`]); the same for every disk of that N.
+pub async fn cell_picture(
+    State(state): State<AppState>,
+    AppQuery(query): AppQuery<CellsQuery>,
+) -> Result<Response, ApiError> {
+    let (n, size) = (query.n, picture_size(query.size));
+    let file = state
+        .cached_bytes(format!("cells/{n}/{size}"), u64::from(size).pow(2), move |_| {
+            Ok(close_render::readout::cell_picture(n, size)?)
+        })
+        .await?;
+    Ok((
+        [
+            (header::CONTENT_TYPE, "image/png"),
+            (header::CACHE_CONTROL, "public, max-age=86400, immutable"),
+        ],
+        file,
+    )
+        .into_response())
 }
 
 #[derive(Debug, Deserialize)]
@@ -599,31 +672,165 @@ pub struct InterpolateRequest {
     arcs: Option<Vec<close_core::geometry::Arc>>,
     #[serde(default)]
     line: Option<Line>,
-    #[serde(default = "default_steps")]
-    steps: usize,
+    /// States evenly spaced from the start to the end, both included (60 by default)…
+    #[serde(default)]
+    steps: Option<usize>,
+    /// …or the states at these fractions of the way (each in [0, 1]), in this order.
+    #[serde(default)]
+    at: Option<Vec<f64>>,
+    /// Folds made on `border` (then the flat cloth) before the motion, in order, each as an
+    /// analysis step reports it (`arcs`, `line`): the motion starts from the state they leave,
+    /// and the cloth's layers are drawn from the flat cloth through them.
+    #[serde(default)]
+    prior: Option<Vec<PriorFold>>,
+    /// Also give each state as the web app draws it (`states`: the cloth's layers, each
+    /// vertex's height and the fold's line).
+    #[serde(default)]
+    drawn: bool,
 }
 
+/// A fold made before the motion: an analysis step's `arcs` and `line`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PriorFold {
+    arcs: Vec<close_core::geometry::Arc>,
+    #[serde(default)]
+    line: Option<Line>,
+}
+
+/// States of an interpolation when the request names none.
+const DEFAULT_STEPS: usize = 60;
+
 /// Bytes an interpolation's answer may take per point while it is built: the point (24)
-/// and its JSON, three floats of at most 24 characters with their brackets and commas (80).
+/// and its JSON, three floats of at most 24 characters with their brackets and commas (80);
+/// drawn, its height and its share of the layers (about as much again).
 const INTERPOLATED_POINT_BYTES: usize = 24 + 80;
+
+/// Largest angle (radians, either sign) an interpolation takes: past it a fold's angles
+/// lose their meaning to rounding, and their differences overflow.
+const MAX_ANGLE: f64 = 1e6;
+/// Largest coordinate of a fold line's point: the border is at most 10⁶ radii across.
+const MAX_LINE_POINT: f64 = 1e6;
+
+impl InterpolateRequest {
+    /// Refuse what cannot be a fold, as `/api/plan` refuses its goal: `from`, `to` and the
+    /// `arcs` need finite angles of at most [`MAX_ANGLE`]; a `line` a finite point within
+    /// [`MAX_LINE_POINT`] and a finite direction of some length.
+    fn check(&self) -> Result<(), ApiError> {
+        let angles = [("from", self.from), ("to", self.to)]
+            .into_iter()
+            .filter_map(|(name, fold)| fold.map(|f| (name, f.ends())))
+            .chain(self.arcs.iter().flatten().map(|a| ("arcs", [a.a, a.b])))
+            .chain(
+                self.prior.iter().flatten().flat_map(|p| &p.arcs).map(|a| ("prior", [a.a, a.b])),
+            );
+        for (name, fold) in angles {
+            if fold.iter().any(|a| !a.is_finite() || a.abs() > MAX_ANGLE) {
+                return Err(Error::InvalidArgument(format!(
+                    "\"{name}\" needs finite angles of at most {MAX_ANGLE:e} radians, got {fold:?}"
+                ))
+                .into());
+            }
+        }
+        let prior_lines = self.prior.iter().flatten().filter_map(|p| p.line.as_ref());
+        for line in self.line.iter().chain(prior_lines) {
+            if line.point.iter().any(|c| !c.is_finite() || c.abs() > MAX_LINE_POINT) {
+                return Err(Error::InvalidArgument(format!(
+                    "\"line\": the point needs finite coordinates of at most {MAX_LINE_POINT:e}, got [{}, {}]",
+                    line.point.x, line.point.y
+                ))
+                .into());
+            }
+            let length = line.direction.x.hypot(line.direction.y);
+            if !length.is_finite() || length == 0.0 {
+                return Err(Error::InvalidArgument(format!(
+                    "\"line\": the direction has no length, or not a finite one: [{}, {}]",
+                    line.direction.x, line.direction.y
+                ))
+                .into());
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `POST /api/interpolate`'s answer when asked to draw (`drawn`): the states of the motion
+/// (core's [`Interpolation`]) and each as the web app draws it ([`close_render::cloth`]).
+///
+/// [`Interpolation`]: close_core::interpolate::Interpolation
+#[derive(Serialize)]
+struct InterpolateAnswer {
+    #[serde(flatten)]
+    interpolation: close_core::interpolate::Interpolation,
+    states: Vec<close_render::cloth::Drawn>,
+}
 
 pub async fn interpolate(
     State(state): State<AppState>,
     AppJson(req): AppJson<InterpolateRequest>,
 ) -> Result<Response, ApiError> {
-    state.config().budget.interpolation(req.border.len(), req.steps)?;
+    req.check()?;
+    let at = match (req.steps, req.at) {
+        (Some(_), Some(_)) => {
+            return Err(ApiError::BadRequest(
+                "give `steps` (evenly spaced states) or `at` (fractions of the way), not both"
+                    .into(),
+            ))
+        }
+        (_, Some(at)) => at,
+        (steps, None) => {
+            let steps = steps.unwrap_or(DEFAULT_STEPS);
+            if !close_core::interpolate::STEPS.contains(&steps) {
+                return Err(Error::InvalidArgument(format!(
+                    "steps must be in {}..={}, got {steps}",
+                    close_core::interpolate::STEPS.start(),
+                    close_core::interpolate::STEPS.end()
+                ))
+                .into());
+            }
+            close_core::interpolate::fractions(steps)
+        }
+    };
+    if req.prior.is_some() && req.reference.is_some() {
+        return Err(ApiError::BadRequest(
+            "with `prior` folds, `border` is the flat cloth: send no `reference`".into(),
+        ));
+    }
+    state.config().budget.interpolation(req.border.len(), at.len())?;
     let motion = close_core::interpolate::Motion::of(req.from, req.to, req.arcs, req.line)?;
+    let prior: Vec<close_core::geometry::Folding> = req
+        .prior
+        .unwrap_or_default()
+        .into_iter()
+        .map(|p| close_core::geometry::Folding {
+            fold: Fold::span(&p.arcs).unwrap_or_default(),
+            arcs: p.arcs,
+            line: p.line,
+        })
+        .collect();
     // The answer's size is known now: reserved before it is built, not found after.
-    let points = req.border.len().saturating_mul(req.steps.saturating_add(1));
-    let reserved = state.0.memory.reserve(points.saturating_mul(INTERPOLATED_POINT_BYTES)).await?;
+    let points = req.border.len().saturating_mul(at.len().saturating_add(1));
+    let per_point = INTERPOLATED_POINT_BYTES * if req.drawn { 2 } else { 1 };
+    let reserved = state.0.memory.reserve(points.saturating_mul(per_point)).await?;
+    let (border, reference, drawn) = (req.border, req.reference, req.drawn);
     let answer = state
         .run_cpu(Lane::Light, move |_| {
-            to_json(&close_core::interpolate::interpolate(
-                req.border,
-                req.reference,
-                &motion,
-                req.steps,
-            )?)
+            let frames = match reference {
+                Some(reference) => vec![reference, border],
+                None => vec![border],
+            };
+            let prepared = close_core::border::prepare(frames)?;
+            // The state to fold is the last frame; without prior folds it is drawn as it lies.
+            let given = prepared.frames.last().map_or(&[][..], Vec::as_slice);
+            let (base, made) = close_render::cloth::make(given, &prior)?;
+            let mut interpolation = close_core::interpolate::motion_at(&base, &motion, &at)?;
+            interpolation.border_indices = prepared.border_indices;
+            if !drawn {
+                return to_json(&interpolation);
+            }
+            let states =
+                close_render::cloth::motion_states(given, &made, &base, &motion, &interpolation);
+            to_json(&InterpolateAnswer { interpolation, states })
         })
         .await?;
     let mut response = JsonBytes(answer).into_response();
@@ -646,7 +853,27 @@ pub struct DiskRequest {
     /// an earlier answer gave it; by default the disk's own.
     #[serde(default)]
     scale: Option<Scale>,
+    /// The picture's title (at most [`MAX_TITLE`] characters); by default "dGLI disk ·
+    /// current state".
+    #[serde(default)]
+    title: Option<String>,
+    /// Another state of a border of as many vertices: the picture is then the difference of
+    /// the two disks, this one's minus that one's.
+    #[serde(default)]
+    minus: Option<StateRequest>,
 }
+
+/// One border state: a border and the flat border whose normalisation applies to it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StateRequest {
+    border: Vec<[f64; 3]>,
+    #[serde(default)]
+    reference: Option<Vec<[f64; 3]>>,
+}
+
+/// Longest title a disk picture takes, in characters.
+const MAX_TITLE: usize = 120;
 
 /// `POST /api/disk?format=svg`: the disk as SVG, as any picture URL takes it.
 #[derive(Debug, Deserialize)]
@@ -707,6 +934,33 @@ fn coordinate_bytes(points: &[[f64; 3]]) -> Vec<u8> {
     points.iter().flatten().flat_map(|c| c.to_le_bytes()).collect()
 }
 
+/// The cache key's part for a state subtracted from a disk (none: empty).
+fn minus_key(minus: Option<&StateRequest>) -> Vec<u8> {
+    minus.map_or_else(Vec::new, |m| {
+        let reference = m.reference.as_deref().map(coordinate_bytes).unwrap_or_default();
+        [&b"minus"[..], &coordinate_bytes(&m.border), &b"reference"[..], &reference].concat()
+    })
+}
+
+/// The disk of `border` (normalised as `reference`), or its difference with the disk of
+/// `minus`: this one's minus that one's.
+fn state_disk(
+    border: Vec<[f64; 3]>,
+    reference: Option<Vec<[f64; 3]>>,
+    minus: Option<StateRequest>,
+    deadline: &Deadline,
+) -> Result<close_core::disk::Disk> {
+    let disk = close_core::disk::of_state(border, reference, deadline)?;
+    Ok(match minus {
+        Some(minus) => {
+            let other = close_core::disk::of_state(minus.border, minus.reference, deadline)?;
+            // signed_diff(end) is end − start.
+            other.signed_diff(&disk)
+        }
+        None => disk,
+    })
+}
+
 pub async fn disk(
     State(state): State<AppState>,
     AppQuery(query): AppQuery<DiskQuery>,
@@ -741,6 +995,26 @@ pub async fn disk(
     };
     let scale_bytes: Vec<u8> =
         scale.iter().flat_map(|s| [s.s, s.max]).flat_map(f64::to_le_bytes).collect();
+    let title = req.title.unwrap_or_else(|| "dGLI disk · current state".into());
+    if title.chars().count() > MAX_TITLE {
+        return Err(ApiError::BadRequest(format!(
+            "\"title\" has {} characters: at most {MAX_TITLE}",
+            title.chars().count()
+        )));
+    }
+    if let Some(minus) = &req.minus {
+        if minus.border.len() != req.border.len() {
+            return Err(ApiError::Rejected(
+                axum::http::StatusCode::UNPROCESSABLE_ENTITY,
+                format!(
+                    "a difference of two disks needs two borders of as many vertices: {} and {}",
+                    req.border.len(),
+                    minus.border.len()
+                ),
+            ));
+        }
+    }
+    let minus_bytes = minus_key(req.minus.as_ref());
     let key = content_key(&[
         b"disk",
         &coordinate_bytes(&req.border),
@@ -748,13 +1022,16 @@ pub async fn disk(
         &size.to_le_bytes(),
         &scale_bytes,
         format.content_type().as_bytes(),
+        title.as_bytes(),
+        &minus_bytes,
     ]);
     let n = req.border.len() as u64;
+    let cells = n * n * if req.minus.is_some() { 2 } else { 1 };
     let cached = state
-        .cached_bytes(key, n * n, move |deadline| {
-            let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
-            let (file, used) =
-                disk_scaled(&disk, "dGLI disk · current state", scale, size, size, format)?;
+        .cached_bytes(key, cells, move |deadline| {
+            let disk = state_disk(req.border, req.reference, req.minus, deadline)?;
+            let output = Output { format, ..Output::png(size) };
+            let (file, used) = render_disk(&disk, &title, scale, &output)?;
             Ok(DiskPicture { scale: [used.s, used.max], file: file.into() }.into_bytes())
         })
         .await?;
@@ -773,17 +1050,19 @@ pub async fn disk_cells(
         .as_deref()
         .map(|r| [&b"reference"[..], &coordinate_bytes(r)].concat())
         .unwrap_or_default();
+    let minus_bytes = minus_key(req.minus.as_ref());
     let key = content_key(&[
         b"disk cells",
         &coordinate_bytes(&req.border),
         &reference,
         &size.to_le_bytes(),
+        &minus_bytes,
     ]);
     let n = req.border.len() as u64;
     let answer = state
         .cached_bytes(key, n * n, move |deadline| {
             close_render::readout::within_limit(1, req.border.len())?;
-            let disk = close_core::disk::of_state(req.border, req.reference, deadline)?;
+            let disk = state_disk(req.border, req.reference, req.minus, deadline)?;
             Ok(to_json(&close_render::readout::DiskCells::of(&disk, size)?)?.to_vec())
         })
         .await?;
@@ -803,6 +1082,14 @@ async fn drawing_of(state: &AppState, sample: Box<RawValue>) -> Result<Arc<Drawi
                     .map_err(|e| ApiError::BadRequest(format!("\"sample\": {e}")))?;
                 match state.drawing(&id) {
                     Some(hit) => hit,
+                    None if state.entry(&id).is_some() || state.catalog().get(&id).is_some() => {
+                        sample_analysis(state, &id).await?.drawing.clone()
+                    }
+                    None if state.uploads().is_some()
+                        && state.uploads().is_some_and(|u| u.has(&id)) =>
+                    {
+                        kept_analysis(state, &id).await?.drawing.clone()
+                    }
                     None => sample_analysis(state, &id).await?.drawing.clone(),
                 }
             }
@@ -850,7 +1137,12 @@ pub async fn plan(
     let drawing = drawing_of(&state, req.sample).await?;
     let goal = req.goal;
     let answer = state
-        .run_cpu(Lane::Light, move |_| to_json(&close_core::plan::answer(&drawing.analysis, goal)?))
+        .run_cpu(Lane::Light, move |_| {
+            let answer = close_core::plan::answer(&drawing.analysis, goal)?;
+            let states =
+                close_render::cloth::plan_states(&drawing.analysis, answer.case, &answer.steps)?;
+            to_json(&PlanAnswer { answer, states })
+        })
         .await?;
     Ok(JsonBytes(answer))
 }

@@ -2,7 +2,9 @@
 //!
 //! - **Write time-out**: a write (or flush) that makes no progress for
 //!   [`super::Config::write_timeout`] fails, and hyper drops the connection with the answer
-//!   it held. A client that asks and never reads cannot keep an answer in memory longer.
+//!   it held. A client that asks and never reads cannot keep an answer in memory longer;
+//!   while others wait for the budget the answer holds ([`AnswerWatch`]), not longer than
+//!   [`CROWDED_GRACE`].
 //! - **hyper's answers**: a request head that hyper cannot parse (a head over its buffer,
 //!   431; a target over 65 534 bytes, 414; a bad method, target, version or header, such as
 //!   two different `Content-Length` values, 400) is answered by hyper itself, before any
@@ -19,6 +21,9 @@ use std::time::Duration;
 
 use axum::http::StatusCode;
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
+use tokio::time::Instant;
+
+use super::guard::{AnswerWatch, CROWDED_GRACE};
 
 /// The largest request head hyper reads, in bytes (its read buffer, hyper's default size):
 /// a longer head is 431. It holds a target of hyper's longest, so that one is 414.
@@ -32,19 +37,32 @@ const MAX_TARGET: usize = u16::MAX as usize - 1;
 pub struct Socket<S> {
     inner: S,
     write_timeout: Duration,
-    /// Since when writes are stuck, as the time they fail at; `None` while they progress.
-    stalled: Option<Pin<Box<tokio::time::Sleep>>>,
+    /// Whether the answer being written holds budget others wait for.
+    watch: AnswerWatch,
+    /// Since when writes are stuck, and the next time to check; `None` while they progress.
+    stalled: Option<(Instant, Pin<Box<tokio::time::Sleep>>)>,
     /// A rewritten error answer not yet all written, and how much of it was.
     pending: Vec<u8>,
     sent: usize,
 }
 
 impl<S> Socket<S> {
-    pub fn new(inner: S, write_timeout: Duration) -> Socket<S> {
-        Socket { inner, write_timeout, stalled: None, pending: Vec::new(), sent: 0 }
+    pub fn new(inner: S, write_timeout: Duration, watch: AnswerWatch) -> Socket<S> {
+        Socket { inner, write_timeout, watch, stalled: None, pending: Vec::new(), sent: 0 }
     }
 
-    /// `poll` (a write or a flush), failing once it has not progressed for the write time-out.
+    /// How long writes may stall now: the write time-out, or [`CROWDED_GRACE`] while the
+    /// answer holds budget others wait for.
+    fn stall_limit(&self) -> Duration {
+        if self.watch.crowded() {
+            CROWDED_GRACE.min(self.write_timeout)
+        } else {
+            self.write_timeout
+        }
+    }
+
+    /// `poll` (a write or a flush), failing once it has not progressed for the stall limit
+    /// (checked at least every [`CROWDED_GRACE`], so crowding that comes later counts).
     fn timed<T>(
         &mut self,
         cx: &mut Context<'_>,
@@ -54,18 +72,25 @@ impl<S> Socket<S> {
         S: Unpin,
     {
         match poll(Pin::new(&mut self.inner), cx) {
-            Poll::Pending => {
-                let timeout = self.write_timeout;
-                let stalled =
-                    self.stalled.get_or_insert_with(|| Box::pin(tokio::time::sleep(timeout)));
-                match stalled.as_mut().poll(cx) {
-                    Poll::Ready(()) => Poll::Ready(Err(io::Error::new(
-                        io::ErrorKind::TimedOut,
-                        format!("the client read nothing of its answer for {timeout:?}"),
-                    ))),
-                    Poll::Pending => Poll::Pending,
+            Poll::Pending => loop {
+                let limit = self.stall_limit();
+                let now = Instant::now();
+                let (since, check) = self.stalled.get_or_insert_with(|| {
+                    (now, Box::pin(tokio::time::sleep_until(now + limit.min(CROWDED_GRACE))))
+                });
+                if check.as_mut().poll(cx).is_pending() {
+                    return Poll::Pending;
                 }
-            }
+                if now >= *since + limit {
+                    let stalled = now - *since;
+                    return Poll::Ready(Err(io::Error::new(
+                        io::ErrorKind::TimedOut,
+                        format!("the client read nothing of its answer for {stalled:?}"),
+                    )));
+                }
+                let next = (*since + limit).min(now + CROWDED_GRACE);
+                check.as_mut().reset(next);
+            },
             ready => {
                 self.stalled = None;
                 ready

@@ -9,13 +9,12 @@ use std::time::Duration;
 use axum::body::Bytes;
 use tokio::sync::Semaphore;
 
-use crate::answer::SampleRow;
 use crate::error::ApiError;
 use crate::guard::UploadBudget;
+use crate::uploads::{Stored, Uploads};
 use crate::workers::{lock, Workers};
 use close_core::analysis::Analysis;
 use close_core::budget::{Budget, Deadline};
-use close_core::geometry::Fold;
 use close_io::cache::Lru;
 use close_io::dataset::{BuiltinSample, Dataset};
 use close_render::mesh_picture::MeshView;
@@ -60,6 +59,13 @@ pub struct Config {
     pub cors_origins: Vec<String>,
     /// The user's own datasets (`--dataset`): folders of samples or VR-Folding stores.
     pub datasets: Vec<std::path::PathBuf>,
+    /// Where uploads are kept on disk (`--data-dir`), so their links outlive a restart;
+    /// none: uploads live in the caches alone.
+    pub data_dir: Option<std::path::PathBuf>,
+    /// Uploads kept in the data folder at most, and their largest total size in bytes; past
+    /// either, the oldest go first.
+    pub kept_uploads: usize,
+    pub kept_upload_bytes: u64,
 }
 
 impl Default for Config {
@@ -83,6 +89,9 @@ impl Default for Config {
             allowed_hosts: Vec::new(),
             cors_origins: Vec::new(),
             datasets: Vec::new(),
+            data_dir: None,
+            kept_uploads: 1000,
+            kept_upload_bytes: 1 << 30,
         }
     }
 }
@@ -93,7 +102,7 @@ impl Default for Config {
 pub struct Drawing {
     pub analysis: Analysis,
     /// The sample's known folds (empty when it carries none), drawn beside the found ones.
-    pub truth: Vec<Fold>,
+    pub truth: close_render::truth::Truth,
     /// A mesh sample's mesh at the analysed frames, for its mesh picture.
     pub mesh: Option<MeshView>,
     /// Roughly the memory it holds (`Drawing::weigh`), counted once when it is made.
@@ -101,7 +110,11 @@ pub struct Drawing {
 }
 
 impl Drawing {
-    pub(crate) fn new(analysis: Analysis, truth: Vec<Fold>, mesh: Option<MeshView>) -> Drawing {
+    pub(crate) fn new(
+        analysis: Analysis,
+        truth: close_render::truth::Truth,
+        mesh: Option<MeshView>,
+    ) -> Drawing {
         let bytes = Self::weigh(&analysis, &truth) + mesh.as_ref().map_or(0, MeshView::bytes);
         Drawing { analysis, truth, mesh, bytes }
     }
@@ -109,7 +122,7 @@ impl Drawing {
     /// The heap and inline bytes of an analysis and its truth: its frames and predicted end
     /// (O(frames·N), the bulk), its index and angle lists, its steps with their arcs and
     /// curves, and its texts.
-    fn weigh(a: &Analysis, truth: &[Fold]) -> usize {
+    fn weigh(a: &Analysis, truth: &close_render::truth::Truth) -> usize {
         use std::mem::{size_of, size_of_val};
         let frames: usize = a.frames.iter().map(|f| size_of_val(f.as_slice())).sum();
         let steps: usize = a
@@ -126,7 +139,8 @@ impl Drawing {
             + size_of_val(a.border_indices.as_slice())
             + size_of_val(a.folds.as_slice())
             + size_of_val(a.predicted_end.as_slice())
-            + size_of_val(truth);
+            + size_of_val(truth.folds.as_slice())
+            + truth.folded.iter().flatten().map(|f| size_of_val(f.as_slice())).sum::<usize>();
         let texts = a.border_source.len() + a.warnings.iter().map(String::len).sum::<usize>();
         size_of::<Drawing>() + frames + steps + lists + texts
     }
@@ -160,9 +174,11 @@ pub(crate) struct Inner {
     /// Bytes of bodies and answers in flight ([`guard::upload_budget`]).
     pub(crate) memory: Arc<UploadBudget>,
     /// The rows of `GET /api/samples`, built once: the datasets never change.
-    pub(crate) sample_list: OnceLock<Arc<Vec<SampleRow>>>,
+    pub(crate) sample_list: OnceLock<Arc<crate::listing::Listing>>,
     /// The user's datasets, listed at start.
     pub(crate) catalog: Arc<close_io::catalog::Catalog>,
+    /// The uploads kept on disk, with `--data-dir`.
+    pub(crate) uploads: Option<Uploads>,
     /// Connection slots: [`Config::max_connections`] permits, one held by each open
     /// connection ([`serve_with`]); their crowding shortens a body's grace ([`guard::BodyRate`]).
     pub(crate) connections: Arc<Semaphore>,
@@ -225,6 +241,10 @@ impl AppState {
             )),
             catalog: Arc::new(close_io::catalog::Catalog::open(&config.datasets)),
             connections: Arc::new(Semaphore::new(config.max_connections.max(1))),
+            uploads: config
+                .data_dir
+                .as_deref()
+                .map(|dir| Uploads::new(dir, config.kept_uploads, config.kept_upload_bytes)),
             config,
         }))
     }
@@ -273,6 +293,11 @@ impl AppState {
         self.config().max_connections.max(1) - self.0.connections.available_permits()
     }
 
+    /// CPU jobs given to a worker so far, light and heavy.
+    pub fn worker_jobs(&self) -> usize {
+        self.0.light.started() + self.0.heavy.started()
+    }
+
     /// CPU jobs that stopped at their deadline (a time-out, a request gone away) so far.
     pub fn cancelled_jobs(&self) -> usize {
         self.0.light.cancelled() + self.0.heavy.cancelled()
@@ -293,6 +318,27 @@ impl AppState {
             Lane::Heavy => &self.0.heavy,
         };
         workers.run(deadline, work).await
+    }
+
+    /// The uploads kept on disk, with `--data-dir`.
+    pub(crate) fn uploads(&self) -> Option<&Uploads> {
+        self.0.uploads.as_ref()
+    }
+
+    /// Keep upload `key` (its `sample`, the `frames` analysed) on disk, with `--data-dir`.
+    /// An upload that cannot be kept is still analysed: the failure is logged.
+    pub(crate) fn keep_upload(
+        &self,
+        key: &str,
+        frames: close_core::FrameRange,
+        sample: close_io::formats::Sample,
+    ) {
+        if let Some(uploads) = self.uploads() {
+            let stored = Stored { start: frames.start, end: frames.end, sample };
+            if let Err(e) = uploads.save(key, &stored) {
+                tracing::warn!("could not keep upload {key} in {}: {e}", uploads.dir().display());
+            }
+        }
     }
 
     /// Pictures (and recordings) in the cache now.

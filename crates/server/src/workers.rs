@@ -33,6 +33,8 @@ pub struct Workers {
     /// Jobs that stopped at a cancelled or expired deadline: what shows, without timing
     /// anything, that a dropped request's work really stopped.
     cancelled: Arc<AtomicUsize>,
+    /// Jobs given to a worker so far: what shows which work runs off the async threads.
+    started: AtomicUsize,
 }
 
 /// A worker's pool, given back to the idle ones when dropped.
@@ -65,6 +67,7 @@ impl Workers {
             idle_pools: Arc::new(Mutex::new(pools)),
             count,
             cancelled: Arc::default(),
+            started: AtomicUsize::new(0),
         }
     }
 
@@ -82,6 +85,11 @@ impl Workers {
         self.cancelled.load(Ordering::Relaxed)
     }
 
+    /// Jobs given to a worker so far.
+    pub fn started(&self) -> usize {
+        self.started.load(Ordering::Relaxed)
+    }
+
     /// Run `work` on a free worker (waiting for one), with `deadline`.
     pub async fn run<T: Send + 'static>(
         &self,
@@ -94,6 +102,7 @@ impl Workers {
             .acquire_owned()
             .await
             .map_err(|_| ApiError::Internal("the worker pool is closed".into()))?;
+        self.started.fetch_add(1, Ordering::Relaxed);
         // As many pools as permits: one is idle whenever a permit is free.
         let lease =
             Lease { pool: lock(&self.idle_pools).pop().flatten(), home: self.idle_pools.clone() };

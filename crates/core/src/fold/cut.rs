@@ -191,6 +191,134 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     })
 }
 
+/// Most grid positions the partition search ([`find_cuts`]) tries per cut point at first; it
+/// then moves each point along the full half-edge grid.
+const COARSE_GRID: usize = 128;
+
+/// The border split into arcs whose own pairs hold the least change: the cut of a fold
+/// sequence ([`find_cuts`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Cuts {
+    /// Cut points in vertex units on the half-edge grid, increasing, in [0, N).
+    pub points: Vec<f64>,
+    /// Change within the arcs as a share of all the change.
+    pub residual: f64,
+}
+
+/// The `arcs` cut points (`arcs` ≥ 2) that split the border into arcs holding the least
+/// change within themselves: Σ over the arcs of the change g of the pairs of edges both on
+/// the arc. A sequence of folds of a flat cloth moves each piece between its creases
+/// rigidly, so every pair inside a piece keeps |dGLI| and a border arc inside one piece
+/// holds no change; the cut points are where the creases meet the border ([`find_cut`] is
+/// the case of two arcs). The search is a dynamic programme over a grid of at most
+/// `COARSE_GRID` positions (O(arcs · grid³)), each point then moved along the half-edge
+/// grid while that lowers the change. `None` when g holds no change or the border has too
+/// few edges.
+///
+/// ```
+/// use close_core::disk::Disk;
+/// use close_core::fold::cut::find_cuts;
+/// // Twelve edges in four runs of three whose own pairs did not change.
+/// let n = 12;
+/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+///     .map(|(i, j)| if i / 3 == j / 3 { 0.0 } else { 1.0 })
+///     .collect();
+/// let cuts = find_cuts(&Disk::from_values(n, values).unwrap(), 4).unwrap();
+/// assert_eq!(cuts.residual, 0.0);
+/// // Each cut between two runs, within the half edge that holds no pair of its own.
+/// assert!(cuts.points.iter().zip([0.0, 3.0, 6.0, 9.0]).all(|(p, q)| (p - q).abs() <= 0.5));
+/// ```
+pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
+    let n = g.n();
+    let grid = 2 * n;
+    if arcs < 2 || arcs > n {
+        return None;
+    }
+    let sums = RunSums::new(g);
+    let total: f64 = g.values().iter().map(|v| v.abs()).sum();
+    if total <= 0.0 {
+        return None;
+    }
+    let within = |h1: usize, h2: usize| sums.within(arc_edges(n, h1 % grid, h2 % grid));
+    let stride = grid.div_ceil(COARSE_GRID);
+    let coarse: Vec<usize> = (0..grid).step_by(stride).collect();
+    let m = coarse.len();
+    // For each first cut point, the least change of `arcs` arcs: best[j][b] is the least
+    // change of j arcs from the first point to coarse position b (unrolled, b > first).
+    let solve = |first: usize| -> (f64, Vec<usize>) {
+        let mut best = vec![vec![(f64::INFINITY, usize::MAX); m]; arcs];
+        for b in first + 1..m {
+            best[1][b] = (within(coarse[first], coarse[b]), first);
+        }
+        for j in 2..arcs {
+            for b in first + j..m {
+                let mut least = (f64::INFINITY, usize::MAX);
+                for a in first + j - 1..b {
+                    let v = best[j - 1][a].0 + within(coarse[a], coarse[b]);
+                    if v < least.0 {
+                        least = (v, a);
+                    }
+                }
+                best[j][b] = least;
+            }
+        }
+        let mut last = (f64::INFINITY, usize::MAX);
+        for b in first + arcs - 1..m {
+            let v = best[arcs - 1][b].0 + within(coarse[b], coarse[first] + grid);
+            if v < last.0 {
+                last = (v, b);
+            }
+        }
+        if last.1 == usize::MAX {
+            return (f64::INFINITY, Vec::new());
+        }
+        let mut points = vec![last.1];
+        for j in (2..arcs).rev() {
+            points.push(best[j][points[points.len() - 1]].1);
+        }
+        points.push(first);
+        points.reverse();
+        (last.0, points.into_iter().map(|b| coarse[b]).collect())
+    };
+    // A cyclic partition has a point in the first 1/arcs of the grid.
+    let firsts: Vec<usize> = (0..m.div_ceil(arcs)).collect();
+    let (_, mut points) = firsts
+        .iter()
+        .map(|&f| solve(f))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .filter(|(v, _)| v.is_finite())?;
+    // Each point along the full grid, between its neighbours, while the change drops.
+    let change = |points: &[usize]| {
+        (0..points.len()).map(|k| within(points[k], points[(k + 1) % points.len()])).sum::<f64>()
+    };
+    let mut current = change(&points);
+    loop {
+        let mut moved = false;
+        for k in 0..points.len() {
+            for delta in [1, grid - 1] {
+                let mut trial = points.clone();
+                trial[k] = (trial[k] + delta) % grid;
+                if trial.iter().filter(|&&h| h == trial[k]).count() > 1 {
+                    continue;
+                }
+                trial.sort_unstable();
+                if trial != points && change(&trial) < current - TIE * total {
+                    current = change(&trial);
+                    points = trial;
+                    moved = true;
+                }
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+    Some(Cuts {
+        points: points.iter().map(|&h| h as f64 / 2.0).collect(),
+        residual: current / total,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -19,6 +19,7 @@ pub mod fit;
 pub mod loss;
 pub mod orientation;
 pub mod reflect;
+pub mod sequence;
 pub mod synth;
 
 use serde::{Deserialize, Serialize};

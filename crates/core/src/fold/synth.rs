@@ -52,17 +52,26 @@ const SCALE: f64 = 1.0;
 /// MuJoCo second folds from a wrong line on two of six to mean RMSE 0.071; 0.003–0.1 are
 /// alike, 0.3 and up lose the circle's second fold. On flat starts it moved the built-in
 /// towels' exact folds by a tenth of a degree, so those keep 1.0.)
-const STACKED_SCALE: f64 = 0.03;
+pub(crate) const STACKED_SCALE: f64 = 0.03;
+
+/// The compression's scale of a step that starts `flat` or stacked.
+pub(crate) fn scale_of(flat: bool) -> f64 {
+    if flat {
+        SCALE
+    } else {
+        STACKED_SCALE
+    }
+}
 /// Edges on each side of a fold point whose rows are probed.
-const NEAR: usize = 3;
+pub(crate) const NEAR: usize = 3;
 /// Most probe edges sampled along the whole border (the cost per candidate is bounded
 /// whatever N; half as many lose a third of the accuracy on the physics folds).
-const SAMPLES: usize = 48;
+pub(crate) const SAMPLES: usize = 48;
 /// Probe edges of the line search's screen, all pairs of them: a quarter of the pairs of
 /// [`SAMPLES`] ranks lines as well (its candidates are refined with the full probe).
-const SCREEN_SAMPLES: usize = 24;
+pub(crate) const SCREEN_SAMPLES: usize = 24;
 /// Directions per half turn tried when the fold points coincide or the line is searched.
-const DIRECTIONS: usize = 36;
+pub(crate) const DIRECTIONS: usize = 36;
 /// A stacked step whose best line does not bring the mismatch below this share of the
 /// unfolded state's has no fold. (Measured on physics second folds: 0.46–0.64.)
 pub const MAX_MISMATCH_RATIO: f64 = 0.8;
@@ -73,11 +82,14 @@ thread_local! {
     static COST_BUFFERS: std::cell::RefCell<(Vec<Option<f64>>, Vec<usize>)> = const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
 }
 
-/// A synthesised state and which of its vertices the fold moved.
-struct Turned {
-    state: Vec<Point>,
-    /// Per vertex: whether the fold moved it (it lies inside one of the turned arcs).
-    moved: Vec<bool>,
+/// A synthesised state and which folds moved each of its vertices.
+pub(crate) struct Turned {
+    pub(crate) state: Vec<Point>,
+    /// Per vertex: the folds that moved it, one bit per fold in the order they were made
+    /// (bit 0 the first), 0 for a vertex no fold moved.
+    group: Vec<u8>,
+    /// Folds made so far.
+    folds: u32,
 }
 
 impl Turned {
@@ -85,14 +97,42 @@ impl Turned {
     /// first point) of `before` over `line`: a rotation by π about the horizontal line at
     /// height `axis` ([`flap_axis`]), so the flap's layers reverse their order and lie above
     /// everything else.
-    fn new(before: &[Point], axis: f64, arcs: &[[f64; 2]], line: &Line) -> Turned {
-        let mut state = before.to_vec();
-        let moved = moved_mask(before.len(), arcs);
-        for (v, _) in moved.iter().enumerate().filter(|(_, &m)| m) {
-            let r = line.reflect(&before[v]);
-            state[v] = Point::new(r.x, r.y, 2.0 * axis - before[v].z);
+    pub(crate) fn new(before: &[Point], axis: f64, arcs: &[[f64; 2]], line: &Line) -> Turned {
+        let mut turned = Turned::unfolded(before);
+        turned.fold_about(axis, arcs, line);
+        turned
+    }
+
+    /// `before` with no fold made.
+    pub(crate) fn unfolded(before: &[Point]) -> Turned {
+        Turned { state: before.to_vec(), group: vec![0; before.len()], folds: 0 }
+    }
+
+    /// Turn the `arcs` of the state over `line` as [`Turned::new`] does, on top of the folds
+    /// already made, the flap laid `lift` above the stack: the next fold of a sequence.
+    pub(crate) fn fold(&mut self, arcs: &[[f64; 2]], line: &Line, lift: f64) {
+        let axis = flap_axis(&self.state, lift);
+        self.fold_about(axis, arcs, line);
+    }
+
+    fn fold_about(&mut self, axis: f64, arcs: &[[f64; 2]], line: &Line) {
+        // A sequence holds at most `sequence::MAX_FOLDS` folds, well within the bits.
+        debug_assert!(self.folds < 8);
+        let bit = 1u8 << self.folds.min(7);
+        for (v, moved) in moved_mask(self.state.len(), arcs).into_iter().enumerate() {
+            if moved {
+                let p = self.state[v];
+                let r = line.reflect(&p);
+                self.state[v] = Point::new(r.x, r.y, 2.0 * axis - p.z);
+                self.group[v] |= bit;
+            }
         }
-        Turned { state, moved }
+        self.folds += 1;
+    }
+
+    /// Per vertex: the folds that moved it, one bit per fold in the order made.
+    pub(crate) fn groups(&self) -> &[u8] {
+        &self.group
     }
 
     /// The vertex after `e`, without a remainder (this runs for every probe pair).
@@ -105,10 +145,11 @@ impl Turned {
         }
     }
 
-    /// Whether the fold moved each end of edge `e`.
+    /// The folds that moved edge `e`: `Some(group)` when they moved both of its ends alike.
     #[inline]
-    fn edge_moved(&self, e: usize) -> (bool, bool) {
-        (self.moved[e], self.moved[self.next(e)])
+    fn edge_group(&self, e: usize) -> Option<u8> {
+        let g = self.group[e];
+        (g == self.group[self.next(e)]).then_some(g)
     }
 }
 
@@ -123,13 +164,14 @@ fn moved_mask(n: usize, arcs: &[[f64; 2]]) -> Vec<bool> {
     moved
 }
 
-/// Height of the axis a flap of `before` is turned about: LIFT/2 above its highest vertex.
-fn flap_axis(before: &[Point]) -> f64 {
-    before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max) + LIFT / 2.0
+/// Height of the axis a flap of `before` is turned about: `lift`/2 above its highest vertex,
+/// so the flap lies `lift` above the stack (the synthesis uses [`LIFT`]).
+pub(crate) fn flap_axis(before: &[Point], lift: f64) -> f64 {
+    before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max) + lift / 2.0
 }
 
 /// The probe pairs, their measured end values and their values in the step's start state.
-struct Probe {
+pub(crate) struct Probe {
     pairs: Vec<(usize, usize)>,
     measured: Vec<f64>,
     start: Vec<f64>,
@@ -146,14 +188,13 @@ struct Probe {
 impl Probe {
     /// Probe `pairs`, compressed, on the start disk and the measured end disk.
     /// `flat`: whether the step starts flat, which sets the compression's scale.
-    fn of(
+    pub(crate) fn of(
         pairs: Vec<(usize, usize)>,
         start: &Disk,
         end: &Disk,
         flap_negates: bool,
-        flat: bool,
+        scale: f64,
     ) -> Probe {
-        let scale = if flat { SCALE } else { STACKED_SCALE };
         let measured = pairs.iter().map(|&(i, j)| compress(end.get(i, j), scale)).collect();
         let start = pairs.iter().map(|&(i, j)| compress(start.get(i, j), scale)).collect();
         Probe { pairs, measured, start, flap_negates, scale }
@@ -162,7 +203,13 @@ impl Probe {
     /// Probe pairs around the ends of the folded `arcs`: every edge near them against a
     /// strided sample of all edges, and sampled edges of the folded arcs against the rest.
     /// On a flat start the flap's pairs take their negated start values ([`Probe::flap_negates`]).
-    fn around(start: &Disk, end: &Disk, arcs: &[[f64; 2]], flat: bool) -> Probe {
+    pub(crate) fn around(
+        start: &Disk,
+        end: &Disk,
+        arcs: &[[f64; 2]],
+        flap_negates: bool,
+        scale: f64,
+    ) -> Probe {
         let n = end.n();
         let sampled = sampled_edges(n, SAMPLES);
         let mut near: Vec<usize> = Vec::new();
@@ -189,7 +236,7 @@ impl Probe {
         }
         pairs.sort_unstable();
         pairs.dedup();
-        Probe::of(pairs, start, end, flat, flat)
+        Probe::of(pairs, start, end, flap_negates, scale)
     }
 
     /// Mean mismatch of the synthesised state `turned` with the measured end disk.
@@ -197,14 +244,18 @@ impl Probe {
     /// Only pairs with an edge the fold moved and one it did not need a dGLI: a pair of
     /// unmoved edges keeps its start value, and a pair on the flap may take the negated one
     /// (see [`Probe::flap_negates`]).
-    fn cost(&self, turned: &Turned) -> f64 {
+    pub(crate) fn cost(&self, turned: &Turned) -> f64 {
         let (state, next) = (&turned.state, |e: usize| turned.next(e));
         COST_BUFFERS.with_borrow_mut(|(values, across)| {
             values.clear();
             values.extend(self.pairs.iter().zip(&self.start).map(|(&(i, j), start)| {
-                match (turned.edge_moved(i), turned.edge_moved(j)) {
-                    ((false, false), (false, false)) => Some(*start),
-                    ((true, true), (true, true)) if self.flap_negates => Some(-start),
+                // Edges moved by the same folds moved together, rigidly: each turn over
+                // negates their pair (exactly on a flat start, see `flap_negates`).
+                match (turned.edge_group(i), turned.edge_group(j)) {
+                    (Some(0), Some(0)) => Some(*start),
+                    (Some(a), Some(b)) if a == b && self.flap_negates => {
+                        Some(if a.count_ones() % 2 == 1 { -start } else { *start })
+                    }
                     _ => None,
                 }
             }));
@@ -231,8 +282,18 @@ impl Probe {
         })
     }
 
+    /// Mean mismatch of any `state` of the border with the measured end disk, every pair's
+    /// dGLI computed (the probe is made without `flap_negates`).
+    pub(crate) fn cost_of_state(&self, state: &[Point]) -> f64 {
+        debug_assert!(!self.flap_negates);
+        let mut turned = Turned::unfolded(state);
+        // Every vertex moved: no pair keeps its start value.
+        turned.group.fill(1);
+        self.cost(&turned)
+    }
+
     /// Mean mismatch of the start state left as it was.
-    fn unfolded(&self) -> f64 {
+    pub(crate) fn unfolded(&self) -> f64 {
         self.start.iter().zip(&self.measured).map(|(s, m)| (s - m).abs()).sum::<f64>()
             / self.pairs.len().max(1) as f64
     }
@@ -240,14 +301,14 @@ impl Probe {
 
 /// asinh(v / scale), written out: the standard library's careful form (hypot, ln_1p) is a
 /// fifth of the cost of a probe, and the few ulps it saves do not matter to a mismatch.
-fn compress(v: f64, scale: f64) -> f64 {
+pub(crate) fn compress(v: f64, scale: f64) -> f64 {
     let a = (v / scale).abs();
     let magnitude = if a < 1e150 { (a + (a * a + 1.0).sqrt()).ln() } else { (2.0 * a).ln() };
     magnitude.copysign(v)
 }
 
 /// A strided sample of at most `samples` edges of `n`.
-fn sampled_edges(n: usize, samples: usize) -> Vec<usize> {
+pub(crate) fn sampled_edges(n: usize, samples: usize) -> Vec<usize> {
     (0..n).step_by(n.div_ceil(samples).max(1)).collect()
 }
 
@@ -322,7 +383,7 @@ pub fn refine(before: &[Point], start: &Disk, end: &Disk, guess: &Synthesis) -> 
 }
 
 /// Mean XY length of the edges of `points`.
-fn mean_edge(points: &[Point]) -> f64 {
+pub(crate) fn mean_edge(points: &[Point]) -> f64 {
     let n = points.len();
     (0..n).map(|k| (points[(k + 1) % n].xy() - points[k].xy()).norm()).sum::<f64>() / n as f64
 }
@@ -343,8 +404,9 @@ fn refine_points(
 ) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
-    let probe = Probe::around(start, end, &[s], super::is_flat(before));
-    let axis = flap_axis(before);
+    let flat = super::is_flat(before);
+    let probe = Probe::around(start, end, &[s], flat, scale_of(flat));
+    let axis = flap_axis(before, LIFT);
     let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
         line_of(before, s, phi)
@@ -403,7 +465,7 @@ fn refine_points(
 
 /// The line at angle `phi` to the x axis whose signed distance from the origin (along its
 /// left normal) is `rho`.
-fn line_at(phi: f64, rho: f64) -> Line {
+pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
     Line {
         point: Point2::new(-rho * phi.sin(), rho * phi.cos()),
         direction: Vector2::new(phi.cos(), phi.sin()),
@@ -419,8 +481,9 @@ fn line_at(phi: f64, rho: f64) -> Line {
 fn refine_line(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synthesis {
     let phi0 = line.direction.y.atan2(line.direction.x);
     let rho0 = line.direction.x * line.point.y - line.direction.y * line.point.x;
-    let probe = Probe::around(start, end, &arcs_left_of(before, line), super::is_flat(before));
-    let axis = flap_axis(before);
+    let flat = super::is_flat(before);
+    let probe = Probe::around(start, end, &arcs_left_of(before, line), flat, scale_of(flat));
+    let axis = flap_axis(before, LIFT);
     let folded = |phi: f64, rho: f64| {
         let line = line_at(phi, rho);
         let arcs = arcs_left_of(before, &line);
@@ -519,9 +582,9 @@ pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis>
         .iter()
         .flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j)))
         .collect();
-    let probe = Probe::of(pairs, start, end, true, false);
+    let probe = Probe::of(pairs, start, end, true, STACKED_SCALE);
     let unfolded = probe.unfolded();
-    let axis = flap_axis(before);
+    let axis = flap_axis(before, LIFT);
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
     let step = mean_edge(before).max(reach / 200.0);
     let offsets = (2.0 * reach / step).ceil() as usize;
@@ -606,7 +669,7 @@ fn turns_of(before: &[Point], line: &Line) -> Vec<(Vec<[f64; 2]>, Turn)> {
 /// leaves that side (anticlockwise from the first), in walking order starting after the
 /// widest gap between them, so that the first point of the first arc and the last point of
 /// the last span them all as tightly as they can.
-fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
+pub(crate) fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
     let n = before.len();
     let (ux, uy) = (line.direction.x, line.direction.y);
     let d: Vec<f64> =
@@ -687,16 +750,16 @@ mod tests {
         let wavy = square(10, 0.7, |k| 0.03 * (k as f64 * 0.7).sin());
         for (before, flap_negates) in [(flat, true), (wavy, false)] {
             let s = [3.4, 17.7];
-            let axis = flap_axis(&before);
+            let axis = flap_axis(&before, LIFT);
             let folded = fold_by_hand(&before, s, axis);
             let (start, end) = (Disk::of_border(&before), Disk::of_border(&folded));
-            let probe = Probe::around(&start, &end, &[s], flap_negates);
+            let probe = Probe::around(&start, &end, &[s], flap_negates, scale_of(flap_negates));
             let line = line_of(&before, s, None).expect("two distinct fold points");
             let turned = Turned::new(&before, axis, &[s], &line);
             // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
             let (flap, unmoved) = (
-                |e: usize| turned.edge_moved(e) == (true, true),
-                |e: usize| turned.edge_moved(e) == (false, false),
+                |e: usize| turned.edge_group(e) == Some(1),
+                |e: usize| turned.edge_group(e) == Some(0),
             );
             let has =
                 |kind: &dyn Fn(usize, usize) -> bool| probe.pairs.iter().any(|&(i, j)| kind(i, j));

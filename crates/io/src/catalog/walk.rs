@@ -5,27 +5,36 @@
 //!   lists each file once; a file reached by two names is listed once too.
 //! - A link whose target is outside the named folder is not followed: it is reported (the
 //!   user named the folder, not what its links point at). Naming the target itself is how
-//!   to include it.
-//! - A folder that cannot be listed (no permission) is reported by name; its siblings are
-//!   walked.
+//!   to include it. A link inside it is listed as where it leads.
+//! - A folder that cannot be listed (no permission), or lies more than [`MAX_DEPTH`] folders
+//!   down, is reported by name; its siblings are walked.
+//! - A folder that holds a Zarr store (a `.zgroup`, `.zarray` or `.zattrs` file, or a name
+//!   ending in `.zarr`) is not walked into: it is one [`Node::Store`], read as a store.
 //!
-//! Files are listed, not read or opened: whether one is a regular file is the reader's
-//! check ([`crate::formats::read_file`]), made on the open handle.
+//! Files are listed, not read: each with its identity ([`Listed`]), so that a reader can
+//! check, on the handle it opens, that it reads the file listed and no link put there since
+//! ([`crate::formats::read_listed`]), and that it is a regular file.
 //!
 //! ```
-//! use close_io::catalog::walk::walk;
+//! use close_io::catalog::walk::{walk, Node};
 //! let dir = std::env::temp_dir().join(format!("close-walk-doc-{}", std::process::id()));
 //! std::fs::create_dir_all(dir.join("sub")).unwrap();
 //! std::fs::write(dir.join("sub/a.json"), "{}").unwrap();
 //! #[cfg(unix)]
 //! std::os::unix::fs::symlink(".", dir.join("sub/again")).unwrap();
 //! let tree = walk(&dir, &|_| true).unwrap();
-//! assert_eq!(tree.files().count(), 1);
+//! let Node::Folder(sub) = &tree.entries[0] else { panic!("{tree:?}") };
+//! assert!(matches!(sub.entries.as_slice(), [Node::File(a)] if a.path.ends_with("sub/a.json")));
 //! std::fs::remove_dir_all(&dir).unwrap();
 //! ```
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
+
+use crate::formats::FileId;
+
+/// Folders a walk goes down at most below the named one.
+pub const MAX_DEPTH: usize = 32;
 
 /// One walked folder: its entries in name order.
 #[derive(Debug, Default)]
@@ -34,59 +43,40 @@ pub struct Folder {
     pub entries: Vec<Node>,
 }
 
+/// A file as the walk listed it: where to read it (a link inside the folder replaced by
+/// where it leads) and which file it was then.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Listed {
+    pub path: PathBuf,
+    pub id: Option<FileId>,
+}
+
 /// An entry of a walked folder.
 #[derive(Debug)]
 pub enum Node {
     /// Anything that is not a folder (a regular file, or a special file the reader refuses).
-    File(PathBuf),
+    File(Listed),
     Folder(Folder),
+    /// A folder holding a Zarr store, not walked into.
+    Store(PathBuf),
     /// What could not be walked, and why.
     Unreadable(PathBuf, String),
 }
 
-impl Folder {
-    /// Every file under this folder, depth first in name order.
-    pub fn files(&self) -> Box<dyn Iterator<Item = &PathBuf> + '_> {
-        Box::new(self.entries.iter().flat_map(|node| -> Box<dyn Iterator<Item = &PathBuf> + '_> {
-            match node {
-                Node::File(path) => Box::new(std::iter::once(path)),
-                Node::Folder(folder) => folder.files(),
-                Node::Unreadable(..) => Box::new(std::iter::empty()),
-            }
-        }))
-    }
-
-    /// Every entry that could not be walked, with its reason.
-    pub fn unreadable(&self) -> Box<dyn Iterator<Item = (&PathBuf, &String)> + '_> {
-        Box::new(self.entries.iter().flat_map(
-            |node| -> Box<dyn Iterator<Item = (&PathBuf, &String)> + '_> {
-                match node {
-                    Node::Unreadable(path, why) => Box::new(std::iter::once((path, why))),
-                    Node::Folder(folder) => folder.unreadable(),
-                    Node::File(_) => Box::new(std::iter::empty()),
-                }
-            },
-        ))
-    }
-}
-
-/// Identity of a file or folder: device and inode.
-type Identity = (u64, u64);
-
-#[cfg(unix)]
-fn identity(meta: &std::fs::Metadata) -> Option<Identity> {
-    use std::os::unix::fs::MetadataExt;
-    Some((meta.dev(), meta.ino()))
-}
-
-#[cfg(not(unix))]
-fn identity(_: &std::fs::Metadata) -> Option<Identity> {
-    None
+/// Whether folder `path` holds a Zarr store (or was meant to: a `.zarr` folder without its
+/// `.zgroup` is a broken store, not a folder of samples).
+pub fn looks_like_store(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("zarr"))
+        || [".zgroup", ".zarray", ".zattrs"]
+            .iter()
+            .any(|name| std::fs::symlink_metadata(path.join(name)).is_ok())
 }
 
 struct Walker<'a> {
+    /// The named folder, as named and canonical.
     root: PathBuf,
-    seen: HashSet<Identity>,
+    canonical: PathBuf,
+    seen: HashSet<FileId>,
     wanted: &'a dyn Fn(&Path) -> bool,
 }
 
@@ -95,11 +85,11 @@ struct Walker<'a> {
 /// only when `root` itself cannot be listed.
 pub fn walk(root: &Path, wanted: &dyn Fn(&Path) -> bool) -> std::io::Result<Folder> {
     let canonical = root.canonicalize()?;
-    let mut walker = Walker { root: canonical, seen: HashSet::new(), wanted };
+    let mut walker = Walker { root: root.to_path_buf(), canonical, seen: HashSet::new(), wanted };
     let meta = std::fs::metadata(root)?;
-    walker.seen.extend(identity(&meta));
+    walker.seen.extend(FileId::of(&meta));
     let entries = walker.listing(root)?;
-    Ok(walker.folder(root.to_path_buf(), entries))
+    Ok(walker.folder(root.to_path_buf(), entries, 0))
 }
 
 impl Walker<'_> {
@@ -111,42 +101,57 @@ impl Walker<'_> {
         Ok(paths)
     }
 
-    fn folder(&mut self, path: PathBuf, listed: Vec<PathBuf>) -> Folder {
-        let entries = listed.into_iter().filter_map(|p| self.node(p)).collect();
+    /// Folder `path` (`depth` folders below the root) and its `listed` entries.
+    fn folder(&mut self, path: PathBuf, listed: Vec<PathBuf>, depth: usize) -> Folder {
+        let entries = listed.into_iter().filter_map(|p| self.node(p, depth + 1)).collect();
         Folder { path, entries }
     }
 
-    /// The node of `path`, or `None` when it is left out (unwanted, or already walked).
-    fn node(&mut self, path: PathBuf) -> Option<Node> {
+    /// The node of `path`, `depth` folders below the root, or `None` when it is left out
+    /// (unwanted, or already walked).
+    fn node(&mut self, path: PathBuf, depth: usize) -> Option<Node> {
         let link = std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_symlink());
         let Ok(meta) = std::fs::metadata(&path) else {
             // A dangling link or a racing delete: the reader names the problem if wanted.
-            return (self.wanted)(&path).then_some(Node::File(path));
+            return (self.wanted)(&path).then_some(Node::File(Listed { path, id: None }));
         };
         if !meta.is_dir() && !(self.wanted)(&path) {
             return None;
         }
-        if link {
+        let path = if link {
             match path.canonicalize() {
-                Ok(target) if target.starts_with(&self.root) => {}
-                Ok(target) => {
-                    return Some(Node::Unreadable(path, format!("links to {}, outside the dataset folder: not followed (name it as a dataset to include it)", target.display())));
-                }
+                // Where it leads, under the folder as named.
+                Ok(target) => match target.strip_prefix(&self.canonical) {
+                    Ok(inside) => self.root.join(inside),
+                    Err(_) => return Some(Node::Unreadable(path, format!("links to {}, outside the dataset folder: not followed (name it as a dataset to include it)", target.display()))),
+                },
                 Err(e) => {
                     return Some(Node::Unreadable(path, format!("cannot resolve the link: {e}")))
                 }
             }
-        }
-        if let Some(id) = identity(&meta) {
+        } else {
+            path
+        };
+        let id = FileId::of(&meta);
+        if let Some(id) = id {
             if !self.seen.insert(id) {
                 return None;
             }
         }
         if !meta.is_dir() {
-            return Some(Node::File(path));
+            return Some(Node::File(Listed { path, id }));
+        }
+        if looks_like_store(&path) {
+            return Some(Node::Store(path));
+        }
+        if depth > MAX_DEPTH {
+            return Some(Node::Unreadable(
+                path,
+                format!("more than {MAX_DEPTH} folders down: not walked (name it as a dataset to include it)"),
+            ));
         }
         match self.listing(&path) {
-            Ok(listed) => Some(Node::Folder(self.folder(path, listed))),
+            Ok(listed) => Some(Node::Folder(self.folder(path, listed, depth))),
             Err(e) => Some(Node::Unreadable(path, format!("cannot read the folder: {e}"))),
         }
     }

@@ -123,6 +123,7 @@ fn border_sample(name: String, category: &str, varied: Varied) -> Sample {
                 .map(|f| Fold::from(f.map(|s| param_to_angle(s, n))))
                 .collect(),
             folded_vertices: Some(varied.folded),
+            folded_vertices_per_fold: None,
         }),
     }
 }
@@ -202,6 +203,7 @@ fn mesh_samples() -> Result<Vec<Sample>> {
                 truth: Some(Truth {
                     folds: vec![Fold::new(param_to_angle(f1, n), param_to_angle(f2, n))],
                     folded_vertices: Some(moved(grid.vertices(), &folded)),
+                    folded_vertices_per_fold: None,
                 }),
                 mesh: Some(MeshFrames::new(
                     grid.faces().to_vec(),

@@ -84,7 +84,8 @@ pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
 /// serde_json's error with its position moved into the typed `line` (the column stays in
 /// the reason); line 0 means serde_json knew no position.
 fn parse_error(e: &serde_json::Error) -> Error {
-    let message = e.to_string();
+    // serde's message may quote a string of the file.
+    let message = super::redact(&e.to_string());
     let position = format!(" at line {} column {}", e.line(), e.column());
     match message.strip_suffix(&position) {
         Some(reason) if e.line() > 0 => Error::parse_at(
@@ -225,24 +226,42 @@ pub(super) fn truth_folds<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Fold>, 
     Bounded { what: "true folds", limit: MAX_FRAMES, item: PhantomData::<Fold> }.deserialize(d)
 }
 
+/// A list of vertices, at most one entry per mesh vertex.
+struct Vertices(Vec<usize>);
+
+impl<'de> Deserialize<'de> for Vertices {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Bounded { what: "folded vertices", limit: MAX_MESH_VERTICES, item: PhantomData::<usize> }
+            .deserialize(d)
+            .map(Vertices)
+    }
+}
+
 /// `truth.folded_vertices`: at most one entry per mesh vertex.
 pub(super) fn folded_vertices<'de, D: Deserializer<'de>>(
     d: D,
 ) -> Result<Option<Vec<usize>>, D::Error> {
-    /// The bounded list, as a type `Option` can wrap (null stays `None`).
-    struct Vertices(Vec<usize>);
-    impl<'de> Deserialize<'de> for Vertices {
+    Ok(Option::<Vertices>::deserialize(d)?.map(|v| v.0))
+}
+
+/// `truth.folded_vertices_per_fold`: at most one list per frame, each as `folded_vertices`.
+pub(super) fn folded_vertices_per_fold<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<Vec<Vec<usize>>>, D::Error> {
+    /// The bounded lists, as a type `Option` can wrap (null stays `None`).
+    struct PerFold(Vec<Vertices>);
+    impl<'de> Deserialize<'de> for PerFold {
         fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
             Bounded {
-                what: "folded vertices",
-                limit: MAX_MESH_VERTICES,
-                item: PhantomData::<usize>,
+                what: "folds' folded vertices",
+                limit: MAX_FRAMES,
+                item: PhantomData::<Vertices>,
             }
             .deserialize(d)
-            .map(Vertices)
+            .map(PerFold)
         }
     }
-    Ok(Option::<Vertices>::deserialize(d)?.map(|v| v.0))
+    Ok(Option::<PerFold>::deserialize(d)?.map(|p| p.0.into_iter().map(|v| v.0).collect()))
 }
 
 fn border_edges<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[usize; 2]>, D::Error> {
@@ -308,7 +327,11 @@ mod tests {
             .unwrap();
         assert_eq!(
             s.truth,
-            Some(crate::formats::Truth { folds: vec![Fold::new(1.0, 2.0)], folded_vertices: None })
+            Some(crate::formats::Truth {
+                folds: vec![Fold::new(1.0, 2.0)],
+                folded_vertices: None,
+                folded_vertices_per_fold: None
+            })
         );
         let s = parse_sample(doc(r#"{"folded_vertices": [3, 4]}"#).as_bytes()).unwrap();
         assert_eq!(s.truth.and_then(|t| t.folded_vertices), Some(vec![3, 4]));

@@ -428,10 +428,16 @@ pub fn parse_sample(bytes: &[u8], name: &str) -> Result<Sample> {
     let vars = variables(bytes)?;
     let find = |want: &str| {
         vars.iter().find(|(n, _)| n == want).map(|(_, v)| v).ok_or_else(|| {
-            let found: Vec<&str> = vars.iter().map(|(n, _)| n.as_str()).collect();
+            // Names that are words are the format's own; others are not quoted.
+            let found: Vec<&str> = vars
+                .iter()
+                .map(|(n, _)| super::identifier(n).unwrap_or("(not a name)"))
+                .take(16)
+                .collect();
             bad(format!(
-                "no variable {want:?} (the file holds {}); expected phiPositions and Eb",
-                super::quote(&found.join(", "))
+                "no variable {want:?} (the file holds {} variables: {}); expected phiPositions and Eb",
+                vars.len(),
+                found.join(", ")
             ))
         })
     };

@@ -29,38 +29,132 @@ pub use crate::mesh::MeshFrames;
 
 /// Largest input file the readers accept.
 pub const MAX_FILE_BYTES: usize = 64 * 1024 * 1024;
-/// Most characters of the user's text an error message quotes.
-pub const QUOTE_CHARS: usize = 32;
+/// Most characters of a library's message (about the user's file) an error keeps.
+pub const MESSAGE_CHARS: usize = 200;
 
-/// A short quote of the user's text for an error message: its first [`QUOTE_CHARS`]
-/// characters, escaped (`"…"`), and `…` after the quote when cut. An error names the bad
-/// text without copying a whole line (a 60 MiB line would become a 360 MB answer).
-pub(crate) fn quote(text: &str) -> String {
-    let kept = clip(text, QUOTE_CHARS);
-    format!("{kept:?}{}", if kept.len() < text.len() { "…" } else { "" })
+/// The name a file's own header gives (a PLY element, a MATLAB variable) as an error may
+/// name it: a word of at most 32 ASCII letters, digits and `_`; anything else is not quoted.
+pub(crate) fn identifier(name: &str) -> Option<&str> {
+    let plain = name.len() <= 32 && name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_');
+    (plain && !name.is_empty()).then_some(name)
 }
 
-/// The first `chars` characters of `text` (a library's message that may quote the input).
-pub(crate) fn clip(text: &str, chars: usize) -> &str {
-    text.char_indices().nth(chars).map_or(text, |(cut, _)| &text[..cut])
+/// A library's message about a user's file, made safe to show: at most [`MESSAGE_CHARS`]
+/// characters of its first line, and nothing it quotes of the file. A parser's message may
+/// quote the text it could not read (serde's `invalid type: string "…"`, a PLY line in
+/// `'…'`); errors name where and what is wrong, never the file's contents, so a file that
+/// is not what it seems (a link to `/etc/passwd` in a dataset folder) leaks nothing.
+///
+/// ```
+/// # use close_io::formats::redact;
+/// assert_eq!(redact(r#"invalid type: string "root:x:0", expected a number at line 1"#),
+///            r#"invalid type: string "…", expected a number at line 1"#);
+/// assert_eq!(redact("Couldn't parse 'v 1 2' here.\n\tString: 'secret'"),
+///            "Couldn't parse '…' here.");
+/// ```
+pub fn redact(message: &str) -> String {
+    let line = message.lines().next().unwrap_or_default();
+    let mut out = String::new();
+    let mut chars = line.chars().peekable();
+    let mut before = ' ';
+    while let Some(c) = chars.next() {
+        // An apostrophe inside a word ("couldn't") opens no quote.
+        let opens = c == '"' || (c == '\'' && (before.is_whitespace() || "([{:=".contains(before)));
+        before = c;
+        if !opens {
+            out.push(c);
+            continue;
+        }
+        out.push(c);
+        out.push('…');
+        while let Some(q) = chars.next() {
+            match q {
+                '\\' => {
+                    chars.next();
+                }
+                q if q == c => break,
+                _ => {}
+            }
+        }
+        out.push(c);
+    }
+    match out.char_indices().nth(MESSAGE_CHARS) {
+        Some((cut, _)) => format!("{}…", &out[..cut]),
+        None => out,
+    }
+}
+
+/// Which file a path named when a walk listed it: its device and inode. A file read later
+/// for that listing ([`read_listed`]) must be this one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FileId {
+    device: u64,
+    inode: u64,
+}
+
+impl FileId {
+    /// The identity of the file `meta` describes (`None` where the platform has none).
+    #[cfg(unix)]
+    pub fn of(meta: &std::fs::Metadata) -> Option<FileId> {
+        use std::os::unix::fs::MetadataExt;
+        Some(FileId { device: meta.dev(), inode: meta.ino() })
+    }
+
+    #[cfg(not(unix))]
+    pub fn of(_: &std::fs::Metadata) -> Option<FileId> {
+        None
+    }
 }
 
 /// Read a user's file: a regular file of at most [`MAX_FILE_BYTES`]. A FIFO, device or
 /// socket is refused before a byte is read (opened non-blocking, so a FIFO without a writer
 /// cannot stall the open, then checked on the open handle), and the read stops one byte
 /// past the cap, so a file that grows, or reports a false length, cannot make it read more.
+/// The user named the path, so a link is followed; a file a walk listed is read by
+/// [`read_listed`].
 pub fn read_file(path: &Path) -> Result<Vec<u8>> {
-    let fail = |e: std::io::Error| Error::InvalidArgument(format!("{}: {e}", path.display()));
+    read_checked(path, None)
+}
+
+/// Read a file a walk listed (in a dataset folder) as [`read_file`] does, but as it was
+/// listed: the path is opened without following a link (`O_NOFOLLOW`), and the file opened
+/// must be the one listed (`listed`, its device and inode). A file swapped after the
+/// listing, for a link to `/etc/passwd` say, is refused unread.
+pub fn read_listed(path: &Path, listed: Option<FileId>) -> Result<Vec<u8>> {
+    read_checked(path, Some(listed))
+}
+
+/// [`read_file`] (`listed` None) or [`read_listed`].
+fn read_checked(path: &Path, listed: Option<Option<FileId>>) -> Result<Vec<u8>> {
+    let name = path.display();
+    let fail = |e: std::io::Error| Error::InvalidArgument(format!("{name}: {e}"));
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
     #[cfg(unix)]
-    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
-    let file = options.open(path).map_err(fail)?;
+    std::os::unix::fs::OpenOptionsExt::custom_flags(
+        &mut options,
+        libc::O_NONBLOCK | if listed.is_some() { libc::O_NOFOLLOW } else { 0 },
+    );
+    let file = options.open(path).map_err(|e| {
+        #[cfg(unix)]
+        if listed.flatten().is_some() && e.raw_os_error() == Some(libc::ELOOP) {
+            return Error::InvalidArgument(format!(
+                "{name}: a symbolic link now, not the file listed: not followed"
+            ));
+        }
+        fail(e)
+    })?;
     let meta = file.metadata().map_err(fail)?;
+    if let Some(listed) = listed.flatten() {
+        if FileId::of(&meta) != Some(listed) {
+            return Err(Error::InvalidArgument(format!(
+                "{name}: another file than the one listed is there now: not read (list the dataset again to read it)"
+            )));
+        }
+    }
     if !meta.is_file() {
         return Err(Error::InvalidArgument(format!(
-            "{}: not a regular file (a FIFO, device or socket is never read)",
-            path.display()
+            "{name}: not a regular file (a FIFO, device or socket is never read)"
         )));
     }
     let too_large = |got: u64| {
@@ -90,6 +184,13 @@ pub struct Truth {
         deserialize_with = "json::folded_vertices"
     )]
     pub folded_vertices: Option<Vec<usize>>,
+    /// Per fold, the vertices it turned over (a fold of several arcs is known by them).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "json::folded_vertices_per_fold"
+    )]
+    pub folded_vertices_per_fold: Option<Vec<Vec<usize>>>,
 }
 
 /// One mesh file: a frame's vertex positions and its faces (polygons of vertex indices).

@@ -42,10 +42,10 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
                     return Err(Error::over_limit("mesh vertices", MAX_MESH_VERTICES));
                 }
                 let mut xyz = [0.0; 3];
-                for c in &mut xyz {
+                for (c, axis) in xyz.iter_mut().zip(["x", "y", "z"]) {
                     let word = words.next().ok_or_else(|| bad(line_no, "a vertex needs x y z"))?;
                     *c = word.parse().map_err(|_| {
-                        bad(line_no, format!("{} is not a number", super::quote(word)))
+                        bad(line_no, format!("the vertex's {axis} is not a number"))
                     })?;
                 }
                 mesh.vertices.push(xyz);
@@ -85,9 +85,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
 /// One face corner `v`, `v/t`, `v//n` or `v/t/n` → 0-based vertex index.
 fn corner(word: &str, defined: usize, line: usize) -> Result<usize> {
     let v = word.split('/').next().unwrap_or(word);
-    let index: i64 = v
-        .parse()
-        .map_err(|_| bad(line, format!("{} is not a vertex index", super::quote(word))))?;
+    let index: i64 = v.parse().map_err(|_| bad(line, "a face corner is not a vertex index"))?;
     match index {
         0 => Err(bad(line, "vertex index 0 (OBJ counts from 1)")),
         // Negative indices count back from the last vertex defined so far.

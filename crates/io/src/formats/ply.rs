@@ -168,11 +168,16 @@ fn check_counts(elements: &[&ElementDef], encoding: Encoding, payload_bytes: usi
         if needed > payload_bytes {
             return Err(bad(format!(
                 "the header announces {} {} elements, which with those before take at least {needed} bytes, but only {payload_bytes} bytes follow (truncated file?)",
-                e.count, e.name
+                e.count, element_name(&e.name)
             )));
         }
     }
     Ok(())
+}
+
+/// An element's name as an error names it: a word ([`super::identifier`]), else not quoted.
+fn element_name(name: &str) -> &str {
+    super::identifier(name).unwrap_or("(unnamed)")
 }
 
 /// Parse one PLY file.
@@ -184,8 +189,9 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         return Err(bad("not a PLY file (it must start with the line \"ply\")"));
     }
     let mut reader = Reader::new(bytes);
-    let header =
-        Parser::<Skip>::new().read_header(&mut reader).map_err(|e| bad(format!("header: {e}")))?;
+    let header = Parser::<Skip>::new()
+        .read_header(&mut reader)
+        .map_err(|e| bad(format!("header: {}", super::redact(&e.to_string()))))?;
     let elements: Vec<&ElementDef> = header.elements.values().collect();
     // The payload starts after the line "end_header" (its newline counted as payload: one
     // byte of slack for an ASCII file whose last line has none).
@@ -218,8 +224,8 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
             // The parser's message may quote a whole line of the file.
             bad(format!(
                 "{encoding} {} data: {}",
-                super::clip(&e.name, super::QUOTE_CHARS),
-                super::clip(&err.to_string(), 4 * super::QUOTE_CHARS)
+                element_name(&e.name),
+                super::redact(&err.to_string())
             ))
         };
         match e.name.as_str() {

@@ -39,11 +39,17 @@ pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
                     continue
                 }
                 Err(_) => {
+                    // Where, not what: an error never quotes the file.
+                    let field = fields.iter().position(|f| f.parse::<f64>().is_err()).unwrap_or(0);
                     return Err(Error::parse_at(
                         Format::Text,
                         k + 1,
-                        format!("{} is not three numbers", super::quote(line)),
-                    ))
+                        format!(
+                            "field {} of {} is not a number (expected x,y,z)",
+                            field + 1,
+                            fields.len()
+                        ),
+                    ));
                 }
             };
         if numbers.len() != 3 {

@@ -21,12 +21,18 @@
 //! A video is read as a stream: each frame's grips, then only the frames the folds use, each
 //! chunk once; a whole mesh is alive only while its frame is tested.
 //!
-//! A store is the user's data, not trusted: before an array is read, its shape is checked
-//! against the mesh limits ([`MAX_MESH_VERTICES`] rows of vertices or grip ids,
-//! [`MAX_MESH_FACES`] of faces), its chunk shape against the same bound, and each stored
-//! chunk's declared decoded size (Blosc's header, which its decoder allocates) against its
-//! chunk shape; a frame whose attributes cannot be read is one error, and the other frames
-//! and videos are kept ([`Store::videos`]).
+//! A store is the user's data, not trusted. Its files are read through [`files`]: never
+//! out of the store, regular files only, each sized before a byte is read. Before an array
+//! is read, its shape is checked against the mesh limits ([`MAX_MESH_VERTICES`] rows of
+//! vertices, [`MAX_MESH_FACES`] of faces, as many grip ids as the mesh has vertices), its
+//! chunk shape against the same bound and its chunk count against [`MAX_ARRAY_CHUNKS`];
+//! each stored chunk's file size against what its chunk can hold, and its declared decoded
+//! size (Blosc's header, which its decoder allocates) against its chunk shape; the chunk
+//! decoded is the very bytes checked. Cutting a video reads its grips: what that reads is
+//! counted from the arrays' metadata before any chunk is, against [`LISTING`] per video, and
+//! per store when a catalog lists every video ([`Store::cut_all`]). A frame whose
+//! attributes cannot be read is one error, and the other frames and videos are kept
+//! ([`Store::videos`]).
 //!
 //! ```no_run
 //! use close_io::vrfolding::Store;
@@ -43,6 +49,7 @@
 
 pub mod bifold;
 pub mod broken;
+pub mod files;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -51,24 +58,55 @@ use std::sync::Arc;
 use serde_json::Value;
 use zarrs::array::Array;
 use zarrs::config::MetadataRetrieveVersion;
-use zarrs::filesystem::FilesystemStore;
 use zarrs::group::Group;
 use zarrs::plugin::{ExtensionName, ZarrVersion};
-use zarrs::storage::{ListableStorageTraits, StorePrefix};
+use zarrs::storage::store::MemoryStore;
+use zarrs::storage::{ListableStorageTraits, StorePrefix, WritableStorageTraits};
 
 use crate::formats::Sample;
 use crate::mesh::silhouette::{Silhouette, EPSILON};
 use crate::mesh::{MAX_MESH_FACES, MAX_MESH_VERTICES};
 use bifold::Action;
 use close_core::error::{Error, Result};
+use files::StoreFiles;
 
 /// Folds scored per video: the paper's Table I has first and second folds.
 pub const FOLDS: usize = 2;
 
+/// Most chunks one array may have: a store written by zarr has a few per array, and each
+/// chunk is a file to open (a forged `chunks: [1]` would make millions of them).
+pub const MAX_ARRAY_CHUNKS: u64 = 1024;
+
+/// What cutting videos into actions reads: their grip arrays' ids and chunk files.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CutWork {
+    pub ids: u64,
+    pub chunks: u64,
+}
+
+/// The most cutting may read: for one video, and for every video of a store a catalog
+/// lists. A real store's frames hold a few grip ids in one chunk per hand, so a million
+/// frames are well inside it.
+pub const LISTING: CutWork = CutWork { ids: 1 << 26, chunks: 1 << 22 };
+
+impl CutWork {
+    fn plus(self, other: CutWork) -> CutWork {
+        CutWork {
+            ids: self.ids.saturating_add(other.ids),
+            chunks: self.chunks.saturating_add(other.chunks),
+        }
+    }
+
+    /// Whether this work fits in `limit`.
+    fn within(self, limit: CutWork) -> bool {
+        self.ids <= limit.ids && self.chunks <= limit.chunks
+    }
+}
+
 /// An open VR-Folding store (or one category folder of it).
 pub struct Store {
     path: PathBuf,
-    fs: Arc<FilesystemStore>,
+    fs: Arc<StoreFiles>,
     /// Category name → node path of its `samples` group.
     categories: Vec<(String, String)>,
 }
@@ -151,7 +189,7 @@ impl Store {
         if !is_store(path) {
             return Err(problem("/", "not a Zarr v2 group (no .zgroup): expected a VR-Folding store or one of its category folders".into()));
         }
-        let fs = Arc::new(FilesystemStore::new(path).map_err(|e| problem("/", e.to_string()))?);
+        let fs = Arc::new(StoreFiles::new(path).map_err(|e| problem("/", e.to_string()))?);
         let mut store = Store { path: path.to_path_buf(), fs, categories: Vec::new() };
         if store.group("/samples").is_ok() {
             let name = path
@@ -185,15 +223,17 @@ impl Store {
         self.categories.iter().map(|(c, _)| c.as_str()).collect()
     }
 
+    /// An error of `path` in this store; the problem's quotes of the store's files (a
+    /// metadata parser's message may quote them) are left out.
     fn error(&self, path: &str, problem: impl ToString) -> Error {
         Error::Store {
             store: self.path.display().to_string(),
             path: path.into(),
-            problem: problem.to_string(),
+            problem: crate::formats::redact(&problem.to_string()),
         }
     }
 
-    fn group(&self, path: &str) -> Result<Group<FilesystemStore>> {
+    fn group(&self, path: &str) -> Result<Group<StoreFiles>> {
         Group::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
             .map_err(|e| self.error(path, format!("missing or unreadable group: {e}")))
     }
@@ -275,14 +315,10 @@ impl Store {
     }
 
     /// Open array `path` and check its shape: 1-D (`width` None) or [rows, width], with at
-    /// most `max_rows` rows, and chunks of at most as many elements. Returns the array, its
-    /// row count and its data type's name ("float32", "int64", …).
-    fn open_array(
-        &self,
-        path: &str,
-        width: Option<u64>,
-        max_rows: usize,
-    ) -> Result<(Array<FilesystemStore>, usize, String)> {
+    /// most `max_rows` rows, chunks of at most as many elements and at most
+    /// [`MAX_ARRAY_CHUNKS`] of them. Only its metadata is read. Returns the array, its row
+    /// count and its data type's name ("float32", "int64", …).
+    fn open_array(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<Opened> {
         let array = Array::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
             .map_err(|e| self.error(path, format!("missing or unreadable array: {e}")))?;
         let rows = match (array.shape(), width) {
@@ -312,6 +348,15 @@ impl Store {
                 ),
             ));
         }
+        let chunks = array.chunk_grid_shape().iter().fold(1u64, |a, &b| a.saturating_mul(b));
+        if chunks > MAX_ARRAY_CHUNKS {
+            return Err(self.error(
+                path,
+                format!(
+                    "{chunks} chunks of shape {chunk:?}: more than {MAX_ARRAY_CHUNKS}, the limit of one array"
+                ),
+            ));
+        }
         let kind = array
             .data_type()
             .name(ZarrVersion::V3)
@@ -319,52 +364,70 @@ impl Store {
         Ok((array, rows, kind))
     }
 
+    /// Read the whole of `array` (at `path`). Each stored chunk is read once, through
+    /// [`StoreFiles::read`] with its own cap (refused unread when its file is larger than the
+    /// chunk can be encoded in), checked ([`Store::check_chunk`]), and then decoded: the
+    /// very bytes checked, from memory, so a file swapped after the check is never decoded.
     fn retrieve<T: zarrs::array::ElementOwned>(
         &self,
-        array: &Array<FilesystemStore>,
+        array: &Array<StoreFiles>,
         path: &str,
     ) -> Result<Vec<T>> {
-        self.check_chunks(array, path)?;
-        array
-            .retrieve_array_subset(&array.subset_all())
-            .map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
-    }
-
-    /// Check each stored chunk of `array` before it is decoded: a Blosc chunk's header
-    /// (bytes 4..8, little endian: the decoded size, which the decoder allocates at once)
-    /// and an uncompressed chunk's length must not exceed the chunk's own size, its shape ×
-    /// its element size. A forged header could otherwise ask for gigabytes from a few bytes.
-    fn check_chunks(&self, array: &Array<FilesystemStore>, path: &str) -> Result<()> {
         let element = array
             .data_type()
             .fixed_size()
             .ok_or_else(|| self.error(path, "a data type of variable size"))?;
-        let codecs = array.codecs();
-        let outer = codecs
+        let checked = Arc::new(MemoryStore::new());
+        let view = Array::new_with_metadata(checked.clone(), path, array.metadata().clone())
+            .map_err(|e| self.error(path, e))?;
+        let chunks =
+            array.chunks_in_array_subset(&array.subset_all()).map_err(|e| self.error(path, e))?;
+        for indices in chunks.iter().flat_map(|c| c.indices().into_iter()) {
+            let shape = array.chunk_shape(&indices).map_err(|e| self.error(path, e))?;
+            let size = shape.iter().map(|d| d.get()).fold(element as u64, u64::saturating_mul);
+            // Blosc adds a 16-byte header and never more than that; room for other codecs.
+            let most = size.saturating_add(size / 16).saturating_add(64);
+            let key = array.chunk_key(&indices);
+            let Some(encoded) =
+                self.fs.read(key.as_str(), most).map_err(|e| self.error(path, e))?
+            else {
+                continue;
+            };
+            self.check_chunk(array, path, &indices, &shape, size, &encoded)?;
+            checked.set(&key, encoded.into()).map_err(|e| self.error(path, e))?;
+        }
+        view.retrieve_array_subset(&view.subset_all())
+            .map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
+    }
+
+    /// Check a stored chunk before it is decoded: a Blosc chunk's header (bytes 4..8, little
+    /// endian: the decoded size, which the decoder allocates at once) and an uncompressed
+    /// chunk's length must not exceed the chunk's own `size`, its shape × its element size.
+    /// A forged header could otherwise ask for gigabytes from a few bytes.
+    fn check_chunk(
+        &self,
+        array: &Array<StoreFiles>,
+        path: &str,
+        indices: &[u64],
+        shape: &[std::num::NonZeroU64],
+        size: u64,
+        encoded: &[u8],
+    ) -> Result<()> {
+        let outer = array
+            .codecs()
             .bytes_to_bytes_codecs()
             .last()
             .and_then(|c| c.name(ZarrVersion::V2))
             .map(|n| n.to_string());
-        let chunks =
-            array.chunks_in_array_subset(&array.subset_all()).map_err(|e| self.error(path, e))?;
-        for indices in chunks.iter().flat_map(|c| c.indices().into_iter()) {
-            let Some(encoded) =
-                array.retrieve_encoded_chunk(&indices).map_err(|e| self.error(path, e))?
-            else {
-                continue;
-            };
-            let shape = array.chunk_shape(&indices).map_err(|e| self.error(path, e))?;
-            let size = shape.iter().map(|d| d.get()).fold(element as u64, u64::saturating_mul);
-            let declared = match outer.as_deref() {
-                Some("blosc") => encoded
-                    .get(4..8)
-                    .map_or(0, |b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
-                Some(_) => 0,
-                None => encoded.len() as u64,
-            };
-            if declared > size {
-                return Err(self.error(path, format!("chunk {indices:?} decodes to {declared} bytes, but a chunk of shape {shape:?} holds {size}")));
-            }
+        let declared = match outer.as_deref() {
+            Some("blosc") => encoded
+                .get(4..8)
+                .map_or(0, |b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+            Some(_) => 0,
+            None => encoded.len() as u64,
+        };
+        if declared > size {
+            return Err(self.error(path, format!("chunk {indices:?} decodes to {declared} bytes, but a chunk of shape {shape:?} holds {size}")));
         }
         Ok(())
     }
@@ -390,59 +453,83 @@ impl Store {
         Ok(values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
     }
 
-    /// An integer array (any width, signed or not, at most `max_rows` rows) as i64, with its
-    /// row count.
-    fn ints(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<(usize, Vec<i64>)> {
-        let (array, rows, kind) = self.open_array(path, width, max_rows)?;
-        let values = match kind.as_str() {
-            "int8" => self.widen::<i8>(&array, path)?,
-            "int16" => self.widen::<i16>(&array, path)?,
-            "int32" => self.widen::<i32>(&array, path)?,
-            "int64" => self.retrieve::<i64>(&array, path)?,
-            "uint8" => self.widen::<u8>(&array, path)?,
-            "uint16" => self.widen::<u16>(&array, path)?,
-            "uint32" => self.widen::<u32>(&array, path)?,
+    /// The integers of an open array (any width, signed or not) as i64.
+    fn ints(&self, (array, _, kind): &Opened, path: &str) -> Result<Vec<i64>> {
+        Ok(match kind.as_str() {
+            "int8" => self.widen::<i8>(array, path)?,
+            "int16" => self.widen::<i16>(array, path)?,
+            "int32" => self.widen::<i32>(array, path)?,
+            "int64" => self.retrieve::<i64>(array, path)?,
+            "uint8" => self.widen::<u8>(array, path)?,
+            "uint16" => self.widen::<u16>(array, path)?,
+            "uint32" => self.widen::<u32>(array, path)?,
             "uint64" => self
-                .retrieve::<u64>(&array, path)?
+                .retrieve::<u64>(array, path)?
                 .into_iter()
                 .map(|v| i64::try_from(v).unwrap_or(i64::MAX))
                 .collect(),
             other => return Err(self.error(path, format!("data type {other}, expected integers"))),
-        };
-        Ok((rows, values))
+        })
     }
 
     fn widen<T: zarrs::array::ElementOwned + Into<i64>>(
         &self,
-        array: &Array<FilesystemStore>,
+        array: &Array<StoreFiles>,
         path: &str,
     ) -> Result<Vec<i64>> {
         Ok(self.retrieve::<T>(array, path)?.into_iter().map(Into::into).collect())
     }
 
-    /// Whether one hand grips in one frame; its vertex ids are checked against the mesh's
-    /// `vertices`.
-    fn grip(&self, frame: &str, hand: &str, vertices: usize) -> Result<bool> {
-        let path = format!("{frame}/grip_vertex_id/{hand}_grip_vertex_id");
-        let (_, ids) = self.ints(&path, None, MAX_MESH_VERTICES)?;
-        if let Some(&bad) = ids.iter().find(|&&v| v < -1 || v >= vertices as i64) {
-            return Err(self.error(&path, format!("gripped vertex {bad} is out of range: the mesh has {vertices} vertices (ids 0…{}, or -1 for none)", vertices - 1)));
-        }
-        Ok(bifold::holds(&ids))
-    }
-
-    /// Cut `video` into fold actions from its grips alone (no mesh is read); a video with
-    /// no finished action is an error.
-    pub fn cut(&self, video: &Video) -> Result<bifold::Actions> {
+    /// The mesh's vertex count (from frame 0's `cloth_verts` metadata) and the grip arrays
+    /// of every frame of `video`, both hands, opened (metadata only): a hand holds at most
+    /// every vertex. With what reading them would read.
+    fn grip_arrays(&self, video: &Video) -> Result<(usize, Vec<[Opened; 2]>, CutWork)> {
         let Some(first) = video.frames.first() else {
             return Err(self.error(&video.id, "the video has no frame"));
         };
         let (_, vertices, _) =
             self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3), MAX_MESH_VERTICES)?;
+        let mut work = CutWork::default();
         let grips = video
             .frames
             .iter()
-            .map(|f| Ok(self.grip(f, "left", vertices)? | self.grip(f, "right", vertices)?))
+            .map(|f| {
+                let hands = ["left", "right"]
+                    .map(|hand| self.open_array(&grip_path(f, hand), None, vertices.max(1)));
+                let [left, right] = hands;
+                let hands = [left?, right?];
+                for (array, rows, _) in &hands {
+                    let chunks =
+                        array.chunk_grid_shape().iter().fold(1u64, |a, &b| a.saturating_mul(b));
+                    work = work.plus(CutWork { ids: *rows as u64, chunks });
+                }
+                Ok(hands)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok((vertices, grips, work))
+    }
+
+    /// What cutting `video` reads ([`Store::cut`]), from its arrays' metadata alone.
+    pub fn cut_work(&self, video: &Video) -> Result<CutWork> {
+        self.grip_arrays(video).map(|(_, _, work)| work)
+    }
+
+    /// Cut `video` into fold actions from its grips alone (no mesh is read); a video with
+    /// no finished action is an error, and so is one whose grips would read more than
+    /// [`LISTING`] (counted before any is read).
+    pub fn cut(&self, video: &Video) -> Result<bifold::Actions> {
+        let (vertices, grips, work) = self.grip_arrays(video)?;
+        if !work.within(LISTING) {
+            return Err(self.over_listing(video, work, "its grips alone"));
+        }
+        let grips = video
+            .frames
+            .iter()
+            .zip(&grips)
+            .map(|(frame, [left, right])| {
+                let left = self.grip(&grip_path(frame, "left"), left, vertices)?;
+                Ok(left | self.grip(&grip_path(frame, "right"), right, vertices)?)
+            })
             .collect::<Result<Vec<bool>>>()?;
         let cut = bifold::actions(&grips);
         if cut.actions.is_empty() {
@@ -457,6 +544,58 @@ impl Store {
             ));
         }
         Ok(cut)
+    }
+
+    /// Why `video` is not cut: reading `what` would pass [`LISTING`].
+    fn over_listing(&self, video: &Video, work: CutWork, what: &str) -> Error {
+        self.error(
+            &format!("video {}", video.id),
+            format!(
+                "not cut: {what} would read {} grip ids in {} chunk files, more than the limit of {} ids in {} files (name the video's category folder as a dataset of its own to list it)",
+                work.ids, work.chunks, LISTING.ids, LISTING.chunks
+            ),
+        )
+    }
+
+    /// Cut every video of `videos` (in parallel), within [`LISTING`] for them all: each
+    /// video's work is counted from metadata first, in order, and a video that would take
+    /// the total past the limit is an error, not read.
+    pub fn cut_all(&self, videos: &[Video]) -> Vec<Result<bifold::Actions>> {
+        use rayon::prelude::*;
+        let works: Vec<Result<CutWork>> = videos.par_iter().map(|v| self.cut_work(v)).collect();
+        let mut total = CutWork::default();
+        let admitted: Vec<Result<()>> = videos
+            .iter()
+            .zip(works)
+            .map(|(video, work)| {
+                let work = work?;
+                let after = total.plus(work);
+                if !after.within(LISTING) {
+                    return Err(self.over_listing(
+                        video,
+                        after,
+                        "the store's videos up to this one",
+                    ));
+                }
+                total = after;
+                Ok(())
+            })
+            .collect();
+        videos
+            .par_iter()
+            .zip(admitted)
+            .map(|(video, admitted)| admitted.and_then(|()| self.cut(video)))
+            .collect()
+    }
+
+    /// Whether the hand whose grip array is `path` (opened) grips; its vertex ids are
+    /// checked against the mesh's `vertices`.
+    fn grip(&self, path: &str, array: &Opened, vertices: usize) -> Result<bool> {
+        let ids = self.ints(array, path)?;
+        if let Some(&bad) = ids.iter().find(|&&v| v < -1 || v >= vertices as i64) {
+            return Err(self.error(path, format!("gripped vertex {bad} is out of range: the mesh has {vertices} vertices (ids 0…{}, or -1 for none)", vertices.saturating_sub(1))));
+        }
+        Ok(bifold::holds(&ids))
     }
 
     /// Cut `video` into actions and read the border frames of its first [`FOLDS`] folds.
@@ -542,7 +681,7 @@ impl Store {
 
     /// The triangles of `path`, every id checked against the mesh's `vertices`.
     fn faces(&self, path: &str, vertices: usize) -> Result<Vec<[usize; 3]>> {
-        let (_, ids) = self.ints(path, Some(3), MAX_MESH_FACES)?;
+        let ids = self.ints(&self.open_array(path, Some(3), MAX_MESH_FACES)?, path)?;
         if let Some(&bad) = ids.iter().find(|&&v| v < 0 || v >= vertices as i64) {
             return Err(self.error(
                 path,
@@ -551,4 +690,12 @@ impl Store {
         }
         Ok(ids.chunks_exact(3).map(|c| [c[0] as usize, c[1] as usize, c[2] as usize]).collect())
     }
+}
+
+/// An array opened ([`Store::open_array`]): the array, its row count, its data type's name.
+type Opened = (Array<StoreFiles>, usize, String);
+
+/// The grip array of `hand` ("left" or "right") in frame group `frame`.
+fn grip_path(frame: &str, hand: &str) -> String {
+    format!("{frame}/grip_vertex_id/{hand}_grip_vertex_id")
 }

@@ -1,0 +1,735 @@
+//! Fold sequences in one step: the folds that took a flat cloth to a state whose disk alone
+//! is seen.
+//!
+//! Our extension of CloSE, after the paper's "Multi-folds" section (Kamat, Borràs, Torras,
+//! "CloSE"): the diff disk of two folds seen at once holds the lines of both. A cloth folded
+//! k times, seen flat and folded with no frame between, is read as a sequence of folds, each
+//! made on the state the ones before it left: later folds cross stacked layers and may turn
+//! several arcs of the border at once.
+//!
+//! **Where the creases meet the border.** Folds of a flat cloth move each piece between the
+//! creases rigidly, so a pair of edges of one piece keeps |dGLI|: a border arc inside one
+//! piece holds no change of the abs diff disk g. The border split into m arcs of least
+//! change within themselves ([`super::cut::find_cuts`]) puts its m cut points where the
+//! creases meet the border. Straight sides hold no change at all (collinear edges have dGLI
+//! 0 before and after), so a split at a corner would cost nothing: each pair's change is
+//! offset by [`INFORMATION`] times its start |dGLI|, which favours arcs whose pairs could
+//! have shown a change.
+//!
+//! **Analysis by synthesis.** Each fold of a candidate sequence is a line on the state it is
+//! made on, through two cut points where they lie on that state, or through one in a
+//! searched direction where two coincide (stacked layers), and the arcs of the border left
+//! of it that turn over: all of them, or the one holding a given vertex (a fold of the top
+//! layer only). The folds are made in turn ([`super::synth`]: each flap rotated by π about
+//! its line, laid above the stack), and the synthesised state's dGLI on probe pairs is
+//! compared with the measured end disk (`asinh`-compressed, mean absolute difference). A
+//! beam search builds the sequences a fold at a time on a screen of strided pairs (every
+//! first fold is carried on: a sequence's first fold explains little alone); the best are
+//! refined, all their folds together, by a pattern search over each fold's two parameters,
+//! and judged on a larger probe, each at the flap height that fits it best (the cloth's
+//! thickness, which sets how far apart its layers lie, shows in the disk).
+//!
+//! **Layer order.** Two perpendicular half folds done in either order land alike on the
+//! table, but for a rigid motion, which no disk sees: what tells them apart is the order of
+//! their layers. A sequence whose end lands like the best one's (within [`CONGRUENT`]) is
+//! compared with it on the order alone: each one's outline with each one's heights.
+//!
+//! **Model selection.** k folds are reported only when they explain markedly more of the end
+//! disk than k − 1 ([`MARKEDLY`], [`MIN_GAIN`]); the search runs only when the step's one
+//! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. A fold or sequence that
+//! leaves more than [`UNEXPLAINED`] unexplained is not a confident fold.
+//!
+//! The end border's coordinates are never read: only its disk.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::angle::{angle_to_param, param_to_angle, wrap_tau, ArcVertices};
+use crate::border::{point_at, Point};
+use crate::budget::Deadline;
+use crate::disk::Disk;
+use crate::error::Result;
+use crate::geometry::{Arc, Fold, Folding, Line, Point2};
+use crate::metrics::aligned_rmse_xy;
+
+use super::cut::find_cuts;
+use super::synth::{
+    arcs_left_of, mean_edge, sampled_edges, Probe, Turned, COINCIDE_EDGES, DIRECTIONS, LIFT,
+    SAMPLES, SCREEN_SAMPLES, STACKED_SCALE,
+};
+use super::FoldDetection;
+
+/// Most folds one step may hold.
+pub const MAX_FOLDS: usize = 4;
+/// Weight of a pair's start |dGLI| against its change when the creases are placed.
+pub const INFORMATION: f64 = 0.05;
+/// First folds carried on to the second: all there are, up to this many.
+const FIRST_BEAM: usize = 96;
+/// Sequences carried on from the second fold on.
+const BEAM: usize = 8;
+/// Sequences of each length refined in full.
+const REFINED: usize = 6;
+/// Two cut points closer than this many times [`COINCIDE_EDGES`] mean edges on a state
+/// also give lines through one of them in every direction.
+const RAY_REACH: f64 = 3.0;
+/// Twins of the best sequence refined: two folds land alike in up to eight ways (either
+/// order, either side of each).
+const TWINS: usize = 8;
+/// Two end states this close once one is moved rigidly onto the other (aligned RMSE,
+/// normalised units) land alike on the table.
+pub const CONGRUENT: f64 = 0.05;
+/// Flap heights above the stack tried when sequences are judged (normalised units: a
+/// cloth's thickness, doubled at a crease, is 0.25–8 % of its size).
+const LIFTS: [f64; 7] = [0.0025, 0.005, 0.0075, 0.01, 0.02, 0.04, 0.08];
+/// Edges sampled for the layer-order test, all pairs of them.
+const ORDER_SAMPLES: usize = 96;
+/// A step whose one fold leaves at most this share of its end disk's mismatch unexplained
+/// is one fold: no sequence is searched.
+pub const EXPLAINED_BY_ONE: f64 = 0.4;
+/// k folds only when they leave at most this share of what k − 1 left …
+pub const MARKEDLY: f64 = 0.6;
+/// … and explain at least this share of the whole more.
+pub const MIN_GAIN: f64 = 0.2;
+/// A sequence (or one fold) leaving more than this share of the end disk's mismatch
+/// unexplained is not a confident fold.
+pub const UNEXPLAINED: f64 = 0.6;
+/// Alternatives listed: sequences whose mismatch is within this share of the best one's.
+const ABOUT_AS_WELL: f64 = 0.25;
+
+/// Which of the arcs left of a fold's line turn over.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Turn {
+    /// All of them (one arc for a line crossing the border twice; several for a
+    /// multi-arc fold).
+    All,
+    /// The one holding this vertex: a fold of one layer of a stack.
+    Holding(usize),
+}
+
+/// Where a fold's line lies on the state it is made on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Anchor {
+    /// Through the border points at these two parameters.
+    Points([f64; 2]),
+    /// Through the border point at this parameter, at this angle to the x axis.
+    Ray(f64, f64),
+}
+
+/// One fold of a candidate sequence.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Move {
+    anchor: Anchor,
+    /// The line runs the other way (its left, the side that turns, is the other side).
+    reversed: bool,
+    turn: Turn,
+}
+
+impl Move {
+    /// The directed line on `state`; `None` when its two points coincide.
+    fn line(&self, state: &[Point]) -> Option<Line> {
+        let line = match self.anchor {
+            Anchor::Points([a, b]) => Line::through(&point_at(state, a), &point_at(state, b))?,
+            Anchor::Ray(a, phi) => {
+                let p = point_at(state, a);
+                Line::at_angle(Point2::new(p.x, p.y), phi)
+            }
+        };
+        Some(if self.reversed { Line { direction: -line.direction, ..line } } else { line })
+    }
+
+    /// The arcs this fold turns over on `state` (border parameters): `None` when it turns
+    /// fewer than two vertices, or leaves fewer than two.
+    fn arcs(&self, state: &[Point], line: &Line) -> Option<Vec<[f64; 2]>> {
+        let n = state.len();
+        let left = arcs_left_of(state, line);
+        let arcs: Vec<[f64; 2]> = match self.turn {
+            Turn::All => left,
+            Turn::Holding(v) => {
+                left.into_iter().filter(|a| ArcVertices::of(n, a[0], a[1]).contains(v)).collect()
+            }
+        };
+        let moved: usize = arcs.iter().map(|a| ArcVertices::of(n, a[0], a[1]).len).sum();
+        (moved >= 2 && moved + 2 <= n).then_some(arcs)
+    }
+
+    /// The same fold moved by `delta` edges along the border (for a ray, by `delta[0]` edges
+    /// and `delta[1]` times `angle_step` radians).
+    fn moved(&self, delta: [f64; 2], angle_step: f64) -> Move {
+        let anchor = match self.anchor {
+            Anchor::Points([a, b]) => Anchor::Points([a + delta[0], b + delta[1]]),
+            Anchor::Ray(a, phi) => Anchor::Ray(a + delta[0], phi + delta[1] * angle_step),
+        };
+        Move { anchor, ..*self }
+    }
+}
+
+/// A fold as made on a synthesised state: its line and the arcs it turned (border
+/// parameters, each anticlockwise from its first point, in walking order).
+#[derive(Debug, Clone, PartialEq)]
+struct Made {
+    line: Line,
+    arcs: Vec<[f64; 2]>,
+}
+
+impl Made {
+    /// As a [`Folding`] (angles) of a border of `n` vertices.
+    fn folding(&self, n: usize) -> Folding {
+        let angle = |s: f64| wrap_tau(param_to_angle(s, n));
+        let arcs: Vec<Arc> = self.arcs.iter().map(|&[a, b]| Arc::new(angle(a), angle(b))).collect();
+        let fold = Fold::span(&arcs).unwrap_or_default();
+        Folding { fold, arcs, line: Some(self.line) }
+    }
+}
+
+/// The state after `made` turned in turn on `before`, each flap laid `lift` above the stack.
+fn turned(before: &[Point], made: &[Made], lift: f64) -> Turned {
+    let mut turned = Turned::unfolded(before);
+    for m in made {
+        turned.fold(&m.arcs, &m.line, lift);
+    }
+    turned
+}
+
+/// The folds of `moves` made in turn on `before`; `None` when one of them cannot be made.
+fn make(before: &[Point], moves: &[Move]) -> Option<(Turned, Vec<Made>)> {
+    let mut turned = Turned::unfolded(before);
+    let mut made = Vec::with_capacity(moves.len());
+    for m in moves {
+        let line = m.line(&turned.state)?;
+        let arcs = m.arcs(&turned.state, &line)?;
+        turned.fold(&arcs, &line, LIFT);
+        made.push(Made { line, arcs });
+    }
+    Some((turned, made))
+}
+
+fn cost(probe: &Probe, before: &[Point], moves: &[Move]) -> f64 {
+    make(before, moves).map_or(f64::INFINITY, |(turned, _)| probe.cost(&turned))
+}
+
+/// Every pair of `edges`.
+fn all_pairs(edges: &[usize]) -> Vec<(usize, usize)> {
+    edges
+        .iter()
+        .enumerate()
+        .flat_map(|(k, &i)| edges[k + 1..].iter().map(move |&j| (i, j)))
+        .collect()
+}
+
+/// The folds that can be made on `state` along lines through two of the cut `points` that
+/// no fold before it ran through (creases meet the border at points of their own), each with
+/// the indices of the two points.
+fn moves_on(state: &[Point], points: &[f64], used: &[usize]) -> Vec<(Move, [usize; 2])> {
+    let n = state.len();
+    let near = COINCIDE_EDGES * mean_edge(state);
+    let free: Vec<usize> = (0..points.len()).filter(|k| !used.contains(k)).collect();
+    let mut anchors: Vec<(Anchor, [usize; 2])> = Vec::new();
+    for (k, &i) in free.iter().enumerate() {
+        for &j in &free[k + 1..] {
+            let (a, b) = (points[i], points[j]);
+            let (pa, pb) = (point_at(state, a), point_at(state, b));
+            let apart = (pa.xy() - pb.xy()).norm();
+            if apart >= near {
+                anchors.push((Anchor::Points([a, b]), [i, j]));
+            }
+            if apart < RAY_REACH * near {
+                // Layers stacked there (the cut points lie within an edge or two of the
+                // creases, so two that should meet may not quite): the line's direction is
+                // searched.
+                anchors.extend(
+                    (0..DIRECTIONS)
+                        .map(|d| (Anchor::Ray(a, PI * d as f64 / DIRECTIONS as f64), [i, j])),
+                );
+            }
+        }
+    }
+    let mut moves = Vec::new();
+    for (anchor, through) in anchors {
+        for reversed in [false, true] {
+            let m = Move { anchor, reversed, turn: Turn::All };
+            let Some(line) = m.line(state) else { continue };
+            let left = arcs_left_of(state, &line);
+            moves.push((m, through));
+            if left.len() > 1 {
+                for arc in &left {
+                    let inside = ArcVertices::of(n, arc[0], arc[1]);
+                    let middle = inside.vertices().nth(inside.len / 2);
+                    if let Some(v) = middle {
+                        moves.push((Move { turn: Turn::Holding(v), ..m }, through));
+                    }
+                }
+            }
+        }
+    }
+    moves
+}
+
+/// A sequence being built: the cut set its folds run through, its folds, and the cut points
+/// they ran through.
+#[derive(Clone)]
+struct Partial {
+    set: usize,
+    moves: Vec<Move>,
+    used: Vec<usize>,
+}
+
+/// A sequence judged at the flap height that fits it best.
+struct Judged {
+    /// Mean mismatch on the judging probe.
+    cost: f64,
+    made: Vec<Made>,
+    lift: f64,
+    /// The synthesised end state at that height.
+    state: Vec<Point>,
+}
+
+/// `made` judged on `judge` at each of [`LIFTS`], the best kept.
+fn judge_made(judge: &Probe, before: &[Point], made: Vec<Made>) -> Judged {
+    let (cost, lift, state) = LIFTS
+        .iter()
+        .map(|&lift| {
+            let t = turned(before, &made, lift);
+            (judge.cost(&t), lift, t.state)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("LIFTS is not empty");
+    Judged { cost, made, lift, state }
+}
+
+/// The probes of one step: the screen (strided pairs, for the beam), the judge (more
+/// strided pairs, every sequence and the one fold judged alike) and the order test's.
+struct Probes {
+    screen: Probe,
+    judge: Probe,
+    order: Probe,
+}
+
+/// The best sequence of each length from two folds up to `max_folds`, judged on `probes`,
+/// with the sequences of its length judged about as well (its twins and alternatives).
+/// [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires: the search is checked between candidates.
+fn search(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    probes: &Probes,
+    max_folds: usize,
+    deadline: &Deadline,
+) -> Result<Vec<(Judged, Vec<Judged>)>> {
+    let n = before.len();
+    let g = start.abs_diff(end);
+    let offset: Vec<f64> =
+        g.values().iter().zip(start.values()).map(|(c, s)| c - INFORMATION * s.abs()).collect();
+    let Ok(offset) = Disk::from_values(n, offset) else { return Ok(Vec::new()) };
+    // Cut points of as many arcs as the sequences could make: 2 per fold line on a flat
+    // cloth, more where it crosses layers.
+    let cut_sets: Vec<Vec<f64>> = [4usize, 6, 8]
+        .into_iter()
+        .filter(|&m| m <= 2 * max_folds + 2 && m < n)
+        .filter_map(|m| find_cuts(&offset, m).map(|c| c.points))
+        .collect();
+    let mut beam: Vec<Partial> = (0..cut_sets.len())
+        .map(|set| Partial { set, moves: Vec::new(), used: Vec::new() })
+        .collect();
+    let mut found = Vec::new();
+    for level in 0..max_folds {
+        deadline.check()?;
+        // Every fold through the free cut points on each state of the beam, screened.
+        let mut scored: Vec<(f64, usize, Partial, Vec<u8>)> = beam
+            .par_iter()
+            .enumerate()
+            .flat_map_iter(|(p, partial)| {
+                let state = make(before, &partial.moves).map(|(t, _)| t.state).unwrap_or_default();
+                moves_on(&state, &cut_sets[partial.set], &partial.used).into_iter().map(
+                    move |(m, through)| {
+                        let mut longer = partial.clone();
+                        longer.moves.push(m);
+                        longer.used.extend(through);
+                        (p, longer)
+                    },
+                )
+            })
+            .filter_map(|(p, partial)| {
+                if deadline.expired() {
+                    return None;
+                }
+                let (turned, _) = make(before, &partial.moves)?;
+                Some((probes.screen.cost(&turned), p, partial, turned.groups().to_vec()))
+            })
+            .collect();
+        scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // Distinct by what the folds moved.
+        let width = if level == 0 { FIRST_BEAM } else { BEAM };
+        let mut kept: Vec<&(f64, usize, Partial, Vec<u8>)> = Vec::new();
+        for s in &scored {
+            if kept.len() == width {
+                break;
+            }
+            if kept.iter().all(|k| k.3 != s.3) {
+                kept.push(s);
+            }
+        }
+        if kept.is_empty() {
+            break;
+        }
+        if level == 0 {
+            // One fold is the step's own detection's business.
+            beam = kept.into_iter().map(|k| k.2.clone()).collect();
+            continue;
+        }
+        // Refined: the best of each state the beam came from first.
+        let mut chosen: Vec<Vec<Move>> = Vec::new();
+        let mut prefixes: Vec<usize> = Vec::new();
+        for k in &kept {
+            if chosen.len() < REFINED && !prefixes.contains(&k.1) {
+                prefixes.push(k.1);
+                chosen.push(k.2.moves.clone());
+            }
+        }
+        for k in &kept {
+            if chosen.len() < REFINED && !chosen.contains(&k.2.moves) {
+                chosen.push(k.2.moves.clone());
+            }
+        }
+        let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
+            chosen
+                .into_par_iter()
+                .filter_map(|moves| {
+                    if deadline.expired() {
+                        return None;
+                    }
+                    let moves = refine(before, start, end, moves);
+                    let (_, made) = make(before, &moves)?;
+                    Some(judge_made(&probes.judge, before, made))
+                })
+                .collect()
+        };
+        let mut judged = judge_all(chosen);
+        deadline.check()?;
+        judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+        // The best one's twins (another order of the same folds) are refined too, so that
+        // the layer order can decide between them.
+        if let Some(first) = judged.first() {
+            let seen: Vec<Vec<u8>> =
+                judged.iter().map(|j| turned(before, &j.made, LIFT).groups().to_vec()).collect();
+            let mut twins: Vec<(Vec<Move>, Vec<u8>)> = Vec::new();
+            for s in scored.iter().filter(|s| !seen.contains(&s.3)) {
+                if twins.len() == TWINS {
+                    break;
+                }
+                if twins.iter().any(|t| t.1 == s.3) {
+                    continue;
+                }
+                let Some((t, _)) = make(before, &s.2.moves) else { continue };
+                // Unrefined, a twin lands less alike.
+                if aligned_rmse_xy(&t.state, &first.state) < 2.0 * CONGRUENT {
+                    twins.push((s.2.moves.clone(), s.3.clone()));
+                }
+            }
+            let twins: Vec<Vec<Move>> = twins.into_iter().map(|t| t.0).collect();
+            judged.extend(judge_all(twins));
+            deadline.check()?;
+            judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+            // Refined from different starts, two may have become one.
+            let mut groups: Vec<Vec<u8>> = Vec::new();
+            judged.retain(|j| {
+                let g = turned(before, &j.made, LIFT).groups().to_vec();
+                let new = !groups.contains(&g);
+                groups.push(g);
+                new
+            });
+        }
+        if let Some(best) = layer_order(&probes.order, &mut judged) {
+            found.push((best, judged));
+        }
+        beam = kept.into_iter().map(|k| k.2.clone()).collect();
+    }
+    Ok(found)
+}
+
+/// Take out of `judged` (best first) the sequence of least mismatch, but that one which
+/// explains the end disk about as well ([`ABOUT_AS_WELL`]) and lands like it (within
+/// [`CONGRUENT`]), its layers stacked in another order, and whose heights fit the measured
+/// disk better, on each one's outline, on `probe`.
+fn layer_order(probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
+    let with = |xy: &[Point], z: &[Point]| -> Vec<Point> {
+        xy.iter().zip(z).map(|(p, q)| Point::new(p.x, p.y, q.z)).collect()
+    };
+    let mut best = 0;
+    for k in 1..judged.len() {
+        let (a, b) = (&judged[best].state, &judged[k].state);
+        if judged[k].cost > (1.0 + ABOUT_AS_WELL) * judged[0].cost
+            || aligned_rmse_xy(a, b) > CONGRUENT
+        {
+            continue;
+        }
+        // Positive when the other's heights fit better, on either outline.
+        let evidence = (probe.cost_of_state(a) - probe.cost_of_state(&with(a, b)))
+            + (probe.cost_of_state(&with(b, a)) - probe.cost_of_state(b));
+        if evidence > 0.0 {
+            best = k;
+        }
+    }
+    (!judged.is_empty()).then(|| judged.remove(best))
+}
+
+/// Refine every fold of `moves` together: a pattern search over each fold's two parameters
+/// (all eight neighbours of one fold at a time), the step halving when none is better.
+fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<Move> {
+    let arcs: Vec<[f64; 2]> = make(before, &moves)
+        .map(|(_, made)| made.into_iter().flat_map(|m| m.arcs).collect())
+        .unwrap_or_default();
+    let probe = Probe::around(start, end, &arcs, true, STACKED_SCALE);
+    let angle_step = PI / DIRECTIONS as f64;
+    let mut best = (cost(&probe, before, &moves), moves);
+    let mut h = 0.5;
+    while h >= 0.125 {
+        let centre = &best.1;
+        let neighbours: Vec<Vec<Move>> = (0..centre.len())
+            .flat_map(|k| {
+                [-1.0, 0.0, 1.0].into_iter().flat_map(move |d1| {
+                    [-1.0, 0.0, 1.0].into_iter().filter(move |&d2| (d1, d2) != (0.0, 0.0)).map(
+                        move |d2| {
+                            let mut moved = centre.clone();
+                            moved[k] = centre[k].moved([d1 * h, d2 * h], angle_step);
+                            moved
+                        },
+                    )
+                })
+            })
+            .collect();
+        let better = neighbours
+            .into_par_iter()
+            .map(|m| (cost(&probe, before, &m), m))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        match better {
+            Some(b) if b.0 < best.0 => best = b,
+            _ => h /= 2.0,
+        }
+    }
+    best.1
+}
+
+/// One fold of a step's sequence and the share of the step's end-disk mismatch it explained.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ExplainedFold {
+    /// The fold as made: its `line` lies on the synthesised state it was made on
+    /// (normalised coordinates of the step's start frame).
+    #[serde(flatten)]
+    pub folding: Folding,
+    /// Share of the step's mismatch (the start state's against the end disk) this fold took
+    /// away, on the probe every candidate of the step is judged by: the folds' shares add up
+    /// to the share the sequence explains. `None` when not judged (`--method paper`).
+    pub explained: Option<f64>,
+}
+
+/// Another sequence that explains a step's end disk about as well as the one reported.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Alternative {
+    pub folds: Vec<ExplainedFold>,
+    /// Share of the step's mismatch the sequence explains (the reported one's for
+    /// comparison is `StepFolds::explained`).
+    pub explained: f64,
+}
+
+/// What a step's end disk was explained by.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StepFolds {
+    /// The step's folds, in the order made; empty without a confident fold.
+    pub folds: Vec<ExplainedFold>,
+    /// Other sequences explaining it about as well; for a step whose best candidate was not
+    /// confident, that candidate.
+    pub alternatives: Vec<Alternative>,
+    /// Share of the step's mismatch `folds` explain.
+    pub explained: f64,
+    /// True when the best fold or sequence found left more than [`UNEXPLAINED`] of the
+    /// mismatch: the step changed, but no fold found explains it, and none is reported.
+    pub unexplained: bool,
+}
+
+impl Judged {
+    /// The share of `unfolded` each fold took away, in turn, at the judged height.
+    fn explained(&self, judge: &Probe, before: &[Point], unfolded: f64) -> Vec<ExplainedFold> {
+        let n = before.len();
+        let mut previous = unfolded;
+        (1..=self.made.len())
+            .map(|k| {
+                let now = judge.cost(&turned(before, &self.made[..k], self.lift));
+                let share = (previous - now) / unfolded;
+                previous = now;
+                ExplainedFold { folding: self.made[k - 1].folding(n), explained: Some(share) }
+            })
+            .collect()
+    }
+}
+
+/// The folds of one step: its own one fold (`single`, from [`super::detect`]), or, when that
+/// leaves its end disk unexplained and the step starts flat, the sequence of up to
+/// `max_folds` folds ([`MAX_FOLDS`] at most) that explains it markedly better, by the
+/// model selection of the module's documentation.
+///
+/// `before` is the step's start border (normalised as the disks were), `start` its disk,
+/// `end` the measured end disk. [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires.
+pub fn explain(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    single: &FoldDetection,
+    max_folds: usize,
+    deadline: &Deadline,
+) -> Result<StepFolds> {
+    let n = before.len();
+    let Some(fold) = single.fold else { return Ok(StepFolds::default()) };
+    let direction = single.synthesis.as_ref().and_then(|s| s.direction);
+    let single_folding =
+        || Folding { fold, arcs: single.arcs.clone(), line: fold.line_on(before, direction) };
+    if !super::is_flat(before) {
+        // A stacked start keeps its one fold, judged by its own refinement.
+        let explained = single.synthesis.as_ref().map_or(1.0, |s| {
+            if s.unfolded_mismatch > 0.0 {
+                1.0 - s.mismatch / s.unfolded_mismatch
+            } else {
+                1.0
+            }
+        });
+        return Ok(StepFolds {
+            folds: vec![ExplainedFold { folding: single_folding(), explained: Some(explained) }],
+            explained,
+            ..StepFolds::default()
+        });
+    }
+    let strided = |samples: usize| all_pairs(&sampled_edges(n, samples));
+    let probes = Probes {
+        screen: Probe::of(strided(SCREEN_SAMPLES), start, end, true, STACKED_SCALE),
+        judge: Probe::of(strided(SAMPLES), start, end, true, STACKED_SCALE),
+        order: Probe::of(strided(ORDER_SAMPLES), start, end, false, STACKED_SCALE),
+    };
+    let unfolded = probes.judge.unfolded();
+    let share = |cost: f64| if unfolded > 0.0 { cost / unfolded } else { 0.0 };
+    let Some(line) = single_folding().line else { return Ok(StepFolds::default()) };
+    let arcs = single.arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect();
+    let one = judge_made(&probes.judge, before, vec![Made { line, arcs }]);
+    let mut left = share(one.cost);
+    let mut chosen = (one, Vec::new());
+    if max_folds >= 2 && left > EXPLAINED_BY_ONE {
+        for (best, others) in
+            search(before, start, end, &probes, max_folds.min(MAX_FOLDS), deadline)?
+        {
+            let now = share(best.cost);
+            if now <= MARKEDLY * left && left - now >= MIN_GAIN {
+                left = now;
+                chosen = (best, others);
+            } else {
+                break;
+            }
+        }
+    }
+    let (best, others) = chosen;
+    let alternative = |j: &Judged| Alternative {
+        folds: j.explained(&probes.judge, before, unfolded),
+        explained: 1.0 - share(j.cost),
+    };
+    if left > UNEXPLAINED {
+        return Ok(StepFolds {
+            alternatives: vec![alternative(&best)],
+            unexplained: true,
+            ..StepFolds::default()
+        });
+    }
+    let folds = if best.made.len() == 1 {
+        // The step's own fold as detected (not round-tripped through border parameters).
+        vec![ExplainedFold { folding: single_folding(), explained: Some(1.0 - left) }]
+    } else {
+        best.explained(&probes.judge, before, unfolded)
+    };
+    Ok(StepFolds {
+        folds,
+        alternatives: others
+            .iter()
+            .filter(|o| o.cost <= (1.0 + ABOUT_AS_WELL) * best.cost)
+            .map(alternative)
+            .collect(),
+        explained: 1.0 - left,
+        unexplained: false,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fold::{detect, FoldMethod};
+
+    /// A square of side 1 centred on the origin, `per_side` vertices a side.
+    fn square(per_side: usize) -> Vec<Point> {
+        let s = per_side as f64;
+        (0..4 * per_side)
+            .map(|k| {
+                let t = (k % per_side) as f64 / s;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / per_side];
+                Point::new(x - 0.5, y - 0.5, 0.0)
+            })
+            .collect()
+    }
+
+    /// Every vertex left of the line through `a` at `angle`, whatever its layer, reflected
+    /// across it and laid on top (independent of [`Turned`]).
+    fn fold_all(state: &[Point], a: [f64; 2], angle: f64) -> Vec<Point> {
+        let u = [angle.cos(), angle.sin()];
+        let top = state.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+        state
+            .iter()
+            .map(|p| {
+                let (dx, dy) = (p.x - a[0], p.y - a[1]);
+                if u[0] * dy - u[1] * dx <= 0.0 {
+                    return *p;
+                }
+                let t = dx * u[0] + dy * u[1];
+                Point::new(
+                    a[0] + 2.0 * t * u[0] - dx,
+                    a[1] + 2.0 * t * u[1] - dy,
+                    2.0 * top + 0.004 - p.z,
+                )
+            })
+            .collect()
+    }
+
+    fn explained(before: &[Point], after: &[Point], max_folds: usize) -> StepFolds {
+        let (start, end) = (Disk::of_border(before), Disk::of_border(after));
+        let single = detect(before, &start, &end, FoldMethod::Cut);
+        explain(before, &start, &end, &single, max_folds, &Deadline::default())
+            .expect("no deadline")
+    }
+
+    #[test]
+    fn one_fold_stays_one_and_two_are_found_as_two() {
+        let flat = square(24);
+        let half = fold_all(&flat, [0.013, 0.0], PI / 2.0);
+        let once = explained(&flat, &half, 3);
+        assert_eq!(once.folds.len(), 1, "explained {}", once.explained);
+        assert!(!once.unexplained);
+        let quarters = fold_all(&half, [0.0, 0.013], 0.0);
+        let twice = explained(&flat, &quarters, 3);
+        assert_eq!(twice.folds.len(), 2, "explained {}", twice.explained);
+        assert!(twice.explained > 1.0 - EXPLAINED_BY_ONE, "{}", twice.explained);
+        // The folds' shares add up to the sequence's.
+        let sum: f64 = twice.folds.iter().filter_map(|f| f.explained).sum();
+        assert!((sum - twice.explained).abs() < 1e-9, "{sum} vs {}", twice.explained);
+        // One fold asked for: one fold given, whatever it leaves.
+        assert!(explained(&flat, &quarters, 1).folds.len() <= 1);
+    }
+
+    #[test]
+    fn a_cancelled_deadline_stops_the_search() {
+        let flat = square(24);
+        let quarters = fold_all(&fold_all(&flat, [0.013, 0.0], PI / 2.0), [0.0, 0.013], 0.0);
+        let (start, end) = (Disk::of_border(&flat), Disk::of_border(&quarters));
+        let single = detect(&flat, &start, &end, FoldMethod::Cut);
+        let deadline = Deadline::default();
+        deadline.cancel();
+        let stopped = explain(&flat, &start, &end, &single, 3, &deadline);
+        assert!(matches!(stopped, Err(crate::error::Error::Cancelled)), "{stopped:?}");
+    }
+}
