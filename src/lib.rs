@@ -21,7 +21,7 @@
 //! let analysis = analyze(&sample.border_frames()?, FrameRange::default())?;
 //! assert_eq!(analysis.n, 4);
 //! assert_eq!(analysis.close.folds.len(), analysis.folds.len());
-//! # Ok::<(), close::Error>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 pub use close_core::{
@@ -29,6 +29,8 @@ pub use close_core::{
     geometry, gli, interpolate, label, metrics, plan, rng, verify, Analysis, Arc, Error, Fold,
     FoldMethod, Folding, FrameRange, Line, Options, Result, DEFAULT_MAX_FOLDS,
 };
+/// What reading files, datasets and stores fails with ([`close_io::error`]).
+pub use close_io::error as io_error;
 #[cfg(feature = "vrfolding")]
 pub use close_io::vrfolding;
 pub use close_io::{batch, cache, catalog, dataset, eval, formats, mesh, Sample};

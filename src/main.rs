@@ -227,6 +227,10 @@ const DEFAULT_ADDR: &str = "127.0.0.1:8080";
 enum CliError {
     #[error(transparent)]
     Library(#[from] close::Error),
+    #[error(transparent)]
+    Read(#[from] close::io_error::Error),
+    #[error(transparent)]
+    Picture(#[from] close::render::error::Error),
     #[error("{}: {source}", path.display())]
     File { path: PathBuf, source: std::io::Error },
     #[error("writing the output: {0}")]

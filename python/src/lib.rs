@@ -44,7 +44,7 @@ pyo3::create_exception!(
 );
 
 /// The library's error as `close.CloseError`, with the CLI's message.
-fn close_error(e: close_core::Error) -> PyErr {
+fn close_error(e: impl std::error::Error) -> PyErr {
     CloseError::new_err(e.to_string())
 }
 
@@ -176,11 +176,11 @@ fn _check_file(path: PathBuf) -> PyResult<String> {
     let size = std::fs::metadata(&path).map_err(os_error(&name))?.len();
     if size > MAX_FILE_BYTES as u64 {
         return Err(close_error(
-            close_core::Error::TooLarge {
+            close_io::error::Error::from(close_core::Error::TooLarge {
                 what: "bytes of file",
                 got: Some(size),
                 limit: MAX_FILE_BYTES as u64,
-            }
+            })
             .in_file(&name),
         ));
     }
@@ -1447,7 +1447,7 @@ impl PyStore {
 fn vrfolding_open(py: Python<'_>, store: PathBuf) -> PyResult<PyStore> {
     let store = existing(vec![store])?.remove(0);
     let (read, errors) = py
-        .detach(|| -> Result<_, close_core::Error> {
+        .detach(|| -> Result<_, close_io::error::Error> {
             let opened = close_io::vrfolding::Store::open(&store)?;
             // Videos that cannot be read are errors of their own; the rest of the store is kept.
             let (videos, unreadable) = opened.videos()?;

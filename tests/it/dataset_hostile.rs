@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use close::budget::Deadline;
 use close::catalog::{Catalog, Entry, MAX_SAMPLE_BYTES};
+use close::io_error::Error as Read;
 use close::Error;
 
 use crate::common::{copy_dir, TempDir};
@@ -166,7 +167,7 @@ fn a_sample_too_large_is_refused_from_its_sizes_and_the_refusal_is_kept() {
     );
     let refused = catalog.load(&entry.id, &Deadline::default()).unwrap_err();
     assert!(
-        matches!(refused, Error::TooLarge { got: Some(got), .. } if got == 3 * each),
+        matches!(refused, Read::Core(Error::TooLarge { got: Some(got), .. }) if got == 3 * each),
         "{refused:?}"
     );
     // The refusal is remembered: shrinking the files now does not make the load read them.
@@ -184,7 +185,7 @@ fn an_expired_deadline_stops_a_load_and_is_not_remembered() {
     let catalog = Catalog::open(std::slice::from_ref(&dir.0));
     let id = good(&catalog)[0].id.clone();
     let expired = Deadline::after(std::time::Duration::ZERO);
-    assert_eq!(catalog.load(&id, &expired).unwrap_err(), Error::Cancelled);
+    assert_eq!(catalog.load(&id, &expired).unwrap_err(), Read::Core(Error::Cancelled));
     assert_eq!(catalog.load(&id, &Deadline::default()).unwrap().frames.len(), 1);
 }
 

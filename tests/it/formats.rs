@@ -7,6 +7,7 @@ use std::collections::HashSet;
 
 use close::border::Point;
 use close::formats::{read_files, Sample};
+use close::io_error::Error as Read;
 use close::mesh::MeshFrames;
 use close::Line;
 use close::{analyze, Analysis, Error, FrameRange};
@@ -395,7 +396,10 @@ fn bad_meshes_are_clear_errors() {
     assert!(s.border_frames().unwrap_err().to_string().contains("too few"));
     let huge = b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
     let err = read_files(&[("h.ply".into(), huge.to_vec())]).unwrap_err();
-    assert!(matches!(err.cause(), Error::Parse { .. } | Error::TooLarge { .. }), "{err}");
+    assert!(
+        matches!(err.cause(), Read::Parse { .. } | Read::Core(Error::TooLarge { .. })),
+        "{err}"
+    );
     assert!(err.to_string().starts_with("h.ply: "), "{err}");
 }
 
@@ -414,7 +418,7 @@ fn answers_within<T: Send + 'static>(seconds: u64, f: impl FnOnce() -> T + Send 
 /// tests guard against took minutes or forever.
 const SECONDS: u64 = 5;
 
-fn read_one(name: &'static str, bytes: Vec<u8>) -> Result<Sample, Error> {
+fn read_one(name: &'static str, bytes: Vec<u8>) -> Result<Sample, Read> {
     answers_within(SECONDS, move || read_files(&[(name.to_string(), bytes)]))
 }
 
@@ -438,7 +442,7 @@ fn ply_elements_without_properties_cannot_make_the_reader_spin() {
     for bomb in [with_junk, ascii.into_bytes()] {
         let err = read_one("junk.ply", bomb).unwrap_err();
         assert!(
-            matches!(err.cause(), Error::Parse { .. })
+            matches!(err.cause(), Read::Parse { .. })
                 && err.to_string().contains("4611686018427387904 junk"),
             "{err}"
         );
@@ -491,12 +495,18 @@ fn mat_numbers_are_capped_once_widened_and_over_all_variables() {
         mat_file(&[compressed(&mat_matrix("phiPositions", count, 1, 1, &vec![0; count as usize]))]);
     assert!(bomb.len() < 100_000, "{} bytes", bomb.len());
     let err = read_one("bomb.mat", bomb).unwrap_err();
-    assert!(matches!(err.cause(), Error::TooLarge { limit, .. } if *limit == MAX_WIDENED), "{err}");
+    assert!(
+        matches!(err.cause(), Read::Core(Error::TooLarge { limit, .. }) if *limit == MAX_WIDENED),
+        "{err}"
+    );
     // Three variables each under the cap, over it together.
     let third = (MAX_WIDENED / 8 / 3 + 1) as u32;
     let var = compressed(&mat_matrix("Eb", third, 1, 1, &vec![0; third as usize]));
     let err = read_one("three.mat", mat_file(&[var.clone(), var.clone(), var])).unwrap_err();
-    assert!(matches!(err.cause(), Error::TooLarge { limit, .. } if *limit == MAX_WIDENED), "{err}");
+    assert!(
+        matches!(err.cause(), Read::Core(Error::TooLarge { limit, .. }) if *limit == MAX_WIDENED),
+        "{err}"
+    );
     assert!(err.to_string().contains("widened"), "{err}");
 }
 
@@ -517,13 +527,16 @@ fn an_obj_polygon_with_many_corners_is_checked_in_n_log_n() {
             let mesh = read_files(&[("k.obj".into(), doc)])?
                 .mesh
                 .ok_or(Error::Empty { what: "no mesh" })?;
-            close::mesh::validate(&mesh)
+            Ok::<_, Read>(close::mesh::validate(&mesh)?)
         })
     };
     assert_eq!(check(polygon(None)), Ok(()));
     // A repeat among them is still found, naming the vertex (0-based).
     let err = check(polygon(Some(5))).unwrap_err();
-    assert_eq!(err, Error::Mesh(close::error::MeshError::RepeatedVertex { face: 0, vertex: 4 }));
+    assert_eq!(
+        err,
+        Read::Core(Error::Mesh(close::error::MeshError::RepeatedVertex { face: 0, vertex: 4 }))
+    );
 }
 
 #[test]
@@ -533,14 +546,14 @@ fn json_counts_and_nesting_are_refused_while_reading() {
     let frames = format!("{{\"frames\": [{}[]]}}", "[],".repeat(10 * MAX_FRAMES));
     let err = read_one("f.json", frames.into_bytes()).unwrap_err();
     assert!(
-        matches!(err.cause(), Error::TooLarge { what: "frames", limit, .. } if *limit == MAX_FRAMES as u64),
+        matches!(err.cause(), Read::Core(Error::TooLarge { what: "frames", limit, .. }) if *limit == MAX_FRAMES as u64),
         "{err}"
     );
     // A frame with more vertices than a border may have.
     let one = format!("{{\"frames\": [[{}[0,0,0]]]}}", "[0,1,2],".repeat(2 * MAX_VERTICES));
     assert!(matches!(
         read_one("v.json", one.into_bytes()).unwrap_err().cause(),
-        Error::TooLarge { .. }
+        Read::Core(Error::TooLarge { .. })
     ));
     // A mesh with more frames than allowed.
     let mesh = format!(
@@ -549,7 +562,7 @@ fn json_counts_and_nesting_are_refused_while_reading() {
     );
     assert!(matches!(
         read_one("m.json", mesh.into_bytes()).unwrap_err().cause(),
-        Error::TooLarge { what: "frames", .. }
+        Read::Core(Error::TooLarge { what: "frames", .. })
     ));
     // Deep nesting, where a number is expected and in an ignored field: serde_json's
     // recursion limit answers, quickly, as a parse error.
@@ -558,7 +571,7 @@ fn json_counts_and_nesting_are_refused_while_reading() {
         format!("{{\"extra\": {}", "[".repeat(1_000_000)),
     ] {
         let err = read_one("deep.json", doc.into_bytes()).unwrap_err();
-        assert!(matches!(err.cause(), Error::Parse { line: Some(1), .. }), "{err}");
+        assert!(matches!(err.cause(), Read::Parse { line: Some(1), .. }), "{err}");
     }
 }
 

@@ -6,8 +6,9 @@
 use std::path::{Path, PathBuf};
 
 use close::eval::evaluate_video;
+use close::io_error::Error as Read;
 use close::vrfolding::{is_store, Store};
-use close::{eval, Error, FoldMethod};
+use close::{eval, FoldMethod};
 
 fn fixture() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -102,7 +103,7 @@ fn error_after(name: &str, breaking: impl FnOnce(&Path)) -> String {
     let video = store.videos().unwrap().0.remove(0);
     breaking(&root.join(video.frames[0].trim_start_matches('/')));
     let error = store.folds(&video).unwrap_err();
-    assert!(matches!(error, Error::Store { .. }), "{error:?}");
+    assert!(matches!(error, Read::Store { .. }), "{error:?}");
     std::fs::remove_dir_all(&root).unwrap();
     error.to_string()
 }

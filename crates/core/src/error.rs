@@ -1,33 +1,26 @@
-//! The one error type of the library: every way an input can be wrong, named plainly.
+//! The error type of close-core: every way an input can be wrong for the analysis, named
+//! plainly. Reading files is close-io's (its error wraps this one), drawing close-render's.
 //!
 //! Variants carry typed fields (frame and vertex numbers, limits, a reason enum) so a
 //! caller can act on the cause — the HTTP layer maps them to status codes — and their
-//! messages name the problem so a user can fix the file. Nothing here is ever a panic.
+//! messages name the problem so a user can fix the input. Nothing here is ever a panic.
 //!
 //! ```
 //! use close_core::error::{DegenerateReason, Error};
 //! let e = Error::Degenerate { frame: 2, reason: DegenerateReason::Coincident };
 //! assert_eq!(e.to_string(), "degenerate border in frame 2: all vertices coincide");
-//! assert!(e.is_input_fault());
-//! let e = Error::TooLarge { what: "frames", got: Some(1200), limit: 1000 }.in_file("dir/a.json");
-//! assert_eq!(e.to_string(), "a.json: input too large: 1200 frames (at most 1000)");
-//! assert!(matches!(e.cause(), Error::TooLarge { limit: 1000, .. }));
+//! let e = Error::too_large("frames", 1200, 1000);
+//! assert_eq!(e.to_string(), "input too large: 1200 frames (at most 1000)");
 //! ```
 
 use std::fmt;
 
 use thiserror::Error;
 
-/// Why an input could not be turned into a CloSE analysis.
-///
-/// Every variant is an **input fault** (the file or request is wrong: an HTTP layer answers
-/// 4xx) except [`Error::Render`] and [`Error::Recording`], which are the crate's own failures
-/// (5xx); [`Error::InFile`] is whatever its cause is. See [`Error::is_input_fault`].
+/// Why an input could not be turned into a CloSE analysis. Every variant is an input fault
+/// (the input or the request is wrong: an HTTP layer answers 4xx).
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum Error {
-    /// The file or body could not be parsed in the expected format.
-    #[error("could not parse {format}{}: {reason}", AtLine(*.line))]
-    Parse { format: Format, line: Option<usize>, reason: String },
     /// The sample holds no frame, a frame holds no vertex, no file was given, …
     #[error("empty input: {what}")]
     Empty { what: &'static str },
@@ -55,22 +48,6 @@ pub enum Error {
     /// A mesh could not give a border.
     #[error("mesh problem: {0}")]
     Mesh(#[from] MeshError),
-    /// A dataset entry asked for by id does not exist.
-    #[error("no sample {id:?} in the datasets")]
-    UnknownSample { id: String },
-    /// A VR-Folding Zarr store (or one of its groups or arrays) is missing, malformed or
-    /// unreadable; `path` is the group or array inside the store.
-    #[error("VR-Folding store {store}, {path}: {problem}")]
-    Store { store: String, path: String, problem: String },
-    /// One of several files is at fault: its name, then the cause.
-    #[error("{file}: {error}")]
-    InFile { file: String, error: Box<Error> },
-    /// A recording could not be written (feature `rerun`).
-    #[error("recording failed: {0}")]
-    Recording(String),
-    /// A picture could not be drawn or encoded (a bug, not a bad input).
-    #[error("could not draw the picture: {0}")]
-    Render(String),
     /// A synthetic fold (the built-in dataset's generator) that cannot be made.
     #[error("fold ({f1}, {f2}) cannot be made: {problem}")]
     InvalidFold { f1: f64, f2: f64, problem: FoldProblem },
@@ -101,28 +78,6 @@ pub enum FoldProblem {
 
 /// Shorthand used across the crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
-
-/// The file formats the readers parse.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
-    SampleJson,
-    Text,
-    Obj,
-    Ply,
-    Mat,
-}
-
-impl fmt::Display for Format {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Format::SampleJson => "sample JSON",
-            Format::Text => "text",
-            Format::Obj => "OBJ",
-            Format::Ply => "PLY",
-            Format::Mat => "MATLAB .mat",
-        })
-    }
-}
 
 /// Why a frame cannot be a cloth outline.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -197,18 +152,6 @@ pub enum MeshError {
     FrameFileMismatch { file: String, got: usize, first: String, expected: usize },
 }
 
-/// " at line N" when the line is known.
-struct AtLine(Option<usize>);
-
-impl fmt::Display for AtLine {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.0 {
-            Some(line) => write!(f, " at line {line}"),
-            None => Ok(()),
-        }
-    }
-}
-
 /// "N things (at most L)", or "more than L things" when the count stopped at the limit.
 struct Over<'a> {
     what: &'a str,
@@ -226,16 +169,6 @@ impl fmt::Display for Over<'_> {
 }
 
 impl Error {
-    /// A parse error with no line number.
-    pub fn parse(format: Format, reason: impl ToString) -> Self {
-        Error::Parse { format, line: None, reason: reason.to_string() }
-    }
-
-    /// A parse error at a 1-based line.
-    pub fn parse_at(format: Format, line: usize, reason: impl ToString) -> Self {
-        Error::Parse { format, line: Some(line), reason: reason.to_string() }
-    }
-
     /// Too many of `what`: `got` of them, `limit` allowed.
     pub fn too_large(what: &'static str, got: usize, limit: usize) -> Self {
         Error::TooLarge { what, got: Some(got as u64), limit: limit as u64 }
@@ -244,30 +177,5 @@ impl Error {
     /// More than `limit` of `what` (the reader stopped counting there).
     pub fn over_limit(what: &'static str, limit: usize) -> Self {
         Error::TooLarge { what, got: None, limit: limit as u64 }
-    }
-
-    /// This error, said to come from file `path` (its name without folders). A cause
-    /// that already names a file keeps it.
-    pub fn in_file(self, path: &str) -> Self {
-        match self {
-            already @ Error::InFile { .. } => already,
-            error => {
-                let file = path.rsplit(['/', '\\']).next().unwrap_or(path).to_string();
-                Error::InFile { file, error: Box::new(error) }
-            }
-        }
-    }
-
-    /// The cause, through any [`Error::InFile`] wrapping.
-    pub fn cause(&self) -> &Error {
-        match self {
-            Error::InFile { error, .. } => error.cause(),
-            other => other,
-        }
-    }
-
-    /// True when the input is at fault (a 4xx), false for the crate's own failures.
-    pub fn is_input_fault(&self) -> bool {
-        !matches!(self.cause(), Error::Render(_) | Error::Recording(_))
     }
 }

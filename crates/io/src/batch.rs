@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 
 use crate::catalog::walk::{looks_like_store, Listed};
 use crate::catalog::{items, listed_as, read_sample, Item};
+use crate::error::{Error, Result};
 use crate::eval::{self, SampleResult};
 use close_core::budget::Deadline;
-use close_core::error::{Error, Result};
 use close_core::fold::FoldMethod;
 
 pub use crate::catalog::NO_VRFOLDING;
@@ -64,8 +64,8 @@ pub fn units(paths: &[PathBuf]) -> Result<Vec<Unit>> {
         if looks_like_store(path) {
             units.extend(store_units(path)?);
         } else if path.is_dir() {
-            let found = items(path)
-                .map_err(|e| Error::InvalidArgument(format!("{}: {e}", path.display())))?;
+            let found =
+                items(path).map_err(|e| Error::invalid(format!("{}: {e}", path.display())))?;
             let top =
                 path.file_name().map_or("dataset".into(), |n| n.to_string_lossy().to_string());
             let name_of = |at: &Path| at.strip_prefix(path).unwrap_or(at).display().to_string();
@@ -89,7 +89,7 @@ pub fn units(paths: &[PathBuf]) -> Result<Vec<Unit>> {
         } else {
             // A file the user named: a link is followed, as the user asked for that file.
             let meta = std::fs::metadata(path)
-                .map_err(|e| Error::InvalidArgument(format!("{}: {e}", path.display())))?;
+                .map_err(|e| Error::invalid(format!("{}: {e}", path.display())))?;
             let id = crate::formats::FileId::of(&meta);
             if id.is_some_and(|id| !seen.insert(id)) {
                 continue;
@@ -121,5 +121,5 @@ pub fn store_units(path: &Path) -> Result<Vec<Unit>> {
 /// Without the `vrfolding` feature a store is an error.
 #[cfg(not(feature = "vrfolding"))]
 pub fn store_units(path: &Path) -> Result<Vec<Unit>> {
-    Err(Error::InvalidArgument(format!("{}: {NO_VRFOLDING}", path.display())))
+    Err(Error::invalid(format!("{}: {NO_VRFOLDING}", path.display())))
 }

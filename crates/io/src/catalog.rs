@@ -46,9 +46,10 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::cache::Lru;
+use crate::error::{Error, Result};
 use crate::formats::{read_files, read_listed, Sample, MAX_FILE_BYTES};
 use close_core::budget::Deadline;
-use close_core::error::{Error, Result};
+use close_core::Error as CoreError;
 use walk::{Folder, Listed, Node};
 
 /// Why a store cannot be read by a build without the `vrfolding` feature.
@@ -121,13 +122,13 @@ impl Query {
         let q = self.q.as_deref().unwrap_or_default();
         let chars = q.chars().count();
         if chars > MAX_QUERY_CHARS {
-            return Err(Error::InvalidArgument(format!(
+            return Err(Error::invalid(format!(
                 "the search `q` has {chars} characters: at most {MAX_QUERY_CHARS}"
             )));
         }
         let terms: Vec<String> = q.split_whitespace().map(str::to_lowercase).collect();
         if terms.len() > MAX_QUERY_TERMS {
-            return Err(Error::InvalidArgument(format!(
+            return Err(Error::invalid(format!(
                 "the search `q` has {} words: at most {MAX_QUERY_TERMS}",
                 terms.len()
             )));
@@ -202,11 +203,12 @@ pub(crate) fn read_sample(files: &[Listed], deadline: &Deadline) -> Result<Sampl
     let size = |f: &Listed| std::fs::symlink_metadata(&f.path).map(|m| m.len()).unwrap_or(0);
     let total = files.iter().map(size).fold(0u64, u64::saturating_add);
     if total > MAX_SAMPLE_BYTES {
-        return Err(Error::TooLarge {
+        return Err(CoreError::TooLarge {
             what: "bytes in the files of one sample",
             got: Some(total),
             limit: MAX_SAMPLE_BYTES,
-        });
+        }
+        .into());
     }
     let mut read = 0u64;
     let named = files
@@ -217,11 +219,12 @@ pub(crate) fn read_sample(files: &[Listed], deadline: &Deadline) -> Result<Sampl
             // Sizes may change between the check and the read: count what was read.
             read += bytes.len() as u64;
             if read > MAX_SAMPLE_BYTES {
-                return Err(Error::TooLarge {
+                return Err(CoreError::TooLarge {
                     what: "bytes in the files of one sample",
                     got: Some(read),
                     limit: MAX_SAMPLE_BYTES,
-                });
+                }
+                .into());
             }
             Ok((f.path.display().to_string(), bytes))
         })
@@ -525,7 +528,7 @@ impl Catalog {
             .collect())
     }
 
-    /// Load sample `id` (cached), stopping with [`Error::Cancelled`] once `deadline`
+    /// Load sample `id` (cached), stopping with [`close_core::Error::Cancelled`] once `deadline`
     /// expires. A load that fails for any other reason is remembered and answered again
     /// without reading.
     pub fn load(&self, id: &str, deadline: &Deadline) -> Result<Arc<Sample>> {
@@ -544,7 +547,7 @@ impl Catalog {
                 cache().insert(id.to_string(), sample.clone(), sample.weight());
                 Ok(sample)
             }
-            Err(Error::Cancelled) => Err(Error::Cancelled),
+            Err(Error::Core(CoreError::Cancelled)) => Err(CoreError::Cancelled.into()),
             Err(error) => {
                 refused().insert(id.to_string(), error.clone());
                 Err(error)
@@ -569,9 +572,7 @@ impl Catalog {
                         .into(),
                 })?
             }
-            Origin::Broken => {
-                return Err(Error::InvalidArgument(entry.error.clone().unwrap_or_default()))
-            }
+            Origin::Broken => return Err(Error::invalid(entry.error.clone().unwrap_or_default())),
         };
         sample.name = entry.name.clone();
         sample.category = entry.category.clone();

@@ -10,6 +10,7 @@ pub mod batch;
 pub mod cache;
 pub mod catalog;
 pub mod dataset;
+pub mod error;
 pub mod eval;
 pub mod formats;
 pub mod mesh;

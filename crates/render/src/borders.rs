@@ -27,8 +27,8 @@ use super::{
     fold_colour, label_size, line_width, note_size, plot, text_style, Canvas, INK, MUTED,
     MUTED_TEXT, PAPER,
 };
+use crate::error::Result;
 use close_core::analysis::Analysis;
-use close_core::error::Result;
 
 /// One border to draw: vertices (x, y, z), colour, line width in pixels, legend name.
 struct Trace {

@@ -26,8 +26,8 @@ use super::{
     endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas, INK,
     MUTED, MUTED_TEXT, PAPER,
 };
+use crate::error::Result;
 use close_core::analysis::Analysis;
-use close_core::error::Result;
 use close_core::geometry::{Arc, Fold};
 
 /// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).

@@ -41,8 +41,8 @@ use super::{
     endpoint_name, fold_colour, label_size, line_width, note_size, outward, title_size, Canvas,
     INK, MUTED, MUTED_TEXT, PAPER,
 };
+use crate::error::Result;
 use close_core::disk::Disk;
-use close_core::error::Result;
 use close_core::fold::Curve;
 use close_core::geometry::Fold;
 use close_io::cache::Lru;

@@ -30,6 +30,7 @@ pub mod circle;
 pub mod cloth;
 pub mod colour;
 pub mod disk_picture;
+pub mod error;
 pub mod mesh_picture;
 pub mod raster;
 pub mod readout;
@@ -47,8 +48,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{register_font, FontStyle};
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Result};
 use close_core::analysis::Analysis;
-use close_core::error::{Error, Result};
 use colour::{Ramp, Scale};
 
 /// Which picture of an analysis.
@@ -213,7 +214,7 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
         Picture::Close | Picture::Borders | Picture::Thumbnail | Picture::Mesh
             if step.is_some() =>
         {
-            return Err(Error::InvalidArgument(format!(
+            return Err(Error::invalid(format!(
                 "the {} picture shows the whole analysis: it takes no step",
                 picture.name()
             )));
@@ -226,7 +227,7 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
         Picture::Mesh => {
             match known.mesh {
                 Some(view) => mesh_picture::draw(&mut canvas, analysis, view)?,
-                None => return Err(Error::InvalidArgument(
+                None => return Err(Error::invalid(
                     "the mesh picture is drawn for mesh samples only: this sample gives borders"
                         .into(),
                 )),
@@ -291,13 +292,13 @@ impl StepSpan {
             Some(k) if (1..=steps).contains(&k) => {
                 Ok(StepSpan { from: k - 1, to: k, step: Some(k) })
             }
-            Some(k) if steps == 0 => Err(Error::InvalidArgument(format!(
+            Some(k) if steps == 0 => Err(Error::invalid(format!(
                 "step {k} does not exist: the analysis has one frame, no step"
             ))),
-            Some(k) if steps == 1 => Err(Error::InvalidArgument(format!(
+            Some(k) if steps == 1 => Err(Error::invalid(format!(
                 "step {k} does not exist: the analysis has one step, step=1"
             ))),
-            Some(k) => Err(Error::InvalidArgument(format!(
+            Some(k) => Err(Error::invalid(format!(
                 "step {k} does not exist: the analysis has steps 1…{steps}"
             ))),
         }
@@ -792,11 +793,11 @@ pub(crate) mod tests {
         }
         for bad in [0, 3] {
             let err = png(&analysis, Picture::Diff, Some(bad), (100, 100)).unwrap_err();
-            assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
+            assert!(matches!(err, Error::Core(close_core::Error::InvalidArgument(_))), "{err}");
         }
         assert!(matches!(
             png(&analysis, Picture::Close, Some(1), (100, 100)),
-            Err(Error::InvalidArgument(_))
+            Err(Error::Core(close_core::Error::InvalidArgument(_)))
         ));
     }
 

@@ -26,8 +26,8 @@ use plotters::style::text_anchor::{HPos, VPos};
 use super::colour::height_colour;
 use super::disk_picture::format_value;
 use super::{label_size, line_width, note_size, Canvas, INK, MUTED, MUTED_TEXT, PAPER};
+use crate::error::{Error, Result};
 use close_core::analysis::Analysis;
-use close_core::error::{Error, Result};
 use close_io::mesh::MeshFrames;
 
 /// What the mesh picture draws of a mesh sample: its faces and the vertex positions of the
@@ -469,7 +469,7 @@ mod tests {
         let none = Known::default();
         assert!(matches!(
             render(&analysis, &View::whole(Picture::Mesh), &Output::png(200), none),
-            Err(Error::InvalidArgument(_))
+            Err(Error::Core(close_core::Error::InvalidArgument(_)))
         ));
     }
 }

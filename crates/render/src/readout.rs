@@ -25,9 +25,9 @@ use std::f64::consts::TAU;
 use super::disk_picture::{sector_at, Layout};
 use super::truth::Truth;
 use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
+use crate::error::{Error, Result};
 use close_core::analysis::Analysis;
 use close_core::disk::Disk;
-use close_core::error::{Error, Result};
 
 /// Most disk values one readout sends (about 10 MB of JSON): two disks of N = 1000.
 pub const MAX_VALUES: usize = 1_000_000;
@@ -36,7 +36,9 @@ pub const MAX_VALUES: usize = 1_000_000;
 pub fn within_limit(disks: usize, n: usize) -> Result<()> {
     let values = disks.saturating_mul(n).saturating_mul(n / 2);
     if values > MAX_VALUES {
-        return Err(Error::too_large("disk values in a readout", values, MAX_VALUES));
+        return Err(
+            close_core::Error::too_large("disk values in a readout", values, MAX_VALUES).into()
+        );
     }
     Ok(())
 }
@@ -168,7 +170,7 @@ pub fn rings(disk: &Disk) -> Vec<f32> {
 /// (rim pixels, partly painted, included), 0 off the disk.
 pub fn cell_picture(n: usize, size: u32) -> Result<Vec<u8>> {
     if !(close_core::border::MIN_VERTICES..=close_core::border::MAX_VERTICES).contains(&n) {
-        return Err(Error::InvalidArgument(format!(
+        return Err(Error::invalid(format!(
             "a disk has {} to {} edges, not {n}",
             close_core::border::MIN_VERTICES,
             close_core::border::MAX_VERTICES
@@ -276,7 +278,10 @@ mod tests {
     #[test]
     fn too_many_values_are_refused_before_any_is_written() {
         assert!(within_limit(2, 1000).is_ok());
-        assert!(matches!(within_limit(2, 1001), Err(Error::TooLarge { got: Some(1_001_000), .. })));
+        assert!(matches!(
+            within_limit(2, 1001),
+            Err(Error::Core(close_core::Error::TooLarge { got: Some(1_001_000), .. }))
+        ));
         assert!(within_limit(1, 1414).is_ok());
     }
 
@@ -285,7 +290,7 @@ mod tests {
         let analysis = folded_square(4, [0.0, PI]);
         assert!(matches!(
             readout(&analysis, &Truth::default(), Some(2), 200),
-            Err(Error::InvalidArgument(_))
+            Err(Error::Core(close_core::Error::InvalidArgument(_)))
         ));
     }
 }

@@ -30,11 +30,11 @@ use rerun::{
     LineStrips3D, Points3D, RecordingStream, RecordingStreamBuilder, Scalars, Tensor, TextDocument,
 };
 
+use crate::error::{Error, Result};
 use close_core::analysis::Analysis;
 use close_core::angle::angle_to_param;
 use close_core::border::{point_at, BorderFrames, Point};
 use close_core::disk::Disk;
-use close_core::error::{Error, Result};
 use close_core::fold::apply;
 use close_core::geometry::Folding;
 
@@ -83,7 +83,7 @@ pub fn record(analysis: &Analysis, frames: &BorderFrames) -> Result<Vec<u8>> {
         RecordingStreamBuilder::new("close").enabled(true).memory().map_err(failed)?;
     let (start, end) = (analysis.start_frame, analysis.end_frame);
     let Some(analysed) = frames.frames.get(start..=end) else {
-        return Err(Error::InvalidArgument(format!(
+        return Err(Error::invalid(format!(
             "the analysis covers frames {start}…{end}, the sample has {}",
             frames.frames.len()
         )));

@@ -18,8 +18,12 @@ use close_core::error::Error;
 /// Why a request failed.
 #[derive(Debug)]
 pub enum ApiError {
-    /// The input was read but is wrong (parse error, bad border, …).
+    /// The input was read but is wrong (a bad border, too large, …).
     Input(Error),
+    /// A file, a dataset entry or a store could not be read.
+    Read(close_io::error::Error),
+    /// A picture or a recording could not be made.
+    Picture(close_render::error::Error),
     /// The body is not JSON or a multipart form.
     UnsupportedMediaType(String),
     /// No such sample, image or route.
@@ -36,6 +40,10 @@ impl ApiError {
     pub fn status(&self) -> StatusCode {
         match self {
             ApiError::Input(e) => input_status(e),
+            ApiError::Read(e) => read_status(e),
+            ApiError::Picture(close_render::error::Error::Core(e)) => input_status(e),
+            // A picture or recording that cannot be made is our bug, not bad input.
+            ApiError::Picture(_) => StatusCode::INTERNAL_SERVER_ERROR,
             ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::BadRequest(_) => StatusCode::BAD_REQUEST,
@@ -47,6 +55,8 @@ impl ApiError {
     pub fn message(&self) -> String {
         match self {
             ApiError::Input(e) => e.to_string(),
+            ApiError::Read(e) => e.to_string(),
+            ApiError::Picture(e) => e.to_string(),
             ApiError::UnsupportedMediaType(m)
             | ApiError::NotFound(m)
             | ApiError::BadRequest(m)
@@ -62,10 +72,9 @@ impl ApiError {
 /// The status of a library error (no catch-all: a new variant must be given its status).
 fn input_status(e: &Error) -> StatusCode {
     match e {
-        Error::Parse { .. }
-        | Error::Empty { .. }
-        | Error::InvalidArgument(_)
-        | Error::InvalidFold { .. } => StatusCode::BAD_REQUEST,
+        Error::Empty { .. } | Error::InvalidArgument(_) | Error::InvalidFold { .. } => {
+            StatusCode::BAD_REQUEST
+        }
         Error::TooLarge { .. } | Error::OverBudget { .. } => StatusCode::PAYLOAD_TOO_LARGE,
         // The request's time ran out (its answer is usually the time-out layer's 408).
         Error::Cancelled => StatusCode::REQUEST_TIMEOUT,
@@ -74,13 +83,20 @@ fn input_status(e: &Error) -> StatusCode {
         | Error::FrameSizeMismatch { .. }
         | Error::Degenerate { .. }
         | Error::Mesh(_) => StatusCode::UNPROCESSABLE_ENTITY,
+    }
+}
+
+/// The status of a reader's error (no catch-all either).
+fn read_status(e: &close_io::error::Error) -> StatusCode {
+    use close_io::error::Error as Read;
+    match e {
+        Read::Core(e) => input_status(e),
+        Read::Parse { .. } => StatusCode::BAD_REQUEST,
         // A user's dataset file that cannot be read is bad input; an unknown id is a 404.
-        Error::Store { .. } => StatusCode::UNPROCESSABLE_ENTITY,
-        Error::UnknownSample { .. } => StatusCode::NOT_FOUND,
+        Read::Store { .. } => StatusCode::UNPROCESSABLE_ENTITY,
+        Read::UnknownSample { .. } => StatusCode::NOT_FOUND,
         // Naming the file does not change what is wrong with it.
-        Error::InFile { error, .. } => input_status(error),
-        // A picture or recording that cannot be written is our bug, not bad input.
-        Error::Render(_) | Error::Recording(_) => StatusCode::INTERNAL_SERVER_ERROR,
+        Read::InFile { error, .. } => read_status(error),
     }
 }
 
@@ -97,6 +113,18 @@ impl IntoResponse for ApiError {
 impl From<Error> for ApiError {
     fn from(e: Error) -> Self {
         ApiError::Input(e)
+    }
+}
+
+impl From<close_io::error::Error> for ApiError {
+    fn from(e: close_io::error::Error) -> Self {
+        ApiError::Read(e)
+    }
+}
+
+impl From<close_render::error::Error> for ApiError {
+    fn from(e: close_render::error::Error) -> Self {
+        ApiError::Picture(e)
     }
 }
 
@@ -166,31 +194,37 @@ mod tests {
 
     #[test]
     fn input_errors_are_4xx_and_our_failures_5xx() {
-        let status = |e: Error| ApiError::from(e).status();
+        use close_io::error::{Error as Read, Format};
+        use close_render::error::Error as Picture;
+        let status = |e: ApiError| e.status();
+        assert_eq!(status(Read::parse(Format::Text, "x").into()), StatusCode::BAD_REQUEST);
         assert_eq!(
-            status(Error::parse(close_core::error::Format::Text, "x")),
-            StatusCode::BAD_REQUEST
-        );
-        assert_eq!(
-            status(Error::too_large("frames", 2000, 1000).in_file("a.json")),
+            status(Read::from(Error::too_large("frames", 2000, 1000)).in_file("a.json").into()),
             StatusCode::PAYLOAD_TOO_LARGE
         );
         assert_eq!(
-            status(Error::Mesh(close_core::error::MeshError::NoFaces)),
+            status(Error::Mesh(close_core::error::MeshError::NoFaces).into()),
             StatusCode::UNPROCESSABLE_ENTITY
         );
-        assert_eq!(status(Error::UnknownSample { id: "x".into() }), StatusCode::NOT_FOUND);
+        assert_eq!(status(Read::UnknownSample { id: "x".into() }.into()), StatusCode::NOT_FOUND);
         assert_eq!(
-            status(Error::OverBudget { what: "cells", got: 2, limit: 1 }),
+            status(Error::OverBudget { what: "cells", got: 2, limit: 1 }.into()),
             StatusCode::PAYLOAD_TOO_LARGE
         );
-        assert_eq!(status(Error::Cancelled), StatusCode::REQUEST_TIMEOUT);
+        assert_eq!(status(Error::Cancelled.into()), StatusCode::REQUEST_TIMEOUT);
         assert_eq!(
-            status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }),
+            status(Error::FrameSizeMismatch { frame: 1, expected: 4, got: 3 }.into()),
             StatusCode::UNPROCESSABLE_ENTITY
         );
-        assert_eq!(status(Error::Render("font".into())), StatusCode::INTERNAL_SERVER_ERROR);
-        assert_eq!(status(Error::Recording("encoder".into())), StatusCode::INTERNAL_SERVER_ERROR);
+        assert_eq!(status(Picture::invalid("x".into()).into()), StatusCode::BAD_REQUEST);
+        assert_eq!(
+            status(Picture::Render("font".into()).into()),
+            StatusCode::INTERNAL_SERVER_ERROR
+        );
+        assert_eq!(
+            status(Picture::Recording("encoder".into()).into()),
+            StatusCode::INTERNAL_SERVER_ERROR
+        );
     }
 
     #[tokio::test]

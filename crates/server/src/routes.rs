@@ -318,7 +318,7 @@ impl Upload {
         }
     }
 
-    fn sample(&self) -> Result<Sample> {
+    fn sample(&self) -> close_io::error::Result<Sample> {
         match self {
             Upload::Json(bytes) => parse_sample(bytes),
             Upload::Files(files) => read_files(files),

@@ -36,10 +36,10 @@ pub mod shapes;
 pub mod spec;
 pub mod variants;
 
+use crate::error::Result;
 use crate::formats::{MeshFrames, Sample, Truth};
 use close_core::angle::param_to_angle;
 use close_core::border::{to_xyz, Point};
-use close_core::error::Result;
 use close_core::geometry::Fold;
 
 use exact_fold::fold_border;

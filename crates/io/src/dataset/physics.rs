@@ -20,9 +20,9 @@
 //! assert!(samples.iter().any(|s| s.name == "physics__q3_napkin_half_then_quarter_31x31"));
 //! ```
 
+use crate::error::Result;
 use crate::formats::json::parse_sample;
 use crate::formats::Sample;
-use close_core::error::Result;
 
 /// Embeds each named file of `assets/physics/` as (name, JSON text).
 macro_rules! physics_files {

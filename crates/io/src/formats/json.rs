@@ -23,10 +23,11 @@ use serde::de::{self, DeserializeSeed, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 
 use super::{Sample, MAX_FILE_BYTES};
+use crate::error::{Error, Format, Result};
 use crate::mesh::{MeshFrames, MAX_FACE_CORNERS, MAX_MESH_FACES, MAX_MESH_VERTICES};
 use close_core::border::{MAX_FRAMES, MAX_VERTICES};
-use close_core::error::{Error, Format, Result};
 use close_core::geometry::Fold;
+use close_core::Error as CoreError;
 
 /// Deepest nesting of lists and objects a JSON document may have.
 pub const MAX_NESTING: usize = 128;
@@ -60,14 +61,14 @@ pub fn check_nesting(bytes: &[u8]) -> Result<()> {
 }
 
 /// Parse a Sample JSON document. Errors name the line serde stopped at; a count over its
-/// limit is [`Error::TooLarge`].
+/// limit is [`close_core::Error::TooLarge`].
 pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
     if bytes.len() > MAX_FILE_BYTES {
         return Err(Error::too_large("bytes of JSON", bytes.len(), MAX_FILE_BYTES));
     }
     check_nesting(bytes)?;
     if bytes.iter().all(u8::is_ascii_whitespace) {
-        return Err(Error::Empty { what: "the JSON document is empty" });
+        return Err(CoreError::Empty { what: "the JSON document is empty" }.into());
     }
     EXCEEDED.set(None);
     let sample: Sample = serde_json::from_slice(bytes).map_err(|e| match EXCEEDED.take() {
@@ -76,7 +77,9 @@ pub fn parse_sample(bytes: &[u8]) -> Result<Sample> {
         None => parse_error(&e),
     })?;
     if sample.frames.is_empty() && sample.mesh.is_none() {
-        return Err(Error::Empty { what: "the sample has neither \"frames\" nor \"mesh\"" });
+        return Err(
+            CoreError::Empty { what: "the sample has neither \"frames\" nor \"mesh\"" }.into()
+        );
     }
     Ok(sample)
 }

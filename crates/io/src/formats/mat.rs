@@ -32,8 +32,9 @@ use flate2::read::ZlibDecoder;
 use std::cell::Cell;
 
 use super::Sample;
+use crate::error::{Error, Format, Result};
 use crate::mesh::{MeshFrames, MAX_MESH_VERTICES};
-use close_core::error::{Error, Format, Result};
+use close_core::Error as CoreError;
 
 /// Most bytes the compressed variables of one file may expand to, in all.
 pub const MAX_DECOMPRESSED: u64 = 256 * 1024 * 1024;
@@ -97,11 +98,12 @@ impl Walk {
     fn widen(&self, values: usize) -> Result<()> {
         let total = self.widened.get().saturating_add((values as u64).saturating_mul(8));
         if total > MAX_WIDENED {
-            return Err(Error::TooLarge {
+            return Err(CoreError::TooLarge {
                 what: "bytes of numbers once widened to f64",
                 got: Some(total),
                 limit: MAX_WIDENED,
-            });
+            }
+            .into());
         }
         self.widened.set(total);
         Ok(())
@@ -448,7 +450,7 @@ pub fn parse_sample(bytes: &[u8], name: &str) -> Result<Sample> {
             .map(|(k, m)| positions(m, &format!("phiPositions{{{}}}", k + 1)))
             .collect::<Result<Vec<_>>>()?,
         Value::Cell { .. } => {
-            return Err(Error::Empty { what: "phiPositions is an empty cell array" })
+            return Err(CoreError::Empty { what: "phiPositions is an empty cell array" }.into())
         }
         _ => return Err(bad("phiPositions is not a cell array (one N×3 matrix per frame)")),
     };
@@ -530,7 +532,7 @@ mod tests {
         assert!(e.sparse("s", vec![2, 2], vec![1], vec![0, 1, 2], vec![5.0]).is_err());
         assert!(matches!(
             e.sparse("s", vec![1 << 40, 1 << 30], vec![], vec![], vec![]),
-            Err(Error::TooLarge { .. })
+            Err(Error::Core(CoreError::TooLarge { .. }))
         ));
     }
 }

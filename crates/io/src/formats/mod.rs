@@ -21,9 +21,11 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Format, Result};
 use close_core::border::{prepare, BorderFrames, MAX_FRAMES};
-use close_core::error::{Error, Format, MeshError, Result};
+use close_core::error::MeshError;
 use close_core::geometry::Fold;
+use close_core::Error as CoreError;
 // Mesh frames belong to `mesh` (formats reads files into them); re-exported for callers.
 pub use crate::mesh::MeshFrames;
 
@@ -127,7 +129,7 @@ pub fn read_listed(path: &Path, listed: Option<FileId>) -> Result<Vec<u8>> {
 /// [`read_file`] (`listed` None) or [`read_listed`].
 fn read_checked(path: &Path, listed: Option<Option<FileId>>) -> Result<Vec<u8>> {
     let name = path.display();
-    let fail = |e: std::io::Error| Error::InvalidArgument(format!("{name}: {e}"));
+    let fail = |e: std::io::Error| Error::invalid(format!("{name}: {e}"));
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
     #[cfg(unix)]
@@ -138,7 +140,7 @@ fn read_checked(path: &Path, listed: Option<Option<FileId>>) -> Result<Vec<u8>> 
     let file = options.open(path).map_err(|e| {
         #[cfg(unix)]
         if listed.flatten().is_some() && e.raw_os_error() == Some(libc::ELOOP) {
-            return Error::InvalidArgument(format!(
+            return Error::invalid(format!(
                 "{name}: a symbolic link now, not the file listed: not followed"
             ));
         }
@@ -147,19 +149,23 @@ fn read_checked(path: &Path, listed: Option<Option<FileId>>) -> Result<Vec<u8>> 
     let meta = file.metadata().map_err(fail)?;
     if let Some(listed) = listed.flatten() {
         if FileId::of(&meta) != Some(listed) {
-            return Err(Error::InvalidArgument(format!(
+            return Err(Error::invalid(format!(
                 "{name}: another file than the one listed is there now: not read (list the dataset again to read it)"
             )));
         }
     }
     if !meta.is_file() {
-        return Err(Error::InvalidArgument(format!(
+        return Err(Error::invalid(format!(
             "{name}: not a regular file (a FIFO, device or socket is never read)"
         )));
     }
     let too_large = |got: u64| {
-        Error::TooLarge { what: "bytes in one file", got: Some(got), limit: MAX_FILE_BYTES as u64 }
-            .in_file(&path.display().to_string())
+        Error::from(CoreError::TooLarge {
+            what: "bytes in one file",
+            got: Some(got),
+            limit: MAX_FILE_BYTES as u64,
+        })
+        .in_file(&path.display().to_string())
     };
     if meta.len() > MAX_FILE_BYTES as u64 {
         return Err(too_large(meta.len()));
@@ -245,11 +251,10 @@ impl Sample {
 
     /// Validate and orient the border frames ([`prepare`]). For a mesh, the border is
     /// found on frame 0 and `border_indices` are mesh vertex indices.
-    pub fn border_frames(&self) -> Result<BorderFrames> {
+    pub fn border_frames(&self) -> close_core::Result<BorderFrames> {
         match (&self.mesh, self.frames.is_empty()) {
-            (Some(_), false) => Err(Error::parse(
-                Format::SampleJson,
-                "give either \"frames\" or \"mesh\", not both",
+            (Some(_), false) => Err(CoreError::InvalidArgument(
+                "give either \"frames\" or \"mesh\", not both".into(),
             )),
             (Some(mesh), true) => {
                 let found = crate::mesh::border_of(mesh)?;
@@ -284,11 +289,11 @@ fn base_name(path: &str) -> &str {
 /// one frame each, or OBJ/PLY mesh files with one frame each (in the order given).
 pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
     let Some((first, _)) = files.first() else {
-        return Err(Error::Empty { what: "no file given" });
+        return Err(CoreError::Empty { what: "no file given" }.into());
     };
     let single = |what: &str| {
         if files.len() > 1 {
-            return Err(Error::InvalidArgument(format!(
+            return Err(Error::invalid(format!(
                 "give one {what} file, or one text or mesh file per frame"
             )));
         }
@@ -309,7 +314,7 @@ pub fn read_files(files: &[(String, Vec<u8>)]) -> Result<Sample> {
                 .collect::<Result<Vec<_>>>()?;
             Ok(Sample::from_frames(name, "upload", frames))
         }
-        other => Err(Error::InvalidArgument(format!(
+        other => Err(Error::invalid(format!(
             "unknown file type .{other}: expected .json (Sample JSON), .txt/.csv (one vertex per line), .obj/.ply (one mesh per frame) or .mat"
         ))),
     }
@@ -326,9 +331,9 @@ fn read_mesh_files(files: &[(String, Vec<u8>)], name: String) -> Result<Sample> 
         let frame = match extension(file).as_str() {
             "obj" => obj::parse_frame(bytes),
             "ply" => ply::parse_frame(bytes),
-            other => Err(Error::InvalidArgument(format!(
-                "a mesh sample takes .obj or .ply files, not .{other}"
-            ))),
+            other => {
+                Err(Error::invalid(format!("a mesh sample takes .obj or .ply files, not .{other}")))
+            }
         }
         .map_err(|e| e.in_file(file))?;
         if let Some(expected) = frames.first().map(Vec::len) {

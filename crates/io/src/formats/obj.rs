@@ -17,8 +17,10 @@
 //! ```
 
 use super::{MeshFrame, MAX_FILE_BYTES};
+use crate::error::{Error, Format, Result};
 use crate::mesh::{MAX_FACE_CORNERS, MAX_MESH_VERTICES};
-use close_core::error::{Error, Format, MeshError, Result};
+use close_core::error::MeshError;
+use close_core::Error as CoreError;
 
 fn bad(line: usize, message: impl ToString) -> Error {
     Error::parse_at(Format::Obj, line, message)
@@ -70,7 +72,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         }
     }
     if mesh.vertices.is_empty() {
-        return Err(Error::Empty { what: "the OBJ file holds no vertex" });
+        return Err(CoreError::Empty { what: "the OBJ file holds no vertex" }.into());
     }
     let n = mesh.vertices.len();
     if let Some((k, &v)) =

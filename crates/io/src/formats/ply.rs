@@ -23,8 +23,10 @@ use ply_rs_bw::ply::{
 };
 
 use super::{MeshFrame, MAX_FILE_BYTES};
+use crate::error::{Error, Format, Result};
 use crate::mesh::{MAX_FACE_CORNERS, MAX_MESH_FACES, MAX_MESH_VERTICES};
-use close_core::error::{Error, Format, MeshError, Result};
+use close_core::error::MeshError;
+use close_core::Error as CoreError;
 
 /// A scalar property as f64; `None` for lists.
 fn scalar(p: &Property) -> Option<f64> {
@@ -249,7 +251,7 @@ pub fn parse_frame(bytes: &[u8]) -> Result<MeshFrame> {
         }
     }
     if frame.vertices.is_empty() {
-        return Err(Error::Empty { what: "the PLY file holds no vertex" });
+        return Err(CoreError::Empty { what: "the PLY file holds no vertex" }.into());
     }
     let n = frame.vertices.len();
     if let Some((k, &v)) = frame

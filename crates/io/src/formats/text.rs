@@ -10,8 +10,9 @@
 //! ```
 
 use super::MAX_FILE_BYTES;
+use crate::error::{Error, Format, Result};
 use close_core::border::MAX_VERTICES;
-use close_core::error::{Error, Format, Result};
+use close_core::Error as CoreError;
 
 /// Parse one frame of vertices.
 pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
@@ -66,7 +67,7 @@ pub fn parse_frame(text: &str) -> Result<Vec<[f64; 3]>> {
         out.push([numbers[0], numbers[1], numbers[2]]);
     }
     if out.is_empty() {
-        return Err(Error::Empty { what: "the text file holds no vertex" });
+        return Err(CoreError::Empty { what: "the text file holds no vertex" }.into());
     }
     Ok(out)
 }
@@ -77,10 +78,10 @@ mod tests {
 
     #[test]
     fn bad_lines_are_named() {
-        assert!(matches!(parse_frame(""), Err(Error::Empty { .. })));
+        assert!(matches!(parse_frame(""), Err(Error::Core(CoreError::Empty { .. }))));
         assert!(matches!(
             parse_frame(&"0 0 0\n".repeat(MAX_VERTICES + 2)),
-            Err(Error::TooLarge { .. })
+            Err(Error::Core(CoreError::TooLarge { .. }))
         ));
         assert!(parse_frame("1,2\n").unwrap_err().to_string().contains("line 1"));
         assert!(parse_frame("0 0 0\n1 2 3 4\n").unwrap_err().to_string().contains("4 values"));

@@ -63,11 +63,11 @@ use zarrs::plugin::{ExtensionName, ZarrVersion};
 use zarrs::storage::store::MemoryStore;
 use zarrs::storage::{ListableStorageTraits, StorePrefix, WritableStorageTraits};
 
+use crate::error::{Error, Result};
 use crate::formats::Sample;
 use crate::mesh::silhouette::{Silhouette, EPSILON};
 use crate::mesh::{MAX_MESH_FACES, MAX_MESH_VERTICES};
 use bifold::Action;
-use close_core::error::{Error, Result};
 use files::StoreFiles;
 
 /// Folds scored per video: the paper's Table I has first and second folds.
