@@ -634,13 +634,7 @@ impl PyAnalysis {
 /// The library's pipeline on a sample, under the budget of `options` (run with the GIL
 /// released).
 fn analysis_of(sample: &Sample, options: &Options) -> Result<Analysis, close_core::Error> {
-    // As the server does: every frame of a border sample analysed is refused over the cell
-    // budget before its border is prepared (a copy of every frame).
-    if let (Some(first), FrameRange { start: None, end: None }) =
-        (sample.frames.first(), options.frames)
-    {
-        options.budget.analysis(sample.frames.len(), first.len())?;
-    }
+    sample.check_budget(options.frames, &options.budget)?;
     close_core::analyze_with(&sample.border_frames()?, options.clone())
 }
 

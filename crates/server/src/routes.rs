@@ -79,10 +79,8 @@ pub(super) struct Loaded {
 }
 
 impl Loaded {
-    /// Validate `sample`. A border sample whose every frame is analysed is refused over the
-    /// cell budget before its border is prepared (a copy of every frame); otherwise (a frame
-    /// range, a mesh's border shorter than its vertex list) the analysis checks the budget
-    /// once the border is known.
+    /// Validate `sample`, refused over the cell budget before its border is prepared when
+    /// that is known ([`Sample::check_budget`]).
     pub(super) fn of(
         key: String,
         sample: &Sample,
@@ -91,10 +89,7 @@ impl Loaded {
         listed: Option<Listed>,
         budget: &Budget,
     ) -> Result<Loaded, ApiError> {
-        if let (Some(first), FrameRange { start: None, end: None }) = (sample.frames.first(), range)
-        {
-            budget.analysis(sample.frames.len(), first.len())?;
-        }
+        sample.check_budget(range, budget)?;
         Ok(Loaded {
             key,
             name: sample.name.clone(),

@@ -249,6 +249,33 @@ impl Sample {
         positions(&self.frames) + mesh
     }
 
+    /// Refuse the analysis of frames `range` over `budget` before its border is prepared
+    /// (a copy of every frame), when that is known from the sample alone: every frame of a
+    /// border sample. A frame range or a mesh (whose border is shorter than its vertex
+    /// list) is checked by the analysis once its border is known.
+    ///
+    /// ```
+    /// use close_core::{budget::Budget, FrameRange};
+    /// let square = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let sample = close_io::Sample::from_frames("", "", vec![square; 3]);
+    /// let tight = Budget { max_cells: 40, ..Budget::default() }; // 3 frames × 4² = 48 cells
+    /// assert!(sample.check_budget(FrameRange::default(), &tight).is_err());
+    /// let two = FrameRange { start: Some(1), end: None };
+    /// assert!(sample.check_budget(two, &tight).is_ok()); // checked once its border is known
+    /// ```
+    pub fn check_budget(
+        &self,
+        range: close_core::FrameRange,
+        budget: &close_core::budget::Budget,
+    ) -> close_core::Result<()> {
+        match (self.frames.first(), range) {
+            (Some(first), close_core::FrameRange { start: None, end: None }) => {
+                budget.analysis(self.frames.len(), first.len())
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// Validate and orient the border frames ([`prepare`]). For a mesh, the border is
     /// found on frame 0 and `border_indices` are mesh vertex indices.
     pub fn border_frames(&self) -> close_core::Result<BorderFrames> {
