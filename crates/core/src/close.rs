@@ -89,7 +89,7 @@ fn mean_std(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
 }
 
 /// The corner threshold of a disk: std of its values without the |z| ≥ 7 outliers.
-pub fn corner_threshold(disk: &Disk) -> f64 {
+pub(crate) fn corner_threshold(disk: &Disk) -> f64 {
     let values = disk.values();
     let (mean, std) = mean_std(values.iter().copied());
     if std == 0.0 {

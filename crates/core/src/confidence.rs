@@ -116,7 +116,7 @@ pub struct Confidence {
 }
 
 /// The relative gap between two flip scores: 0 for a tie, 1 when one side alone flipped.
-pub fn flip_margin(forward: f64, backward: f64) -> f64 {
+pub(crate) fn flip_margin(forward: f64, backward: f64) -> f64 {
     let (a, b) = (forward.abs(), backward.abs());
     (a - b).abs() / a.max(b).max(1e-12)
 }
@@ -128,7 +128,11 @@ pub fn judge(detection: &FoldDetection, metrics: &Metrics) -> Confidence {
 }
 
 /// [`judge`] with other `limits`.
-pub fn judge_with(detection: &FoldDetection, metrics: &Metrics, limits: &Limits) -> Confidence {
+pub(crate) fn judge_with(
+    detection: &FoldDetection,
+    metrics: &Metrics,
+    limits: &Limits,
+) -> Confidence {
     let mut doubts = Vec::new();
     let mut doubt = |reason, value: f64, limit: f64, text: String| {
         doubts.push(Doubt { reason, value, limit, text });

@@ -65,7 +65,7 @@ impl Disk {
 
     /// [`Disk::of_border`] that gives up with [`Error::Cancelled`] once `deadline` expires,
     /// checked before every row (N dGLI values), so a stopped job frees its core at once.
-    pub fn of_border_until(points: &[Point], deadline: &Deadline) -> Result<Disk> {
+    pub(crate) fn of_border_until(points: &[Point], deadline: &Deadline) -> Result<Disk> {
         let values = pair_values(points, deadline);
         deadline.check()?;
         Ok(Disk { n: points.len(), values })
@@ -203,7 +203,7 @@ pub fn position(n: usize, i: usize, j: usize) -> Position {
 
 /// Angle of ring `d`'s cell that starts at edge `a`: π(2a + d + 1)/N.
 #[inline]
-pub fn ring_angle(n: usize, d: usize, a: usize) -> f64 {
+pub(crate) fn ring_angle(n: usize, d: usize, a: usize) -> f64 {
     (PI * (2 * a + d + 1) as f64 / n as f64).rem_euclid(TAU)
 }
 

@@ -17,7 +17,7 @@
 //!   folds over (anticlockwise from a1 to a2).
 //!
 //! The DP `d[i][j] = min(d[i−1][j] + w(a_i), d[i][j−1] + w(b_j), d[i−1][j−1] + c(a_i, b_j))`
-//! over (m+1)(n+1) cells gives `D(A, B) = d[m][n]`; [`align`] also gives the edit that
+//! over (m+1)(n+1) cells gives `D(A, B) = d[m][n]`; `align` also gives the edit that
 //! reaches it (which fold matches which, which are missing and extra).
 //!
 //! Properties (tested below): D(A, A) = 0 and D(A, B) > 0 for A ≠ B; D(A, B) = D(B, A)
@@ -35,7 +35,7 @@
 //!
 //! **Geometric distance** (unit: normalised cloth sizes, the farthest start vertex at 1):
 //! the XY RMSE between the two states' predicted borders (the start border with each
-//! sequence's folds applied in turn, [`fold_state`]) once one is moved rigidly onto the
+//! sequence's folds applied in turn, `fold_state`) once one is moved rigidly onto the
 //! other ([`crate::metrics::aligned_rmse_xy`], the analysis's `aligned_rmse`): how far the
 //! shapes are, whatever the cloth's slide on the table.
 //!
@@ -120,7 +120,7 @@ pub struct Alignment {
 
 /// D(A, B) and the edit that reaches it: the full DP table, traced back from (m, n). On a
 /// tie a match is preferred, then a fold of A missing.
-pub fn align(a: &[[f64; 2]], b: &[[f64; 2]]) -> Alignment {
+pub(crate) fn align(a: &[[f64; 2]], b: &[[f64; 2]]) -> Alignment {
     let (m, n) = (a.len(), b.len());
     let width = n + 1;
     let mut d = vec![0.0; (m + 1) * width];
@@ -372,7 +372,11 @@ pub fn fold_line(before: &[Point], fold: [f64; 2], how: LineOf) -> Option<Line> 
 /// ([`fold_line`] as `lines[k]` says; through its points where `lines` has no entry), z
 /// kept. An error names a fold whose two points lie on top of each other in the state
 /// before it when no direction is given for it.
-pub fn fold_state(flat: &[Point], folds: &[[f64; 2]], lines: &[LineOf]) -> Result<Vec<Point>> {
+pub(crate) fn fold_state(
+    flat: &[Point],
+    folds: &[[f64; 2]],
+    lines: &[LineOf],
+) -> Result<Vec<Point>> {
     let mut state = flat.to_vec();
     for (k, &fold) in folds.iter().enumerate() {
         let Some(line) = fold_line(&state, fold, lines.get(k).copied().unwrap_or_default()) else {
@@ -390,7 +394,7 @@ pub fn fold_state(flat: &[Point], folds: &[[f64; 2]], lines: &[LineOf]) -> Resul
 }
 
 /// The geometric distance between fold sequences `a` and `b` made on the start border
-/// `flat`: the aligned XY RMSE of their predicted states ([`fold_state`], lines through the
+/// `flat`: the aligned XY RMSE of their predicted states (`fold_state`, lines through the
 /// fold points), normalised by the start border's transform.
 pub fn geometric_distance(flat: &[Point], a: &[[f64; 2]], b: &[[f64; 2]]) -> Result<f64> {
     let norm = Normalisation::of(flat)?;

@@ -198,7 +198,7 @@ impl Line {
     }
 
     /// The line through `point` at angle `phi` to the x axis.
-    pub fn at_angle(point: Point2, phi: f64) -> Line {
+    pub(crate) fn at_angle(point: Point2, phi: f64) -> Line {
         Line { point, direction: Vector2::new(phi.cos(), phi.sin()) }
     }
 

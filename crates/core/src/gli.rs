@@ -328,7 +328,10 @@ pub fn dgli_fast_x4(pairs: [[&Point; 4]; 4]) -> [f64; 4] {
 
 /// [`dgli_fast`] of every pair `[a, b, c, d]` of `pairs`, in order, four at a time.
 #[inline]
-pub fn dgli_each<'a>(pairs: impl IntoIterator<Item = [&'a Point; 4]>, mut put: impl FnMut(f64)) {
+pub(crate) fn dgli_each<'a>(
+    pairs: impl IntoIterator<Item = [&'a Point; 4]>,
+    mut put: impl FnMut(f64),
+) {
     let unused = Point::origin();
     let mut batch = [[&unused; 4]; 4];
     let mut filled = 0;

@@ -132,7 +132,7 @@ pub fn displacements(from: Fold, to: Fold) -> [f64; 2] {
 
 /// The fold at fraction `tau` of the way from `from` to `to`, in [0, 2π): τ ≤ 0 gives
 /// `from` and τ ≥ 1 gives `to` exactly.
-pub fn fold_at(from: Fold, to: Fold, tau: f64) -> Fold {
+pub(crate) fn fold_at(from: Fold, to: Fold, tau: f64) -> Fold {
     if tau <= 0.0 {
         return from.wrapped();
     }

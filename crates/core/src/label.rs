@@ -70,7 +70,7 @@ pub enum FoldClass {
 }
 
 impl FoldClass {
-    pub fn phrase(self) -> &'static str {
+    pub(crate) fn phrase(self) -> &'static str {
         match self {
             FoldClass::FoldedInHalf => "folded in half",
             FoldClass::DiagonallyFoldedInHalf => "diagonally folded in half",
@@ -247,7 +247,7 @@ fn overlap(n: f64, a: f64, la: f64, b: f64, lb: f64) -> f64 {
 /// are those of its arcs, and its sentence says how many separate flaps turned over. Lines
 /// play no part.
 ///
-/// A cloth with no fold is "not folded" — unless it changed: see [`Label::changed_without_fold`].
+/// A cloth with no fold is "not folded" — unless it changed: see `Label::changed_without_fold`.
 pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
     let circular = corner_vertices.len() > CIRCULAR_CORNERS || corner_vertices.is_empty();
     let fold_labels: Vec<FoldLabel> = folds
@@ -291,7 +291,7 @@ pub const CHANGED_RMSE: f64 = 0.1;
 impl Label {
     /// Say that the steps `changed` (1-based), which found no fold, still changed the cloth
     /// beyond noise ([`CHANGED_RMSE`]): "It is not folded" would be wrong.
-    pub fn changed_without_fold(&mut self, changed: &[usize]) {
+    pub(crate) fn changed_without_fold(&mut self, changed: &[usize]) {
         if changed.is_empty() {
             return;
         }

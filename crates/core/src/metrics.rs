@@ -88,7 +88,7 @@ impl RigidMotion {
     /// The motion that brings `a` closest to `b`, vertex by vertex, in the least-squares
     /// sense (2D Kabsch: centre both, rotate by atan2(Σ p×q, Σ p·q)); the identity when
     /// either is empty.
-    pub fn fit_xy(a: &[Point], b: &[Point]) -> RigidMotion {
+    pub(crate) fn fit_xy(a: &[Point], b: &[Point]) -> RigidMotion {
         let n = a.len().min(b.len());
         if n == 0 {
             return RigidMotion { angle: 0.0, from: Point2::origin(), to: Point2::origin() };
@@ -107,7 +107,7 @@ impl RigidMotion {
     }
 
     /// `v` (an XY direction) turned by the motion's rotation.
-    pub fn rotate(&self, v: Vector2) -> Vector2 {
+    pub(crate) fn rotate(&self, v: Vector2) -> Vector2 {
         let (sin, cos) = self.angle.sin_cos();
         Vector2::new(cos * v.x - sin * v.y, sin * v.x + cos * v.y)
     }

@@ -16,7 +16,7 @@
 //! shapes are close: the aligned XY RMSE between the goal's predicted state and the observed
 //! one ([`crate::distance`]'s geometric distance) is at most [`Tolerance::aligned_rmse`]
 //! (normalised units). Both states are predicted alike from their folds on the start border
-//! ([`crate::distance::fold_state`]), so that the same folds are at 0 whatever the cloth's
+//! (`crate::distance::fold_state`), so that the same folds are at 0 whatever the cloth's
 //! slide: a fold through its points, or, for an observed fold made through stacked layers,
 //! in the direction the disks gave, which the goal fold matched to it takes too (through
 //! its own points). A fold of several arcs counts as the fold that spans them. A goal fold

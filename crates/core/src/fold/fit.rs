@@ -241,13 +241,13 @@ impl CostFunction for RimProblem<'_> {
 }
 
 /// The cells of the rim rings, which the refinement reads.
-pub fn rim_cells(g: &Disk) -> Vec<Cell> {
+pub(crate) fn rim_cells(g: &Disk) -> Vec<Cell> {
     (1..=RIM_RINGS.min(g.layers())).flat_map(|d| ring_cells(g, d)).collect()
 }
 
 /// Refine a rim coordinate on the rim rings near it, with the curve held radial, searching
 /// angles in [lo, hi]. `None` when the rim holds no change there or the solver fails.
-pub fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> Option<f64> {
+pub(crate) fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> Option<f64> {
     let edge = edge(n);
     let near: Vec<Cell> = rim_cells
         .iter()

@@ -33,19 +33,19 @@ pub const GAUSSIAN_WIDTH: f64 = PI / 4.0;
 
 /// Kernel of the √g term: k1·δ²·exp(−δ²/2τ²), τ = [`GAUSSIAN_WIDTH`].
 #[inline]
-pub fn kernel_sqrt_g(delta: f64) -> f64 {
+pub(crate) fn kernel_sqrt_g(delta: f64) -> f64 {
     K1 * delta * delta * (-delta * delta / (2.0 * GAUSSIAN_WIDTH * GAUSSIAN_WIDTH)).exp()
 }
 
 /// Kernel of the g term (with its minus sign taken out): k2/(k3 + δ²).
 #[inline]
-pub fn kernel_g(delta: f64) -> f64 {
+pub(crate) fn kernel_g(delta: f64) -> f64 {
     K2 / (K3 + delta * delta)
 }
 
 /// Loss of one cell of value `g` at angular offset `delta` from the curve.
 #[inline]
-pub fn cell_loss(g: f64, delta: f64) -> f64 {
+pub(crate) fn cell_loss(g: f64, delta: f64) -> f64 {
     g.sqrt() * kernel_sqrt_g(delta) - g * kernel_g(delta)
 }
 
@@ -60,7 +60,7 @@ pub struct Cell {
 
 /// Every cell of ring `d` of `disk` (N cells; on the centre ring of an even N each pair
 /// appears at both of its angles).
-pub fn ring_cells(disk: &Disk, d: usize) -> impl Iterator<Item = Cell> + '_ {
+pub(crate) fn ring_cells(disk: &Disk, d: usize) -> impl Iterator<Item = Cell> + '_ {
     let n = disk.n();
     let l = disk.layers();
     let radius = (l - d + 1) as f64 / l as f64;
@@ -73,7 +73,7 @@ pub fn ring_cells(disk: &Disk, d: usize) -> impl Iterator<Item = Cell> + '_ {
 }
 
 /// Exact loss of the curve θ̂ = a0 + a1·r over the given cells.
-pub fn exact_loss(cells: &[Cell], a0: f64, a1: f64) -> f64 {
+pub(crate) fn exact_loss(cells: &[Cell], a0: f64, a1: f64) -> f64 {
     cells.iter().map(|c| cell_loss(c.value, wrap_pi(c.angle - a0 - a1 * c.radius))).sum()
 }
 
@@ -161,7 +161,7 @@ impl RingTables {
 
     /// Loss of the curve θ̂ = a0 + a1·r and its gradient (∂/∂a0, ∂/∂a1), by periodic
     /// Catmull–Rom interpolation of each ring's table.
-    pub fn loss_and_gradient(&self, a0: f64, a1: f64) -> (f64, [f64; 2]) {
+    pub(crate) fn loss_and_gradient(&self, a0: f64, a1: f64) -> (f64, [f64; 2]) {
         let mut loss = 0.0;
         let mut grad = [0.0; 2];
         for (radius, weight, table) in &self.rings {
@@ -177,7 +177,7 @@ impl RingTables {
     /// The loss of every curve (a0, a1) of `curves`, equal to [`RingTables::loss_and_gradient`]'s;
     /// ring by ring, so a scan of many curves reads each ring's table in one sweep instead of
     /// jumping between tables.
-    pub fn losses(&self, curves: &[(f64, f64)]) -> Vec<f64> {
+    pub(crate) fn losses(&self, curves: &[(f64, f64)]) -> Vec<f64> {
         let mut losses = vec![0.0; curves.len()];
         for (radius, weight, table) in &self.rings {
             for (loss, &(a0, a1)) in losses.iter_mut().zip(curves) {

@@ -7,7 +7,7 @@
 //! cut of least same-side change ([`cut`]) says which edges turned over, to half an edge,
 //! the signed diff Δ = end − start orders its points ([`orientation`]), and analysis by
 //! synthesis on the disks ([`synth`]) places each fold point within its edge. On a stacked
-//! start (an earlier fold) the cut loses its footing and [`synth::search_line`] tries lines
+//! start (an earlier fold) the cut loses its footing and `synth::search_line` tries lines
 //! instead. A step whose diff disk is flat, whose change has no side to it, or that no
 //! candidate fold explains, has no fold.
 //!
@@ -78,7 +78,7 @@ pub struct FoldDetection {
     pub curves: Vec<Curve>,
     pub cut: Option<Cut>,
     /// How the side was chosen; `None` when the start was stacked (the line search turns a
-    /// known side over, [`synth::search_line`]) or there is no fold.
+    /// known side over, `synth::search_line`) or there is no fold.
     pub orientation: Option<Orientation>,
     /// The refinement by synthesis ([`synth`]); its `direction` is set when the fold points
     /// coincide in the step's start frame and the line's direction came from the disks.

@@ -322,7 +322,7 @@ pub struct Synthesis {
     pub s: [f64; 2],
     /// The folded arcs (border parameters, each anticlockwise from its first point), in
     /// walking order from `s[0]`: one arc, `s` itself, unless the fold line crosses the
-    /// border more than twice and turns several arcs over ([`refine`]).
+    /// border more than twice and turns several arcs over (`refine`).
     pub arcs: Vec<[f64; 2]>,
     /// The direction found on the disks when the fold points coincide (a unit vector);
     /// `None` when the line runs through the two fold points.
@@ -336,7 +336,7 @@ pub struct Synthesis {
 
 impl Synthesis {
     /// A fold at border parameters `s`, one arc along the line through its points, not yet
-    /// measured: what [`refine`] starts from when the cut gives the points.
+    /// measured: what `refine` starts from when the cut gives the points.
     pub fn guess(s: [f64; 2]) -> Synthesis {
         Synthesis {
             s,
@@ -370,7 +370,7 @@ fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
 /// a pattern search over them. A fold of several arcs is refined by its line (direction and
 /// offset), the arcs following it. The result's `mismatch` is infinite when the guess holds
 /// several arcs and gives no line.
-pub fn refine(before: &[Point], start: &Disk, end: &Disk, guess: &Synthesis) -> Synthesis {
+pub(crate) fn refine(before: &[Point], start: &Disk, end: &Disk, guess: &Synthesis) -> Synthesis {
     let heading = guess.direction.map(|d| d.y.atan2(d.x));
     match (guess.arcs.len(), heading) {
         (0 | 1, heading) => refine_points(before, start, end, guess.s, heading),
@@ -575,7 +575,7 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 /// where the border crosses its line, and the line's direction. None of them when no line
 /// beats leaving the state as it was by [`MAX_MISMATCH_RATIO`]. The exact optimum is
 /// needle sharp on stacked layers, so the caller refines each ([`refine`]).
-pub fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis> {
+pub(crate) fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis> {
     let n = before.len();
     let sampled = sampled_edges(n, SCREEN_SAMPLES);
     let pairs = sampled
