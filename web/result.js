@@ -274,6 +274,9 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
     const name = `step ${k + 1} (${s.from_frame}→${s.to_frame})`;
     const parts = [];
     if (!s.fold) parts.push("no fold");
+    // A step seen only flat and folded: the sequence read from its end disk, in order.
+    if (s.folds?.length > 1) parts.push(`${s.folds.length} folds: ${s.folds.map((f) => fmtFold(f.fold)).join(", then ")}`);
+    if (s.alternatives?.length) parts.push(`${s.alternatives.length} other order${s.alternatives.length > 1 ? "s" : ""} explain${s.alternatives.length > 1 ? "" : "s"} it about as well`);
     if (s.cut) parts.push(`cut residual ${s.cut.residual.toFixed(3)}`, `same/cross ${s.cut.same_to_cross.toFixed(2)}`);
     if (s.orientation) parts.push(`flip scores ${s.orientation.flip_forward.toFixed(2)} / ${s.orientation.flip_backward.toFixed(2)}${s.orientation.tie_break ? " (tie-break)" : ""}`);
     if (s.metrics) parts.push(`RMSE ${s.metrics.rmse.toFixed(3)} (aligned ${shapeError(s.metrics).toFixed(3)})`);
@@ -316,8 +319,11 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   // The fold of the step whose pictures are shown (the sequence for all of them).
   interp.addEventListener("click", () => {
     const shown = Number(node.querySelector(".segmented input:checked")?.dataset.step || 1);
-    const folds = (result.steps || []).slice(0, shown || result.steps.length).filter((s) => s.fold).length;
-    actions.interpolate(result, shown === 0 && result.folds.length > 1 ? "all" : Math.max(1, folds));
+    const steps = result.steps || [];
+    // A step holds a sequence of folds when its end was seen only folded: play them all.
+    const folds = steps.slice(0, shown || steps.length).reduce((n, s) => n + (s.folds?.length || (s.fold ? 1 : 0)), 0);
+    const whole = shown === 0 || steps.length === 1;
+    actions.interpolate(result, whole && result.folds.length > 1 ? "all" : Math.max(1, folds));
   });
   $(".plan-this").addEventListener("click", () => actions.plan(result));
   // Compare with another sample: this one's state after the step shown (or its last).

@@ -162,8 +162,12 @@ const view = {
   stats: { asked: 0, shown: 0, waits: [] },
 };
 
-/** The steps that found a fold, in order: fold k of the analysis is `folded()[k]`. */
-const folded = () => (view.result?.steps || []).filter((s) => s.fold);
+/**
+ * The analysis's folds in order, each as its step reports it ({fold, arcs, line}): fold k of
+ * `result.folds` is `folded()[k]`. A step seen only flat and folded may hold a sequence
+ * (`steps[k].folds`), played fold by fold.
+ */
+const folded = () => (view.result?.steps || []).flatMap((s) => (s.folds?.length ? s.folds : s.fold ? [s] : []));
 
 /** Folds 1…k of the analysis as the server takes them before a motion (`prior`). */
 const priorOf = (k) => folded().slice(0, k).map((s) => ({ arcs: s.arcs, line: s.line }));

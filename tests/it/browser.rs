@@ -776,6 +776,55 @@ async fn the_app_works_in_a_real_browser() {
     assert_eq!(exact[0], after[0], "editing g₂ re-read g₁ from its rounded box");
     assert!((exact[1].as_f64().unwrap_or(0.0).to_degrees() - 200.0).abs() < 1e-9);
 
+    // A towel folded twice, uploaded flat and folded only (issue 26): the step's sequence
+    // is listed, and the whole sequence plays fold by fold to the predicted end.
+    let towel: close::Sample = close::formats::json::parse_sample(
+        &std::fs::read(root.join("tests/fixtures/physics/q5_towel_half_then_half_26x41.json"))
+            .expect("the towel fixture"),
+    )
+    .expect("the towel");
+    let ends = close::Sample {
+        frames: vec![towel.frames[0].clone(), towel.frames[towel.frames.len() - 1].clone()],
+        ..towel.clone()
+    };
+    let ends_file = write(
+        &scratch,
+        "towel-flat-and-folded.json",
+        close::formats::json::to_json(&ends).as_bytes(),
+    );
+    route(&client, "#/upload").await;
+    choose_files(&client, &[ends_file]).await;
+    until(&client, "the flat-and-folded upload", "document.querySelector('#upload-result .result-name')?.textContent === 'towel-flat-and-folded.json' && document.getElementById('error').hidden").await;
+    let evidence =
+        text(&client, "document.querySelector('#upload-result .evidence-table').textContent").await;
+    assert!(evidence.contains("2 folds:"), "the sequence is not listed: {evidence}");
+    js(&client, "document.querySelector('#upload-result .interp-this').click()").await;
+    until(&client, "the whole sequence chosen", "document.getElementById('interp-step').value === 'all' && [...document.getElementById('interp-step').options].some(o => o.textContent.includes('2 folds'))").await;
+    client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");
+    until(
+        &client,
+        "the towel's last state drawn",
+        "(f => f && f.t === 1 && f.now.fold === 2)(window.closeApp.interpolate.state().frame)",
+    )
+    .await;
+    let drawn: Vec<[f64; 3]> = serde_json::from_value(
+        js(&client, "return window.closeApp.interpolate.state().drawn").await,
+    )
+    .expect("the drawn border");
+    let predicted = close::analyze(&ends.border_frames().expect("frames"), Default::default())
+        .expect("analysis")
+        .predicted_end;
+    let off = drawn
+        .iter()
+        .zip(&predicted)
+        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
+        .fold(0.0, f64::max);
+    assert!(
+        drawn.len() == predicted.len() && off < 1e-9,
+        "the towel's sequence ends {off} away from the predicted end"
+    );
+    screenshot(&client, &shots, "1400-06b-interpolate-flat-and-folded.png").await;
+
     // A second-fold sample: pick the step, or animate the whole sequence.
     route(&client, &format!("#/samples/{}", twice.id)).await;
     shows_sample(&client, &twice.sample.name).await;

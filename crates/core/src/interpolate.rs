@@ -27,8 +27,6 @@
 //! The web app draws the states the server computes with these functions (`POST
 //! /api/interpolate`, at any fractions of the way: [`motion_at`]); it has no copy of them.
 //!
-//! `web/fold.mjs` implements the same rules for the browser (a test checks parity).
-//!
 //! The border goes through [`interpolate`], the one entry: it is validated and oriented by
 //! [`crate::border::prepare`], exactly as an analysis's start frame, so a border that the
 //! analysis refuses (coincident, collinear, too small or too large) is refused here too;
