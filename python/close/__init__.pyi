@@ -10,7 +10,7 @@ generated from the Rust types), and `tests/it/schema.rs` checks their keys again
 
 import os
 from concurrent.futures import Executor
-from typing import Any, Callable, Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -447,9 +447,11 @@ def interpolate(
     reference: Optional[npt.ArrayLike] = None,
     arcs: Optional[Sequence[Tuple[float, float]]] = None,
     line: Optional[Dict[str, Tuple[float, float]]] = None,
+    prior: Optional[Sequence[Mapping[str, Any]]] = None,
 ) -> FloatArray:
     """(steps, N, 3) borders of the folding motion from fold `from_` to fold `to`, or of a
-    fold's `arcs` turned over about `line` (an analysis step's `arcs` and `line`)."""
+    fold's `arcs` turned over about `line` (an analysis step's `arcs` and `line`); `prior`:
+    folds made first on the flat `border` (an analysis step's `folds` entries), in order."""
 
 def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> PlanDict:
     """The `POST /api/plan` answer: how to reach the goal fold from the sample's state."""

@@ -17,7 +17,7 @@ use std::time::Duration;
 
 use close_core::border::BorderFrames;
 use close_core::budget::{Budget, Deadline};
-use close_core::geometry::{Fold, Line, Point2, Vector2};
+use close_core::geometry::{Fold, Folding, Line, Point2, Vector2};
 use close_core::{Analysis, FoldMethod, FrameRange, Options};
 use close_io::formats::{Sample, MAX_FILE_BYTES};
 use numpy::ndarray::{Array1, Array2, Array3};
@@ -1065,9 +1065,13 @@ fn disk_layout(py: Python<'_>, n: usize) -> PyResult<(Floats<'_>, Floats<'_>)> {
 /// (g1, g2), each endpoint moving along the border circle; or one fold's `arcs` (an analysis
 /// step's `arcs`, [(a, b), ...]) turned over together about `line` (its `line`, a dict
 /// {"point": (x, y), "direction": (dx, dy)}; by default through the first arc's start and the
-/// last arc's end). Returns a (steps, N, 3) array of borders, as `POST /api/interpolate` does.
+/// last arc's end). `prior`: folds made on the flat `border` first, in order, each a dict
+/// with its "arcs" and "line" as an analysis step's `folds` entries give them: the motion
+/// starts from the state they leave, so fold k of a sequence plays after folds 1…k−1 (no
+/// `reference` then). Returns a (steps, N, 3) array of borders, as `POST /api/interpolate`
+/// does.
 #[pyfunction]
-#[pyo3(signature = (border, from_ = None, to = None, steps = 60, *, reference = None, arcs = None, line = None))]
+#[pyo3(signature = (border, from_ = None, to = None, steps = 60, *, reference = None, arcs = None, line = None, prior = None))]
 #[allow(clippy::too_many_arguments)]
 fn interpolate<'py>(
     py: Python<'py>,
@@ -1078,6 +1082,7 @@ fn interpolate<'py>(
     reference: Option<&Bound<'py, PyAny>>,
     arcs: Option<Vec<[f64; 2]>>,
     line: Option<&Bound<'py, PyAny>>,
+    prior: Option<Vec<Bound<'py, PyAny>>>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let border = points(border, "border")?;
     let reference = reference.map(|r| points(r, "reference")).transpose()?;
@@ -1086,11 +1091,26 @@ fn interpolate<'py>(
     let arcs = arcs.map(|arcs| arcs.into_iter().map(close_core::geometry::Arc::from).collect());
     let motion = close_core::interpolate::Motion::of(from_.map(pair), to.map(pair), arcs, line)
         .map_err(close_error)?;
+    let prior = prior.unwrap_or_default().iter().map(prior_fold).collect::<PyResult<Vec<_>>>()?;
     Budget::SERVER.interpolation(border.len(), steps).map_err(close_error)?;
     let motion = py
-        .detach(|| close_core::interpolate::interpolate(border, reference, &motion, steps))
+        .detach(|| close_core::interpolate::interpolate(border, reference, &prior, &motion, steps))
         .map_err(close_error)?;
     frames_array(py, &motion.borders)
+}
+
+/// A fold made before a motion, given as an analysis step's `folds` entry: a dict with its
+/// "arcs" [(a, b), ...] and its "line" (or None).
+fn prior_fold(fold: &Bound<'_, PyAny>) -> PyResult<Folding> {
+    let expected = "prior: each fold a dict with \"arcs\" [(a, b), ...] and \"line\" (or None)";
+    let arcs: Vec<[f64; 2]> =
+        fold.get_item("arcs").and_then(|a| a.extract()).map_err(|_| invalid(expected.into()))?;
+    let arcs: Vec<close_core::geometry::Arc> = arcs.into_iter().map(Into::into).collect();
+    let line = match fold.get_item("line") {
+        Ok(line) if !line.is_none() => Some(fold_line(&line)?),
+        _ => None,
+    };
+    Ok(Folding { fold: Fold::span(&arcs).unwrap_or_default(), arcs, line })
 }
 
 /// A fold line given as an analysis reports it: {"point": (x, y), "direction": (dx, dy)}.

@@ -537,7 +537,7 @@ async fn interpolation_moves_from_one_fold_to_the_other() {
         to: close::Fold::new(0.5, 3.0),
     };
     let expected =
-        close::interpolate::interpolate(borders[8].clone(), Some(border.clone()), &motion, 3)
+        close::interpolate::interpolate(borders[8].clone(), Some(border.clone()), &[], &motion, 3)
             .unwrap();
     assert_eq!(on.json()["borders"], json!(expected.borders));
 

@@ -277,7 +277,8 @@ fn interpolation_turns_each_steps_arcs_onto_the_prediction() {
             let start = analysis.start_border().iter().map(close::border::to_xyz).collect();
             let turn = close::interpolate::Motion::Turn { arcs: arcs.clone(), line: step.line };
             let motion =
-                close::interpolate::interpolate(before.clone(), Some(start), &turn, 11).unwrap();
+                close::interpolate::interpolate(before.clone(), Some(start), &[], &turn, 11)
+                    .unwrap();
             assert_eq!(
                 motion.borders[0],
                 before,

@@ -136,7 +136,7 @@ proptest! {
         }
         // The last border is the border folded along the goal.
         let raw: Vec<[f64; 3]> = border.iter().map(to_xyz).collect();
-        let motion = interpolate(raw, None, &Motion::Between { from, to }, steps).unwrap();
+        let motion = interpolate(raw, None, &[], &Motion::Between { from, to }, steps).unwrap();
         let goal = apply(&border, &Folding::new(to));
         let last = motion.borders.last().unwrap();
         prop_assert!(last.iter().zip(&goal).all(|(a, b)| close_points(&Point::new(a[0], a[1], a[2]), b)));

@@ -192,6 +192,46 @@ fn turn_line(border: &[Point], arcs: &[Arc], line: Option<Line>) -> Result<Line>
     })
 }
 
+/// `flat` with the `prior` folds made on it in turn, each as an analysis step reports it:
+/// its arcs turned over about its line or, without one, the line through its first arc's
+/// start and last arc's end on the state it folds. Gives the state they leave and the line
+/// each was made along: a motion that plays a fold sequence starts each fold there.
+///
+/// ```
+/// use close_core::border::Point;
+/// use close_core::geometry::{Arc, Folding};
+/// use close_core::interpolate::fold_in_turn;
+/// use std::f64::consts::PI;
+/// let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+///     .iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
+/// // In half along the diagonal through vertices 0 and 2: vertex 1 lands on vertex 3.
+/// let half = Folding { fold: Default::default(), arcs: vec![Arc::new(0.0, PI)], line: None };
+/// let (state, lines) = fold_in_turn(&square, &[half]).unwrap();
+/// assert!((state[1] - square[3]).norm() < 1e-12 && lines.len() == 1);
+/// ```
+pub fn fold_in_turn(flat: &[Point], prior: &[Folding]) -> Result<(Vec<Point>, Vec<Line>)> {
+    let mut state = flat.to_vec();
+    let mut lines = Vec::with_capacity(prior.len());
+    for (k, fold) in prior.iter().enumerate() {
+        let at = |e: Error| match e {
+            Error::InvalidArgument(m) => {
+                Error::InvalidArgument(format!("prior fold {}: {m}", k + 1))
+            }
+            other => other,
+        };
+        if fold.arcs.is_empty() {
+            return Err(Error::InvalidArgument(format!("prior fold {} has no arc", k + 1)));
+        }
+        let angles: Vec<f64> = fold.arcs.iter().flat_map(|a| [a.a, a.b]).collect();
+        finite_angles(&angles, "arc angles").map_err(at)?;
+        let line = turn_line(&state, &fold.arcs, fold.line).map_err(at)?;
+        let span = Fold::span(&fold.arcs).unwrap_or_default();
+        state = apply(&state, &Folding { fold: span, arcs: fold.arcs.clone(), line: Some(line) });
+        lines.push(line);
+    }
+    Ok((state, lines))
+}
+
 /// The checks every motion makes of its step count.
 fn check_steps(steps: usize) -> Result<()> {
     if !STEPS.contains(&steps) {
@@ -348,38 +388,53 @@ pub fn motion_at(border: &[Point], motion: &Motion, at: &[f64]) -> Result<Interp
 /// validates its frames: `border` is the state to fold and `reference` the flat border whose
 /// orientation applies (an analysis's start frame; by default `border` itself, which must
 /// then be a valid start frame). A border already folded overlaps itself, so its own area
-/// and orientation are no guide: send the flat one as `reference`.
+/// and orientation are no guide: send the flat one as `reference`. With `prior` folds,
+/// `border` is the flat cloth and the motion starts from the state they leave
+/// ([`fold_in_turn`]): fold k of a sequence played after folds 1…k−1.
 ///
 /// ```
-/// use close_core::geometry::{Arc, Fold};
+/// use close_core::geometry::{Arc, Fold, Folding};
 /// use close_core::interpolate::{interpolate, Motion};
 /// let square = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
 /// let between = Motion::Between { from: Fold::new(0.0, 3.1), to: Fold::new(0.5, 3.6) };
-/// assert_eq!(interpolate(square.clone(), None, &between, 5).unwrap().borders.len(), 5);
+/// assert_eq!(interpolate(square.clone(), None, &[], &between, 5).unwrap().borders.len(), 5);
 /// let line = vec![[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [2.0, 2.0, 0.0], [3.0, 3.0, 0.0]];
-/// assert!(interpolate(line.clone(), None, &between, 5).is_err());
+/// assert!(interpolate(line.clone(), None, &[], &between, 5).is_err());
 /// // A state with no area of its own is fine against a flat reference.
-/// assert!(interpolate(line, Some(square.clone()), &between, 5).is_ok());
+/// assert!(interpolate(line, Some(square.clone()), &[], &between, 5).is_ok());
 /// // Vertex 1 turned over about the diagonal through vertices 0 and 2: on vertex 3 at the end.
 /// let turn = Motion::Turn { arcs: vec![Arc::new(0.0, std::f64::consts::PI)], line: None };
-/// let motion = interpolate(square, None, &turn, 3).unwrap();
+/// let motion = interpolate(square.clone(), None, &[], &turn, 3).unwrap();
 /// assert!((motion.borders[2][1][0] - 0.0).abs() < 1e-12 && (motion.borders[2][1][1] - 1.0).abs() < 1e-12);
+/// // After that fold (vertex 1 on vertex 3), vertex 3 turned over the same diagonal lands on (1, 0).
+/// let pi = std::f64::consts::PI;
+/// let first = Folding { fold: Fold::new(0.0, pi), arcs: vec![Arc::new(0.0, pi)], line: None };
+/// let second = Motion::Turn { arcs: vec![Arc::new(pi, 0.0)], line: None };
+/// let played = interpolate(square, None, &[first], &second, 2).unwrap();
+/// assert!((played.borders[1][3][0] - 1.0).abs() < 1e-12 && played.borders[1][3][1].abs() < 1e-12);
 /// ```
 pub fn interpolate(
     border: Vec<[f64; 3]>,
     reference: Option<Vec<[f64; 3]>>,
+    prior: &[Folding],
     motion: &Motion,
     steps: usize,
 ) -> Result<Interpolation> {
+    if !prior.is_empty() && reference.is_some() {
+        return Err(Error::InvalidArgument(
+            "with `prior` folds, `border` is the flat cloth: send no `reference`".into(),
+        ));
+    }
     let frames = match reference {
         Some(reference) => vec![reference, border],
         None => vec![border],
     };
     let prepared = prepare(frames)?;
     // prepare gives one frame per frame given: the state is the last.
-    let state = prepared.frames.last().map_or(&[][..], Vec::as_slice);
+    let given = prepared.frames.last().map_or(&[][..], Vec::as_slice);
     check_steps(steps)?;
-    let motion = motion_at(state, motion, &fractions(steps))?;
+    let (state, _) = fold_in_turn(given, prior)?;
+    let motion = motion_at(&state, motion, &fractions(steps))?;
     Ok(Interpolation { border_indices: prepared.border_indices, ..motion })
 }
 
@@ -725,20 +780,20 @@ mod tests {
     #[test]
     fn a_users_border_is_validated_as_an_analysis_validates_it() {
         let raw: Vec<[f64; 3]> = square(2).iter().map(to_xyz).collect();
-        let ok = interpolate(raw.clone(), None, &motion(), 5).unwrap();
+        let ok = interpolate(raw.clone(), None, &[], &motion(), 5).unwrap();
         assert_eq!(ok.border_indices, (0..8).collect::<Vec<_>>());
         for bad in [
             raw[..3].to_vec(),
             vec![[1.0, 2.0, 0.0]; 8],
             (0..8).map(|k| [k as f64, 2.0 * k as f64, 0.0]).collect(),
         ] {
-            let ours = interpolate(bad.clone(), None, &motion(), 5).unwrap_err();
+            let ours = interpolate(bad.clone(), None, &[], &motion(), 5).unwrap_err();
             assert_eq!(ours, prepare(vec![bad]).unwrap_err(), "the same refusal as the analysis");
         }
         // A clockwise border is walked anticlockwise, vertex 0 first, as the analysis does.
         let mut cw = raw.clone();
         cw[1..].reverse();
-        let reversed = interpolate(cw, None, &motion(), 5).unwrap();
+        let reversed = interpolate(cw, None, &[], &motion(), 5).unwrap();
         assert_eq!(reversed.border_indices, [0, 7, 6, 5, 4, 3, 2, 1]);
         assert_eq!(reversed.borders, ok.borders);
         // A square folded in half has no area of its own: against the flat one, it folds on,
@@ -747,8 +802,8 @@ mod tests {
             .iter()
             .map(to_xyz)
             .collect();
-        assert!(interpolate(half.clone(), None, &motion(), 5).is_err());
-        let on = interpolate(half.clone(), Some(raw.clone()), &motion(), 5).unwrap();
+        assert!(interpolate(half.clone(), None, &[], &motion(), 5).is_err());
+        let on = interpolate(half.clone(), Some(raw.clone()), &[], &motion(), 5).unwrap();
         assert_eq!(on.border_indices, (0..8).collect::<Vec<_>>());
         let half_points: Vec<Point> = half.iter().map(crate::border::from_xyz).collect();
         assert_eq!(
@@ -758,7 +813,7 @@ mod tests {
                 .borders
         );
         assert!(matches!(
-            interpolate(half, Some(raw[..6].to_vec()), &motion(), 5),
+            interpolate(half, Some(raw[..6].to_vec()), &[], &motion(), 5),
             Err(Error::FrameSizeMismatch { .. })
         ));
     }

@@ -39,9 +39,8 @@ use serde::Serialize;
 
 use close_core::analysis::Analysis;
 use close_core::border::{to_xyz, Point};
-use close_core::error::{Error, Result};
-use close_core::fold::apply;
-use close_core::geometry::{Arc, Fold, Folding, Line, Vector2};
+use close_core::error::Result;
+use close_core::geometry::{Arc, Folding, Line};
 use close_core::interpolate::{turn_about, Interpolation, Motion};
 use close_core::plan::{Action, Case, PlanStep};
 
@@ -165,46 +164,13 @@ pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
 /// (its `line` by default through the first arc's start and the last arc's end on the state
 /// it folds): the state they leave, and each as made.
 pub fn make(flat: &[Point], prior: &[Folding]) -> Result<(Vec<Point>, Vec<Made>)> {
-    let mut state = flat.to_vec();
-    let mut made = Vec::with_capacity(prior.len());
-    for (k, fold) in prior.iter().enumerate() {
-        let Some(span) = Fold::span(&fold.arcs) else {
-            return Err(Error::InvalidArgument(format!("prior fold {} has no arc", k + 1)));
-        };
-        if let Some(bad) = fold.arcs.iter().flat_map(|a| a.ends()).find(|a| !a.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "prior fold {}: arc angles must be finite numbers, got {bad}",
-                k + 1
-            )));
-        }
-        let line = match fold.line {
-            Some(line) => unit(line).ok_or_else(|| {
-                Error::InvalidArgument(format!(
-                    "prior fold {}: the line needs a finite point and a direction of non-zero length",
-                    k + 1
-                ))
-            })?,
-            None => span.line_on(&state, None).ok_or_else(|| {
-                Error::InvalidArgument(format!(
-                    "prior fold {}: its two points lie on top of each other: give its `line`",
-                    k + 1
-                ))
-            })?,
-        };
-        state = apply(&state, &Folding { fold: span, arcs: fold.arcs.clone(), line: Some(line) });
-        made.push(Made { line, arcs: fold.arcs.clone(), turn: 1.0 });
-    }
+    let (state, lines) = close_core::interpolate::fold_in_turn(flat, prior)?;
+    let made = prior
+        .iter()
+        .zip(lines)
+        .map(|(fold, line)| Made { line, arcs: fold.arcs.clone(), turn: 1.0 })
+        .collect();
     Ok((state, made))
-}
-
-/// `line` with a unit direction, if it is finite and has one.
-fn unit(line: Line) -> Option<Line> {
-    let length = line.direction.x.hypot(line.direction.y);
-    let finite = line.point.iter().chain(line.direction.iter()).all(|c| c.is_finite());
-    (finite && length > 0.0 && length.is_finite()).then(|| Line {
-        point: line.point,
-        direction: Vector2::new(line.direction.x / length, line.direction.y / length),
-    })
 }
 
 /// One state of a motion as drawn: the cloth's layers and heights, and the line of the fold
@@ -454,7 +420,8 @@ fn halves(piece: &[Corner], line: &Line) -> Vec<(Piece, bool)> {
 mod tests {
     use super::*;
     use close_core::angle::TAU;
-    use close_core::geometry::Point2;
+    use close_core::fold::apply;
+    use close_core::geometry::{Fold, Point2, Vector2};
 
     /// The line through `point` along `direction`.
     fn line_at(point: [f64; 2], direction: [f64; 2]) -> Line {
