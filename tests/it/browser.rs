@@ -265,6 +265,34 @@ async fn small_plan_labels(client: &Client) -> Value {
     js(client, "return [...document.querySelectorAll('#plan-list canvas')].map(c => parseFloat(c.getContext('2d').font) * c.getBoundingClientRect().width / c.width).filter(px => !(px >= 11))").await
 }
 
+/// Once a two-fold sequence has played: its last state drawn is the second fold's, turned
+/// all the way, and lies on the analysis's predicted end of `sample`.
+async fn ends_on_the_prediction(client: &Client, sample: &close::Sample) {
+    until(
+        client,
+        "the last state drawn",
+        "(f => f && f.t === 1 && f.now.fold === 2)(window.closeApp.interpolate.state().frame)",
+    )
+    .await;
+    let drawn: Vec<[f64; 3]> = serde_json::from_value(
+        js(client, "return window.closeApp.interpolate.state().drawn").await,
+    )
+    .expect("the drawn border");
+    let predicted = close::analyze(&sample.border_frames().expect("frames"), Default::default())
+        .expect("analysis")
+        .predicted_end;
+    let off = drawn
+        .iter()
+        .zip(&predicted)
+        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
+        .fold(0.0, f64::max);
+    assert!(
+        drawn.len() == predicted.len() && off < 1e-9,
+        "{}: the sequence ends {off} away from the predicted end",
+        sample.name
+    );
+}
+
 /// Choose `paths` in the upload input.
 async fn choose_files(client: &Client, paths: &[PathBuf]) {
     js(client, "document.getElementById('upload-input').value = ''").await;
@@ -801,28 +829,7 @@ async fn the_app_works_in_a_real_browser() {
     js(&client, "document.querySelector('#upload-result .interp-this').click()").await;
     until(&client, "the whole sequence chosen", "document.getElementById('interp-step').value === 'all' && [...document.getElementById('interp-step').options].some(o => o.textContent.includes('2 folds'))").await;
     client.find(Locator::Id("interp-play")).await.expect("play").click().await.expect("play");
-    until(
-        &client,
-        "the towel's last state drawn",
-        "(f => f && f.t === 1 && f.now.fold === 2)(window.closeApp.interpolate.state().frame)",
-    )
-    .await;
-    let drawn: Vec<[f64; 3]> = serde_json::from_value(
-        js(&client, "return window.closeApp.interpolate.state().drawn").await,
-    )
-    .expect("the drawn border");
-    let predicted = close::analyze(&ends.border_frames().expect("frames"), Default::default())
-        .expect("analysis")
-        .predicted_end;
-    let off = drawn
-        .iter()
-        .zip(&predicted)
-        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
-        .fold(0.0, f64::max);
-    assert!(
-        drawn.len() == predicted.len() && off < 1e-9,
-        "the towel's sequence ends {off} away from the predicted end"
-    );
+    ends_on_the_prediction(&client, &ends).await;
     screenshot(&client, &shots, "1400-06b-interpolate-flat-and-folded.png").await;
 
     // A second-fold sample: pick the step, or animate the whole sequence.
@@ -838,35 +845,11 @@ async fn the_app_works_in_a_real_browser() {
         "document.getElementById('interp-slider').value === '1000'",
     )
     .await;
-    // The last state drawn is the second fold's, turned all the way.
-    until(
-        &client,
-        "the last state drawn",
-        "(f => f && f.t === 1 && f.now.fold === 2)(window.closeApp.interpolate.state().frame)",
-    )
-    .await;
+    // The second fold, through two stacked layers, is made along the line the analysis
+    // reports, not through its two (coinciding) fold points.
+    ends_on_the_prediction(&client, &twice.sample).await;
     let readout = text(&client, "document.getElementById('interp-readout').textContent").await;
     assert!(readout.contains("fold 2 of 2"), "{readout}");
-    // The sequence ends on the analysis's predicted end: the second fold, through two
-    // stacked layers, is made along the line the analysis reports, not through its two
-    // (coinciding) fold points.
-    let drawn: Vec<[f64; 3]> = serde_json::from_value(
-        js(&client, "return window.closeApp.interpolate.state().drawn").await,
-    )
-    .expect("the drawn border");
-    let predicted =
-        close::analyze(&twice.sample.border_frames().expect("frames"), Default::default())
-            .expect("analysis")
-            .predicted_end;
-    let off = drawn
-        .iter()
-        .zip(&predicted)
-        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
-        .fold(0.0, f64::max);
-    assert!(
-        drawn.len() == predicted.len() && off < 1e-9,
-        "the sequence ends {off} away from the predicted end"
-    );
     disk_picture(&client).await;
     screenshot(&client, &shots, "1400-06-interpolate-sequence.png").await;
 
