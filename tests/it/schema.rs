@@ -32,6 +32,7 @@ const SCHEMAS: &[(&str, Generate)] = &[
     ("sample", generate::<close::Sample>),
     ("api-analysis", generate::<close::server::answer::AnalyzeAnswer<'static>>),
     ("api-plan", generate::<close::server::answer::PlanAnswer>),
+    ("api-samples", generate::<close::server::answer::SampleList<'static>>),
     ("error", generate::<close::server::answer::ErrorBody>),
 ];
 
@@ -302,6 +303,7 @@ async fn the_servers_answers_fit_their_schemas() {
     assert_fits("api-analysis", &analysis, "POST /api/analyze");
     // A listed sample's answer holds the sample.
     let rows = request(&app, "GET", "/api/samples?limit=1", None).await;
+    assert_fits("api-samples", &rows, "GET /api/samples");
     let id =
         rows["samples"][0]["id"].as_str().or_else(|| rows[0]["id"].as_str()).map(str::to_string);
     let id = id.unwrap_or_else(|| panic!("no sample id in {rows:.200}"));

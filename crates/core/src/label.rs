@@ -667,7 +667,7 @@ mod tests {
     }
 
     /// A fold turning `arcs` (border parameters of 76 vertices) over together.
-    fn of_arcs(arcs: &[[f64; 2]]) -> Folding {
+    fn turning(arcs: &[[f64; 2]]) -> Folding {
         let arcs: Vec<Arc> = arcs.iter().map(|&[a, b]| Arc::new(angle(a), angle(b))).collect();
         Folding { fold: Fold::span(&arcs).unwrap(), arcs, line: None }
     }
@@ -676,13 +676,13 @@ mod tests {
     fn sequences_read_as_a_whole_and_the_text_says_the_class() {
         // The square of 76 vertices: in half (left onto right), then its two top quarters
         // (one of each layer) down.
-        let quarters = [of_arcs(&[[47.5, 9.5]]), of_arcs(&[[28.5, 47.5], [47.5, 66.5]])];
+        let quarters = [turning(&[[47.5, 9.5]]), turning(&[[28.5, 47.5], [47.5, 66.5]])];
         // Opposite ends in (a third of the width each), then in half across.
-        let third = |a: f64, b: f64| of_arcs(&[[a, b]]);
+        let third = |a: f64, b: f64| turning(&[[a, b]]);
         let sides = [third(50.7, 6.3), third(12.7, 44.3)];
-        let sides_in_then_half = [sides[0].clone(), sides[1].clone(), of_arcs(&[[9.5, 47.5]])];
+        let sides_in_then_half = [sides[0].clone(), sides[1].clone(), turning(&[[9.5, 47.5]])];
         // One side folded, then a corner: no name for the whole.
-        let other = [third(55.0, 2.0), of_arcs(&[[12.0, 26.0]])];
+        let other = [third(55.0, 2.0), turning(&[[12.0, 26.0]])];
         let cases: [(&[Folding], SequenceClass, &str); 4] = [
             (
                 &quarters,
@@ -711,7 +711,7 @@ mod tests {
     #[test]
     fn a_multi_arc_fold_names_only_the_corners_its_arcs_turn() {
         // Two flaps, around corners 2 and 4; corner 3 lies between them and stays.
-        let l = label(76, &SQUARE, &[of_arcs(&[[12.0, 26.0], [50.0, 64.0]])]);
+        let l = label(76, &SQUARE, &[turning(&[[12.0, 26.0], [50.0, 64.0]])]);
         let fold = &l.folds[0];
         assert_eq!(fold.folded_corners, vec![2, 4]);
         assert!(fold.text.contains("Corners 2, 4 are folded"), "{}", fold.text);

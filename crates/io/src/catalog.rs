@@ -20,7 +20,7 @@
 //! deadline) is remembered, so asking again costs nothing.
 //!
 //! ```
-//! use close_io::catalog::{Catalog, Query};
+//! use close_io::catalog::{Catalog, Filter};
 //! let dir = std::env::temp_dir().join(format!("close-catalog-doc-{}", std::process::id()));
 //! std::fs::create_dir_all(&dir).unwrap();
 //! std::fs::write(dir.join("square.json"), r#"{"name": "square", "category": "napkin",
@@ -28,8 +28,7 @@
 //! std::fs::write(dir.join("broken.json"), "{").unwrap();
 //! let catalog = Catalog::open(&[dir.clone()]);
 //! assert_eq!(catalog.entries().len(), 2);
-//! let napkins =
-//!     catalog.filter(&Query { category: Some("napkin".into()), ..Query::default() }).unwrap();
+//! let napkins = catalog.filter(&Filter::new(Some("napkin"), None).unwrap());
 //! assert_eq!((napkins[0].n, napkins[0].frames), (Some(4), 1));
 //! assert!(catalog.entries().iter().any(|e| e.error.is_some()));
 //! assert_eq!(catalog.load(&napkins[0].id, &Default::default()).unwrap().name, "square");
@@ -43,7 +42,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::cache::Lru;
 use crate::error::{Error, Result};
@@ -72,6 +71,7 @@ const FRAME_FILES: [&str; 6] = ["txt", "csv", "xyz", "dat", "obj", "ply"];
 
 /// One sample of a user's dataset, as the list shows it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Entry {
     /// Unique across the catalog and safe in a URL path segment.
     pub id: String,
@@ -88,19 +88,6 @@ pub struct Entry {
     pub error: Option<String>,
 }
 
-/// Filtering and paging of the list (`?category=&q=&offset=&limit=`).
-#[derive(Debug, Clone, Default, Deserialize)]
-pub struct Query {
-    /// Exact category.
-    pub category: Option<String>,
-    /// Words (separated by white space), each found case-insensitively in the name, id or
-    /// category: at most [`MAX_QUERY_CHARS`] characters and [`MAX_QUERY_TERMS`] words.
-    pub q: Option<String>,
-    #[serde(default)]
-    pub offset: usize,
-    pub limit: Option<usize>,
-}
-
 /// Longest `q` (characters) a query may have.
 pub const MAX_QUERY_CHARS: usize = 256;
 /// Most words a `q` may have.
@@ -115,11 +102,12 @@ pub struct Filter {
     terms: Vec<String>,
 }
 
-impl Query {
-    /// The filters of this query; a `q` over [`MAX_QUERY_CHARS`] characters or
-    /// [`MAX_QUERY_TERMS`] words is refused.
-    pub fn filter(&self) -> Result<Filter> {
-        let q = self.q.as_deref().unwrap_or_default();
+impl Filter {
+    /// Rows of exactly `category` (none or empty: any) whose text holds every word of `q`
+    /// (separated by white space, found case-insensitively in the id, name or category); a
+    /// `q` over [`MAX_QUERY_CHARS`] characters or [`MAX_QUERY_TERMS`] words is refused.
+    pub fn new(category: Option<&str>, q: Option<&str>) -> Result<Filter> {
+        let q = q.unwrap_or_default();
         let chars = q.chars().count();
         if chars > MAX_QUERY_CHARS {
             return Err(Error::invalid(format!(
@@ -133,12 +121,10 @@ impl Query {
                 terms.len()
             )));
         }
-        let category = self.category.clone().filter(|c| !c.is_empty());
+        let category = category.filter(|c| !c.is_empty()).map(str::to_string);
         Ok(Filter { category, terms })
     }
-}
 
-impl Filter {
     /// What a row's words are searched in: its id, name and category, lower case.
     pub fn text(id: &str, name: &str, category: &str) -> String {
         format!("{id}\n{name}\n{category}").to_lowercase()
@@ -517,15 +503,13 @@ impl Catalog {
         self.index.get(id).map(|&k| &self.entries[k])
     }
 
-    /// The entries that pass `query`'s filters (paging is left to the caller, which may
-    /// merge other lists first); a query over its limits is refused ([`Query::filter`]).
-    pub fn filter(&self, query: &Query) -> Result<Vec<&Entry>> {
-        let filter = query.filter()?;
-        Ok(self
-            .entries
+    /// The entries that pass `filter` (paging is left to the caller, which may merge other
+    /// lists first).
+    pub fn filter(&self, filter: &Filter) -> Vec<&Entry> {
+        self.entries
             .iter()
             .filter(|e| filter.matches(&e.category, &Filter::text(&e.id, &e.name, &e.category)))
-            .collect())
+            .collect()
     }
 
     /// Load sample `id` (cached), stopping with [`close_core::Error::Cancelled`] once `deadline`
@@ -670,24 +654,17 @@ mod tests {
 
     #[test]
     fn queries_filter_by_category_and_every_word_within_their_caps() {
-        let q = Query {
-            category: Some("napkin".into()),
-            q: Some(" DIAG  half ".into()),
-            ..Query::default()
-        };
-        let f = q.filter().unwrap();
+        let f = Filter::new(Some("napkin"), Some(" DIAG  half ")).unwrap();
         let text = |id, name, category| Filter::text(id, name, category);
         assert!(f.matches("napkin", &text("d0-x", "napkin_diag_half", "napkin")));
         assert!(!f.matches("napkin", &text("d0-x", "napkin_diag", "napkin")));
         assert!(!f.matches("towel", &text("d0-x", "towel_diag_half", "towel")));
-        assert!(Query::default().filter().unwrap().matches("c", &text("a", "b", "c")));
+        assert!(Filter::new(None, None).unwrap().matches("c", &text("a", "b", "c")));
         // The caps: a 64 KB search, or nine words, is refused before any row is looked at.
-        let long = Query { q: Some("Σ".repeat(32_000)), ..Query::default() };
-        let e = long.filter().unwrap_err().to_string();
+        let e = Filter::new(None, Some(&"Σ".repeat(32_000))).unwrap_err().to_string();
         assert!(e.contains("32000 characters") && e.contains("256"), "{e}");
-        let many = Query { q: Some("a b c d e f g h i".into()), ..Query::default() };
-        assert!(many.filter().unwrap_err().to_string().contains("9 words"));
-        let most = Query { q: Some("a b c d e f g h".into()), ..Query::default() };
-        assert!(most.filter().is_ok());
+        let many = Filter::new(None, Some("a b c d e f g h i")).unwrap_err().to_string();
+        assert!(many.contains("9 words"), "{many}");
+        assert!(Filter::new(None, Some("a b c d e f g h")).is_ok());
     }
 }

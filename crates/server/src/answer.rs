@@ -69,9 +69,32 @@ pub struct ErrorBody {
     pub error: String,
 }
 
+/// `GET /api/samples`: the page of rows asked for, how many rows pass the filters, the page
+/// (`offset`, `limit`), and every category of the whole list with its row count, in
+/// first-seen order. The server writes it from rows serialised once (`listing.rs`), byte
+/// for byte as this type serialises (a test holds them together).
+#[derive(Debug, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct SampleList<'a> {
+    pub samples: Vec<&'a SampleRow>,
+    pub total: usize,
+    pub offset: usize,
+    pub limit: Option<usize>,
+    pub categories: Vec<Category<'a>>,
+}
+
+/// A category and how many rows of the whole list it holds.
+#[derive(Debug, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Category<'a> {
+    pub name: &'a str,
+    pub count: usize,
+}
+
 /// One row of `GET /api/samples`: the same fields for a built-in sample and a dataset's (a
 /// catalog entry, `source` `"builtin"` for the built-in ones), and its thumbnail's URL.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct SampleRow {
     #[serde(flatten)]
     pub entry: close_io::catalog::Entry,

@@ -9,7 +9,7 @@
 //!
 //! The work is bounded and counted: the list is built once, each row's JSON written then
 //! with its lower-case text; a query is checked against its caps first
-//! ([`close_io::catalog::Query::filter`]: 400 past them), the rows are filtered on a worker
+//! ([`close_io::catalog::Filter::new`]: 400 past them), the rows are filtered on a worker
 //! under the request's deadline, and the answer's size, known from the rows chosen, is
 //! taken from the memory budget before the answer is put together (on a worker too).
 
@@ -17,6 +17,7 @@ use std::sync::Arc;
 
 use axum::extract::State;
 use axum::response::{IntoResponse, Response};
+use serde::Deserialize;
 
 use super::answer::SampleRow;
 use super::listing::Listing;
@@ -44,11 +45,25 @@ pub(super) async fn listing(state: &AppState) -> Result<Arc<Listing>, ApiError> 
     Ok(state.0.sample_list.get_or_init(|| Arc::new(listing)).clone())
 }
 
+/// Filtering and paging of the list (`?category=&q=&offset=&limit=`).
+#[derive(Debug, Default, Deserialize)]
+pub struct SampleQuery {
+    /// Exact category.
+    category: Option<String>,
+    /// Words (separated by white space), each found case-insensitively in the name, id or
+    /// category: at most [`catalog::MAX_QUERY_CHARS`] characters and
+    /// [`catalog::MAX_QUERY_TERMS`] words.
+    q: Option<String>,
+    #[serde(default)]
+    offset: usize,
+    limit: Option<usize>,
+}
+
 pub async fn samples(
     State(state): State<AppState>,
-    AppQuery(query): AppQuery<catalog::Query>,
+    AppQuery(query): AppQuery<SampleQuery>,
 ) -> Result<Response, ApiError> {
-    let filter = query.filter()?;
+    let filter = catalog::Filter::new(query.category.as_deref(), query.q.as_deref())?;
     let (offset, limit) = (query.offset, query.limit);
     let listing = listing(&state).await?;
     let job = listing.clone();

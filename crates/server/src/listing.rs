@@ -3,18 +3,10 @@
 //! deadline, the answer's size known before it is put together.
 
 use axum::body::Bytes;
-use serde::Serialize;
 
-use crate::answer::SampleRow;
+use crate::answer::{Category, SampleRow};
 use close_core::budget::Deadline;
 use close_io::catalog::Filter;
-
-/// A category and how many rows of the whole list it holds.
-#[derive(Serialize)]
-struct Category<'a> {
-    name: &'a str,
-    count: usize,
-}
 
 /// One row of the list, ready to filter and to write.
 struct Row {
@@ -90,7 +82,7 @@ impl Listing {
         Ok(Selection { page, total, bytes })
     }
 
-    /// The answer of `selection`, `{samples, total, offset, limit, categories}`.
+    /// The answer of `selection`, [`crate::answer::SampleList`]'s JSON.
     pub(crate) fn answer(
         &self,
         selection: &Selection,
@@ -131,7 +123,7 @@ mod tests {
     use super::*;
     use close_io::catalog;
 
-    fn listing(rows: usize) -> Listing {
+    fn rows(count: usize) -> Vec<SampleRow> {
         let entry = |k: usize| close_io::catalog::Entry {
             id: format!("d0-row{k}"),
             name: format!("row {k}"),
@@ -142,19 +134,33 @@ mod tests {
             source: "test".into(),
             error: None,
         };
-        let rows: Vec<SampleRow> = (0..rows).map(|k| SampleRow::dataset(&entry(k))).collect();
-        Listing::of(&rows).unwrap()
+        (0..count).map(|k| SampleRow::dataset(&entry(k))).collect()
+    }
+
+    fn listing(count: usize) -> Listing {
+        Listing::of(&rows(count)).unwrap()
     }
 
     #[test]
     fn a_page_is_written_as_its_size_said_and_as_serde_would() {
         let listing = listing(10);
-        let query = catalog::Query { q: Some("ROW".into()), ..Default::default() };
-        let filter = query.filter().unwrap();
+        let filter = catalog::Filter::new(None, Some("ROW")).unwrap();
         let selection = listing.select(&filter, 3, Some(4), &Deadline::default()).unwrap();
         assert_eq!((selection.page.clone(), selection.total), (vec![3, 4, 5, 6], 10));
         let answer = listing.answer(&selection, 3, Some(4));
         assert!(answer.len() <= selection.bytes, "{} > {}", answer.len(), selection.bytes);
+        let rows = rows(10);
+        let typed = crate::answer::SampleList {
+            samples: rows[3..7].iter().collect(),
+            total: 10,
+            offset: 3,
+            limit: Some(4),
+            categories: vec![
+                Category { name: "even", count: 5 },
+                Category { name: "odd", count: 5 },
+            ],
+        };
+        assert_eq!(answer, serde_json::to_vec(&typed).unwrap());
         let v: serde_json::Value = serde_json::from_slice(&answer).unwrap();
         assert_eq!(v["samples"].as_array().unwrap().len(), 4);
         assert_eq!(
@@ -166,9 +172,8 @@ mod tests {
             serde_json::json!([{"name": "even", "count": 5}, {"name": "odd", "count": 5}])
         );
         assert_eq!(v["samples"][0]["name"], "row 3");
-        let odd = catalog::Query { category: Some("odd".into()), ..Default::default() };
-        let selection =
-            listing.select(&odd.filter().unwrap(), 0, None, &Deadline::default()).unwrap();
+        let odd = catalog::Filter::new(Some("odd"), None).unwrap();
+        let selection = listing.select(&odd, 0, None, &Deadline::default()).unwrap();
         assert_eq!(selection.total, 5);
         let v: serde_json::Value =
             serde_json::from_slice(&listing.answer(&selection, 0, None)).unwrap();
@@ -180,7 +185,7 @@ mod tests {
         let listing = listing(10);
         let expired = Deadline::default();
         expired.cancel();
-        let filter = catalog::Query::default().filter().unwrap();
+        let filter = catalog::Filter::new(None, None).unwrap();
         assert!(matches!(
             listing.select(&filter, 0, None, &expired),
             Err(close_core::error::Error::Cancelled)
