@@ -118,10 +118,12 @@ impl Normalisation {
         Ok(Normalisation { centroid, radius })
     }
 
+    /// `p` in normalised coordinates: moved by −centroid, scaled by 1/radius.
     pub fn apply(&self, p: &Point) -> Point {
         Point::from((p.coords - self.centroid) / self.radius)
     }
 
+    /// Every point of `points` normalised ([`Normalisation::apply`]).
     pub fn apply_all(&self, points: &[Point]) -> Vec<Point> {
         points.iter().map(|p| self.apply(p)).collect()
     }
@@ -143,10 +145,12 @@ pub struct BorderFrames {
 }
 
 impl BorderFrames {
+    /// Border vertices N of every frame.
     pub fn len(&self) -> usize {
         self.border_indices.len()
     }
 
+    /// True when the border has no vertex.
     pub fn is_empty(&self) -> bool {
         self.border_indices.is_empty()
     }

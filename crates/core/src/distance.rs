@@ -269,6 +269,7 @@ impl<'a> FoldBatch<'a> {
         self.lengths.len()
     }
 
+    /// True when it holds no sequence.
     pub fn is_empty(&self) -> bool {
         self.lengths.is_empty()
     }

@@ -63,6 +63,7 @@ pub struct Arc {
 }
 
 impl Fold {
+    /// The fold whose folded side runs anticlockwise from angle `f1` to `f2` (radians).
     pub const fn new(f1: f64, f2: f64) -> Fold {
         Fold { f1, f2 }
     }
@@ -130,6 +131,7 @@ impl From<Fold> for [f64; 2] {
 }
 
 impl Arc {
+    /// The arc walked anticlockwise from angle `a` to `b` (radians).
     pub const fn new(a: f64, b: f64) -> Arc {
         Arc { a, b }
     }

@@ -24,9 +24,10 @@ use realfft::RealFftPlanner;
 use crate::angle::wrap_pi;
 use crate::disk::{ring_angle, Disk};
 
-pub const K1: f64 = 0.1;
-pub const K2: f64 = 0.05;
-pub const K3: f64 = 0.1;
+/// The paper's k1, k2, k3 (the weights of the loss's two terms, and p2's width).
+const K1: f64 = 0.1;
+const K2: f64 = 0.05;
+const K3: f64 = 0.1;
 /// The paper's τ: the width (standard deviation, radians) of p1's Gaussian, past which a
 /// cell's angular offset from the curve stops being penalised. Not [`crate::angle::TAU`].
 pub const GAUSSIAN_WIDTH: f64 = PI / 4.0;
