@@ -13,6 +13,16 @@ use close::eval::{report, score, Report};
 use close::formats::{json::parse_sample, Sample};
 use close::{analyze, Analysis, Error, FrameRange};
 
+/// The repository's root (the `close` crate's folder).
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Whether this run rewrites the checked-in snapshots and schemas (`UPDATE_SNAPSHOTS=1`).
+pub fn updating() -> bool {
+    std::env::var_os("UPDATE_SNAPSHOTS").is_some_and(|v| !v.is_empty() && v != "0")
+}
+
 /// The built-in dataset with every sample's analysis and the evaluation they make (what
 /// `close eval --builtin` prints), computed once for every test of the binary.
 pub struct Builtin {

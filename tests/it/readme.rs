@@ -13,7 +13,7 @@ use std::process::Command;
 use close::eval::{Report, SampleResult, Stat};
 use serde_json::Value;
 
-use crate::common::builtin;
+use crate::common::{builtin, root, updating};
 
 /// A snapshot: its file name under `tests/snapshots/` and the `close eval --json` arguments
 /// that make it (paths relative to the repository).
@@ -29,16 +29,8 @@ const SNAPSHOTS: &[(&str, &[&str])] = &[
 const BEGIN: &str = "<!-- generated: ";
 const END: &str = "<!-- end generated -->";
 
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
 fn snapshot_path(name: &str) -> PathBuf {
     root().join("tests/snapshots").join(format!("{name}.json"))
-}
-
-fn updating() -> bool {
-    std::env::var_os("UPDATE_SNAPSHOTS").is_some_and(|v| !v.is_empty() && v != "0")
 }
 
 /// What `close eval --json ARGS` prints now.

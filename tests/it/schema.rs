@@ -10,7 +10,7 @@
 //! `UPDATE_SNAPSHOTS=1 cargo test --test it schema::` rewrites the schemas, for review in
 //! the diff; the stubs (`python/close/__init__.pyi`) are edited by hand.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 use axum::body::{to_bytes, Body};
@@ -19,6 +19,8 @@ use schemars::generate::SchemaSettings;
 use schemars::JsonSchema;
 use serde_json::{json, Value};
 use tower::ServiceExt;
+
+use crate::common::{root, updating};
 
 /// Makes a schema.
 type Generate = fn() -> Value;
@@ -42,16 +44,8 @@ fn generate<T: JsonSchema>() -> Value {
     serde_json::to_value(generator.into_root_schema_for::<T>()).expect("a schema is JSON")
 }
 
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
 fn schema_path(name: &str) -> PathBuf {
     root().join("schema").join(format!("{name}.json"))
-}
-
-fn updating() -> bool {
-    std::env::var_os("UPDATE_SNAPSHOTS").is_some_and(|v| !v.is_empty() && v != "0")
 }
 
 /// The checked-in schema `name`.
