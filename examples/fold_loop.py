@@ -5,16 +5,19 @@ observe the border, verify, and replan, up to a few tries.
 The physics is MuJoCo's (the PyPI package `mujoco`, unchanged): a flat 2-D flex cloth
 (triangles whose edges keep their length, as woven cloth barely stretches; contact with the
 table and with itself, friction, gravity) lying on a table. This driver only builds that scene and moves grasp points: each pick of
-the plan's first step is welded to a mocap body (an equality constraint, as a gripper
-holds), carried from where the vertex is to where the plan puts it along an arc over the
+a plan step is welded to a mocap body (equality constraints, as a gripper holds; it pinches
+every layer lying under the vertex, as a gripper closing on a folded flap does), carried
+from where the vertex is to where the plan puts it along an arc over the
 fold line (up by half the distance, smooth in time), set down, released, and the cloth is
 left to settle. Nothing in here computes a fold: the plan, the observation's folds and the
 verdict are `close.plan`, `close.analyze` and `close.verify`, the CLI's own numbers.
 
-Each try observes the border (the flex vertices on the cloth's outline, in border order),
-verifies it against the goal and, when the goal is not reached, makes the first step of the
-plan `close.verify` returns (a correction from where the cloth is, or unfold-then-fold),
-until the goal is reached or the tries run out.
+Goals are single folds and sequences (a napkin in quarters, a towel's sides in then in
+half), planned by `close.plan` in order. Each try makes every step of its plan, then
+observes the border (the flex vertices on the cloth's outline, in border order) and
+verifies it against the goal; when the goal is not reached, the next try makes the plan
+`close.verify` returns (a correction from where the cloth is, or unfold-then-fold), until
+the goal is reached or the tries run out.
 
 What it does not model: a robot arm, its reach or its collisions (a grasp point moves on
 its own); grasp slip (a held vertex stays held); the cloth's weave, anisotropy, stretch,
@@ -55,6 +58,10 @@ LOWER_S = 0.3
 SETTLE_S = 1.2
 #: The cloth's height above the table at rest (its contact radius, m).
 RADIUS = 0.003
+#: A gripper pinches every layer under it: the mesh vertices within this distance (m, in
+#: the table's plane) of the grasped one, up to PINCHED of them.
+PINCH = 0.004
+PINCHED = 6
 
 
 # ---------------------------------------------------------------------------------------------
@@ -168,11 +175,22 @@ def goals(cloth):
             "right_sleeve_in": [fold(cloth, (body, sleeve), (body, y1))],
             "corner": [fold(cloth, (body - 0.09, y0), (body, y0 + 0.09))],
         }
-    return {
+    one_fold = {
         "half": [fold(cloth, (xm, y0), (xm, y1))],
         "half_other_way": [fold(cloth, (x1, ym), (x0, ym))],
         "diagonal": [fold(cloth, (x0, y0), (x1, y1))],
         "corner": [fold(cloth, (x1 - (x1 - x0) / 3, y0), (x1, y0 + (y1 - y0) / 3))],
+    }
+    # Sequences, each fold named on the flat cloth: the planner makes them in order.
+    if cloth.name == "napkin":
+        return one_fold | {"quarters": one_fold["half"] + one_fold["half_other_way"]}
+    quarter = (x1 - x0) / 4
+    return one_fold | {
+        "sides_in_then_half": [
+            fold(cloth, (x0 + quarter, y1), (x0 + quarter, y0)),
+            fold(cloth, (x1 - quarter, y0), (x1 - quarter, y1)),
+            fold(cloth, (x1, ym), (x0, ym)),
+        ]
     }
 
 
@@ -181,11 +199,15 @@ def goals(cloth):
 
 
 def scene_xml(cloth, grips=2):
+    """The table, `grips` mocap grippers (each with PINCHED welds, off until a grasp) and the
+    cloth."""
     points = " ".join(f"{x:.5f} {y:.5f} 0" for x, y in cloth.vertices)
     elements = " ".join(" ".join(map(str, t)) for t in cloth.triangles)
     bodies = "\n".join(f'  <body name="grip{k}" mocap="true" pos="0 0 1"/>' for k in range(grips))
     welds = "\n".join(
-        f'  <connect body1="grip{k}" body2="cloth_0" anchor="0 0 0" active="false"/>' for k in range(grips)
+        f'  <connect body1="grip{k}" body2="cloth_0" anchor="0 0 0" active="false"/>'
+        for k in range(grips)
+        for _ in range(PINCHED)
     )
     return f"""
 <mujoco model="fold_loop">
@@ -231,12 +253,20 @@ class Scene:
         self.run(seconds)
 
     def grasp(self, vertices):
-        """Weld each mesh vertex to a gripper at its current position."""
+        """Close gripper k on mesh vertex vertices[k] where it is, holding every layer under
+        it (the vertices within PINCH in the table's plane), each where it lies."""
+        at = self.positions()
         for k, v in enumerate(vertices):
-            self.model.eq_obj2id[k] = self.vertex_body[v]
-            self.model.eq_data[k, :6] = 0.0
-            self.data.mocap_pos[k] = self.data.xpos[self.vertex_body[v]]
-            self.data.eq_active[k] = 1
+            self.data.mocap_pos[k] = at[v]
+            under = np.argsort(np.hypot(*(at[:, :2] - at[v, :2]).T))[:PINCHED]
+            held = [u for u in under if np.hypot(*(at[u, :2] - at[v, :2])) <= PINCH]
+            for j, u in enumerate(held):
+                weld = k * PINCHED + j
+                self.model.eq_obj2id[weld] = self.vertex_body[u]
+                # Anchored where the vertex lies relative to the gripper: held, not squeezed.
+                self.model.eq_data[weld, :6] = 0.0
+                self.model.eq_data[weld, :3] = at[u] - at[v]
+                self.data.eq_active[weld] = 1
 
     def release(self):
         self.data.eq_active[:] = 0
@@ -284,12 +314,12 @@ def run_goal(cloth, name, goal, tries):
     # Border vertex k of the frames we give `close` is mesh vertex cloth.border[k].
     to_mesh = cloth.border
     start_analysis = close.analyze(np.stack([flat, flat]))
-    plan = close.plan(start_analysis, goal[0]) if len(goal) == 1 else None
-    steps = plan["steps"] if plan else []
+    steps = close.plan(start_analysis, goal)["steps"]
     outcome = {"cloth": cloth.name, "goal": name, "folds": [list(g) for g in goal], "tries": []}
     answer = None
     for attempt in range(1, tries + 1):
-        for step in steps[:1]:
+        # A try makes every step of the plan: the goal's folds in order, or the correction.
+        for step in steps:
             make_step(scene, step, to_mesh)
         observed = scene.border()
         answer = close.verify(np.stack([flat, observed]), goal)
@@ -374,7 +404,8 @@ def summary(results, tries):
     rows = ["", f"| cloth | goals | reached within {min(2, tries)} tries | share |", "|---|---|---|---|"]
     by = {}
     for r in results:
-        by.setdefault(r["cloth"], []).append(r)
+        kind = r["cloth"] if len(r["folds"]) == 1 else f"{r['cloth']}, sequence"
+        by.setdefault(kind, []).append(r)
     total = [0, 0]
     for cloth, rs in by.items():
         ok = sum(1 for r in rs if r["reached_within"] is not None and r["reached_within"] <= 2)

@@ -89,15 +89,10 @@ enum Command {
         /// One Sample JSON, or one text/CSV file per frame.
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// The goal fold as two angles in radians, e.g. `--goal 0.5,3.6`.
-        #[arg(
-            long,
-            required = true,
-            value_delimiter = ',',
-            num_args = 1,
-            allow_hyphen_values = true
-        )]
-        goal: Vec<f64>,
+        /// The goal folds in order, each two angles in radians: `--goal 0.5,3.6` or
+        /// `--goal '0.5,3.6;1.2,4.0'` (made in order, each on the state the ones before left).
+        #[arg(long, required = true, allow_hyphen_values = true)]
+        goal: String,
         /// Print the plan as JSON instead of text.
         #[arg(long)]
         json: bool,
@@ -626,18 +621,13 @@ fn export_stores(_: &Path, _: &[PathBuf]) -> CliResult {
 /// Analyse the sample, then plan from its start border, corners and folds to `goal`;
 /// vertices are reported as input indices. `--json` prints the plan as the server and Python
 /// give it (schema/plan.json).
-fn run_plan(files: &[PathBuf], goal: &[f64], json: bool) -> CliResult {
-    let &[g1, g2] = goal else {
-        return Err(CliError::Usage(format!(
-            "--goal takes two angles f1,f2 (got {} values)",
-            goal.len()
-        )));
-    };
+fn run_plan(files: &[PathBuf], goal: &str, json: bool) -> CliResult {
+    let goal: Vec<close::Fold> = parse_goal(goal)?.into_iter().map(close::Fold::from).collect();
     let sample = load_sample(files)?;
     let frames = sample.border_frames()?;
     let analysis = analyze(&frames, FrameRange::default())?;
     // The answer of `POST /api/plan` and Python's `close.plan`: the plan and its start.
-    let plan = close::plan::answer(&analysis, close::Fold::new(g1, g2))?;
+    let plan = close::plan::answer(&analysis, &goal)?;
     if json {
         return emit(&serde_json::to_string(&plan)?);
     }

@@ -112,10 +112,11 @@ export function readout(key, step, size = 480) {
 }
 
 /** The URL of picture `name` of an analysis, for `step` (1-based) or the whole, at `size` px, as PNG or SVG. */
-export function imageUrl(key, name, { step = null, size = 480, format = "png" } = {}) {
+export function imageUrl(key, name, { step = null, size = 480, format = "png", dpi = null } = {}) {
   const query = new URLSearchParams({ size: String(size) });
   if (step) query.set("step", String(step));
   if (format !== "png") query.set("format", format);
+  if (dpi) query.set("dpi", String(dpi));
   return `/api/images/${encodeURIComponent(key)}/${name}.png?${query}`;
 }
 

@@ -19,8 +19,8 @@ const PICTURES = [
   ["diff", "|diff| with the fold's curves"],
   ["signed_diff", "Signed diff Δ"],
 ];
+const BORDERS_CAPTION = "Borders: start, end, predicted";
 const WHOLE = [
-  ["borders", "Borders: start, end, predicted"],
   ["close", "CloSE fold circle"],
   ["mesh", "Mesh from above, by height, with its border loop"],
 ];
@@ -28,15 +28,27 @@ const WHOLE = [
 /** A file name made of `parts` (letters, digits, "_", "-" and "." kept). */
 const fileName = (...parts) => parts.filter(Boolean).join("_").replace(/[^\w.-]+/g, "-");
 
-/** Links that download picture `name` as PNG (1400 px) and as SVG (the same drawing). */
+/**
+ * Links that download picture `name`: a PNG for the screen (1400 px), a PNG for print (2048 px
+ * stating 300 dpi: 6.8 inches wide, a page's width) and an SVG (the same drawing, its lines and text vector).
+ */
 function downloads(key, name, step, stem) {
   const file = fileName(stem, name, step && `step${step}`);
-  const link = (format, text) => {
-    const a = el("a", { href: imageUrl(key, name, { step, size: 1400, format }), download: `${file}.${format}`, textContent: text, className: "download" });
-    a.dataset.format = format;
+  const link = (kind, text, title, { format = kind, size = 1400, dpi = null } = {}) => {
+    const href = imageUrl(key, name, { step, size, format, dpi });
+    const a = el("a", { href, download: `${fileName(file, dpi && `${dpi}dpi`)}.${format}`, textContent: text, title, className: "download" });
+    a.dataset.format = kind;
     return a;
   };
-  return el("span", { className: "downloads small" }, link("png", "PNG"), " · ", link("svg", "SVG"));
+  return el(
+    "span",
+    { className: "downloads small" },
+    link("png", "PNG", "1400 × 1400 px, for the screen"),
+    " · ",
+    link("png-print", "PNG 300 dpi", "2048 × 2048 px at 300 dpi: 6.8 inches wide in print", { format: "png", size: 2048, dpi: 300 }),
+    " · ",
+    link("svg", "SVG", "vector: lines and text stay sharp at any size"),
+  );
 }
 
 /** A picture that opens large in the shared dialog, with its download links; `enhance(button, img)` adds to it. */
@@ -298,10 +310,14 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   const images = $(".images-slot");
   const stem = fileName(result.id || displayName || result.name);
   const cells = cellReader(result);
-  images.append(stepPictures(result, stem, cells, options));
+  // One instrument: the border plot beside the disks (on a wide screen), so the edges a
+  // hover on a disk marks on the plot are in view.
+  const borders = figure(result.key, "borders", BORDERS_CAPTION, null, stem, cells.plot);
+  borders.classList.add("instrument-borders");
+  images.append(el("div", { className: "instrument" }, stepPictures(result, stem, cells, options), borders));
   // The mesh picture is listed for mesh samples alone.
   const whole = WHOLE.filter(([name]) => name !== "mesh" || (result.images && result.images.mesh));
-  images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem, name === "borders" ? cells.plot : null))));
+  images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem))));
   const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
   images.append(el("p", { className: "small" }, jsonLink), codePanel(result, options.files));

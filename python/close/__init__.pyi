@@ -234,13 +234,14 @@ class PlanStepDict(TypedDict):
     corners: List[int]
     corner_vertices: List[int]
     picks: List[PickDict]
+    line: Optional[LineDict]
 
 class PlanDict(TypedDict):
-    """How to reach a goal fold (schema/plan.json)."""
+    """How to reach the goal folds (schema/plan.json)."""
 
     case: Literal["fold", "direct", "unfold_then_fold", "already_there"]
     steps: List[PlanStepDict]
-    goal: Pair
+    goal: List[Pair]
     folds: List[Pair]
     lines: List[Optional[LineDict]]
     corners: List[float]
@@ -453,8 +454,12 @@ def interpolate(
     fold's `arcs` turned over about `line` (an analysis step's `arcs` and `line`); `prior`:
     folds made first on the flat `border` (an analysis step's `folds` entries), in order."""
 
-def plan(sample_or_analysis: Union[Sample, Analysis, Frames], goal: Tuple[float, float]) -> PlanDict:
-    """The `POST /api/plan` answer: how to reach the goal fold from the sample's state."""
+def plan(
+    sample_or_analysis: Union[Sample, Analysis, Frames],
+    goal: Union[Tuple[float, float], Sequence[Tuple[float, float]], npt.ArrayLike],
+) -> PlanDict:
+    """The `POST /api/plan` answer: how to reach the goal from the sample's state. `goal`: one
+    fold (g1, g2) in radians, or folds made in order as a (K, 2) array-like."""
 
 FoldsLike = Union[Analysis, Dict[str, Any], Sequence[Tuple[float, float]], npt.ArrayLike]
 

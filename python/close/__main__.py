@@ -3,7 +3,7 @@ flags and its output (the same JSON objects, the same table and plan text), from
 
     python -m close analyze sample.json --json [--disks] [--start K] [--end K] [--method paper]
     python -m close eval tests/fixtures/physics [--json] [--builtin] [--method paper]
-    python -m close plan sample.json --goal 0.5,3.6 [--json]
+    python -m close plan sample.json --goal 0.5,3.6[;1.2,4.0] [--json]
 
 Errors end with ``error: …`` on stderr and exit status 1 (2 for a command line that does
 not fit), as the CLI's do. The server's input limits hold, as everywhere in ``close``.
@@ -75,10 +75,18 @@ def _eval(args: argparse.Namespace) -> None:
 
 
 def _plan(args: argparse.Namespace) -> None:
-    if len(args.goal) != 2:
-        raise _Usage(f"--goal takes two angles f1,f2 (got {len(args.goal)} values)")
+    goal = []
+    for k, fold in enumerate(f for f in args.goal.split(";") if f.strip()):
+        try:
+            angles = _angles(fold)
+        except argparse.ArgumentTypeError as e:
+            raise _Usage(f"--goal, fold {k + 1}: {e}") from None
+        if len(angles) != 2:
+            raise _Usage(f"--goal, fold {k + 1}: takes two angles f1,f2 (got {len(angles)} values)")
+        goal.append((angles[0], angles[1]))
+    if not goal:
+        raise _Usage("--goal: no fold given")
     sample = load(*args.files)
-    goal = (args.goal[0], args.goal[1])
     if args.json:
         _emit(_compact(plan(sample, goal)))
     else:
@@ -117,7 +125,7 @@ def parser() -> argparse.ArgumentParser:
 
     p = commands.add_parser("plan", help="plan how to reach a goal fold from a sample's end state")
     p.add_argument("files", nargs="+")
-    p.add_argument("--goal", type=_angles, required=True, help="the goal fold as two angles in radians, e.g. 0.5,3.6")
+    p.add_argument("--goal", required=True, help="the goal folds in order, each two angles in radians: 0.5,3.6 or '0.5,3.6;1.2,4.0'")
     p.add_argument("--json", action="store_true", help="print the plan as JSON instead of text")
     p.set_defaults(run=_plan)
     return top

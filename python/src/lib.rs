@@ -1137,22 +1137,39 @@ fn analysis_for(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Arc<Analysis
     }
 }
 
-/// How to reach the goal fold (g1, g2) (radians) from the state a sample ends in: the answer
-/// of `POST /api/plan` ({"case", "steps": [{"action", "fold", "corners", "picks"}], ...}).
-/// Takes a `close.Sample` (or frames: analysed first → last) or a `close.Analysis` (an
-/// unpickled one too: it is redone from the frames its pickle carries). Each step's
-/// `corners` are 1-based corner numbers (corner k is `Analysis.corners[k - 1]`), with the
-/// vertex of each beside them in `corner_vertices`; picks and `corner_vertices` are the
-/// input's vertex indices (through `border_indices`).
+/// The folds of a plan's goal: one fold (g1, g2), or folds in order as a (K, 2) array-like.
+fn goal_folds(goal: &Bound<'_, PyAny>) -> PyResult<Vec<Fold>> {
+    if let Ok((g1, g2)) = goal.extract::<(f64, f64)>() {
+        return Ok(vec![Fold::new(g1, g2)]);
+    }
+    let array = float_array(goal)?;
+    let view = array.as_array();
+    match *view.shape() {
+        [2] => Ok(vec![Fold::new(view[0], view[1])]),
+        [_, 2] => Ok(view.rows().into_iter().map(|r| Fold::new(r[0], r[1])).collect()),
+        ref shape => Err(invalid(format!(
+            "goal: expected one fold (g1, g2) or folds in order as a (K, 2) array, got shape {shape:?}"
+        ))),
+    }
+}
+
+/// How to reach the goal from the state a sample ends in: the answer of `POST /api/plan`
+/// ({"case", "steps": [{"action", "fold", "corners", "picks", "line"}], ...}). `goal` is one
+/// fold (g1, g2) in radians, or folds made in order as a (K, 2) array-like (each on the
+/// state the ones before it left). Takes a `close.Sample` (or frames: analysed first →
+/// last) or a `close.Analysis` (an unpickled one too: it is redone from the frames its
+/// pickle carries). Each step's `corners` are 1-based corner numbers (corner k is
+/// `Analysis.corners[k - 1]`), with the vertex of each beside them in `corner_vertices`;
+/// picks and `corner_vertices` are the input's vertex indices (through `border_indices`).
 #[pyfunction]
 fn plan<'py>(
     py: Python<'py>,
     sample_or_analysis: &Bound<'py, PyAny>,
-    goal: (f64, f64),
+    goal: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let goal = Fold::new(goal.0, goal.1);
+    let goal = goal_folds(goal)?;
     let analysis = analysis_for(py, sample_or_analysis)?;
-    let answer = close_core::plan::answer(&analysis, goal).map_err(close_error)?;
+    let answer = close_core::plan::answer(&analysis, &goal).map_err(close_error)?;
     to_python(py, &answer)
 }
 
@@ -1162,11 +1179,11 @@ fn plan<'py>(
 fn _plan_text(
     py: Python<'_>,
     sample_or_analysis: &Bound<'_, PyAny>,
-    goal: (f64, f64),
+    goal: &Bound<'_, PyAny>,
 ) -> PyResult<String> {
+    let goal = goal_folds(goal)?;
     let analysis = analysis_for(py, sample_or_analysis)?;
-    let plan =
-        close_core::plan::plan_for(&analysis, Fold::new(goal.0, goal.1)).map_err(close_error)?;
+    let plan = close_core::plan::plan_for(&analysis, &goal).map_err(close_error)?;
     Ok(plan.text())
 }
 

@@ -90,7 +90,7 @@ def test_a_bad_store_is_a_close_error():
         (np.array([SQUARE, SQUARE * np.nan]), "non-finite coordinate in frame 1, vertex 0"),
         (SQUARE[None, :3], "too few vertices"),
         (np.zeros((1, 5, 3)), "degenerate border in frame 0: all vertices coincide"),
-        (np.zeros((0, 4, 3)), "empty input"),
+        (np.zeros((0, 4, 3)), "the sample has no frame"),
         ([["a", "b", "c"]], "not an array of numbers"),
     ],
 )

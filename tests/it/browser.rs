@@ -971,9 +971,24 @@ async fn the_app_works_in_a_real_browser() {
     }
     let links = js(&client, "return [...document.querySelectorAll('#browse-result figure')].map(f => f.querySelectorAll('a.download').length)").await;
     assert!(
-        links.as_array().is_some_and(|l| l.len() == 6 && l.iter().all(|n| n == 2)),
-        "every picture has PNG and SVG links: {links}"
+        links.as_array().is_some_and(|l| l.len() == 6 && l.iter().all(|n| n == 3)),
+        "every picture has screen PNG, print PNG and SVG links: {links}"
     );
+    // Item 10: the print PNG states its resolution (pHYs: 300 dpi is 11811 pixels per metre),
+    // and the border plot's SVG is vector through and through (no embedded raster).
+    let print = client.execute_async("const a = document.querySelector('#browse-result a.download[data-format=png-print]'); fetch(a.href).then(r => r.arrayBuffer()).then(b => { const d = new DataView(b); const at = new Uint8Array(b).findIndex((c, i, u) => u[i] === 0x70 && u[i+1] === 0x48 && u[i+2] === 0x59 && u[i+3] === 0x73); arguments[0]([d.getUint32(16), at < 0 ? null : d.getUint32(at + 4)]); }).catch(e => arguments[0](String(e)))", vec![]).await.expect("the print PNG");
+    assert_eq!(print, json!([2048, 11811]), "print PNG: [width, pixels per metre]");
+    let borders_svg = client.execute_async("const a = [...document.querySelectorAll('#browse-result figure img')].find(i => i.dataset.picture === 'borders').closest('figure').querySelector('a.download[data-format=svg]'); fetch(a.href).then(r => r.text()).then(t => arguments[0]([t.includes('<image'), (t.match(/<text/g) || []).length, t.includes('>-0.0<') || t.includes('>-0<')])).catch(e => arguments[0](String(e)))", vec![]).await.expect("the border plot's SVG");
+    assert_eq!(
+        borders_svg[0],
+        json!(false),
+        "the border plot's SVG embeds no raster: {borders_svg}"
+    );
+    assert!(
+        borders_svg[1].as_u64().is_some_and(|n| n >= 8),
+        "its ticks and legend are text: {borders_svg}"
+    );
+    assert_eq!(borders_svg[2], json!(false), "no tick reads -0: {borders_svg}");
     let label_shown =
         text(&client, "document.querySelector('#browse-result .result-label').textContent").await;
     let analysis = client.execute_async("fetch(document.querySelector('#browse-result a.download-analysis').href).then(r => r.json()).then(j => arguments[0](j.label.text))", vec![]).await.expect("analysis JSON");
@@ -1568,8 +1583,19 @@ async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str
         until(client, "the window size", &format!("window.innerWidth <= {width}")).await;
         goto_view(client, base, &format!("#/samples/{mesh}")).await;
         until(client, "the mesh picture", "document.querySelector('#browse-result .images.whole img[data-picture=mesh]') !== null").await;
-        let whole = images_loaded(client, "#browse-result .images.whole img").await;
+        let whole = images_loaded(
+            client,
+            "#browse-result .images.whole img, #browse-result .instrument-borders img",
+        )
+        .await;
         assert_eq!(whole, 3, "{width} px: borders, fold circle and mesh");
+        // Issue 28 item 5: on a wide screen the border plot sits beside the disks, so the
+        // edges a hover on a disk marks are in view; on a narrow one it follows them.
+        let beside = js(client, "const d = document.querySelector('#browse-result .step-pictures .images').getBoundingClientRect(); \
+                                 const b = document.querySelector('#browse-result .instrument-borders').getBoundingClientRect(); \
+                                 return [b.left >= d.right, b.top < d.bottom]").await;
+        let wide = width >= 1380;
+        assert_eq!(beside, json!([wide, wide]), "{width} px: the border plot beside the disks");
         let shown: Vec<(String, f64)> = serde_json::from_value(js(client, "return [...document.querySelectorAll('#browse-result figure img')].map(i => [i.dataset.picture, i.getBoundingClientRect().width])").await).expect("widths");
         assert!(shown.len() >= 7, "{width} px: {shown:?}");
         for (picture, css) in &shown {
@@ -1588,8 +1614,8 @@ async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str
             inked.as_f64().unwrap_or(0.0) > 0.1,
             "{width} px: the mesh picture is nearly blank ({inked})"
         );
-        // The three whole-analysis pictures, as shown.
-        let rect = js(client, "const e = document.querySelector('#browse-result .images.whole'); e.scrollIntoView(); const r = e.getBoundingClientRect(); \
+        // The disks, the border plot and the whole-analysis pictures, as shown.
+        let rect = js(client, "const e = document.querySelector('#browse-result .images-slot'); e.scrollIntoView(); const r = e.getBoundingClientRect(); \
                                const m = 16; return { x: Math.max(0, r.left + window.scrollX - m), y: Math.max(0, r.top + window.scrollY - m), width: r.width + 2 * m, height: r.height + 2 * m, scale: 1 }").await;
         let shot = client
             .issue_cmd(DevTools(

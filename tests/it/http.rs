@@ -746,7 +746,8 @@ async fn plans_reach_the_goal_with_input_vertex_indices() {
     let far = post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [7.0, 100.0]}))
         .await
         .json();
-    let wrapped: Vec<f64> = serde_json::from_value(far["goal"].clone()).expect("the goal");
+    let wrapped: Vec<[f64; 2]> = serde_json::from_value(far["goal"].clone()).expect("the goal");
+    let wrapped = wrapped[0];
     assert!(wrapped.iter().all(|g| (0.0..std::f64::consts::TAU).contains(g)), "{wrapped:?}");
     assert!((wrapped[0] - (7.0 - std::f64::consts::TAU)).abs() < 1e-12, "{wrapped:?}");
     let there = post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": v["folds"][0]}))
@@ -774,7 +775,24 @@ async fn plans_reach_the_goal_with_input_vertex_indices() {
     assert!(post_json(&app, "/api/plan", &json!({"sample": entry.id, "goal": [1]}))
         .await
         .error(StatusCode::UNPROCESSABLE_ENTITY)
-        .contains("goal"));
+        .contains("a goal fold [g1, g2] or a list of them"));
+    // A goal of several folds is made in order; one of too many is refused.
+    use std::f64::consts::PI;
+    let flat = json!({"name": "flat", "frames": [square(8), square(8)]});
+    let quarters = json!([[0.25 * PI, 1.25 * PI], [0.75 * PI, 1.75 * PI]]);
+    let both =
+        post_json(&app, "/api/plan", &json!({"sample": flat, "goal": quarters})).await.json();
+    assert_eq!(both["case"], json!("fold"), "{both}");
+    assert_eq!(both["steps"].as_array().map(Vec::len), Some(2), "{both}");
+    assert_eq!(both["states"].as_array().map(Vec::len), Some(3), "{both}");
+    // No goal fold: the flat cloth, which this one already is.
+    let none = post_json(&app, "/api/plan", &json!({"sample": flat, "goal": []})).await.json();
+    assert_eq!(none["case"], json!("already_there"), "{none}");
+    let many = vec![[0.25 * PI, 1.25 * PI]; 100];
+    assert!(post_json(&app, "/api/plan", &json!({"sample": flat, "goal": many}))
+        .await
+        .error(StatusCode::PAYLOAD_TOO_LARGE)
+        .contains("goal folds"));
     assert_healthy(&app).await;
 }
 
@@ -1041,8 +1059,8 @@ async fn dataset_samples_are_rows_analyses_pictures_and_plans_like_built_in_ones
     let borders = get(&app, &format!("/api/images/sample:{id}/borders.png?format=svg")).await;
     let borders = String::from_utf8_lossy(&borders.body);
     assert!(
-        borders.contains(">true fold 1 (")
-            && borders.contains(">true fold 2 (")
+        borders.contains(">fold 1 (true: ")
+            && borders.contains(">fold 2 (true: ")
             && borders.matches("° off").count() == 2,
         "{}",
         &borders[borders.len().saturating_sub(3000)..]
@@ -1100,12 +1118,9 @@ async fn every_picture_is_also_an_svg_of_the_same_drawing() {
             "{name}: {}",
             &text[..text.len().min(200)]
         );
-        assert!(
-            text.contains("<text")
-                && text.contains("<polyline")
-                && text.contains("data:image/png;base64,"),
-            "{name}"
-        );
+        assert!(text.contains("<text") && text.contains("<polyline"), "{name}");
+        // The border plot is drawn in strokes and text alone (its axes too): no pixels.
+        assert_eq!(text.contains("data:image/png;base64,"), name != "borders", "{name}");
         assert_png(&app, url).await;
     }
     let thumbnail = format!("/api/images/sample:{}/thumbnail.png?format=svg", entry.id);
@@ -1116,6 +1131,13 @@ async fn every_picture_is_also_an_svg_of_the_same_drawing() {
         "{}",
         String::from_utf8_lossy(&bad.body)
     );
+    // A PNG for print states its resolution: pHYs, 300 dpi = 11811 pixels per metre.
+    let print = get(&app, &format!("/api/images/sample:{}/borders.png?dpi=300", entry.id)).await;
+    let at = print.body.windows(4).position(|w| w == b"pHYs").expect("a pHYs chunk");
+    let per_metre = u32::from_be_bytes(print.body[at + 4..at + 8].try_into().expect("4 bytes"));
+    assert_eq!(per_metre, 11811);
+    let bad = get(&app, &format!("/api/images/sample:{}/borders.png?dpi=5", entry.id)).await;
+    assert!(bad.error(StatusCode::BAD_REQUEST).contains("72 to 1200 dots per inch"));
 }
 
 #[tokio::test]

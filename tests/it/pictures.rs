@@ -354,7 +354,7 @@ fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
     )
     .expect("the border plot");
     let svg = String::from_utf8(svg).expect("text");
-    assert!(svg.contains("true fold 2 (line"), "{}", &svg[svg.len().saturating_sub(3000)..]);
+    assert!(svg.contains("fold 2 (true: line"), "{}", &svg[svg.len().saturating_sub(3000)..]);
 }
 
 /// Compare's pictures: a disk titled as asked, and the difference of two states' disks.

@@ -18,7 +18,7 @@ fn a_second_fold_through_stacked_layers_is_undone_from_the_predicted_end() {
         analysis.steps[1].detection.synthesis.as_ref().and_then(|s| s.direction).is_some(),
         "the second fold's line comes from the disks"
     );
-    let p = plan_for(&analysis, close::Fold::new(0.0, PI)).unwrap();
+    let p = plan_for(&analysis, &[close::Fold::new(0.0, PI)]).unwrap();
     assert_eq!(p.case, Case::UnfoldThenFold);
     let first = &p.steps[0];
     assert!(first.action == Action::Unfold && !first.picks.is_empty());

@@ -156,7 +156,7 @@ proptest! {
         let current: Vec<Fold> = folds.iter().enumerate().map(|(k, &u)| fold(u, (0.37 * (k + 1) as f64 + u) % 1.0)).collect();
         let goal = fold(goal_seed.0, goal_seed.1);
         let foldings: Vec<Folding> = current.iter().map(|&f| Folding::new(f)).collect();
-        let p = plan(&border, &corners, &foldings, goal).unwrap();
+        let p = plan(&border, &corners, &foldings, &[goal]).unwrap();
         let goal_state = apply(&border, &Folding::new(goal));
         match p.case {
             Case::AlreadyThere => {

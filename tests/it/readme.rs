@@ -269,13 +269,21 @@ fn fold_loop(name: &str) -> String {
             after(tries.get(1)),
         );
     }
-    let mut cloths: Vec<&str> = results.iter().filter_map(|r| r["cloth"].as_str()).collect();
-    cloths.dedup();
-    let shares: Vec<String> = cloths
+    // One-fold goals per cloth, and the sequences apart.
+    let kind = |r: &Value| {
+        let cloth = r["cloth"].as_str().unwrap_or("?");
+        match r["folds"].as_array().map(Vec::len) {
+            Some(1) => cloth.to_string(),
+            _ => format!("{cloth} sequences"),
+        }
+    };
+    let mut kinds: Vec<String> = results.iter().map(kind).collect();
+    kinds.dedup();
+    let shares: Vec<String> = kinds
         .iter()
-        .map(|c| {
-            let of: Vec<&Value> = results.iter().filter(|r| r["cloth"] == *c).collect();
-            format!("{c} {} of {}", of.iter().filter(|r| within_two(r)).count(), of.len())
+        .map(|k| {
+            let of: Vec<&Value> = results.iter().filter(|r| kind(r) == *k).collect();
+            format!("{k} {} of {}", of.iter().filter(|r| within_two(r)).count(), of.len())
         })
         .collect();
     out += &format!(
@@ -386,4 +394,28 @@ fn readme_counts_the_ignored_tests() {
         readme.contains(&sentence),
         "README.md should say \"{sentence}…\": {ignored} tests are #[ignore]d"
     );
+}
+
+/// The Upload view states the limits the library and the server's default apply.
+#[test]
+fn upload_view_states_the_limits_applied() {
+    let thousands = |n: usize| {
+        let digits = n.to_string();
+        let mut out = String::new();
+        for (k, c) in digits.chars().enumerate() {
+            if k > 0 && (digits.len() - k).is_multiple_of(3) {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    };
+    let page = std::fs::read_to_string(root().join("web/index.html")).expect("web/index.html");
+    let body_mib = close::server::Config::default().body_limit >> 20;
+    let stated = format!(
+        "Limits: {} border vertices and {} frames per sample; {body_mib} MiB per upload",
+        thousands(close::border::MAX_VERTICES),
+        thousands(close::border::MAX_FRAMES),
+    );
+    assert!(page.contains(&stated), "web/index.html should say \"{stated}\"");
 }

@@ -311,6 +311,47 @@ fn exact_sequences_from_start_and_end() {
     assert!(worst <= 0.01, "aligned RMSE {worst}");
 }
 
+/// Flat trousers (waist 1 wide, legs 2 long, the crotch halfway up) sampled `per_unit`
+/// vertices per unit of length, anticlockwise from the left leg's outer foot.
+fn trousers(per_unit: f64) -> Vec<[f64; 3]> {
+    let corners =
+        [[-0.5, -1.0], [-0.1, -1.0], [0.0, 0.0], [0.1, -1.0], [0.5, -1.0], [0.5, 1.0], [-0.5, 1.0]];
+    let mut out = Vec::new();
+    for k in 0..corners.len() {
+        let (a, b): ([f64; 2], [f64; 2]) = (corners[k], corners[(k + 1) % corners.len()]);
+        let steps = ((b[0] - a[0]).hypot(b[1] - a[1]) * per_unit).round().max(1.0) as usize;
+        for i in 0..steps {
+            let t = i as f64 / steps as f64;
+            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0]);
+        }
+    }
+    out
+}
+
+/// Issue 26 item 5: a line across both legs of flat trousers, below the crotch, crosses the
+/// border four times, and both leg ends turn over: one fold of two arcs, not one arc that
+/// also turns the crotch, nor a second fold added for a sliver. Exact reflections, placed
+/// two ways, at three heights.
+#[test]
+fn a_fold_across_both_legs_of_flat_trousers_turns_two_arcs() {
+    use std::f64::consts::PI;
+    let start = trousers(20.0);
+    for y in [-0.7, -0.5 + 0.013, -0.37] {
+        let end = fold_in_turn(&start, &[([0.0, y], PI)]);
+        for (angle, scale, shift, noise) in
+            [(0.0, 1.0, [0.0, 0.0], 0.0), (2.1, 0.3, [-4.0, 9.0], 1e-4)]
+        {
+            let frames = [&start, &end].map(|f| placed(f, angle, scale, shift, noise)).to_vec();
+            let analysis = start_and_end(&frames);
+            let m = analysis.metrics.unwrap();
+            let arcs: Vec<usize> = analysis.foldings().iter().map(|f| f.arcs.len()).collect();
+            println!("line at y = {y} (turned {angle}): arcs {arcs:?}, RMSE {:.4}", m.rmse);
+            assert_eq!(arcs, vec![2], "y = {y}: one fold of two arcs");
+            assert!(m.rmse <= 0.01 && m.aligned_rmse <= 0.01, "y = {y}: {m:?}");
+        }
+    }
+}
+
 /// A square shrunk to 40 % and jittered by a quarter of its side is no fold, nor a
 /// sequence of them: its best candidate leaves the end disk unexplained, so the step is
 /// flagged ("changed, but no fold found") and that candidate is only listed.

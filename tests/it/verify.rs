@@ -87,14 +87,18 @@ fn the_command_line_says_reached_or_what_to_do() {
     assert_eq!(v["distance"]["folds"], 0.5);
     assert_eq!(v["plan"]["case"], "unfold_then_fold");
     assert!(v["text"].as_str().unwrap().contains("grasp vertex 12"), "{}", v["text"]);
-    // A sequence of two goal folds: the second is missing, and a sequence has no plan yet.
+    // A sequence of two goal folds: the second is missing, and the plan makes it on the state
+    // the first left.
     let out = close(&["verify", SQUARE, "--goal", "0,3.141592653589793;1.5,4.0", "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(
         (v["folds"][0]["status"].as_str(), v["folds"][1]["status"].as_str()),
         (Some("found"), Some("missing"))
     );
-    assert!(v["plan"].is_null());
+    assert_eq!(v["plan"]["case"], "fold");
+    let steps = v["plan"]["steps"].as_array().expect("steps");
+    assert_eq!(steps.len(), 1, "{}", v["plan"]);
+    assert_eq!(steps[0]["fold"], serde_json::json!([1.5, 4.0]));
 }
 
 #[test]

@@ -22,7 +22,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum Error {
     /// The sample holds no frame, a frame holds no vertex, no file was given, …
-    #[error("empty input: {what}")]
+    #[error("{what}")]
     Empty { what: &'static str },
     /// Fewer vertices than a closed border needs.
     #[error("too few vertices: a border needs at least {min}, got {got}")]
@@ -43,7 +43,7 @@ pub enum Error {
     Degenerate { frame: usize, reason: DegenerateReason },
     /// An argument out of range or inconsistent (a frame that does not exist, a bad fold
     /// specification, a file type the readers do not know, …).
-    #[error("invalid argument: {0}")]
+    #[error("{0}")]
     InvalidArgument(String),
     /// A mesh could not give a border.
     #[error("mesh problem: {0}")]
@@ -161,10 +161,27 @@ struct Over<'a> {
 
 impl fmt::Display for Over<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (limit, what) = (quantity(self.limit, self.what), self.what);
         match self.got {
-            Some(got) => write!(f, "{got} {} (at most {})", self.what, self.limit),
-            None => write!(f, "more than {} {}", self.limit, self.what),
+            Some(got) if what == "bytes" => write!(f, "{} (at most {limit})", quantity(got, what)),
+            Some(got) => write!(f, "{got} {what} (at most {limit})"),
+            None if what == "bytes" => write!(f, "more than {limit}"),
+            None => write!(f, "more than {limit} {what}"),
         }
+    }
+}
+
+/// `n` as a person reads it: a byte count in B, KiB, MiB or GiB (one decimal when not
+/// whole), any other count as the number.
+fn quantity(n: u64, what: &str) -> String {
+    if what != "bytes" {
+        return n.to_string();
+    }
+    let units = [("GiB", 1u64 << 30), ("MiB", 1 << 20), ("KiB", 1 << 10)];
+    match units.iter().find(|(_, size)| n >= *size) {
+        Some((unit, size)) if n.is_multiple_of(*size) => format!("{} {unit}", n / size),
+        Some((unit, size)) => format!("{:.1} {unit}", n as f64 / *size as f64),
+        None => format!("{n} B"),
     }
 }
 

@@ -1,22 +1,28 @@
 //! Planning a fold (Kamat, Borràs, Torras, "CloSE", Sec. V, manipulation planning with the
 //! representation): which corners to grasp and where to put them.
 //!
-//! **High level.** The corners a fold moves are the corners strictly inside its folded arc
-//! (anticlockwise from f1 to f2), more than half an edge from its ends
-//! ([`crate::geometry::Arc::folds_vertex`]). If the goal fold (g1, g2) moves the same corners as the
-//! current folds together, one step moves them straight to the goal (`"direct"`);
-//! otherwise the current folds are undone, last first, and the goal is folded from the
-//! flat cloth (`"unfold_then_fold"`). From a flat cloth it is a single `"fold"`. When the
-//! cloth already is in the goal state (one current fold, within [`SAME_FOLD_EDGES`] of the
-//! goal at both ends) the plan is `"already_there"`, with no step. Goal angles are taken
-//! into [0, 2π) before anything else, and come back that way.
+//! **High level.** The goal is a sequence of folds (g1, g2), made in order, each on the state
+//! the ones before it left. The corners a fold moves are the corners strictly inside its
+//! folded arc (anticlockwise from f1 to f2), more than half an edge from its ends
+//! ([`crate::geometry::Arc::folds_vertex`]). When the cloth already is in the goal state
+//! (its folds, in order, each within [`SAME_FOLD_EDGES`] of the goal's at both ends) the
+//! plan is `"already_there"`, with no step. When its folds are the goal's first ones (a flat
+//! cloth has none), the goal's other folds are made in order (`"fold"`). If a goal of one
+//! fold moves the same corners as the current folds together, one step moves them straight
+//! to the goal (`"direct"`); otherwise the current folds are undone, last first, and the
+//! goal is folded from the flat cloth (`"unfold_then_fold"`; a goal of no fold, the flat
+//! cloth, is the unfolding alone). Goal angles are taken into
+//! [0, 2π) before anything else, and come back that way.
 //!
 //! **Low level.** A step grasps at most two of the corners it moves: of more, the pair
 //! whose quadrilateral with the fold-line end points (P1, c_a, c_b, P2, ordered so that it
 //! is simple) has the largest XY area. A folded corner goes to its reflection across the
 //! fold line (in XY, z kept); an unfolded one back to where it was. A folded side with no
 //! corner (a round cloth, a flap) is grasped at its vertex farthest from the fold line:
-//! such a pick names no corner, only the border point (its `angle`, 2πv/N).
+//! such a pick names no corner, only the border point (its `angle`, 2πv/N). Two moved
+//! corners lying on top of each other (a flap folded before) are one place to hold: the
+//! other grasp takes the folded vertex farthest from them along the line, so the two hold
+//! the flap's edge at both ends (the second fold of a napkin in quarters).
 //!
 //! All positions are in the flat border's frame: a fold line runs through the border
 //! points at its parameters (angle f ↦ parameter fN/2π) of the border it is applied to.
@@ -28,7 +34,7 @@
 //! use std::f64::consts::PI;
 //! let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];
 //! // Diagonal fold from corner 1 (vertex 0) to corner 3 (vertex 2): corner 2 goes onto corner 4.
-//! let p = plan(&square, &[0, 1, 2, 3], &[], Fold::new(0.0, PI)).unwrap();
+//! let p = plan(&square, &[0, 1, 2, 3], &[], &[Fold::new(0.0, PI)]).unwrap();
 //! assert_eq!(p.case, close_core::plan::Case::Fold);
 //! assert_eq!(p.steps[0].corners, vec![2]);
 //! let to = p.steps[0].picks[0].to;
@@ -75,7 +81,8 @@ pub enum Action {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Case {
-    /// `"fold"`: one fold of the flat cloth.
+    /// `"fold"`: the goal's folds the cloth does not hold yet, made in order (from a flat
+    /// cloth, all of them).
     Fold,
     /// `"direct"`: the goal moves the corners the current folds moved; one step.
     Direct,
@@ -122,9 +129,12 @@ pub struct PlanStep {
     pub corner_vertices: Vec<usize>,
     /// At most two grasps.
     pub picks: Vec<Pick>,
+    /// The line the step folds along (or unfolds), on the state it starts from; `None`
+    /// where the fold's two points coincide there.
+    pub line: Option<Line>,
 }
 
-/// The plan from the current state to the goal fold.
+/// The plan from the current state to the goal folds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Plan {
@@ -187,8 +197,43 @@ fn trapezoid_area(p1: &Point, a: &Point, b: &Point, p2: &Point) -> f64 {
 }
 
 /// The vertices a step grasps among `moved` (the corners it moves, or the whole folded arc
-/// when that holds no corner), folding `border` along the line through `p1`, `p2`.
-fn grasped(border: &[Point], moved: &[usize], arc: &[usize], p1: &Point, p2: &Point) -> Vec<usize> {
+/// when that holds no corner), folding `border` along `line`, the line through `p1`, `p2`
+/// unless those lie stacked. Two corners lying on top of each other (a flap folded before)
+/// are one place to hold: the other grasp goes to the folded vertex farthest from them along
+/// the line, so the two hold the flap's edge at both ends.
+fn grasped(
+    border: &[Point],
+    moved: &[usize],
+    arc: &[usize],
+    (p1, p2): (&Point, &Point),
+    line: Option<&Line>,
+) -> Vec<usize> {
+    let chosen = corners_grasped(border, moved, arc, p1, p2);
+    let mean_edge = (0..border.len())
+        .map(|k| (border[(k + 1) % border.len()] - border[k]).xy().norm())
+        .sum::<f64>()
+        / border.len() as f64;
+    match (chosen.as_slice(), line) {
+        (&[a, b], Some(line)) if (border[a] - border[b]).xy().norm() <= mean_edge => {
+            let along = |v: usize| ((border[v] - border[a]).xy().dot(&line.direction)).abs();
+            let far = arc.iter().copied().max_by(|&u, &v| along(u).total_cmp(&along(v)));
+            match far {
+                Some(v) if along(v) > mean_edge => vec![a, v],
+                _ => vec![a],
+            }
+        }
+        _ => chosen,
+    }
+}
+
+/// The corners a step grasps among `moved` (see [`grasped`]).
+fn corners_grasped(
+    border: &[Point],
+    moved: &[usize],
+    arc: &[usize],
+    p1: &Point,
+    p2: &Point,
+) -> Vec<usize> {
     match moved {
         [] => {
             // No corner: the farthest vertex from the line (ties go to the earlier vertex).
@@ -240,7 +285,7 @@ fn step(
     let arc: Vec<usize> = folding.arcs.iter().flat_map(|a| a.folded_vertices(n)).collect();
     let moved: Vec<usize> =
         folding.arcs.iter().flat_map(|&a| corners_moved(n, corners, a)).collect();
-    let picks = grasped(before, &moved, &arc, &p1, &p2)
+    let picks = grasped(before, &moved, &arc, (&p1, &p2), line.as_ref())
         .into_iter()
         .map(|v| {
             let folded = reflect(&before[v]);
@@ -264,6 +309,7 @@ fn step(
         corners: moved.iter().map(|&c| number(c)).collect(),
         corner_vertices: moved,
         picks,
+        line,
     }
 }
 
@@ -285,7 +331,7 @@ fn check_fold(name: &str, fold: Fold, n: usize) -> Result<()> {
 }
 
 /// Plan from the current state (the flat border, its corner vertices, the folds made so far
-/// in order) to the goal fold (g1, g2), all folds in angles. Each current fold turns its
+/// in order) to the goal folds (g1, g2) in order, all folds in angles. Each fold turns its
 /// arcs (a fold without any turns its own arc) over its line, by default the line through
 /// its two fold points of the state before it ([`Folding::line_on`]): a fold through two
 /// stacked layers has its two fold points (nearly) on top of each other, so the line
@@ -294,7 +340,7 @@ pub fn plan(
     flat: &[Point],
     corner_vertices: &[usize],
     current_folds: &[Folding],
-    goal: Fold,
+    goal: &[Fold],
 ) -> Result<Plan> {
     let n = flat.len();
     if n < crate::border::MIN_VERTICES {
@@ -308,8 +354,10 @@ pub fn plan(
             "corner vertex {c} does not exist (the border has {n} vertices)"
         )));
     }
-    check_fold("the goal fold", goal, n)?;
-    let goal = goal.wrapped();
+    for (k, &g) in goal.iter().enumerate() {
+        check_fold(&format!("goal fold {}", k + 1), g, n)?;
+    }
+    let goal: Vec<Fold> = goal.iter().map(|g| g.wrapped()).collect();
     for (k, f) in current_folds.iter().enumerate() {
         check_fold(&format!("current fold {}", k + 1), f.fold, n)?;
     }
@@ -323,56 +371,102 @@ pub fn plan(
     let corners: Vec<usize> =
         corner_vertices.iter().copied().collect::<BTreeSet<_>>().into_iter().collect();
     // The line of each current fold, and states[k], the border after the first k folds.
-    let mut states = vec![flat.to_vec()];
-    let mut made: Vec<Folding> = Vec::with_capacity(current_folds.len());
-    for f in &current_folds {
-        let before = states.last().expect("the flat state");
-        let along = Folding { line: f.line_on(before), ..f.clone() };
-        states.push(apply(before, &along));
-        made.push(along);
-    }
+    let (states, made) = made_in_turn(flat, current_folds.clone());
     let current = states.last().expect("the flat state");
-    if let [only] = current_folds.as_slice() {
-        let same = |a: f64, b: f64| distance(a, b) <= SAME_FOLD_EDGES * edge(n);
-        if same(only.fold.f1, goal.f1) && same(only.fold.f2, goal.f2) {
+    let same = |a: Fold, b: Fold| {
+        let close = |x: f64, y: f64| distance(x, y) <= SAME_FOLD_EDGES * edge(n);
+        close(a.f1, b.f1) && close(a.f2, b.f2)
+    };
+    let held = current_folds.len();
+    if held <= goal.len() && current_folds.iter().zip(&goal).all(|(c, &g)| same(c.fold, g)) {
+        if held == goal.len() {
             return Ok(Plan { case: Case::AlreadyThere, steps: Vec::new() });
         }
+        // The goal's first folds are made: the others follow, on the state they leave.
+        let steps = fold_in_turn(flat, &states[held], &corners, &goal[held..]);
+        return Ok(Plan { case: Case::Fold, steps });
     }
-    let goal_fold = Folding::new(goal);
-    if current_folds.is_empty() {
-        return Ok(Plan {
-            case: Case::Fold,
-            steps: vec![step(Action::Fold, flat, &corners, &goal_fold, flat)],
-        });
-    }
-    let folded_now: BTreeSet<usize> = current_folds
-        .iter()
-        .flat_map(|f| {
-            f.arcs.iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()
-        })
-        .collect();
-    let folded_by_goal: BTreeSet<usize> =
-        corners_moved(n, &corners, goal.arc()).into_iter().collect();
-    if folded_now == folded_by_goal {
-        return Ok(Plan {
-            case: Case::Direct,
-            steps: vec![step(Action::Fold, flat, &corners, &goal_fold, current)],
-        });
+    if let [only] = goal[..] {
+        let folded_now: BTreeSet<usize> = current_folds
+            .iter()
+            .flat_map(|f| {
+                f.arcs.iter().flat_map(|&a| corners_moved(n, &corners, a)).collect::<Vec<_>>()
+            })
+            .collect();
+        let folded_by_goal: BTreeSet<usize> =
+            corners_moved(n, &corners, only.arc()).into_iter().collect();
+        if folded_now == folded_by_goal {
+            return Ok(Plan {
+                case: Case::Direct,
+                steps: vec![step(Action::Fold, flat, &corners, &Folding::new(only), current)],
+            });
+        }
     }
     let mut steps: Vec<PlanStep> = (0..made.len())
         .rev()
         .map(|k| step(Action::Unfold, &states[k], &corners, &made[k], &states[k]))
         .collect();
-    steps.push(step(Action::Fold, flat, &corners, &goal_fold, flat));
+    steps.extend(fold_in_turn(flat, flat, &corners, &goal));
     Ok(Plan { case: Case::UnfoldThenFold, steps })
 }
 
-/// Plan from an analysis to the goal fold: from its start border, corners and folds (each
+/// `folds` made in turn on `flat`, each along its line on the state before it: the states
+/// (flat first) and the folds with their lines.
+fn made_in_turn(flat: &[Point], folds: Vec<Folding>) -> (Vec<Vec<Point>>, Vec<Folding>) {
+    let mut states = vec![flat.to_vec()];
+    let mut made = Vec::with_capacity(folds.len());
+    for f in folds {
+        let before = states.last().expect("the flat state");
+        let along = Folding { line: f.line_on(before), ..f };
+        states.push(apply(before, &along));
+        made.push(along);
+    }
+    (states, made)
+}
+
+/// The steps that make `goal` in order from `state`, each fold on the state the ones
+/// before it left, along [`goal_line`].
+fn fold_in_turn(
+    flat: &[Point],
+    state: &[Point],
+    corners: &[usize],
+    goal: &[Fold],
+) -> Vec<PlanStep> {
+    let mut before = state.to_vec();
+    goal.iter()
+        .map(|&g| {
+            let folding = Folding { line: goal_line(flat, &before, g), ..Folding::new(g) };
+            let made = step(Action::Fold, &before, corners, &folding, &before);
+            before = apply(&before, &folding);
+            made
+        })
+        .collect()
+}
+
+/// The line a goal fold is made along on `state`: through its two points there; where they
+/// lie stacked (within a mean edge: the fold crosses layers folded before it, as the second
+/// fold of a napkin folded in quarters does at the first crease), through them on the flat
+/// cloth, the table's frame, which the bottom layer keeps.
+fn goal_line(flat: &[Point], state: &[Point], goal: Fold) -> Option<Line> {
+    let n = flat.len();
+    let ends = |border: &[Point]| [goal.f1, goal.f2].map(|f| point_at(border, param(f, n)));
+    let mean_edge =
+        (0..n).map(|k| (flat[(k + 1) % n] - flat[k]).xy().norm()).sum::<f64>() / n as f64;
+    let [a, b] = ends(state);
+    if (a - b).xy().norm() > mean_edge {
+        Line::through(&a, &b)
+    } else {
+        let [a, b] = ends(flat);
+        Line::through(&a, &b)
+    }
+}
+
+/// Plan from an analysis to the goal folds: from its start border, corners and folds (each
 /// along the line the analysis reports for it, so the plan starts from its predicted end), with
 /// every pick's `vertex` and every step's `corner_vertices` given as indices in the
 /// analysis's INPUT (through `border_indices`: the input vertex for a border, the mesh
 /// vertex for a mesh).
-pub fn plan_for(analysis: &Analysis, goal: Fold) -> Result<Plan> {
+pub fn plan_for(analysis: &Analysis, goal: &[Fold]) -> Result<Plan> {
     // Each fold along the line the analysis made it along (its `predicted_end`).
     let mut plan =
         plan(analysis.start_border(), &analysis.corner_vertices, &analysis.foldings(), goal)?;
@@ -401,8 +495,8 @@ pub fn plan_for(analysis: &Analysis, goal: Fold) -> Result<Plan> {
 pub struct Answer {
     pub case: Case,
     pub steps: Vec<PlanStep>,
-    /// In [0, 2π), as the plan's steps.
-    pub goal: Fold,
+    /// The goal folds in order, in [0, 2π), as the plan's steps.
+    pub goal: Vec<Fold>,
     pub folds: Vec<Fold>,
     /// The line each current fold was made along (as the analysis's `steps[k].line`).
     pub lines: Vec<Option<Line>>,
@@ -412,12 +506,12 @@ pub struct Answer {
 }
 
 /// [`plan_for`] with the analysed state it starts from: the answer of `POST /api/plan`.
-pub fn answer(analysis: &Analysis, goal: Fold) -> Result<Answer> {
+pub fn answer(analysis: &Analysis, goal: &[Fold]) -> Result<Answer> {
     let plan = plan_for(analysis, goal)?;
     Ok(Answer {
         case: plan.case,
         steps: plan.steps,
-        goal: goal.wrapped(),
+        goal: goal.iter().map(|g| g.wrapped()).collect(),
         folds: analysis.folds.clone(),
         lines: analysis.foldings().iter().map(|f| f.line).collect(),
         corners: analysis.corners.clone(),
@@ -455,7 +549,7 @@ mod tests {
         goal: [f64; 2],
     ) -> Result<Plan> {
         let current: Vec<Folding> = current.iter().map(|&f| Folding::new(f.into())).collect();
-        plan(flat, corners, &current, goal.into())
+        plan(flat, corners, &current, &[goal.into()])
     }
 
     fn angle(s: f64, n: usize) -> f64 {
@@ -526,8 +620,11 @@ mod tests {
         let goal = [0.0, PI];
         let plan_of = |frames: Vec<Vec<[f64; 3]>>| {
             let frames = crate::border::prepare(frames).unwrap();
-            plan_for(&crate::analysis::analyze(&frames, Default::default()).unwrap(), goal.into())
-                .unwrap()
+            plan_for(
+                &crate::analysis::analyze(&frames, Default::default()).unwrap(),
+                &[goal.into()],
+            )
+            .unwrap()
         };
         let ccw = plan_of(vec![flat.clone(), folded.clone()]);
         let cw = plan_of(vec![reversed(&flat), reversed(&folded)]);
@@ -705,5 +802,51 @@ mod tests {
             .contains("more than one edge"));
         assert!(message(plan_folds(&sq, &[3, 99], &[], [0.0, PI])).contains("corner vertex 99"));
         assert!(message(plan_folds(&sq[..3], &[], &[], [0.0, PI])).contains("too few vertices"));
+    }
+
+    /// A goal of two folds (a square in quarters) is made in order: from flat, both folds,
+    /// the second on the state the first left, its grasped corners (on top of the stack) put
+    /// where the second fold reflects them; with the first made, the second alone; with both,
+    /// nothing; to the flat cloth (no goal fold), both unfolded, last first.
+    #[test]
+    fn a_goal_sequence_is_folded_in_order() {
+        // Corners at vertices 0, 4, 8, 12 of a 2 × 2 square centred on the origin.
+        let (flat, corners) = polygon(&[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]], 4);
+        let n = flat.len();
+        let at = |v: f64| angle(v, n);
+        // In half along x = 0 (the right half onto the left), then along y = 0 (the top onto
+        // the bottom, both layers): its points, (±1, 0) flat, lie stacked at (-1, 0).
+        let goal = [Fold::new(at(2.0), at(10.0)), Fold::new(at(6.0), at(14.0))];
+        let p = plan(&flat, &corners, &[], &goal).unwrap();
+        assert_eq!(p.case, Case::Fold);
+        assert_eq!(p.steps.len(), 2);
+        assert!(p.steps.iter().all(|s| s.action == Action::Fold));
+        // The second fold moves the two top corners, which the first stacked at (-1, 1): one
+        // grasp holds them, the other the top edge's far end at the crease, (0, 1); both go
+        // to their reflections across y = 0.
+        let mut from_x: Vec<f64> = p.steps[1].picks.iter().map(|pick| pick.from[0]).collect();
+        from_x.sort_by(f64::total_cmp);
+        assert!(from_x.len() == 2 && (from_x[0] + 1.0).abs() < 1e-9 && from_x[1].abs() < 1e-9);
+        for pick in &p.steps[1].picks {
+            assert!(
+                (pick.from[1] - 1.0).abs() < 1e-9 && (pick.to[1] + 1.0).abs() < 1e-9,
+                "{pick:?}"
+            );
+        }
+        let line = p.steps[1].line.expect("a line");
+        assert!(line.direction.y.abs() < 1e-9, "the second line runs along x: {line:?}");
+        let first = Folding::new(goal[0]);
+        let rest = plan(&flat, &corners, &[first], &goal).unwrap();
+        assert_eq!((rest.case, rest.steps.len()), (Case::Fold, 1));
+        assert_eq!(rest.steps[0].fold, goal[1]);
+        let both = [Folding::new(goal[0]), Folding::new(goal[1])];
+        assert_eq!(plan(&flat, &corners, &both, &goal).unwrap().case, Case::AlreadyThere);
+        // The flat cloth as the goal: unfold, last fold first.
+        let flatten = plan(&flat, &corners, &both, &[]).unwrap();
+        assert_eq!(flatten.case, Case::UnfoldThenFold);
+        assert!(
+            flatten.steps.iter().all(|s| s.action == Action::Unfold) && flatten.steps.len() == 2
+        );
+        assert_eq!(plan(&flat, &corners, &[], &[]).unwrap().case, Case::AlreadyThere);
     }
 }

@@ -23,8 +23,8 @@
 //! whose points lie on top of each other with no line to go by leaves the shape uncompared
 //! (`distance.geometric` is `None`): the folds alone decide.
 //!
-//! The plan is [`crate::plan::plan_for`] from the observed state to the goal, for a goal of
-//! one fold (plans of sequences come with the sequence planner); `text` says the outcome in
+//! The plan is [`crate::plan::plan_for`] from the observed state to the goal's folds in
+//! order; `text` says the outcome in
 //! one sentence: "goal reached", or the first problems and the grasps that correct them.
 //!
 //! ```
@@ -151,7 +151,7 @@ pub struct Verification {
     /// One per goal fold, in order.
     pub folds: Vec<GoalFold>,
     pub extra: Vec<ExtraFold>,
-    /// The plan from the observed state to the goal (a goal of one fold).
+    /// The plan from the observed state to the goal's folds in order.
     pub plan: Option<Plan>,
     /// Border vertex count: an edge is 2π/N.
     pub n: usize,
@@ -308,10 +308,8 @@ pub fn verify(observed: &Analysis, goal: &Goal, tolerance: Tolerance) -> Result<
     let reached = folds.iter().all(|f| f.status == Status::Found)
         && extra.is_empty()
         && geometric.is_none_or(|g| g <= tolerance.aligned_rmse);
-    let plan = match goal_folds[..] {
-        [only] => Some(plan_for(observed, only.into())?),
-        _ => None,
-    };
+    let goal_sequence: Vec<crate::Fold> = goal_folds.iter().map(|&g| g.into()).collect();
+    let plan = Some(plan_for(observed, &goal_sequence)?);
     let distance = Distance { folds: alignment.distance, geometric };
     let text = sentence(reached, &folds, &extra, distance, &tolerance, plan.as_ref());
     Ok(Verification {
@@ -537,7 +535,9 @@ mod tests {
         assert_eq!(answer.folds[1].status, Status::Missing);
         assert!(answer.text.starts_with("fold 2 is missing"), "{}", answer.text);
         assert!((answer.distance.folds - 0.5).abs() < 0.02, "{:?}", answer.distance);
-        assert!(answer.plan.is_none());
+        // The plan makes the missing fold on the state the half left.
+        let plan = answer.plan.expect("a plan");
+        assert_eq!((plan.case, plan.steps.len()), (crate::plan::Case::Fold, 1));
     }
 
     #[test]

@@ -17,16 +17,13 @@
 //! assert_eq!((x, y), ((0.0, 2.0), (-0.5, 1.5)));
 //! ```
 
-use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::axes::{self, Frame};
 use super::cloth::{across, layers, make};
 use super::raster::text_width;
 use super::truth::{agreement, true_lines, Truth};
-use super::{
-    fold_colour, label_size, line_width, note_size, plot, text_style, Canvas, INK, MUTED,
-    MUTED_TEXT, PAPER,
-};
+use super::{fold_colour, label_size, line_width, note_size, Canvas, INK, MUTED_TEXT, PAPER};
 use crate::error::Result;
 use close_core::analysis::Analysis;
 
@@ -38,11 +35,12 @@ struct Trace {
     name: &'static str,
 }
 
-/// A fold line to draw: its two ends (input XY), whether it is a true fold (dashed), its
-/// colour and legend text.
+/// A fold line to draw: its two ends (input XY), whether it is a true fold (dashed), which
+/// fold (0-based), its colour and legend text (for a true fold, how the found one agrees).
 struct FoldMark {
     ends: [[f64; 2]; 2],
     truth: bool,
+    fold: usize,
     colour: [u8; 3],
     name: String,
 }
@@ -74,6 +72,7 @@ fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
             marks.push(FoldMark {
                 ends,
                 truth: false,
+                fold: k,
                 colour: fold_colour(k),
                 name: numbered("fold", k, analysis.folds.len()),
             });
@@ -86,6 +85,7 @@ fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
             marks.push(FoldMark {
                 ends,
                 truth: true,
+                fold: k,
                 colour: fold_colour(k),
                 name: format!("{} ({error})", numbered("true fold", k, truth.folds.len())),
             });
@@ -165,6 +165,11 @@ impl Mapping {
         ([ax, self.px.0 - ax * self.x.0], [ay, self.py.1 - ay * self.y.0])
     }
 
+    /// The plotting area in pixels.
+    fn frame(&self) -> Frame {
+        Frame { left: self.px.0, right: self.px.1, top: self.py.0, bottom: self.py.1 }
+    }
+
     fn pixel(&self, p: &[f64; 3]) -> (f64, f64) {
         let fx = (p[0] - self.x.0) / (self.x.1 - self.x.0);
         let fy = (p[1] - self.y.0) / (self.y.1 - self.y.0);
@@ -183,21 +188,7 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
     let note = note_size(unit);
     let top = canvas.title_band();
     let (w, h) = (canvas.width as f64, canvas.height as f64);
-    let mut entries: Vec<Entry> = traces
-        .iter()
-        .map(|t| Entry {
-            colour: t.colour,
-            width: t.width,
-            dashed: false,
-            text: t.name.to_string(),
-        })
-        .collect();
-    entries.extend(marks.iter().map(|m| Entry {
-        colour: m.colour,
-        width: fold_width(unit, m.truth),
-        dashed: m.truth,
-        text: m.name.clone(),
-    }));
+    let entries = legend_entries(&traces, &marks, unit);
     // The metrics and the vertex-0 key: one line where it fits, else two.
     let notes = match &analysis.metrics {
         Some(m) => vec![
@@ -215,43 +206,21 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
     // The bottom margin holds the legend rows and the metrics line, outside the data.
     let row = 1.5 * note;
     let bottom = row * (legend.rows + notes.len()) as f64 + 0.6 * note;
-    let mapping = canvas.draw(|area| {
-        let body =
-            area.margin(top as i32, bottom as i32, (0.6 * label) as i32, (1.2 * label) as i32);
-        let builder = || {
-            let mut b = ChartBuilder::on(&body);
-            b.x_label_area_size((1.9 * note) as u32).y_label_area_size((3.4 * note) as u32);
-            b
-        };
-        // The plot's pixel size is known only once built: build once to measure, then for real.
-        let pixels =
-            builder().build_cartesian_2d(x.0..x.1, y.0..y.1)?.plotting_area().dim_in_pixel();
-        let (x, y) = equal_aspect(x, y, pixels);
-        let mut chart = builder().build_cartesian_2d(x.0..x.1, y.0..y.1)?;
-        chart
-            .configure_mesh()
-            .light_line_style(RGBColor(242, 242, 242))
-            .bold_line_style(RGBColor(226, 226, 226))
-            .axis_style(plot(MUTED))
-            .label_style(text_style(note, INK))
-            .x_labels(5)
-            .y_labels(5)
-            .draw()?;
-        let (px, py) = chart.plotting_area().get_pixel_range();
-        Ok(Mapping {
-            x,
-            y,
-            px: (px.start as f64, px.end as f64),
-            py: (py.start as f64, py.end as f64),
-        })
-    })?;
+    let mapping = plot_area(
+        (x, y),
+        |y| y_label_room(y, note),
+        Frame { left: 0.6 * label, right: w - 1.2 * label, top, bottom: h - bottom - 1.9 * note },
+    );
+    axes::draw(canvas, mapping.frame(), mapping.x, mapping.y, note);
     canvas.title("Borders (XY)");
     for trace in &traces {
         draw_trace(canvas, trace, &mapping);
     }
     for mark in &marks {
         let ends = mark.ends.map(|[x, y]| mapping.pixel(&[x, y, 0.0]));
-        draw_line(canvas, ends, fold_width(unit, mark.truth), mark.colour, mark.truth);
+        if let Some(ends) = axes::clip(ends, mapping.frame()) {
+            draw_line(canvas, ends, fold_width(unit, mark.truth), mark.colour, mark.truth);
+        }
     }
     let first_row = h - bottom + 0.5 * row;
     legend.draw(canvas, &entries, note, first_row, row);
@@ -260,6 +229,39 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
         canvas.text(text, (w - 0.5 * label, y), note, MUTED_TEXT, (HPos::Right, VPos::Center));
     }
     Ok(mapping)
+}
+
+/// Pixels the y tick labels of range `y` and their ticks take left of the axis.
+fn y_label_room(y: (f64, f64), size: f64) -> f64 {
+    let values = axes::ticks(y, 5);
+    let step = match values.as_slice() {
+        [a, b, ..] => b - a,
+        _ => 1.0,
+    };
+    let widest =
+        values.iter().map(|&v| text_width(&axes::tick_label(v, step), size)).fold(0.0, f64::max);
+    widest + 0.8 * size
+}
+
+/// The mapping of data ranges (`x`, `y`) onto `room` (the plot with its y labels, whose
+/// width `y_labels` gives for a y range): the plot takes what the labels leave and shows the
+/// data at equal scales, centred.
+fn plot_area(
+    (x, y): ((f64, f64), (f64, f64)),
+    y_labels: impl Fn((f64, f64)) -> f64,
+    room: Frame,
+) -> Mapping {
+    // The labels depend on the y range shown, which depends on the room they leave: settle
+    // it from the data's own range, then once more from the range shown.
+    let mut left = room.left + y_labels(y);
+    let mut shown = (x, y);
+    for _ in 0..2 {
+        let pixels =
+            ((room.right - left).max(1.0) as u32, (room.bottom - room.top).max(1.0) as u32);
+        shown = equal_aspect(x, y, pixels);
+        left = room.left + y_labels(shown.1);
+    }
+    Mapping { x: shown.0, y: shown.1, px: (left, room.right), py: (room.top, room.bottom) }
 }
 
 /// Line width of a fold line: the found one solid and wide, a true one dashed and thinner,
@@ -294,12 +296,50 @@ fn draw_line(
     }
 }
 
-/// One legend entry: a line swatch (solid or dashed) and its text.
-struct Entry {
+/// A legend's line sample: solid or dashed.
+struct Swatch {
     colour: [u8; 3],
     width: f64,
     dashed: bool,
+}
+
+/// One legend entry: its swatches side by side and its text.
+struct Entry {
+    swatches: Vec<Swatch>,
     text: String,
+}
+
+/// The legend: one entry per border, and one per fold with its true fold's dashed swatch
+/// beside it and how the two agree ("fold 1 (true: 0.3°, 0.1° off)"), so a fold and its truth
+/// take one place; a true fold nothing was found for has its own entry.
+fn legend_entries(traces: &[Trace], marks: &[FoldMark], unit: f64) -> Vec<Entry> {
+    let swatch = |m: &FoldMark| Swatch {
+        colour: m.colour,
+        width: fold_width(unit, m.truth),
+        dashed: m.truth,
+    };
+    let mut entries: Vec<Entry> = traces
+        .iter()
+        .map(|t| Entry {
+            swatches: vec![Swatch { colour: t.colour, width: t.width, dashed: false }],
+            text: t.name.to_string(),
+        })
+        .collect();
+    let found = marks.iter().filter(|m| !m.truth);
+    for mark in found.clone() {
+        let true_mark = marks.iter().find(|t| t.truth && t.fold == mark.fold);
+        let mut entry = Entry { swatches: vec![swatch(mark)], text: mark.name.clone() };
+        if let Some(t) = true_mark {
+            entry.swatches.push(swatch(t));
+            // "true fold 1 (0.3°, 0.1° off)" → "fold 1 (true: 0.3°, 0.1° off)".
+            let agreement = t.name.split_once(" (").map_or("", |(_, rest)| rest);
+            entry.text = format!("{} (true: {agreement}", mark.name);
+        }
+        entries.push(entry);
+    }
+    let unmatched = marks.iter().filter(|t| t.truth && !found.clone().any(|m| m.fold == t.fold));
+    entries.extend(unmatched.map(|t| Entry { swatches: vec![swatch(t)], text: t.name.clone() }));
+    entries
 }
 
 /// Where each legend entry goes: entries flow left to right and wrap to a new row at the
@@ -319,10 +359,8 @@ impl Legend {
         let mut places = Vec::with_capacity(entries.len());
         let (mut row, mut x) = (0, left);
         for entry in entries {
-            let wide = Self::SWATCH * size
-                + entry.width.max(2.0)
-                + 0.4 * size
-                + text_width(&entry.text, size);
+            let wide =
+                Self::swatches_width(entry, size) + 0.4 * size + text_width(&entry.text, size);
             if x > left && x + wide > right {
                 (row, x) = (row + 1, left);
             }
@@ -333,20 +371,25 @@ impl Legend {
         Legend { places, rows }
     }
 
+    /// Pixels the swatches of `entry` take, side by side a third of a text size apart.
+    fn swatches_width(entry: &Entry, size: f64) -> f64 {
+        let each = entry.swatches.iter().map(|w| Self::SWATCH * size + w.width.max(2.0));
+        each.sum::<f64>() + 0.3 * size * entry.swatches.len().saturating_sub(1) as f64
+    }
+
     /// Draw the entries, the first row's centre at `top`, rows `row` apart.
     fn draw(&self, canvas: &mut Canvas, entries: &[Entry], size: f64, top: f64, row: f64) {
         for (entry, &(r, x)) in entries.iter().zip(&self.places) {
             let y = top + r as f64 * row;
-            // A wide line's round caps reach half its width past its ends.
-            let cap = entry.width.max(2.0) / 2.0;
-            draw_line(
-                canvas,
-                [(x + cap, y), (x + cap + Self::SWATCH * size, y)],
-                entry.width.max(2.0),
-                entry.colour,
-                entry.dashed,
-            );
-            let text_x = x + Self::SWATCH * size + 2.0 * cap + 0.4 * size;
+            let mut left = x;
+            for swatch in &entry.swatches {
+                // A wide line's round caps reach half its width past its ends.
+                let cap = swatch.width.max(2.0) / 2.0;
+                let ends = [(left + cap, y), (left + cap + Self::SWATCH * size, y)];
+                draw_line(canvas, ends, swatch.width.max(2.0), swatch.colour, swatch.dashed);
+                left += Self::SWATCH * size + 2.0 * cap + 0.3 * size;
+            }
+            let text_x = x + Self::swatches_width(entry, size) + 0.4 * size;
             canvas.text(&entry.text, (text_x, y), size, INK, (HPos::Left, VPos::Center));
         }
     }

@@ -255,7 +255,8 @@ pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Resul
                 if case == Case::Direct {
                     made.clear();
                 }
-                let line = step.fold.line_on(flat, None);
+                // Along the line the plan made it along, on the state before it.
+                let line = step.line;
                 if let Some(line) = line {
                     made.push(Made { line, arcs: vec![step.fold.arc()], turn: 1.0 });
                 }

@@ -25,6 +25,7 @@
 //! assert_eq!(Picture::from_name("signed_diff"), Some(Picture::SignedDiff));
 //! ```
 
+pub mod axes;
 pub mod borders;
 pub mod circle;
 pub mod cloth;
@@ -44,7 +45,7 @@ use std::sync::OnceLock;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::text_anchor::{HPos, VPos};
 use plotters::style::{register_font, FontStyle};
 use serde::{Deserialize, Serialize};
 
@@ -446,10 +447,15 @@ impl Canvas {
 
     /// The finished picture: its PNG, or on an SVG canvas the SVG document.
     fn encode(&self) -> Result<Vec<u8>> {
-        let png = self.png()?;
         Ok(match &self.vector {
-            Some(vector) => vector.document(self.width, self.height, &png).into_bytes(),
-            None => png,
+            // Nothing but paper under the vectors: no pixels to embed.
+            Some(vector) if self.rgb.iter().all(|&c| c == 255) => {
+                vector.document(self.width, self.height, None).into_bytes()
+            }
+            Some(vector) => {
+                vector.document(self.width, self.height, Some(&self.png()?)).into_bytes()
+            }
+            None => self.png()?,
         })
     }
 
@@ -481,16 +487,6 @@ impl Canvas {
         writer.write_image_data(&self.rgb).map_err(fail)?;
         writer.finish().map_err(fail)?;
         Ok(out)
-    }
-}
-
-/// A plotters text style of `size` pixels in `colour` (chart labels only; other text goes
-/// through [`Canvas::text`]).
-fn text_style(size: f64, colour: [u8; 3]) -> TextStyle<'static> {
-    TextStyle {
-        font: (FAMILY, size).into_font(),
-        color: plot(colour).to_backend_color(),
-        pos: Pos::new(HPos::Center, VPos::Center),
     }
 }
 

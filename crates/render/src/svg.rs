@@ -6,7 +6,8 @@
 //! circles and text (DejaVu Sans, stretched with `textLength` to the width the PNG's layout
 //! gives, so a viewer without the font places every label where the PNG does). The pixels
 //! go under them as one embedded PNG of the same size, so the file scales and its text
-//! stays text.
+//! stays text; a picture with no fills (the border plot: its axes are strokes and text too)
+//! embeds no pixels at all.
 //!
 //! ```
 //! use close_render::{render, Output, Picture, View};
@@ -78,17 +79,24 @@ impl Vector {
         );
     }
 
-    /// The SVG document: the pixels (`png`, `width`×`height`) under the vector elements.
-    pub(crate) fn document(&self, width: u32, height: u32, png: &[u8]) -> String {
-        let data = base64::engine::general_purpose::STANDARD.encode(png);
+    /// The SVG document: the pixels (`png`, `width`×`height`) under the vector elements;
+    /// without pixels (a picture drawn only in strokes and text), a white background.
+    pub(crate) fn document(&self, width: u32, height: u32, png: Option<&[u8]>) -> String {
+        let under = match png {
+            Some(png) => format!(
+                r#"<image width="{width}" height="{height}" href="data:image/png;base64,{}"/>"#,
+                base64::engine::general_purpose::STANDARD.encode(png)
+            ),
+            None => format!(r##"<rect width="{width}" height="{height}" fill="#ffffff"/>"##),
+        };
         format!(
             concat!(
                 r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Verdana, sans-serif">"#,
-                r#"<image width="{w}" height="{h}" href="data:image/png;base64,{data}"/>{body}</svg>"#
+                "{under}{body}</svg>"
             ),
             w = width,
             h = height,
-            data = data,
+            under = under,
             body = self.0
         )
     }
@@ -104,9 +112,11 @@ mod tests {
         v.stroke(&[(1.0, 2.0), (3.0, 4.0)], 2.0, [255, 0, 16]);
         v.stroke(&[(5.0, 5.0)], 4.0, [0, 0, 0]);
         v.text("a < b & \"c\"", (0.0, 10.0), 12.0, 40.0, [40, 40, 40]);
-        let doc = v.document(10, 20, b"png");
+        let doc = v.document(10, 20, Some(b"png"));
         assert!(doc.contains(r##"stroke="#ff0010""##) && doc.contains(r#"r="2.00""#), "{doc}");
         assert!(doc.contains("a &lt; b &amp; &quot;c&quot;"), "{doc}");
         assert!(doc.contains(r#"viewBox="0 0 10 20""#) && doc.contains("base64,cG5n"), "{doc}");
+        let vector_only = v.document(10, 20, None);
+        assert!(!vector_only.contains("<image") && vector_only.contains("<rect"), "{vector_only}");
     }
 }

@@ -529,7 +529,13 @@ pub struct ImageQuery {
     /// `png` (the default) or `svg`: the same drawing.
     #[serde(default)]
     format: Format,
+    /// The print resolution a PNG states (dots per inch, 72–1200): a 3000 px picture at 300
+    /// dpi prints 10 inches wide.
+    dpi: Option<u32>,
 }
+
+/// Print resolutions a PNG may state, in dots per inch.
+const DPI: std::ops::RangeInclusive<u32> = 72..=1200;
 
 /// A picture's side in pixels as drawn: the request's, clamped. The cache is keyed by it,
 /// so every size past the limit is one picture, not one per number.
@@ -559,15 +565,22 @@ pub async fn image(
             names.join(".png, ")
         ))
     })?;
+    if let Some(dpi) = query.dpi.filter(|dpi| !DPI.contains(dpi)) {
+        return Err(ApiError::BadRequest(format!(
+            "dpi {dpi} is out of range: a PNG states {} to {} dots per inch",
+            DPI.start(),
+            DPI.end()
+        )));
+    }
     let drawing = drawing_by_key(&state, &key).await?;
-    let (size, step, format) = (picture_size(query.size), query.step, query.format);
+    let (size, step, format, dpi) = (picture_size(query.size), query.step, query.format, query.dpi);
     let file = state
         .cached_bytes(
-            format!("{key}/{}/{size}/{step:?}/{format:?}", picture.name()),
+            format!("{key}/{}/{size}/{step:?}/{format:?}/{dpi:?}", picture.name()),
             cells(&drawing.analysis),
             move |_| {
                 let known = Known { truth: &drawing.truth, mesh: drawing.mesh.as_ref() };
-                let output = Output { format, ..Output::png(size) };
+                let output = Output { format, dpi, ..Output::png(size) };
                 Ok(render(&drawing.analysis, &View { picture, step }, &output, known)?)
             },
         )
@@ -1119,21 +1132,40 @@ pub struct PlanRequest {
     /// A Sample JSON object, the id of a built-in sample, or the `key` of an analysis; kept
     /// raw so a sample is parsed once, on a worker.
     sample: Box<RawValue>,
-    goal: Fold,
+    goal: Goal,
 }
+
+/// A plan's goal: one fold `[g1, g2]`, or folds made in order `[[g1, g2], …]`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged, expecting = "a goal fold [g1, g2] or a list of them [[g1, g2], …]")]
+enum Goal {
+    One(Fold),
+    Sequence(Vec<Fold>),
+}
+
+/// Most folds a goal may hold: each is a step of the plan.
+const MAX_GOAL_FOLDS: usize = close_core::fold::sequence::MAX_FOLDS * 4;
 
 pub async fn plan(
     State(state): State<AppState>,
     AppJson(req): AppJson<PlanRequest>,
 ) -> Result<JsonBytes, ApiError> {
-    if !req.goal.is_finite() {
-        return Err(Error::InvalidArgument("the goal fold needs two finite angles".into()).into());
+    let goal = match req.goal {
+        Goal::One(fold) => vec![fold],
+        Goal::Sequence(folds) => folds,
+    };
+    if goal.len() > MAX_GOAL_FOLDS {
+        return Err(Error::too_large("goal folds", goal.len(), MAX_GOAL_FOLDS).into());
+    }
+    if let Some(k) = goal.iter().position(|g| !g.is_finite()) {
+        return Err(
+            Error::InvalidArgument(format!("goal fold {} needs two finite angles", k + 1)).into()
+        );
     }
     let drawing = drawing_of(&state, req.sample).await?;
-    let goal = req.goal;
     let answer = state
         .run_cpu(Lane::Light, move |_| {
-            let answer = close_core::plan::answer(&drawing.analysis, goal)?;
+            let answer = close_core::plan::answer(&drawing.analysis, &goal)?;
             let states =
                 close_render::cloth::plan_states(&drawing.analysis, answer.case, &answer.steps)?;
             to_json(&PlanAnswer { answer, states })

@@ -35,7 +35,8 @@
 //! compared with it on the order alone: each one's outline with each one's heights.
 //!
 //! **Model selection.** k folds are reported only when they explain markedly more of the end
-//! disk than k − 1 ([`MARKEDLY`], [`MIN_GAIN`]); the search runs only when the step's one
+//! disk than k − 1 ([`MARKEDLY`], [`MIN_GAIN`]): more than the best k − 1 found, and more
+//! than any k − 1 of their own (else those are the answer); the search runs only when the step's one
 //! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. A fold or sequence that
 //! leaves more than [`UNEXPLAINED`] unexplained is not a confident fold.
 //!
@@ -95,6 +96,9 @@ pub const MIN_GAIN: f64 = 0.2;
 /// A sequence (or one fold) leaving more than this share of the end disk's mismatch
 /// unexplained is not a confident fold.
 pub const UNEXPLAINED: f64 = 0.6;
+/// Two fold lines whose directions' cosine is at least this (2.6°) run along one line when
+/// they also lie within [`COINCIDE_EDGES`] mean edges of each other.
+const PARALLEL: f64 = 0.999;
 /// Alternatives listed: sequences whose mismatch is within this share of the best one's.
 const ABOUT_AS_WELL: f64 = 0.25;
 
@@ -150,6 +154,9 @@ impl Move {
                 left.into_iter().filter(|a| ArcVertices::of(n, a[0], a[1]).contains(v)).collect()
             }
         };
+        // A line clipping the border between two vertices turns nothing there.
+        let arcs: Vec<[f64; 2]> =
+            arcs.into_iter().filter(|a| ArcVertices::of(n, a[0], a[1]).len > 0).collect();
         let moved: usize = arcs.iter().map(|a| ArcVertices::of(n, a[0], a[1]).len).sum();
         (moved >= 2 && moved + 2 <= n).then_some(arcs)
     }
@@ -207,6 +214,22 @@ fn make(before: &[Point], moves: &[Move]) -> Option<(Turned, Vec<Made>)> {
 
 fn cost(probe: &Probe, before: &[Point], moves: &[Move]) -> f64 {
     make(before, moves).map_or(f64::INFINITY, |(turned, _)| probe.cost(&turned))
+}
+
+/// `made` with folds `j` and `j + 1` made as one when they run along one line, turning the
+/// same side (a multi-arc fold made as two): fold `j` turning every arc left of its line.
+fn merged(before: &[Point], made: &[Made], j: usize) -> Option<Vec<Made>> {
+    let (a, b) = (&made[j].line, &made[j + 1].line);
+    let (u, v) = (a.direction.normalize(), b.direction.normalize());
+    let apart = u.perp(&(b.point - a.point)).abs();
+    if u.dot(&v) < PARALLEL || apart > COINCIDE_EDGES * mean_edge(before) {
+        return None;
+    }
+    let state = turned(before, &made[..j], LIFT).state;
+    let mut joined = made[..j].to_vec();
+    joined.push(Made { line: *a, arcs: arcs_left_of(&state, a) });
+    joined.extend_from_slice(&made[j + 2..]);
+    Some(joined)
 }
 
 /// Every pair of `edges`.
@@ -613,21 +636,44 @@ pub fn explain(
     let arcs = single.arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect();
     let one = judge_made(&probes.judge, before, vec![Made { line, arcs }]);
     let mut left = share(one.cost);
-    let mut chosen = (one, Vec::new());
+    // The answer so far, its alternatives, and whether it is the step's own detected fold.
+    let mut chosen = (one, Vec::new(), true);
     if max_folds >= 2 && left > EXPLAINED_BY_ONE {
         for (best, others) in
             search(before, start, end, &probes, max_folds.min(MAX_FOLDS), deadline)?
         {
             let now = share(best.cost);
-            if now <= MARKEDLY * left && left - now >= MIN_GAIN {
+            if now > MARKEDLY * left || left - now < MIN_GAIN {
+                break;
+            }
+            // Its own folds less any one are a (k − 1)-fold answer too: each fold must add
+            // markedly to the others, or they are the answer (a multi-arc fold the step's
+            // one-fold search did not make, with a sliver before or after it).
+            let folds = best.made.len();
+            let dropped = (0..folds).map(|skip| {
+                (0..folds).filter(|&k| k != skip).map(|k| best.made[k].clone()).collect()
+            });
+            let joined = (0..folds - 1).filter_map(|j| merged(before, &best.made, j));
+            let fewer = dropped
+                .chain(joined)
+                .map(|made| judge_made(&probes.judge, before, made))
+                .min_by(|a, b| a.cost.total_cmp(&b.cost))
+                .expect("a sequence holds two folds or more");
+            let without_one = share(fewer.cost);
+            if now <= MARKEDLY * without_one && without_one - now >= MIN_GAIN {
                 left = now;
-                chosen = (best, others);
+                chosen = (best, others, false);
             } else {
+                // As many folds as the answer so far: the better one is kept.
+                if without_one < left {
+                    left = without_one;
+                    chosen = (fewer, Vec::new(), false);
+                }
                 break;
             }
         }
     }
-    let (best, others) = chosen;
+    let (best, others, detected) = chosen;
     let alternative = |j: &Judged| Alternative {
         folds: j.explained(&probes.judge, before, unfolded),
         explained: 1.0 - share(j.cost),
@@ -639,7 +685,7 @@ pub fn explain(
             ..StepFolds::default()
         });
     }
-    let folds = if best.made.len() == 1 {
+    let folds = if detected {
         // The step's own fold as detected (not round-tripped through border parameters).
         vec![ExplainedFold { folding: single_folding(), explained: Some(1.0 - left) }]
     } else {

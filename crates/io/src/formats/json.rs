@@ -282,7 +282,7 @@ mod tests {
             (&b""[..], "empty"),
             (b"not json", "parse"),
             (b"{\"frames\": [[[0, 0]]]}", "parse"),
-            (b"{\"name\": \"x\"}", "empty"),
+            (b"{\"name\": \"x\"}", "neither \"frames\" nor \"mesh\""),
             (b"{\"frames\": [[[0, 0, \"a\"]]]}", "parse"),
         ] {
             let err = parse_sample(doc).unwrap_err().to_string();
