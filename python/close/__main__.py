@@ -75,29 +75,21 @@ def _eval(args: argparse.Namespace) -> None:
 
 
 def _plan(args: argparse.Namespace) -> None:
+    # As the CLI reads it: folds "f1,f2" separated by ";" (none: the flat cloth).
     goal = []
     for k, fold in enumerate(f for f in args.goal.split(";") if f.strip()):
         try:
-            angles = _angles(fold)
-        except argparse.ArgumentTypeError as e:
-            raise _Usage(f"--goal, fold {k + 1}: {e}") from None
+            angles = [float(a) for a in fold.split(",")]
+        except ValueError as e:
+            raise _Usage(f"--goal, fold {k + 1}: {fold!r}: {e}") from None
         if len(angles) != 2:
-            raise _Usage(f"--goal, fold {k + 1}: takes two angles f1,f2 (got {len(angles)} values)")
+            raise _Usage(f'--goal, fold {k + 1}: "{fold}" is not two angles f1,f2')
         goal.append((angles[0], angles[1]))
-    if not goal:
-        raise _Usage("--goal: no fold given")
     sample = load(*args.files)
     if args.json:
         _emit(_compact(plan(sample, goal)))
     else:
         _emit(_close._plan_text(sample, goal))
-
-
-def _angles(text: str) -> List[float]:
-    try:
-        return [float(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"invalid angles {text!r}: expected f1,f2 in radians") from None
 
 
 def parser() -> argparse.ArgumentParser:

@@ -1137,7 +1137,8 @@ fn analysis_for(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Arc<Analysis
     }
 }
 
-/// The folds of a plan's goal: one fold (g1, g2), or folds in order as a (K, 2) array-like.
+/// The folds of a plan's goal: one fold (g1, g2), or folds in order as a (K, 2) array-like
+/// (empty: the flat cloth).
 fn goal_folds(goal: &Bound<'_, PyAny>) -> PyResult<Vec<Fold>> {
     if let Ok((g1, g2)) = goal.extract::<(f64, f64)>() {
         return Ok(vec![Fold::new(g1, g2)]);
@@ -1145,6 +1146,8 @@ fn goal_folds(goal: &Bound<'_, PyAny>) -> PyResult<Vec<Fold>> {
     let array = float_array(goal)?;
     let view = array.as_array();
     match *view.shape() {
+        // No fold: the flat cloth.
+        [0] => Ok(Vec::new()),
         [2] => Ok(vec![Fold::new(view[0], view[1])]),
         [_, 2] => Ok(view.rows().into_iter().map(|r| Fold::new(r[0], r[1])).collect()),
         ref shape => Err(invalid(format!(

@@ -52,7 +52,7 @@ def test_eval_builtin_as_the_cli():
 
 def test_plan_prints_the_clis_json_and_text():
     path = next(p for p in PHYSICS if "half" in p.stem)
-    for goal in ["0.5,3.6", "0.1,2"]:
+    for goal in ["0.5,3.6", "0.1,2", "0.5,3.6;1.2,4.0"]:
         assert py_json("plan", path, "--goal", goal, "--json") == cli_json("plan", path, "--goal", goal)
         ours, theirs = py("plan", path, "--goal", goal), cli("plan", path, "--goal", goal)
         assert ours.returncode == theirs.returncode == 0, ours.stderr
