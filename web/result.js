@@ -196,20 +196,22 @@ function cellReader(result) {
     }
     return spans.get(step);
   };
-  const borders = [result.start_border, result.end_border].filter(Boolean);
   return {
-    /** Make disk picture `name` of span `step` readable. */
+    /** Make disk picture `name` of span `step` readable; its cells' edges are marked on the border plot of the same span. */
     disk: (name, step) => (button, img) => {
       button.classList.add("readable");
-      readable(button, img, name, () => load(step), (c, data) => plot && plot.show(borders, data && data.borders, data ? data.size : 480, c));
+      readable(button, img, name, () => load(step), (c, data) => plot && plot.show(data ? data.border_frames : [], data && data.borders, data ? data.size : 480, c));
     },
     /** The border plot, on which the edges are marked. */
     plot: (button, img) => (plot = edgeOverlay(img)),
   };
 }
 
-/** The step-picture block: a choice of span and the four disk pictures of it. */
-function stepPictures(result, stem, cells, { step: wanted = null, onStep = null } = {}) {
+/**
+ * The step-picture block: a choice of span, the four disk pictures of it, and into `plotSlot`
+ * the border plot of the same span (one choice drives them all).
+ */
+function stepPictures(result, stem, cells, plotSlot, { step: wanted = null, onStep = null } = {}) {
   const block = el("div", { className: "step-pictures" });
   const grid = el("div", { className: "images" });
   const steps = result.steps || [];
@@ -218,6 +220,9 @@ function stepPictures(result, stem, cells, { step: wanted = null, onStep = null 
     // Over several steps the curves are fitted per step: the whole span shows none.
     const captionOf = (name, caption) => (name === "diff" && !step && steps.length > 1 ? "|diff| (the fold curves: see each step)" : caption);
     grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem, cells.disk(name, step))));
+    const plot = figure(result.key, "borders", BORDERS_CAPTION + suffix, step, stem, cells.plot);
+    plot.classList.add("instrument-borders");
+    plotSlot.replaceChildren(plot);
   };
   if (steps.length > 1) {
     const group = el("div", { className: "segmented", role: "radiogroup" });
@@ -312,9 +317,8 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   const cells = cellReader(result);
   // One instrument: the border plot beside the disks (on a wide screen), so the edges a
   // hover on a disk marks on the plot are in view.
-  const borders = figure(result.key, "borders", BORDERS_CAPTION, null, stem, cells.plot);
-  borders.classList.add("instrument-borders");
-  images.append(el("div", { className: "instrument" }, stepPictures(result, stem, cells, options), borders));
+  const plotSlot = el("div", { className: "instrument-plot" });
+  images.append(el("div", { className: "instrument" }, stepPictures(result, stem, cells, plotSlot, options), plotSlot));
   // The mesh picture is listed for mesh samples alone.
   const whole = WHOLE.filter(([name]) => name !== "mesh" || (result.images && result.images.mesh));
   images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem))));

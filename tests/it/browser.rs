@@ -477,7 +477,7 @@ async fn the_app_works_in_a_real_browser() {
     );
     assert!(text(&client, "document.title").await.contains(&twice.sample.name));
     // Per-step pictures: step 1 first, step 2 on demand (frame 1's disks), the whole run.
-    assert_eq!(images_loaded(&client, "#browse-result .images img").await, 6);
+    assert_eq!(images_loaded(&client, "#browse-result figure img").await, 6);
     let steps = js(&client, "return [...document.querySelectorAll('#browse-result .segmented input')].map(i => i.nextElementSibling.textContent)").await;
     assert_eq!(steps.as_array().map(Vec::len), Some(3), "all frames, step 1, step 2: {steps}");
     js(
@@ -1415,16 +1415,23 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
         .await,
         "the cell is not outlined"
     );
-    // Its two edges are marked on the border plot, on the start and end borders, and nowhere else.
+    // Its two edges are marked on the border plot of step 2 (issue 28 item 5: it follows the
+    // step), on that step's start and end borders, and nowhere else.
     let truth =
         entry.sample.truth.as_ref().map(close::render::truth::Truth::of).unwrap_or_default();
-    let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, 480)
+    let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, Some(2), 480)
         .expect("the plot's map");
     let mid = |border: &[close::border::Point], e: usize| {
         let (p, q) = (border[e], border[(e + 1) % n]);
         (plot.x[0] * (p.x + q.x) / 2.0 + plot.x[1], plot.y[0] * (p.y + q.y) / 2.0 + plot.y[1])
     };
-    for border in [analysis.start_border(), analysis.end_border()] {
+    until(
+        client,
+        "the plot of step 2",
+        "document.querySelector('#browse-result .instrument-borders img').src.includes('step=2')",
+    )
+    .await;
+    for border in [&analysis.frames[1], &analysis.frames[2]] {
         for e in [a, b] {
             assert!(
                 inked(client, "#browse-result canvas.edge-mark", mid(border, e)).await,

@@ -25,7 +25,9 @@ use super::raster::text_width;
 use super::truth::{agreement, true_lines, Truth};
 use super::{fold_colour, label_size, line_width, note_size, Canvas, INK, MUTED_TEXT, PAPER};
 use crate::error::Result;
+use crate::StepSpan;
 use close_core::analysis::Analysis;
+use std::ops::Range;
 
 /// One border to draw: vertices (x, y, z), colour, line width in pixels, legend name.
 struct Trace {
@@ -47,7 +49,7 @@ struct FoldMark {
 
 /// The found folds' lines, and the true folds' beside them with how each found fold agrees
 /// ([`super::truth`]: by its points, or for a fold of several arcs by its line and folded set).
-fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
+fn fold_marks(analysis: &Analysis, truth: &Truth, shown: &Range<usize>) -> Vec<FoldMark> {
     let numbered = |what: &str, k: usize, count: usize| {
         if count > 1 {
             format!("{what} {}", k + 1)
@@ -67,7 +69,7 @@ fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
     let true_segments: Vec<Option<[[f64; 2]; 2]>> =
         true_lines.iter().map(|(line, state)| line.as_ref().map(|l| across(state, l))).collect();
     let mut marks = Vec::new();
-    for (k, segment) in found.into_iter().enumerate() {
+    for (k, segment) in found.into_iter().enumerate().filter(|(k, _)| shown.contains(k)) {
         if let Some(ends) = segment {
             marks.push(FoldMark {
                 ends,
@@ -78,7 +80,7 @@ fn fold_marks(analysis: &Analysis, truth: &Truth) -> Vec<FoldMark> {
             });
         }
     }
-    for (k, segment) in true_segments.into_iter().enumerate() {
+    for (k, segment) in true_segments.into_iter().enumerate().filter(|(k, _)| shown.contains(k)) {
         let error = agreement(analysis, truth, k, true_lines[k].0.as_ref())
             .map_or_else(|| "not found".to_string(), |a| a.to_string());
         if let Some(ends) = segment {
@@ -105,26 +107,31 @@ pub fn equal_aspect(x: (f64, f64), y: (f64, f64), pixels: (u32, u32)) -> ((f64, 
     ((mx - half_x, mx + half_x), (my - half_y, my + half_y))
 }
 
-/// The borders of `analysis` that exist, bottom to top.
-fn traces(analysis: &Analysis, unit: f64) -> Vec<Trace> {
+/// The borders of `analysis` over `span` that exist, bottom to top: its first and last
+/// frames and what its folds predict for the last.
+fn traces(analysis: &Analysis, unit: f64, span: &StepSpan) -> Vec<Trace> {
     let array = |p: &close_core::border::Point| [p.x, p.y, p.z];
+    let (predicted, folds) = match span.step {
+        Some(k) => (&analysis.steps[k - 1].predicted, analysis.steps[k - 1].folds.len()),
+        None => (&analysis.predicted_end, analysis.folds.len()),
+    };
     let mut traces = vec![Trace {
-        points: analysis.start_border().iter().map(array).collect(),
+        points: analysis.frames[span.from].iter().map(array).collect(),
         colour: [160, 160, 160],
         width: line_width(unit, 0.004),
         name: "start",
     }];
-    if analysis.end_frame > analysis.start_frame {
+    if span.to > span.from {
         traces.push(Trace {
-            points: analysis.end_border().iter().map(array).collect(),
+            points: analysis.frames[span.to].iter().map(array).collect(),
             colour: [120, 170, 220],
             width: line_width(unit, 0.016),
             name: "end",
         });
     }
-    if !analysis.folds.is_empty() {
+    if folds > 0 {
         traces.push(Trace {
-            points: analysis.predicted_end.clone(),
+            points: predicted.clone(),
             colour: [230, 110, 20],
             width: line_width(unit, 0.005),
             name: "predicted end",
@@ -177,12 +184,19 @@ impl Mapping {
     }
 }
 
-/// Draw the border plot of `analysis`, with the `truth` folds (when known) beside the found
-/// ones; gives how it mapped data to pixels.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> Result<Mapping> {
+/// Draw the border plot of `analysis` over `step` (1-based; `None`: the whole analysis): the
+/// span's first and last frames, the prediction and the folds of the span, with the `truth`
+/// folds (when known) beside the found ones; gives how it mapped data to pixels.
+pub(crate) fn draw(
+    canvas: &mut Canvas,
+    analysis: &Analysis,
+    truth: &Truth,
+    step: Option<usize>,
+) -> Result<Mapping> {
     let unit = canvas.unit();
-    let traces = traces(analysis, unit);
-    let marks = fold_marks(analysis, truth);
+    let span = StepSpan::of(analysis, step)?;
+    let traces = traces(analysis, unit, &span);
+    let marks = fold_marks(analysis, truth, &span.folds(analysis));
     let (x, y) = bounds(&traces);
     let label = label_size(unit);
     let note = note_size(unit);
@@ -190,7 +204,11 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
     let (w, h) = (canvas.width as f64, canvas.height as f64);
     let entries = legend_entries(&traces, &marks, unit);
     // The metrics and the vertex-0 key: one line where it fits, else two.
-    let notes = match &analysis.metrics {
+    let metrics = match span.step {
+        Some(k) => Some(&analysis.steps[k - 1].metrics),
+        None => analysis.metrics.as_ref(),
+    };
+    let notes = match metrics {
         Some(m) => vec![
             format!(
                 "RMSE {:.3} · Fréchet {:.3} · aligned {:.3} (normalised)",
@@ -212,7 +230,10 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
         Frame { left: 0.6 * label, right: w - 1.2 * label, top, bottom: h - bottom - 1.9 * note },
     );
     axes::draw(canvas, mapping.frame(), mapping.x, mapping.y, note);
-    canvas.title("Borders (XY)");
+    canvas.title(&match span.step {
+        Some(k) => format!("Borders (XY) · step {k}"),
+        None => "Borders (XY)".to_string(),
+    });
     for trace in &traces {
         draw_trace(canvas, trace, &mapping);
     }
@@ -400,7 +421,10 @@ impl Legend {
 /// unreadable at this size.
 pub(crate) fn draw_thumbnail(canvas: &mut Canvas, analysis: &Analysis) {
     let unit = canvas.unit();
-    let mut traces = traces(analysis, unit);
+    let mut traces = match StepSpan::of(analysis, None) {
+        Ok(whole) => traces(analysis, unit, &whole),
+        Err(_) => return,
+    };
     // Only the data: the prediction is for the full plot.
     traces.retain(|t| t.name != "predicted end");
     for t in &mut traces {

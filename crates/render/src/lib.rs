@@ -212,9 +212,7 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
         canvas.vector = Some(svg::Vector::default());
     }
     match picture {
-        Picture::Close | Picture::Borders | Picture::Thumbnail | Picture::Mesh
-            if step.is_some() =>
-        {
+        Picture::Close | Picture::Thumbnail | Picture::Mesh if step.is_some() => {
             return Err(Error::invalid(format!(
                 "the {} picture shows the whole analysis: it takes no step",
                 picture.name()
@@ -222,7 +220,7 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
         }
         Picture::Close => circle::draw(&mut canvas, analysis, known.truth)?,
         Picture::Borders => {
-            borders::draw(&mut canvas, analysis, known.truth)?;
+            borders::draw(&mut canvas, analysis, known.truth, step)?;
         }
         Picture::Thumbnail => borders::draw_thumbnail(&mut canvas, analysis),
         Picture::Mesh => {
@@ -278,7 +276,7 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
     canvas.encode()
 }
 
-/// The frames a disk picture compares, and the step they are, if one.
+/// The frames a disk picture (or a border plot) compares, and the step they are, if one.
 struct StepSpan {
     from: usize,
     to: usize,
@@ -302,6 +300,17 @@ impl StepSpan {
             Some(k) => Err(Error::invalid(format!(
                 "step {k} does not exist: the analysis has steps 1…{steps}"
             ))),
+        }
+    }
+
+    /// The indices (in [`Analysis::foldings`] order) of the folds this span holds.
+    fn folds(&self, analysis: &Analysis) -> std::ops::Range<usize> {
+        match self.step {
+            Some(k) => {
+                let before: usize = analysis.steps[..k - 1].iter().map(|s| s.folds.len()).sum();
+                before..before + analysis.steps[k - 1].folds.len()
+            }
+            None => 0..analysis.foldings().len(),
         }
     }
 

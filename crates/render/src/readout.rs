@@ -27,6 +27,7 @@ use super::truth::Truth;
 use super::{borders, Canvas, StepSpan, MAX_SIZE, MIN_SIZE};
 use crate::error::{Error, Result};
 use close_core::analysis::Analysis;
+use close_core::border::to_xyz;
 use close_core::disk::Disk;
 
 /// Most disk values one readout sends (about 10 MB of JSON): two disks of N = 1000.
@@ -71,11 +72,17 @@ pub struct PlotTransform {
 }
 
 impl PlotTransform {
-    /// The map of the border plot of `analysis` drawn `size`×`size` (clamped as pictures are),
-    /// with the `truth` folds it draws (they take legend rows, so they move the plot).
-    pub fn of_borders(analysis: &Analysis, truth: &Truth, size: u32) -> Result<PlotTransform> {
+    /// The map of the border plot of `analysis` over `step` drawn `size`×`size` (clamped as
+    /// pictures are), with the `truth` folds it draws (they take legend rows, so they move
+    /// the plot).
+    pub fn of_borders(
+        analysis: &Analysis,
+        truth: &Truth,
+        step: Option<usize>,
+        size: u32,
+    ) -> Result<PlotTransform> {
         let mut canvas = Canvas::new(size, size)?;
-        let (x, y) = borders::draw(&mut canvas, analysis, truth)?.affine();
+        let (x, y) = borders::draw(&mut canvas, analysis, truth, step)?.affine();
         Ok(PlotTransform { x, y })
     }
 }
@@ -91,8 +98,11 @@ pub struct Readout {
     pub from_frame: usize,
     pub to_frame: usize,
     pub disk: DiskGeometry,
-    /// The border plot's map (the plot shows the whole analysis, whatever the span).
+    /// The map of the border plot of the same span.
     pub borders: PlotTransform,
+    /// The span's first and last borders (input coordinates, border order), which that plot
+    /// draws and a disk cell's edges are marked on.
+    pub border_frames: [Vec<[f64; 3]>; 2],
     /// The start disk's values, ring by ring ([`rings`]).
     pub start: Vec<f32>,
     /// The end disk's.
@@ -120,7 +130,9 @@ pub fn readout(
         from_frame: analysis.start_frame + span.from,
         to_frame: analysis.start_frame + span.to,
         disk: DiskGeometry::of(size),
-        borders: PlotTransform::of_borders(analysis, truth, size)?,
+        borders: PlotTransform::of_borders(analysis, truth, step, size)?,
+        border_frames: [span.from, span.to]
+            .map(|k| analysis.frames[k].iter().map(to_xyz).collect()),
         start: rings(&start),
         end: rings(&end),
     })
@@ -262,7 +274,7 @@ mod tests {
     fn the_border_transform_puts_vertex_0_on_its_mark() {
         let analysis = folded_square(8, [PI / 4.0, 5.0 * PI / 4.0]);
         let size = 360;
-        let t = PlotTransform::of_borders(&analysis, &Truth::default(), size).unwrap();
+        let t = PlotTransform::of_borders(&analysis, &Truth::default(), None, size).unwrap();
         let (_, _, rgb) = decode(&png(&analysis, Picture::Borders, None, (size, size)).unwrap());
         let p = analysis.start_border()[0];
         let (x, y) = (t.x[0] * p.x + t.x[1], t.y[0] * p.y + t.y[1]);
