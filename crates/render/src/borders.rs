@@ -512,11 +512,12 @@ mod tests {
         .unwrap();
         let truth = Truth::of(entry.sample.truth.as_ref().unwrap());
         assert_eq!((analysis.folds.len(), truth.folds.len()), (2, 2));
-        let marks = fold_marks(&analysis, &truth);
+        let whole = StepSpan::of(&analysis, None).unwrap();
+        let marks = fold_marks(&analysis, &truth, &whole.folds(&analysis));
         let (found, true_ones): (Vec<&FoldMark>, Vec<&FoldMark>) =
             marks.iter().partition(|m| !m.truth);
         assert_eq!((found.len(), true_ones.len()), (2, 2));
-        let size = bounds(&traces(&analysis, 480.0)).0;
+        let size = bounds(&traces(&analysis, 480.0, &whole)).0;
         let size = size.1 - size.0;
         for (k, (f, t)) in found.iter().zip(&true_ones).enumerate() {
             let off = |e: usize| {
