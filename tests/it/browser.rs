@@ -1373,13 +1373,7 @@ async fn inked(client: &Client, selector: &str, (x, y): (f64, f64)) -> bool {
 /// critical violations.
 async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> Vec<String> {
     let mut violations = Vec::new();
-    let entry = close::dataset::Dataset::builtin()
-        .get("napkin__half_then_half")
-        .expect("a second fold")
-        .clone();
-    let analysis =
-        close::analyze(&entry.sample.border_frames().expect("frames"), Default::default())
-            .expect("analysis");
+    let (entry, analysis) = crate::common::builtin().analysed("napkin__half_then_half");
     let n = analysis.n;
     // Step 2: analysed frames 1 → 2; the cell that changed most.
     let (before, after) = (analysis.disk(1).expect("frame 1"), analysis.disk(2).expect("frame 2"));
@@ -1419,7 +1413,7 @@ async fn disk_readout(client: &Client, base: &str, shots: &Path, axe: &str) -> V
     // step), on that step's start and end borders, and nowhere else.
     let truth =
         entry.sample.truth.as_ref().map(close::render::truth::Truth::of).unwrap_or_default();
-    let plot = close::render::readout::PlotTransform::of_borders(&analysis, &truth, Some(2), 480)
+    let plot = close::render::readout::PlotTransform::of_borders(analysis, &truth, Some(2), 480)
         .expect("the plot's map");
     let mid = |border: &[close::border::Point], e: usize| {
         let (p, q) = (border[e], border[(e + 1) % n]);

@@ -52,6 +52,14 @@ pub fn builtin() -> &'static Builtin {
     })
 }
 
+impl Builtin {
+    /// Built-in sample `id` and its analysis.
+    pub fn analysed(&self, id: &str) -> (&close::dataset::BuiltinSample, &Analysis) {
+        let k = self.data.entries().iter().position(|e| e.id == id).expect("a built-in sample");
+        (&self.data.entries()[k], self.analyses[k].as_ref().expect("analysed"))
+    }
+}
+
 pub fn fixture(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(path)
 }

@@ -413,17 +413,11 @@ async fn a_disk_takes_a_title_and_a_state_to_subtract() {
 #[test]
 fn the_border_plot_of_a_step_draws_that_step() {
     use close::render::{readout::readout, render, truth::Truth, Known, Output, Picture, View};
-    let entry = close::dataset::Dataset::builtin()
-        .get("napkin__half_then_half")
-        .expect("a built-in sample folded twice")
-        .clone();
-    let analysis =
-        close::analyze(&entry.sample.border_frames().expect("frames"), Default::default())
-            .expect("analysed");
+    let (_, analysis) = crate::common::builtin().analysed("napkin__half_then_half");
     assert_eq!(analysis.steps.len(), 2);
     let svg = |step| {
         let view = View { picture: Picture::Borders, step };
-        String::from_utf8(render(&analysis, &view, &Output::svg(480), Known::default()).unwrap())
+        String::from_utf8(render(analysis, &view, &Output::svg(480), Known::default()).unwrap())
             .expect("text")
     };
     let (whole, first, second) = (svg(None), svg(Some(1)), svg(Some(2)));
@@ -432,8 +426,8 @@ fn the_border_plot_of_a_step_draws_that_step() {
     assert!(!first.contains(">fold 2<"), "step 1 draws its own fold alone");
     assert!(second.contains(">fold 2<") && !second.contains(">fold 1<"));
     let view = View { picture: Picture::Borders, step: Some(3) };
-    assert!(render(&analysis, &view, &Output::svg(480), Known::default()).is_err());
-    let r = readout(&analysis, &Truth::default(), Some(2), 480).expect("a readout");
+    assert!(render(analysis, &view, &Output::svg(480), Known::default()).is_err());
+    let r = readout(analysis, &Truth::default(), Some(2), 480).expect("a readout");
     let frame = |k: usize| analysis.frames[k].iter().map(close::border::to_xyz).collect::<Vec<_>>();
     assert_eq!(r.border_frames, [frame(1), frame(2)]);
 }
