@@ -355,6 +355,16 @@ fn a_multi_arc_fold_is_compared_with_its_truth_by_line_and_folded_set() {
     .expect("the border plot");
     let svg = String::from_utf8(svg).expect("text");
     assert!(svg.contains("fold 2 (true: line"), "{}", &svg[svg.len().saturating_sub(3000)..]);
+    // Every text stays inside the picture: a legend entry too long for a row is broken into
+    // lines (it ran off the right edge).
+    for text in svg.split("<text ").skip(1) {
+        let attr = |name: &str| -> f64 {
+            let start = text.find(&format!("{name}=\"")).expect("the attribute") + name.len() + 2;
+            text[start..].split('"').next().and_then(|v| v.parse().ok()).expect("a number")
+        };
+        let (x, length) = (attr("x"), attr("textLength"));
+        assert!(x >= 0.0 && x + length <= 480.5, "a text runs off the picture: {text:.120}");
+    }
 }
 
 /// Compare's pictures: a disk titled as asked, and the difference of two states' disks.

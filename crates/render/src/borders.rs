@@ -364,10 +364,13 @@ fn legend_entries(traces: &[Trace], marks: &[FoldMark], unit: f64) -> Vec<Entry>
 }
 
 /// Where each legend entry goes: entries flow left to right and wrap to a new row at the
-/// right edge.
+/// right edge; an entry too long for a row of its own is broken into lines between words,
+/// and takes as many rows.
 struct Legend {
     /// (row, left x) of each entry.
     places: Vec<(usize, f64)>,
+    /// Each entry's text, line by line.
+    lines: Vec<Vec<String>>,
     rows: usize,
 }
 
@@ -377,19 +380,23 @@ impl Legend {
 
     /// Lay `entries` out in text of `size` between `left` and `right` (pixels).
     fn lay_out(entries: &[Entry], size: f64, (left, right): (f64, f64)) -> Legend {
-        let mut places = Vec::with_capacity(entries.len());
-        let (mut row, mut x) = (0, left);
+        let (mut places, mut lines) = (Vec::new(), Vec::new());
+        let (mut row, mut x, mut tall) = (0, left, 1);
         for entry in entries {
-            let wide =
-                Self::swatches_width(entry, size) + 0.4 * size + text_width(&entry.text, size);
-            if x > left && x + wide > right {
-                (row, x) = (row + 1, left);
+            let lead = Self::swatches_width(entry, size) + 0.4 * size;
+            let text = wrap(&entry.text, size, right - left - lead);
+            let wide = lead + text.iter().map(|l| text_width(l, size)).fold(0.0, f64::max);
+            if x > left && (x + wide > right || text.len() > 1 || tall > 1) {
+                (row, x) = (row + tall, left);
+                tall = 1;
             }
             places.push((row, x));
+            tall = tall.max(text.len());
+            lines.push(text);
             x += wide + 1.2 * size;
         }
-        let rows = places.last().map_or(0, |&(r, _)| r + 1);
-        Legend { places, rows }
+        let rows = if places.is_empty() { 0 } else { row + tall };
+        Legend { places, lines, rows }
     }
 
     /// Pixels the swatches of `entry` take, side by side a third of a text size apart.
@@ -400,7 +407,7 @@ impl Legend {
 
     /// Draw the entries, the first row's centre at `top`, rows `row` apart.
     fn draw(&self, canvas: &mut Canvas, entries: &[Entry], size: f64, top: f64, row: f64) {
-        for (entry, &(r, x)) in entries.iter().zip(&self.places) {
+        for ((entry, &(r, x)), text) in entries.iter().zip(&self.places).zip(&self.lines) {
             let y = top + r as f64 * row;
             let mut left = x;
             for swatch in &entry.swatches {
@@ -411,9 +418,28 @@ impl Legend {
                 left += Self::SWATCH * size + 2.0 * cap + 0.3 * size;
             }
             let text_x = x + Self::swatches_width(entry, size) + 0.4 * size;
-            canvas.text(&entry.text, (text_x, y), size, INK, (HPos::Left, VPos::Center));
+            for (k, line) in text.iter().enumerate() {
+                let at = (text_x, y + k as f64 * row);
+                canvas.text(line, at, size, INK, (HPos::Left, VPos::Center));
+            }
         }
     }
+}
+
+/// `text` in lines at most `width` pixels wide in text of `size`, broken between words (a
+/// word wider than that alone on its line).
+fn wrap(text: &str, size: f64, width: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(line) if text_width(&format!("{line} {word}"), size) <= width => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
 }
 
 /// A mini drawing for a list of samples: the start border thin grey, the end border thick
@@ -547,6 +573,15 @@ mod tests {
         let (with, without) = (picture(&truth), picture(&Truth::default()));
         assert_ne!(with, without, "the truth draws nothing");
         super::super::tests::preview("borders_truth.png", &with);
+    }
+
+    #[test]
+    fn long_legend_texts_break_between_words() {
+        let text = "fold (true: line 0.1° and 0.001 apart, 19% of its folded vertices shared)";
+        let lines = wrap(text, 12.0, 150.0);
+        assert!(lines.len() > 1 && lines.join(" ") == text, "{lines:?}");
+        assert!(lines.iter().all(|l| text_width(l, 12.0) <= 150.0 || !l.contains(' ')));
+        assert_eq!(wrap("fold 1", 12.0, 150.0), vec!["fold 1"]);
     }
 
     #[test]
