@@ -50,6 +50,7 @@ use crate::angle::{angle_to_param, distance, edge, param_to_angle, ON_LINE_EDGES
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
 use crate::fold::apply;
+use crate::fold::synth::mean_edge;
 use crate::geometry::{Arc, Fold, Folding, Line};
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.
@@ -209,10 +210,7 @@ fn grasped(
     line: Option<&Line>,
 ) -> Vec<usize> {
     let chosen = corners_grasped(border, moved, arc, p1, p2);
-    let mean_edge = (0..border.len())
-        .map(|k| (border[(k + 1) % border.len()] - border[k]).xy().norm())
-        .sum::<f64>()
-        / border.len() as f64;
+    let mean_edge = mean_edge(border);
     match (chosen.as_slice(), line) {
         (&[a, b], Some(line)) if (border[a] - border[b]).xy().norm() <= mean_edge => {
             let along = |v: usize| ((border[v] - border[a]).xy().dot(&line.direction)).abs();
@@ -450,10 +448,8 @@ fn fold_in_turn(
 fn goal_line(flat: &[Point], state: &[Point], goal: Fold) -> Option<Line> {
     let n = flat.len();
     let ends = |border: &[Point]| [goal.f1, goal.f2].map(|f| point_at(border, param(f, n)));
-    let mean_edge =
-        (0..n).map(|k| (flat[(k + 1) % n] - flat[k]).xy().norm()).sum::<f64>() / n as f64;
     let [a, b] = ends(state);
-    if (a - b).xy().norm() > mean_edge {
+    if (a - b).xy().norm() > mean_edge(flat) {
         Line::through(&a, &b)
     } else {
         let [a, b] = ends(flat);

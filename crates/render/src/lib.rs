@@ -310,7 +310,7 @@ impl StepSpan {
                 let before: usize = analysis.steps[..k - 1].iter().map(|s| s.folds.len()).sum();
                 before..before + analysis.steps[k - 1].folds.len()
             }
-            None => 0..analysis.foldings().len(),
+            None => 0..analysis.steps.iter().map(|s| s.folds.len()).sum(),
         }
     }
 
