@@ -20,20 +20,18 @@ const PICTURES = [
   ["signed_diff", "Signed diff Δ"],
 ];
 const BORDERS_CAPTION = "Borders: start, end, predicted";
-const WHOLE = [
-  ["close", "CloSE fold circle"],
-  ["mesh", "Mesh from above, by height, with its border loop"],
-];
+const CIRCLE_CAPTION = "CloSE fold circle";
+const MESH = ["mesh", "Mesh from above, by height, with its border loop"];
 
 /** A file name made of `parts` (letters, digits, "_", "-" and "." kept). */
 const fileName = (...parts) => parts.filter(Boolean).join("_").replace(/[^\w.-]+/g, "-");
 
 /**
- * Links that download picture `name`: a PNG for the screen (1400 px), a PNG for print (2048 px
- * stating 300 dpi: 6.8 inches wide, a page's width) and an SVG (the same drawing, its lines and text vector).
+ * Links that download picture `name` as `file`.png/.svg: a PNG for the screen (1400 px), a PNG for
+ * print (2048 px stating 300 dpi: 6.8 inches wide, a page's width) and an SVG (the same drawing,
+ * its lines and text vector).
  */
-function downloads(key, name, step, stem) {
-  const file = fileName(stem, name, step && `step${step}`);
+function downloads(key, name, step, file) {
   const link = (kind, text, title, { format = kind, size = 1400, dpi = null } = {}) => {
     const href = imageUrl(key, name, { step, size, format, dpi });
     const a = el("a", { href, download: `${fileName(file, dpi && `${dpi}dpi`)}.${format}`, textContent: text, title, className: "download" });
@@ -51,14 +49,18 @@ function downloads(key, name, step, stem) {
   );
 }
 
-/** A picture that opens large in the shared dialog, with its download links; `enhance(button, img)` adds to it. */
-function figure(key, name, caption, step, stem, enhance = null) {
+/**
+ * A picture that opens large in the shared dialog, with its download links; `enhance(button, img)`
+ * adds to it, `readLarge(stage, img)` to the large one.
+ */
+function figure(key, name, caption, step, stem, enhance = null, readLarge = null) {
   const img = el("img", { src: imageUrl(key, name, { step }), alt: caption, width: 480, height: 480, loading: "lazy" });
   img.dataset.picture = name;
   const button = el("button", { type: "button", className: "zoom", title: "Open at full resolution" }, img);
   button.setAttribute("aria-label", `${caption}: open at full resolution`);
-  button.addEventListener("click", () => enlarge(imageUrl(key, name, { step, size: 1400 }), caption));
-  const node = el("figure", {}, button, el("figcaption", {}, caption, " ", downloads(key, name, step, stem)));
+  const file = fileName(stem, name, step && `step${step}`);
+  button.addEventListener("click", () => enlarge(imageUrl(key, name, { step, size: 1400 }), caption, { file: `${file}.png`, read: readLarge }));
+  const node = el("figure", {}, button, el("figcaption", {}, caption, " ", downloads(key, name, step, file)));
   if (enhance) enhance(button, img);
   return node;
 }
@@ -134,13 +136,13 @@ function codePanel(result, files) {
 /** The lightbox's zoom: scale over the fitted size, and the pan in CSS px. */
 const zoom = { scale: 1, x: 0, y: 0 };
 
-function applyZoom(img) {
-  img.style.transform = `translate(${zoom.x}px, ${zoom.y}px) scale(${zoom.scale})`;
+/** Zoom and pan the dialog's picture (its stage: the picture and any cell mark over it). */
+function applyZoom(frame) {
+  frame.firstElementChild.style.transform = `translate(${zoom.x}px, ${zoom.y}px) scale(${zoom.scale})`;
 }
 
 /** Wheel or pinch (ctrl+wheel) zooms about the pointer, up to the picture's full resolution and beyond; drag pans. */
 function setupZoom(dialog) {
-  const img = dialog.querySelector("img");
   const frame = dialog.querySelector(".lightbox-frame");
   frame.addEventListener("wheel", (e) => {
     e.preventDefault();
@@ -152,7 +154,7 @@ function setupZoom(dialog) {
     zoom.y = py - ((py - zoom.y) * next) / zoom.scale;
     zoom.scale = next;
     if (next === 1) Object.assign(zoom, { x: 0, y: 0 });
-    applyZoom(img);
+    applyZoom(frame);
   }, { passive: false });
   let drag = null;
   frame.addEventListener("pointerdown", (e) => {
@@ -162,21 +164,35 @@ function setupZoom(dialog) {
   frame.addEventListener("pointermove", (e) => {
     if (!drag) return;
     Object.assign(zoom, { x: e.clientX - drag.x, y: e.clientY - drag.y });
-    applyZoom(img);
+    applyZoom(frame);
   });
   frame.addEventListener("pointerup", () => (drag = null));
   dialog.dataset.zoom = "ready";
 }
 
-/** Show `url` in the full-resolution dialog (fitted first; wheel, pinch and drag zoom and pan). */
-export function enlarge(url, caption) {
+/**
+ * Show `url` in the full-resolution dialog (fitted first; wheel, pinch and drag zoom and pan),
+ * with a link that downloads it as `file`. `read(stage, img)`, given, makes the picture
+ * readable (a disk's cells, as on the small picture); its readout shows under the picture.
+ */
+export function enlarge(url, caption, { file = `${fileName(caption)}.png`, read = null } = {}) {
   const dialog = document.getElementById("lightbox");
   if (!dialog.dataset.zoom) setupZoom(dialog);
-  const img = dialog.querySelector("img");
+  const frame = dialog.querySelector(".lightbox-frame");
+  // A fresh picture each time: the last one's readout goes with it.
+  const img = el("img", { src: url, alt: caption });
+  const stage = el("div", { className: "lightbox-stage" }, img);
+  frame.replaceChildren(stage);
   Object.assign(zoom, { scale: 1, x: 0, y: 0 });
-  applyZoom(img);
-  img.src = url;
-  img.alt = caption;
+  applyZoom(frame);
+  const under = dialog.querySelector(".lightbox-readout");
+  under.replaceChildren();
+  if (read) {
+    stage.tabIndex = 0;
+    read(stage, img);
+    under.append(...frame.querySelectorAll(".cell-readout, .visually-hidden"));
+  }
+  Object.assign(dialog.querySelector(".lightbox-download"), { href: url, download: file });
   dialog.querySelector(".lightbox-caption").textContent = caption;
   dialog.showModal();
 }
@@ -202,6 +218,8 @@ function cellReader(result) {
       button.classList.add("readable");
       readable(button, img, name, () => load(step), (c, data) => plot && plot.show(data ? data.border_frames : [], data && data.borders, data ? data.size : 480, c));
     },
+    /** The same for the full-resolution picture of disk `name` (its readout alone). */
+    large: (name, step) => (stage, img) => readable(stage, img, name, () => load(step)),
     /** The border plot, on which the edges are marked. */
     plot: (button, img) => (plot = edgeOverlay(img)),
   };
@@ -209,7 +227,7 @@ function cellReader(result) {
 
 /**
  * The step-picture block: a choice of span, the four disk pictures of it, and into `plotSlot`
- * the border plot of the same span (one choice drives them all).
+ * the border plot and the fold circle of the same span (one choice drives them all).
  */
 function stepPictures(result, stem, cells, plotSlot, { step: wanted = null, onStep = null } = {}) {
   const block = el("div", { className: "step-pictures" });
@@ -219,10 +237,10 @@ function stepPictures(result, stem, cells, plotSlot, { step: wanted = null, onSt
     const suffix = step ? ` · step ${step} (frames ${steps[step - 1].from_frame}→${steps[step - 1].to_frame})` : "";
     // Over several steps the curves are fitted per step: the whole span shows none.
     const captionOf = (name, caption) => (name === "diff" && !step && steps.length > 1 ? "|diff| (the fold curves: see each step)" : caption);
-    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem, cells.disk(name, step))));
+    grid.replaceChildren(...PICTURES.map(([name, caption]) => figure(result.key, name, captionOf(name, caption) + suffix, step, stem, cells.disk(name, step), cells.large(name, step))));
     const plot = figure(result.key, "borders", BORDERS_CAPTION + suffix, step, stem, cells.plot);
     plot.classList.add("instrument-borders");
-    plotSlot.replaceChildren(plot);
+    plotSlot.replaceChildren(plot, figure(result.key, "close", CIRCLE_CAPTION + suffix, step, stem));
   };
   if (steps.length > 1) {
     const group = el("div", { className: "segmented", role: "radiogroup" });
@@ -320,8 +338,7 @@ export function renderResult(slot, result, displayName, actions, options = {}) {
   const plotSlot = el("div", { className: "instrument-plot" });
   images.append(el("div", { className: "instrument" }, stepPictures(result, stem, cells, plotSlot, options), plotSlot));
   // The mesh picture is listed for mesh samples alone.
-  const whole = WHOLE.filter(([name]) => name !== "mesh" || (result.images && result.images.mesh));
-  images.append(el("div", { className: "images whole" }, ...whole.map(([name, caption]) => figure(result.key, name, caption, null, stem))));
+  if (result.images && result.images.mesh) images.append(el("div", { className: "images whole" }, figure(result.key, ...MESH, null, stem)));
   const json = URL.createObjectURL(new Blob([JSON.stringify(result, null, 1)], { type: "application/json" }));
   const jsonLink = el("a", { href: json, download: `${stem || "analysis"}.json`, className: "download download-analysis", textContent: "Download the analysis (JSON)" });
   images.append(el("p", { className: "small" }, jsonLink), codePanel(result, options.files));

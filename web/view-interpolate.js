@@ -82,12 +82,19 @@ class DiskFollower {
     return { border: job.border, reference: job.reference, size, scale: this.scale || undefined };
   }
 
-  /** The state shown, at full resolution and in the same colour scale, in the shared dialog. */
+  /** The values of `job`'s disk cells (`{n, size, values(k)}`), for a readout. */
+  async cells(job) {
+    const r = await api.diskCells({ border: job.border, reference: job.reference, size: this.size });
+    return { ...r, values: (k) => ({ value: r.values[k] }) };
+  }
+
+  /** The state shown, at full resolution and in the same colour scale, in the shared dialog, its cells readable. */
   async enlarge(caption) {
-    if (!this.job) return;
+    const job = this.job;
+    if (!job) return;
     try {
-      const { url } = await api.disk(this.request(this.job, 1400), "disk-large");
-      enlarge(url, caption);
+      const { url } = await api.disk(this.request(job, 1400), "disk-large");
+      enlarge(url, caption, { read: (stage, img) => readable(stage, img, "state", () => this.cells(job)) });
     } catch (e) {
       if (!api.isAbort(e)) this.status.textContent = `(not drawn: ${e.message})`;
     }
@@ -463,8 +470,7 @@ export function setup(errors, planGoal) {
   // The disk's cells read by hover, tap or arrow keys; their edges marked on the cloth.
   const cells = readable($("#interp-disk-zoom"), $("#interp-disk"), "state", async () => {
     if (!disk.job) throw new Error("no disk drawn yet");
-    const r = await api.diskCells({ border: disk.job.border, reference: disk.job.reference, size: disk.size });
-    return { ...r, values: (k) => ({ value: r.values[k] }) };
+    return disk.cells(disk.job);
   }, (c) => {
     view.cell = c;
     paint();

@@ -4,7 +4,7 @@
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
-import { AngleInputs, R, dragOnCircle, drawFoldCircle, wrap } from "./circle.js";
+import { AngleInputs, R, TAU, dragOnCircle, drawFoldCircle, wrap } from "./circle.js";
 import { boundsOf, bowedArrow, drawCloth, labelCorners, line, polygon, textSize, viewport } from "./draw.js";
 import { el, fmtDeg, fmtPoint } from "./format.js";
 
@@ -28,7 +28,7 @@ const listed = (items) => (items.length > 1 ? `${items.slice(0, -1).join(", ")} 
  * What a plan step does, in words; `cornerOf(vertex)` numbers a corner vertex, `size` is the
  * cloth's size (a grasp that moves a point less than 1 % of it moves nothing).
  */
-function stepText(step, cornerOf, extent) {
+function stepText(step, cornerOf, size) {
   const verb = ACTIONS[step.action] || step.action;
   const moves = (p) => Math.hypot(p.to[0] - p.from[0], p.to[1] - p.from[1]) > 0.01 * size;
   if (!step.corners.length && !step.picks.some(moves)) {
@@ -47,6 +47,25 @@ function stepText(step, cornerOf, extent) {
   // Points are the sample's own (x, y) coordinates, in whatever unit its file uses.
   const where = picks.length ? ` (x, y in the sample's units)` : "";
   return `${verb} along ${fmtDeg(step.fold)}: ${moved}; ${picks.join("; ") || "nothing to grasp"}${follow}${where}.`;
+}
+
+/**
+ * A first goal that folds the cloth in half along an axis of its outline, read off its corners
+ * alone (border angles, `n` border vertices): two of its corners and side middles half the
+ * border apart — the hem's and the neck's middles of a T-shirt, the waist's middle and the
+ * crotch of trousers, opposite sides' middles of a napkin — the longest side's middle first.
+ */
+function halfGoal(corners, n) {
+  const sides = corners.map((c, k) => [c, (k + 1 < corners.length ? corners[k + 1] : corners[0] + TAU) - c]);
+  const points = [...sides.map(([c, span]) => ({ at: wrap(c + span / 2), span })), ...corners.map((c) => ({ at: c, span: 0 }))];
+  const apart = (a, b) => Math.abs(wrap(b - a + Math.PI) - Math.PI);
+  const candidates = points.map((p) => {
+    const other = points.reduce((best, q) => (apart(q.at, p.at + Math.PI) < apart(best.at, p.at + Math.PI) ? q : best));
+    return { goal: [p.at, other.at], off: apart(other.at, p.at + Math.PI), span: p.span };
+  });
+  // Within half an edge of the best pairing, the longest side's middle.
+  const best = Math.min(...candidates.map((c) => c.off));
+  return candidates.filter((c) => c.off <= best + TAU / (2 * n)).reduce((a, b) => (b.span > a.span ? b : a)).goal;
 }
 
 function fillCloths() {
@@ -74,11 +93,7 @@ async function load(cloth, takeGoal) {
     view.cornerVertices = result.corner_vertices;
     view.name = $("#plan-sample").selectedOptions[0]?.textContent || result.name;
     $("#plan-now").textContent = `${view.name}: N = ${result.n}, ${result.corners.length} corners, now ${result.folds.length ? result.folds.map(fmtDeg).join(" then ") : "flat"}.`;
-    if (takeGoal && result.corners.length >= 2) {
-      // A diagonal through the first and third corners, a natural first goal.
-      const c = result.corners;
-      view.goal = [c[0], c[Math.min(2, c.length - 1)]];
-    }
+    if (takeGoal && result.corners.length >= 2) view.goal = halfGoal(result.corners, result.n);
     $("#plan-list").replaceChildren();
     $("#plan-case").textContent = "";
     drawCircle();

@@ -194,6 +194,37 @@ async fn canvas_ink(client: &Client, id: &str) -> f64 {
     js(client, &script).await.as_f64().unwrap_or(0.0)
 }
 
+/// Every picture on screen under `scope` is looked at pixel by pixel (issue 28 item 1): each
+/// image and each canvas drawn as a picture (`role=img`) has ink on over 1 % of its area and
+/// more than one colour; an overlay canvas (a cell or edge mark) paints no background over
+/// the picture beneath it. Gives how many pictures were looked at; fails naming the blank.
+async fn pictures_have_ink(client: &Client, scope: &str) -> usize {
+    until(
+        client,
+        &format!("the pictures of {scope} loaded"),
+        &format!("[...document.querySelectorAll('{scope} img')].every(i => (i.loading = 'eager', i.complete && i.naturalWidth > 0))"),
+    )
+    .await;
+    let script = format!(
+        "const blank = [], scope = document.querySelector({scope:?}); let looked = 0; \
+         const judge = (name, picture, w, h) => {{ looked++; const c = document.createElement('canvas'); c.width = w; c.height = h; \
+           const g = c.getContext('2d'); g.drawImage(picture, 0, 0); const d = g.getImageData(0, 0, w, h).data; \
+           let ink = 0; const colours = new Set(); \
+           for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 0 && (d[i] < 235 || d[i + 1] < 235 || d[i + 2] < 235)) {{ ink++; if (colours.size < 2) colours.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]); }} \
+           if (!(ink > 0.01 * w * h) || colours.size < 2) blank.push(`${{name}}: ${{(100 * ink / (w * h)).toFixed(2)}} % inked, ${{colours.size}} colour(s)`); }}; \
+         for (const i of scope.querySelectorAll('img')) if (i.checkVisibility()) judge(i.alt || i.src, i, i.naturalWidth, i.naturalHeight); \
+         for (const c of scope.querySelectorAll('canvas')) if (c.checkVisibility()) {{ \
+           if (c.getAttribute('role') === 'img') judge(c.id || c.getAttribute('aria-label'), c, c.width, c.height); \
+           else {{ const bg = getComputedStyle(c).backgroundColor; if (bg !== 'rgba(0, 0, 0, 0)' && bg !== 'transparent') blank.push(`overlay ${{c.className}} paints ${{bg}} over its picture`); }} }} \
+         return [looked, blank];"
+    );
+    let found = js(client, &script).await;
+    assert_eq!(found[1], json!([]), "{scope}: pictures that show nothing");
+    let looked = found[0].as_u64().unwrap_or(0) as usize;
+    assert!(looked > 0, "{scope}: no picture on screen");
+    looked
+}
+
 /// The interpolation disk picture, once it shows the current state: its colour bar and
 /// tick labels (the right part of the picture) as a data URL, and the whole picture.
 async fn disk_picture(client: &Client) -> (String, String) {
@@ -487,6 +518,9 @@ async fn the_app_works_in_a_real_browser() {
     .await;
     until(&client, "step 2's pictures", "[...document.querySelectorAll('#browse-result .step-pictures img')].every(i => i.src.includes('step=2'))").await;
     assert_eq!(images_loaded(&client, "#browse-result .step-pictures img").await, 4);
+    // One timeline (issue 28 item 5): the step drives the border plot and the fold circle too.
+    until(&client, "step 2's border plot and fold circle", "(p => p.length === 2 && p.every(i => i.src.includes('step=2')))([...document.querySelectorAll('#browse-result .instrument-plot img')])").await;
+    assert!(pictures_have_ink(&client, "#browse-result").await >= 6);
     // The evidence is shown, and this exact fold is not flagged.
     let evidence =
         text(&client, "document.querySelector('#browse-result .evidence-table').innerText").await;
@@ -512,6 +546,26 @@ async fn the_app_works_in_a_real_browser() {
                               f.dispatchEvent(new WheelEvent('wheel', { deltaY: -600, clientX: r.x + r.width / 2, clientY: r.y + r.height / 2, bubbles: true, cancelable: true })); \
                               const img = document.querySelector('#lightbox img'); return img.getBoundingClientRect().width / f.getBoundingClientRect().width").await;
     assert!(zoomed.as_f64().is_some_and(|z| z > 5.0), "the picture did not zoom: {zoomed}");
+    // The large disk downloads, and reads its cells as the small one does (issue 28 item 15).
+    let save = js(&client, "const a = document.querySelector('#lightbox .lightbox-download'); return [a.href === document.querySelector('#lightbox img').src, a.download]").await;
+    assert!(
+        save[0] == json!(true)
+            && save[1].as_str().is_some_and(|f| f.ends_with("_disk_start_step2.png")),
+        "the dialog's download: {save}"
+    );
+    js(&client, "const f = document.querySelector('#lightbox .lightbox-frame'); f.dispatchEvent(new WheelEvent('wheel', { deltaY: 6000, bubbles: true, cancelable: true })); \
+                 const s = document.querySelector('#lightbox .lightbox-stage'), r = s.getBoundingClientRect(); \
+                 s.dispatchEvent(new PointerEvent('pointermove', { pointerType: 'mouse', clientX: r.x + 0.42 * r.width, clientY: r.y + 0.3 * r.height, bubbles: true }))").await;
+    let read = until(
+        &client,
+        "the large disk's readout",
+        "document.querySelector('#lightbox .lightbox-readout .cell-readout')?.textContent || null",
+    )
+    .await;
+    assert!(
+        read.as_str().is_some_and(|r| r.starts_with("edges i =")),
+        "the large disk reads: {read}"
+    );
     screenshot(&client, &shots, "1400-02-full-resolution.png").await;
     violations
         .extend(axe_violations(&client, &axe).await.into_iter().map(|v| format!("lightbox: {v}")));
@@ -610,6 +664,7 @@ async fn the_app_works_in_a_real_browser() {
     )
     .await;
     assert_eq!(images_loaded(&client, "#upload-result img").await, 6);
+    assert!(pictures_have_ink(&client, "#upload-result").await >= 6);
     assert!(text(&client, "document.title").await.contains("my-napkin.json"));
     screenshot(&client, &shots, "1400-03-upload.png").await;
     violations
@@ -646,6 +701,25 @@ async fn the_app_works_in_a_real_browser() {
     let facts =
         text(&client, "document.querySelector('#upload-result .close-table').innerText").await;
     assert!(facts.contains("true fold 1"), "the upload's truth is not shown: {facts}");
+    // A multi-arc fold is compared with its truth by its line and folded set (issue 28 item
+    // 2): the border plot of step 2 of the MuJoCo trousers, in the legend of its SVG.
+    let trousers =
+        root.join("tests/fixtures/physics-mujoco/border/trousers_q1_leg_over_leg_then_half.json");
+    choose_files(&client, &[trousers]).await;
+    until(&client, "the multi-arc upload", "document.querySelector('#upload-result .result-name')?.textContent === 'trousers_q1_leg_over_leg_then_half.json'").await;
+    js(
+        &client,
+        "document.querySelector('#upload-result .segmented input[data-step=\"2\"]').click()",
+    )
+    .await;
+    let legend = client.execute_async("const done = arguments[0], wait = () => { const i = [...document.querySelectorAll('#upload-result figure img')].find(i => i.dataset.picture === 'borders'); \
+                                       if (!i || !i.src.includes('step=2')) return setTimeout(wait, 50); \
+                                       fetch(i.closest('figure').querySelector('a.download[data-format=svg]').href).then(r => r.text()).then(t => done([...t.matchAll(/<text[^>]*>([^<]*)</g)].map(m => m[1]).join(' '))).catch(e => done(String(e))); }; wait();", vec![]).await.expect("the border plot's SVG");
+    let legend = legend.as_str().unwrap_or_default().to_string();
+    assert!(
+        legend.contains("fold 2 (true: line") && legend.contains("folded vertices shared"),
+        "the multi-arc fold is not compared by its line and folded set: {legend}"
+    );
     assert!(text(&client, "document.querySelector('#upload-result .result-meta').textContent")
         .await
         .starts_with("your upload"));
@@ -729,6 +803,7 @@ async fn the_app_works_in_a_real_browser() {
     // At t = 1 the folded napkin is two layers on half the cloth: filled, not a hole.
     let ink = canvas_ink(&client, "interp-canvas").await;
     assert!(ink > 0.15, "the folded cloth is not filled: {ink:.3} of the canvas inked");
+    assert!(pictures_have_ink(&client, "#view-interpolate").await >= 2);
     screenshot(&client, &shots, "1400-05-interpolate.png").await;
     violations.extend(
         axe_violations(&client, &axe).await.into_iter().map(|v| format!("interpolate: {v}")),
@@ -887,6 +962,7 @@ async fn the_app_works_in_a_real_browser() {
         "coordinates without units: {steps:?}"
     );
     assert!(text(&client, "document.title").await.contains("half_then_half"));
+    assert!(pictures_have_ink(&client, "#view-plan").await >= 4);
     screenshot(&client, &shots, "1400-07-plan.png").await;
     assert_eq!(wrapped_box_names(&client).await, json!([]), "goal box names wrap");
     assert_eq!(
@@ -941,7 +1017,6 @@ async fn the_app_works_in_a_real_browser() {
     )
     .await;
     assert!(options.contains("upload · my-napkin.json"), "{options}");
-
     // The plan downloads as JSON (issue 19, item 9).
     let plan_json = client.execute_async("const a = document.getElementById('plan-json'); fetch(a.href).then(r => r.json()).then(j => arguments[0]([a.hidden, a.download, j.steps.length])).catch(e => arguments[0](String(e)))", vec![]).await.expect("plan JSON");
     assert!(
@@ -950,6 +1025,37 @@ async fn the_app_works_in_a_real_browser() {
             && plan_json[2] == json!(0),
         "the plan shown (already there: no step) is the one downloaded: {plan_json}"
     );
+    // A concave cloth (issue 28 item 3): the T-shirt planned to its default goal, each step
+    // drawn whole inside its picture — nothing of the cloth, a fold line or an arrow in the
+    // picture's outer frame.
+    route(&client, "#/plan?cloth=sample:tshirt__sleeve_left").await;
+    until(
+        &client,
+        "the T-shirt in Plan",
+        "document.getElementById('plan-now').textContent.includes('sleeve_left')",
+    )
+    .await;
+    client.find(Locator::Id("plan-run")).await.expect("plan").click().await.expect("click");
+    until(
+        &client,
+        "the T-shirt's plan",
+        "document.querySelectorAll('#plan-list .plan-step').length >= 2",
+    )
+    .await;
+    let spilled = js(&client, "return [...document.querySelectorAll('#plan-list canvas')].flatMap((c, k) => { \
+                               const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data, frame = 2, out = []; \
+                               for (let y = 0; y < c.height; y++) for (let x = 0; x < c.width; x++) { \
+                                 if (x >= frame && x < c.width - frame && y >= frame && y < c.height - frame) continue; \
+                                 const i = 4 * (y * c.width + x); if (d[i + 3] > 0 && Math.max(d[i], d[i + 1], d[i + 2]) - Math.min(d[i], d[i + 1], d[i + 2]) > 40) out.push(`(${x}, ${y}) rgba(${d.slice(i, i + 4)})`); } \
+                               return out.length ? [`picture ${k}: ${out.length} coloured pixels on its edge: ${out.slice(0, 4).join(', ')}`] : []; })").await;
+    screenshot(&client, &shots, "1400-07b-plan-tshirt.png").await;
+    assert_eq!(spilled, json!([]), "a plan step of the T-shirt spills off its picture");
+    // Its default goal folds it in half along its axis: from the hem's middle to the neck's.
+    let last =
+        text(&client, "[...document.querySelectorAll('#plan-list .plan-step')].pop().innerText")
+            .await;
+    assert!(last.contains("Fold along (0.0°, 180.0°)"), "the T-shirt's default goal: {last}");
+    assert!(pictures_have_ink(&client, "#view-plan").await >= 2);
 
     // ---- Every picture downloads as PNG and SVG, the analysis as JSON; "use from code"
     // gives calls that return the same analysis (items 9 and 11).
@@ -1026,6 +1132,32 @@ async fn the_app_works_in_a_real_browser() {
         })
     };
     assert!(close_to(&folds, &again), "{folds} → {again}");
+    // A fold from flat turns its flap about its line (issue 28 item 4): over the whole
+    // motion, no frame moves a vertex more than twice the mean of the frames' largest moves.
+    route(&client, "#/interpolate?cloth=sample:trousers__legs_up_then_half&step=1&t=0").await;
+    until(&client, "the trousers from flat", "document.getElementById('interp-sample').value === 'sample:trousers__legs_up_then_half' && window.closeApp.interpolate.state().frame?.t === 0").await;
+    let mut frames: Vec<Vec<Vec<f64>>> = Vec::new();
+    for k in 0..=50 {
+        let t = f64::from(k) / 50.0;
+        js(&client, &format!("window.closeApp.interpolate.setTau({t})")).await;
+        let drawn = until(&client, &format!("the state at t = {t}"), &format!("(s => s.frame && Math.abs(s.frame.t - {t}) < 1e-12 && s.drawn)(window.closeApp.interpolate.state())")).await;
+        frames.push(serde_json::from_value(drawn).expect("a drawn border"));
+    }
+    let moves: Vec<f64> = frames
+        .windows(2)
+        .map(|w| {
+            w[0].iter()
+                .zip(&w[1])
+                .map(|(p, q)| p.iter().zip(q).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let mean = moves.iter().sum::<f64>() / moves.len() as f64;
+    let largest = moves.iter().copied().fold(0.0, f64::max);
+    assert!(
+        mean > 0.0 && largest <= 2.0 * mean,
+        "a vertex jumps: largest move per frame {largest:.4}, mean {mean:.4} ({moves:.4?})"
+    );
     // Back from Interpolate to a sample: the title names the sample again.
     route(&client, &format!("#/samples/{}", twice.id)).await;
     shows_sample(&client, &twice.sample.name).await;
@@ -1055,6 +1187,7 @@ async fn the_app_works_in_a_real_browser() {
         })
     };
     assert!(shared(0) && shared(1), "the panels do not share one colour scale: {scales}");
+    assert!(pictures_have_ink(&client, "#compare-result").await >= 7);
     let captions = text(&client, "[...document.querySelectorAll('#compare-result figcaption')].map(f => f.textContent).join('|')").await;
     assert!(
         captions.contains("after step 1 of 2")
@@ -1586,7 +1719,7 @@ async fn mesh_picture_shows_and_pictures_are_legible(client: &Client, base: &str
         until(client, "the mesh picture", "document.querySelector('#browse-result .images.whole img[data-picture=mesh]') !== null").await;
         let whole = images_loaded(
             client,
-            "#browse-result .images.whole img, #browse-result .instrument-borders img",
+            "#browse-result .images.whole img, #browse-result .instrument-plot img",
         )
         .await;
         assert_eq!(whole, 3, "{width} px: borders, fold circle and mesh");

@@ -201,7 +201,8 @@ fn is_png(body: &[u8]) -> bool {
 async fn a_second_fold_has_pictures_per_step() {
     let app = app(AppState::new());
     let key = "sample:napkin__half_then_half";
-    for picture in ["disk_start", "disk_end", "diff", "signed_diff"] {
+    // The fold circle follows the step too (its other step's fold faded).
+    for picture in ["disk_start", "disk_end", "diff", "signed_diff", "close"] {
         let (_, whole) = get(&app, &format!("/api/images/{key}/{picture}.png?size=120")).await;
         let (s1, one) =
             get(&app, &format!("/api/images/{key}/{picture}.png?size=120&step=1")).await;
@@ -219,7 +220,7 @@ async fn a_second_fold_has_pictures_per_step() {
         error["error"].as_str().is_some_and(|e| e.contains("step 3") && e.contains("1…2")),
         "{error}"
     );
-    let (status, _) = get(&app, &format!("/api/images/{key}/close.png?step=1")).await;
+    let (status, _) = get(&app, &format!("/api/images/{key}/thumbnail.png?step=1")).await;
     assert_eq!(status, StatusCode::BAD_REQUEST);
     // The list's thumbnails are their own small drawing.
     let (status, body) = get(&app, &format!("/api/images/{key}/thumbnail.png?size=100")).await;

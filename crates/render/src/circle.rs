@@ -4,7 +4,9 @@
 //! The corners θ_1 < … < θ_n are numbered dots (1-based, numbers left out beyond 20
 //! corners, where the cloth counts as circular). Each fold (f1, f2) is the arc from f1
 //! anticlockwise to f2 — the folded side — drawn thick and shaded up to the chord f1–f2,
-//! which is the fold line. The values are written underneath.
+//! which is the fold line. The values are written underneath. Drawn for one step of the
+//! analysis, the folds that step made keep their colours and the others are faded, so the
+//! circle follows the step as the disks and the border plot do.
 //!
 //! ```
 //! use close_core::geometry::Arc;
@@ -29,9 +31,21 @@ use super::{
 use crate::error::Result;
 use close_core::analysis::Analysis;
 use close_core::geometry::{Arc, Fold};
+use std::ops::Range;
 
 /// Corners beyond this count are drawn without numbers (the paper's label calls such a cloth circular).
 pub const NUMBERED_CORNERS: usize = 20;
+
+/// Fold `k`'s colour on a circle that shows the folds `shown` (indices into
+/// [`Analysis::foldings`]): its own, or mostly paper for a fold of another step.
+fn colour_of(k: usize, shown: &Range<usize>) -> [u8; 3] {
+    let own = fold_colour(k);
+    if shown.contains(&k) {
+        own
+    } else {
+        std::array::from_fn(|c| (0.3 * f64::from(own[c]) + 0.7 * f64::from(PAPER[c])).round() as u8)
+    }
+}
 
 /// `points` angles from f1 anticlockwise to f2 (unwrapped: increasing from f1).
 pub fn folded_arc(Arc { a: f1, b: f2 }: Arc, points: usize) -> Vec<f64> {
@@ -44,7 +58,13 @@ pub fn folded_arc(Arc { a: f1, b: f2 }: Arc, points: usize) -> Vec<f64> {
 /// known, the found fold's angle errors against the true one (drawn as ○); a true fold not
 /// found gets its own line. Each line is wrapped to `width` (the corners and folds are named
 /// on the circle; the label sentence is the page's).
-fn caption(analysis: &Analysis, truth: &Truth, size: f64, width: f64) -> Vec<(String, [u8; 3])> {
+fn caption(
+    analysis: &Analysis,
+    truth: &Truth,
+    shown: &Range<usize>,
+    size: f64,
+    width: f64,
+) -> Vec<(String, [u8; 3])> {
     let mut lines = Vec::new();
     let count = analysis.folds.len();
     let true_lines = true_lines(analysis, truth);
@@ -56,7 +76,7 @@ fn caption(analysis: &Analysis, truth: &Truth, size: f64, width: f64) -> Vec<(St
             agreement(analysis, truth, k, line).map_or_else(String::new, |a| format!(" · ○ {a}"));
         lines.push((
             format!("{} = {:.2}, {} = {:.2} rad{error}", names[0], f.f1, names[1], f.f2),
-            fold_colour(k),
+            colour_of(k, shown),
         ));
     }
     if count == 0 {
@@ -65,7 +85,7 @@ fn caption(analysis: &Analysis, truth: &Truth, size: f64, width: f64) -> Vec<(St
     for (k, t) in truth.folds.iter().enumerate().skip(count) {
         lines.push((
             format!("○ true fold {} = {:.2}, {:.2} rad: not found", k + 1, t.f1, t.f2),
-            fold_colour(k),
+            colour_of(k, shown),
         ));
     }
     let fits = |line: &str| text_width(line, size) <= width;
@@ -207,18 +227,24 @@ fn overlap_area(a: &[f64; 4], b: &[f64; 4], gap: f64) -> f64 {
 }
 
 impl Layout {
-    /// The fold circle of `analysis` with `truth` on a `width`×`height` canvas: the title,
-    /// the caption at the bottom, the circle as large as the rest allows with a margin for
-    /// the labels, which are placed round it without overlapping.
-    fn of(width: u32, height: u32, analysis: &Analysis, truth: &Truth) -> Layout {
+    /// The fold circle of `analysis` with `truth` and the folds `shown` on a `width`×`height`
+    /// canvas: the title, the caption at the bottom, the circle as large as the rest allows
+    /// with a margin for the labels, which are placed round it without overlapping.
+    fn of(
+        width: u32,
+        height: u32,
+        analysis: &Analysis,
+        truth: &Truth,
+        shown: &Range<usize>,
+    ) -> Layout {
         let (w, h) = (width as f64, height as f64);
         let unit = w.min(h);
         let size = label_size(unit);
         let line_height = 1.35 * note_size(unit);
-        let lines = caption(analysis, truth, note_size(unit), w - size);
+        let lines = caption(analysis, truth, shown, note_size(unit), w - size);
         let top = 1.8 * title_size(unit);
         let text_top = h - line_height * lines.len() as f64 - 0.3 * size;
-        let labels = labels(analysis);
+        let labels = labels(analysis, shown);
         let widest = labels.iter().map(|l| text_width(&l.text, size)).fold(0.0, f64::max);
         let marker = (unit * 0.022).max(4.0);
         // Room for a ring of labels and a half above and below, a label and a nudge on the sides.
@@ -245,12 +271,12 @@ impl Layout {
 
 /// The labels round the circle, most important first: the fold endpoints' names, the
 /// corner numbers (at most [`NUMBERED_CORNERS`] corners), then "0 rad" where angles start.
-fn labels(analysis: &Analysis) -> Vec<Label> {
+fn labels(analysis: &Analysis, shown: &Range<usize>) -> Vec<Label> {
     let count = analysis.folds.len();
     let folds = analysis.folds.iter().enumerate().flat_map(|(k, fold)| {
         [fold.f1, fold.f2].into_iter().enumerate().map(move |(e, f)| Label {
             text: endpoint_name(k, e, count),
-            colour: fold_colour(k),
+            colour: colour_of(k, shown),
             theta: f,
         })
     });
@@ -268,13 +294,22 @@ fn labels(analysis: &Analysis) -> Vec<Label> {
 }
 
 /// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
-/// markers joined by a thin chord beside the found ones.
-pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> Result<()> {
+/// markers joined by a thin chord beside the found ones; `step` (1-based), given, is the
+/// step whose folds `shown` are drawn in their colours, the others faded.
+pub(crate) fn draw(
+    canvas: &mut Canvas,
+    analysis: &Analysis,
+    truth: &Truth,
+    (step, shown): (Option<usize>, &Range<usize>),
+) -> Result<()> {
     let unit = canvas.unit();
-    let layout = Layout::of(canvas.width, canvas.height, analysis, truth);
+    let layout = Layout::of(canvas.width, canvas.height, analysis, truth, shown);
     let frame = layout.frame;
-    shade_folded_sides(canvas, analysis, &frame)?;
-    canvas.title("CloSE fold circle");
+    shade_folded_sides(canvas, analysis, shown, &frame)?;
+    match step {
+        Some(k) => canvas.title(&format!("CloSE fold circle · step {k}")),
+        None => canvas.title("CloSE fold circle"),
+    }
     canvas.ring((frame.cx, frame.cy), frame.radius, line_width(unit, 0.004), INK);
     // The tick where angles start, outwards.
     canvas.stroke(
@@ -283,8 +318,8 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
         INK,
     );
     draw_corners(canvas, &analysis.corners, &frame);
-    draw_truth(canvas, &truth.folds, &frame);
-    draw_folds(canvas, analysis, &frame);
+    draw_truth(canvas, &truth.folds, shown, &frame);
+    draw_folds(canvas, analysis, shown, &frame);
     for placed in &layout.labels {
         let [x0, y0, x1, y1] = placed.bounds;
         let centre = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
@@ -314,7 +349,12 @@ pub(crate) fn draw(canvas: &mut Canvas, analysis: &Analysis, truth: &Truth) -> R
 }
 
 /// The folded side of each fold, between each of its arcs and its chord, lightly shaded.
-fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -> Result<()> {
+fn shade_folded_sides(
+    canvas: &mut Canvas,
+    analysis: &Analysis,
+    shown: &Range<usize>,
+    frame: &Frame,
+) -> Result<()> {
     canvas.draw(|area| {
         for (k, folding) in analysis.foldings().iter().enumerate() {
             for &fold in &folding.arcs {
@@ -323,7 +363,7 @@ fn shade_folded_sides(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) -
                     .map(|t| frame.at(1.0, t))
                     .map(|(x, y)| (x.round() as i32, y.round() as i32))
                     .collect();
-                area.draw(&Polygon::new(arc, plot(fold_colour(k)).mix(0.14).filled()))?;
+                area.draw(&Polygon::new(arc, plot(colour_of(k, shown)).mix(0.14).filled()))?;
             }
         }
         Ok(())
@@ -340,11 +380,11 @@ fn draw_corners(canvas: &mut Canvas, corners: &[f64], frame: &Frame) {
 }
 
 /// Each true fold: its chord thin, its two points as hollow rings in its fold's colour.
-fn draw_truth(canvas: &mut Canvas, truth: &[Fold], frame: &Frame) {
+fn draw_truth(canvas: &mut Canvas, truth: &[Fold], shown: &Range<usize>, frame: &Frame) {
     let unit = canvas.unit();
     let marker = (unit * 0.022).max(4.0);
     for (k, t) in truth.iter().enumerate() {
-        let colour = fold_colour(k);
+        let colour = colour_of(k, shown);
         canvas.stroke(&[frame.at(1.0, t.f1), frame.at(1.0, t.f2)], line_width(unit, 0.003), MUTED);
         for a in [t.f1, t.f2] {
             canvas.ring(frame.at(1.0, a), marker, line_width(unit, 0.004), colour);
@@ -354,11 +394,11 @@ fn draw_truth(canvas: &mut Canvas, truth: &[Fold], frame: &Frame) {
 
 /// Each fold: its arcs (the folded side: one, or several for a multi-arc fold), the chord of
 /// each (the fold line) and its two endpoints.
-fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, frame: &Frame) {
+fn draw_folds(canvas: &mut Canvas, analysis: &Analysis, shown: &Range<usize>, frame: &Frame) {
     let unit = canvas.unit();
     let marker = (unit * 0.016).max(3.0);
     for (k, folding) in analysis.foldings().iter().enumerate() {
-        let (colour, fold) = (fold_colour(k), folding.fold);
+        let (colour, fold) = (colour_of(k, shown), folding.fold);
         for &arc in &folding.arcs {
             let Arc { a, b } = arc;
             let arc: Vec<(f64, f64)> =
@@ -419,7 +459,8 @@ mod tests {
             ("trousers__legs_up_then_half", 320),
         ] {
             let (analysis, truth) = builtin(id);
-            let layout = Layout::of(size, size, &analysis, &truth);
+            let all = 0..analysis.folds.len();
+            let layout = Layout::of(size, size, &analysis, &truth, &all);
             let known = super::super::Known { truth: &truth, mesh: None };
             let png = super::super::render(
                 &analysis,

@@ -269,13 +269,29 @@ pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Resul
     Ok(out)
 }
 
-/// The segment of `line` across `points`: from the least to the greatest projection of a
-/// point on the line's direction.
+/// The segment of `line` across the closed border `points`: from its first to its last
+/// crossing of the border, the stretch of the line the cloth lies on (a line near a corner
+/// of a garment crosses it there, not the whole garment's width); for a line that does not
+/// cross it twice, from the least to the greatest projection of a point on the line.
 pub fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
     let (px, py) = (line.point.x, line.point.y);
-    let (dx, dy) = (line.direction.x, line.direction.y);
-    let t = points.iter().map(|p| (p.x - px) * dx + (p.y - py) * dy);
-    let (lo, hi) = t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let length = line.direction.x.hypot(line.direction.y);
+    let (dx, dy) = (line.direction.x / length, line.direction.y / length);
+    let along = |x: f64, y: f64| (x - px) * dx + (y - py) * dy;
+    let extent = |t: &mut dyn Iterator<Item = f64>| {
+        t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+    };
+    let crossings = (0..points.len()).filter_map(|k| {
+        let (a, b) = (&points[k], &points[(k + 1) % points.len()]);
+        let (oa, ob) = (offset(a, line), offset(b, line));
+        // Where the edge meets the line (at its first end when it lies along the line).
+        let s = if oa == ob { 0.0 } else { oa / (oa - ob) };
+        (oa * ob <= 0.0).then(|| along(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)))
+    });
+    let (mut lo, mut hi) = extent(&mut crossings.clone());
+    if crossings.count() < 2 || lo >= hi {
+        (lo, hi) = extent(&mut points.iter().map(|p| along(p.x, p.y)));
+    }
     let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
     [[px + lo * dx, py + lo * dy], [px + hi * dx, py + hi * dy]]
 }
@@ -422,6 +438,27 @@ mod tests {
     use super::*;
     use close_core::angle::TAU;
     use close_core::fold::apply;
+
+    #[test]
+    fn a_line_is_drawn_across_the_cloth_it_crosses_not_the_whole_cloth() {
+        use close_core::geometry::{Point2, Vector2};
+        // An L: a line through its short arm crosses the border at y = 0 and y = 1, while the
+        // L spans y = 0 … 3 along it.
+        let l: Vec<Point> =
+            [[0.0, 0.0], [3.0, 0.0], [3.0, 1.0], [1.0, 1.0], [1.0, 3.0], [0.0, 3.0]]
+                .iter()
+                .map(|&[x, y]| Point::new(x, y, 0.0))
+                .collect();
+        let up = Vector2::new(0.0, 1.0);
+        let arm = Line { point: Point2::new(2.0, 0.5), direction: up };
+        let [a, b] = across(&l, &arm);
+        assert!((a[0] - 2.0).abs() < 1e-12 && a[1].abs() < 1e-12, "{a:?}");
+        assert!((b[0] - 2.0).abs() < 1e-12 && (b[1] - 1.0).abs() < 1e-12, "{b:?}");
+        // A line that misses the cloth: its shadow on the line.
+        let off = Line { point: Point2::new(5.0, 0.0), direction: up };
+        let [a, b] = across(&l, &off);
+        assert!(a[1].abs() < 1e-12 && (b[1] - 3.0).abs() < 1e-12, "{a:?} {b:?}");
+    }
     use close_core::geometry::{Fold, Point2, Vector2};
 
     /// The line through `point` along `direction`.

@@ -212,13 +212,16 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
         canvas.vector = Some(svg::Vector::default());
     }
     match picture {
-        Picture::Close | Picture::Thumbnail | Picture::Mesh if step.is_some() => {
+        Picture::Thumbnail | Picture::Mesh if step.is_some() => {
             return Err(Error::invalid(format!(
                 "the {} picture shows the whole analysis: it takes no step",
                 picture.name()
             )));
         }
-        Picture::Close => circle::draw(&mut canvas, analysis, known.truth)?,
+        Picture::Close => {
+            let span = StepSpan::of(analysis, step)?;
+            circle::draw(&mut canvas, analysis, known.truth, (step, &span.folds(analysis)))?
+        }
         Picture::Borders => {
             borders::draw(&mut canvas, analysis, known.truth, step)?;
         }
@@ -800,8 +803,15 @@ pub(crate) mod tests {
             let err = png(&analysis, Picture::Diff, Some(bad), (100, 100)).unwrap_err();
             assert!(matches!(err, Error::Core(close_core::Error::InvalidArgument(_))), "{err}");
         }
+        // The fold circle follows the step: its other step's fold faded.
+        let circles: Vec<Vec<u8>> = [None, Some(1), Some(2)]
+            .into_iter()
+            .map(|step| png(&analysis, Picture::Close, step, (240, 240)).unwrap())
+            .collect();
+        assert!(circles[0] != circles[1] && circles[1] != circles[2] && circles[0] != circles[2]);
+        preview("step2_close.png", &circles[2]);
         assert!(matches!(
-            png(&analysis, Picture::Close, Some(1), (100, 100)),
+            png(&analysis, Picture::Thumbnail, Some(1), (100, 100)),
             Err(Error::Core(close_core::Error::InvalidArgument(_)))
         ));
     }
