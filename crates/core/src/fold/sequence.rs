@@ -330,7 +330,9 @@ struct Probes {
 }
 
 /// The best sequence of each length from two folds up to `max_folds`, judged on `probes`,
-/// with the sequences of its length judged about as well (its twins and alternatives).
+/// with the sequences of its length judged about as well (its twins and alternatives); a
+/// length whose best one `deeper` rejects is the last searched (the model selection needs
+/// no longer ones).
 /// [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires: the search is checked between candidates.
 fn search(
     before: &[Point],
@@ -338,6 +340,7 @@ fn search(
     end: &Disk,
     probes: &Probes,
     max_folds: usize,
+    deeper: impl Fn(&Judged) -> bool,
     deadline: &Deadline,
 ) -> Result<Vec<(Judged, Vec<Judged>)>> {
     let n = before.len();
@@ -464,7 +467,11 @@ fn search(
             });
         }
         if let Some(best) = layer_order(&probes.order, &mut judged) {
+            let last = !deeper(&best);
             found.push((best, judged));
+            if last {
+                break;
+            }
         }
         beam = kept.into_iter().map(|k| k.2.clone()).collect();
     }
@@ -639,8 +646,11 @@ pub fn explain(
     // The answer so far, its alternatives, and whether it is the step's own detected fold.
     let mut chosen = (one, Vec::new(), true);
     if max_folds >= 2 && left > EXPLAINED_BY_ONE {
+        // A sequence leaving less than MIN_GAIN unexplained cannot be beaten markedly: no
+        // longer one is searched.
+        let deeper = |best: &Judged| share(best.cost) >= MIN_GAIN;
         for (best, others) in
-            search(before, start, end, &probes, max_folds.min(MAX_FOLDS), deadline)?
+            search(before, start, end, &probes, max_folds.min(MAX_FOLDS), deeper, deadline)?
         {
             let now = share(best.cost);
             if now > MARKEDLY * left || left - now < MIN_GAIN {
