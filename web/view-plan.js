@@ -18,7 +18,7 @@ const CASES = {
 };
 let showError = () => {};
 
-const view = { cloth: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], cornerVertices: [], name: "" };
+const view = { cloth: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], cornerVertices: [], name: "", flat: null };
 let inputs = null;
 
 /** "a", "a and b", "a, b and c". */
@@ -91,6 +91,7 @@ async function load(cloth, takeGoal) {
     view.folds = result.folds;
     view.corners = result.corners;
     view.cornerVertices = result.corner_vertices;
+    view.flat = result.start_border;
     view.name = $("#plan-sample").selectedOptions[0]?.textContent || result.name;
     $("#plan-now").textContent = `${view.name}: N = ${result.n}, ${result.corners.length} corners, now ${result.folds.length ? result.folds.map(fmtDeg).join(" then ") : "flat"}.`;
     if (takeGoal && result.corners.length >= 2) view.goal = halfGoal(result.corners, result.n);
@@ -111,6 +112,34 @@ function drawCircle() {
   arcs.push({ fold: view.goal, color: "#c05621" });
   const handles = view.goal.map((angle, k) => ({ id: String(k), angle, color: "#c05621", label: k + 1, r: R + 18, name: `goal fold point ${k + 1}` }));
   drawFoldCircle($("#plan-circle"), view.corners, arcs, handles);
+  preview();
+}
+
+/**
+ * The goal made on the flat cloth, drawn under the circle as its handles move: the server's
+ * state (`POST /api/interpolate` from the goal to itself, at its end), the newest goal asked
+ * superseding any request still on its way.
+ */
+async function preview() {
+  const canvas = $("#plan-preview");
+  if (!view.flat) return;
+  const goal = view.goal;
+  try {
+    const answer = await api.interpolate({ border: view.flat, from: goal, to: goal, at: [1], drawn: true }, "plan-preview");
+    if (goal !== view.goal) return;
+    const [state, border] = [answer.states[0], answer.borders[0]];
+    const ctx = canvas.getContext("2d");
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
+    const v = viewport(canvas, boundsOf([view.flat, border]), 12);
+    polygon(ctx, v, view.flat, { stroke: "#9aa4b2", width: 1.2, dash: [4, 4] });
+    drawCloth(ctx, v, state.layers, border, { width: 1.8 });
+    if (state.segment) line(ctx, v, state.segment[0], state.segment[1], "#d1495b", 2);
+    canvas.setAttribute("aria-label", `The goal ${fmtDeg(goal)} made on the flat cloth`);
+    $("#plan-preview-note").textContent = "The goal made on the flat cloth";
+  } catch (e) {
+    // A goal being dragged may pass through folds that cannot be made: said here, not as the page's error.
+    if (!api.isAbort(e)) $("#plan-preview-note").textContent = `(no preview: ${e.message})`;
+  }
 }
 
 const writeInputs = () => inputs.write({ "goal-1": view.goal[0], "goal-2": view.goal[1] });

@@ -962,7 +962,9 @@ async fn the_app_works_in_a_real_browser() {
         "coordinates without units: {steps:?}"
     );
     assert!(text(&client, "document.title").await.contains("half_then_half"));
-    assert!(pictures_have_ink(&client, "#view-plan").await >= 4);
+    // The goal is previewed on the flat cloth (issue 28 item 3), drawn by the server.
+    until(&client, "the goal's preview", "document.getElementById('plan-preview').getAttribute('aria-label').includes('(10.0°, 150.0°)')").await;
+    assert!(pictures_have_ink(&client, "#view-plan").await >= 5);
     screenshot(&client, &shots, "1400-07-plan.png").await;
     assert_eq!(wrapped_box_names(&client).await, json!([]), "goal box names wrap");
     assert_eq!(
@@ -1055,6 +1057,11 @@ async fn the_app_works_in_a_real_browser() {
         text(&client, "[...document.querySelectorAll('#plan-list .plan-step')].pop().innerText")
             .await;
     assert!(last.contains("Fold along (0.0°, 180.0°)"), "the T-shirt's default goal: {last}");
+    // The preview follows the goal as it moves, before any plan is asked for.
+    let shown = until(&client, "the T-shirt's goal previewed", "document.getElementById('plan-preview').getAttribute('aria-label').includes('(0.0°, 180.0°)') && document.getElementById('plan-preview').toDataURL()").await;
+    js(&client, "const i = document.getElementById('goal-1'); i.value = 90; i.dispatchEvent(new Event('change'))").await;
+    let moved = until(&client, "the moved goal previewed", "document.getElementById('plan-preview').getAttribute('aria-label').includes('(90.0°, 180.0°)') && document.getElementById('plan-preview').toDataURL()").await;
+    assert_ne!(shown, moved, "the preview did not follow the goal");
     assert!(pictures_have_ink(&client, "#view-plan").await >= 2);
 
     // ---- Every picture downloads as PNG and SVG, the analysis as JSON; "use from code"
