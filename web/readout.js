@@ -51,10 +51,10 @@ const SHOWN = {
  * Make the picture `img` inside the focusable `button` readable: `kind` is a key of SHOWN;
  * `load()` resolves to {n, size, values(k)} (values of ring index k; called once, on first
  * use; may be called again after `reset`); `onCell(cell, loaded)` hears of the cell picked
- * ({k, i, j, d}; null: none). Gives {reset(), pick(cell)}: forget the loaded values (the
- * picture changed), pick a cell.
+ * ({k, i, j, d}; null: none); the readout goes into `slot`, or right after the button. Gives
+ * {reset(), pick(cell)}: forget the loaded values (the picture changed), pick a cell.
  */
-export function readable(button, img, kind, load, onCell = () => {}) {
+export function readable(button, img, kind, load, onCell = () => {}, slot = null) {
   const out = el("output", { className: "cell-readout mono small" });
   out.setAttribute("aria-live", "polite");
   const wrap = el("span", { className: "picture-stack" });
@@ -62,10 +62,10 @@ export function readable(button, img, kind, load, onCell = () => {}) {
   const mark = el("canvas", { className: "cell-mark" });
   mark.setAttribute("aria-hidden", "true");
   wrap.append(img, mark);
-  button.after(out);
   const hint = el("span", { className: "visually-hidden", textContent: "Arrow keys read the disk's cells." });
   hint.id = `hint-${Math.random().toString(36).slice(2)}`;
-  out.after(hint);
+  if (slot) slot.append(out, hint);
+  else button.after(out, hint);
   button.setAttribute("aria-describedby", hint.id);
   let data = null;
   let pending = null;

@@ -172,8 +172,8 @@ function setupZoom(dialog) {
 
 /**
  * Show `url` in the full-resolution dialog (fitted first; wheel, pinch and drag zoom and pan),
- * with a link that downloads it as `file`. `read(stage, img)`, given, makes the picture
- * readable (a disk's cells, as on the small picture); its readout shows under the picture.
+ * with a link that downloads it as `file`. `read(stage, img, slot)`, given, makes the picture
+ * readable (a disk's cells, as on the small picture), its readout in `slot` under the picture.
  */
 export function enlarge(url, caption, { file = `${fileName(caption)}.png`, read = null } = {}) {
   const dialog = document.getElementById("lightbox");
@@ -189,8 +189,7 @@ export function enlarge(url, caption, { file = `${fileName(caption)}.png`, read 
   under.replaceChildren();
   if (read) {
     stage.tabIndex = 0;
-    read(stage, img);
-    under.append(...frame.querySelectorAll(".cell-readout, .visually-hidden"));
+    read(stage, img, under);
   }
   Object.assign(dialog.querySelector(".lightbox-download"), { href: url, download: file });
   dialog.querySelector(".lightbox-caption").textContent = caption;
@@ -219,7 +218,7 @@ function cellReader(result) {
       readable(button, img, name, () => load(step), (c, data) => plot && plot.show(data ? data.border_frames : [], data && data.borders, data ? data.size : 480, c));
     },
     /** The same for the full-resolution picture of disk `name` (its readout alone). */
-    large: (name, step) => (stage, img) => readable(stage, img, name, () => load(step)),
+    large: (name, step) => (stage, img, slot) => readable(stage, img, name, () => load(step), undefined, slot),
     /** The border plot, on which the edges are marked. */
     plot: (button, img) => (plot = edgeOverlay(img)),
   };

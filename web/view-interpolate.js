@@ -94,7 +94,7 @@ class DiskFollower {
     if (!job) return;
     try {
       const { url } = await api.disk(this.request(job, 1400), "disk-large");
-      enlarge(url, caption, { read: (stage, img) => readable(stage, img, "state", () => this.cells(job)) });
+      enlarge(url, caption, { read: (stage, img, slot) => readable(stage, img, "state", () => this.cells(job), undefined, slot) });
     } catch (e) {
       if (!api.isAbort(e)) this.status.textContent = `(not drawn: ${e.message})`;
     }

@@ -22,11 +22,11 @@ use std::f64::consts::TAU;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::raster::text_width;
+use super::raster::{mix, text_width};
 use super::truth::{agreement, true_lines, Truth};
 use super::{
-    endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas, INK,
-    MUTED, MUTED_TEXT, PAPER,
+    endpoint_name, fold_colour, label_size, line_width, note_size, plot, title_size, Canvas,
+    StepSpan, INK, MUTED, MUTED_TEXT, PAPER,
 };
 use crate::error::Result;
 use close_core::analysis::Analysis;
@@ -39,12 +39,12 @@ pub const NUMBERED_CORNERS: usize = 20;
 /// Fold `k`'s colour on a circle that shows the folds `shown` (indices into
 /// [`Analysis::foldings`]): its own, or mostly paper for a fold of another step.
 fn colour_of(k: usize, shown: &Range<usize>) -> [u8; 3] {
-    let own = fold_colour(k);
-    if shown.contains(&k) {
-        own
-    } else {
-        std::array::from_fn(|c| (0.3 * f64::from(own[c]) + 0.7 * f64::from(PAPER[c])).round() as u8)
+    let mut colour = fold_colour(k);
+    if !shown.contains(&k) {
+        colour = PAPER;
+        mix(&mut colour, fold_colour(k), 0.3);
     }
+    colour
 }
 
 /// `points` angles from f1 anticlockwise to f2 (unwrapped: increasing from f1).
@@ -294,15 +294,16 @@ fn labels(analysis: &Analysis, shown: &Range<usize>) -> Vec<Label> {
 }
 
 /// Draw the fold circle of `analysis`, with the `truth` folds (when known) as hollow
-/// markers joined by a thin chord beside the found ones; `step` (1-based), given, is the
-/// step whose folds `shown` are drawn in their colours, the others faded.
+/// markers joined by a thin chord beside the found ones; for `step` (1-based; `None`: the
+/// whole analysis), the folds that step made are drawn in their colours, the others faded.
 pub(crate) fn draw(
     canvas: &mut Canvas,
     analysis: &Analysis,
     truth: &Truth,
-    (step, shown): (Option<usize>, &Range<usize>),
+    step: Option<usize>,
 ) -> Result<()> {
     let unit = canvas.unit();
+    let shown = &StepSpan::of(analysis, step)?.folds(analysis);
     let layout = Layout::of(canvas.width, canvas.height, analysis, truth, shown);
     let frame = layout.frame;
     shade_folded_sides(canvas, analysis, shown, &frame)?;

@@ -278,20 +278,22 @@ pub fn across(points: &[Point], line: &Line) -> [[f64; 2]; 2] {
     let length = line.direction.x.hypot(line.direction.y);
     let (dx, dy) = (line.direction.x / length, line.direction.y / length);
     let along = |x: f64, y: f64| (x - px) * dx + (y - py) * dy;
-    let extent = |t: &mut dyn Iterator<Item = f64>| {
-        t.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+    let extent = |t: &[f64]| {
+        t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)))
     };
-    let crossings = (0..points.len()).filter_map(|k| {
-        let (a, b) = (&points[k], &points[(k + 1) % points.len()]);
-        let (oa, ob) = (offset(a, line), offset(b, line));
-        // Where the edge meets the line (at its first end when it lies along the line).
-        let s = if oa == ob { 0.0 } else { oa / (oa - ob) };
-        (oa * ob <= 0.0).then(|| along(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)))
-    });
-    let (mut lo, mut hi) = extent(&mut crossings.clone());
-    if crossings.count() < 2 || lo >= hi {
-        (lo, hi) = extent(&mut points.iter().map(|p| along(p.x, p.y)));
-    }
+    let crossings: Vec<f64> = (0..points.len())
+        .filter_map(|k| {
+            let (a, b) = (&points[k], &points[(k + 1) % points.len()]);
+            let (oa, ob) = (offset(a, line), offset(b, line));
+            // Where the edge meets the line (at its first end when it lies along the line).
+            let s = if oa == ob { 0.0 } else { oa / (oa - ob) };
+            (oa * ob <= 0.0).then(|| along(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)))
+        })
+        .collect();
+    let (lo, hi) = match extent(&crossings) {
+        (lo, hi) if lo < hi => (lo, hi),
+        _ => extent(&points.iter().map(|p| along(p.x, p.y)).collect::<Vec<_>>()),
+    };
     let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
     [[px + lo * dx, py + lo * dy], [px + hi * dx, py + hi * dy]]
 }

@@ -218,10 +218,7 @@ pub fn render(analysis: &Analysis, view: &View, output: &Output, known: Known) -
                 picture.name()
             )));
         }
-        Picture::Close => {
-            let span = StepSpan::of(analysis, step)?;
-            circle::draw(&mut canvas, analysis, known.truth, (step, &span.folds(analysis)))?
-        }
+        Picture::Close => circle::draw(&mut canvas, analysis, known.truth, step)?,
         Picture::Borders => {
             borders::draw(&mut canvas, analysis, known.truth, step)?;
         }

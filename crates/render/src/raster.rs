@@ -65,7 +65,7 @@ impl Recording {
 }
 
 /// `colour` over `pixel` with weight `alpha` (≤ 1).
-fn mix(pixel: &mut [u8], colour: [u8; 3], alpha: f64) {
+pub(crate) fn mix(pixel: &mut [u8], colour: [u8; 3], alpha: f64) {
     for (p, c) in pixel.iter_mut().zip(colour) {
         *p = (*p as f64 * (1.0 - alpha) + c as f64 * alpha).round() as u8;
     }
