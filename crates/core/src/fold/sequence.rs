@@ -18,13 +18,16 @@
 //!
 //! **Analysis by synthesis.** Each fold of a candidate sequence is a line on the state it is
 //! made on, through two cut points where they lie on that state, or through one in a
-//! searched direction where two coincide (stacked layers), and the arcs of the border left
+//! searched direction where two coincide (stacked layers) or, for the first fold, through
+//! one alone (a crease can meet a straight side where no cut shows it), directions taken
+//! in the cloth's frame, and the arcs of the border left
 //! of it that turn over: all of them, or the one holding a given vertex (a fold of the top
 //! layer only). The folds are made in turn ([`super::synth`]: each flap rotated by π about
 //! its line, laid above the stack), and the synthesised state's dGLI on probe pairs is
 //! compared with the measured end disk (`asinh`-compressed, mean absolute difference). A
-//! beam search builds the sequences a fold at a time on a screen of strided pairs (every
-//! first fold is carried on: a sequence's first fold explains little alone); the best are
+//! beam search builds the sequences a fold at a time on a screen of strided pairs; besides
+//! the best, the best sequence through each set of cut points is carried on (a sequence's
+//! first folds can explain the end disk less than the flat cloth does); the best are
 //! refined, all their folds together, by a pattern search over each fold's two parameters,
 //! and judged on a larger probe, each at the flap height that fits it best (the cloth's
 //! thickness, which sets how far apart its layers lie, shows in the disk).
@@ -35,19 +38,21 @@
 //! compared with it on the order alone: each one's outline with each one's heights.
 //!
 //! **Model selection.** k folds are reported only when they explain markedly more of the end
-//! disk than k − 1 ([`MARKEDLY`], [`MIN_GAIN`]): more than the best k − 1 found, and more
-//! than any k − 1 of their own (else those are the answer); the search runs only when the step's one
+//! disk than fewer ([`MARKEDLY`], [`MIN_GAIN`]): more than the answer so far (the best of
+//! fewer folds accepted), and more than any k − 1 of their own (else those are the answer
+//! so far, if better); each length is tried in turn; the search runs only when the step's one
 //! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. A fold or sequence that
 //! leaves more than [`UNEXPLAINED`] unexplained is not a confident fold.
 //!
 //! The end border's coordinates are never read: only its disk.
 
+use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::angle::{angle_to_param, param_to_angle, wrap_tau, ArcVertices};
+use crate::angle::{angle_to_param, param_to_angle, wrap_pi, wrap_tau, ArcVertices};
 use crate::border::{point_at, Point};
 use crate::budget::Deadline;
 use crate::disk::Disk;
@@ -66,9 +71,10 @@ use super::FoldDetection;
 pub const MAX_FOLDS: usize = 4;
 /// Weight of a pair's start |dGLI| against its change when the creases are placed.
 pub const INFORMATION: f64 = 0.05;
-/// First folds carried on to the second: all there are, up to this many.
+/// First folds carried on to the second (a sequence's first fold explains little alone),
+/// besides the best through each set of cut points …
 const FIRST_BEAM: usize = 96;
-/// Sequences carried on from the second fold on.
+/// … and longer sequences carried on to the next fold.
 const BEAM: usize = 8;
 /// Sequences of each length refined in full.
 const REFINED: usize = 6;
@@ -99,6 +105,10 @@ pub const UNEXPLAINED: f64 = 0.6;
 /// Two fold lines whose directions' cosine is at least this (2.6°) run along one line when
 /// they also lie within [`COINCIDE_EDGES`] mean edges of each other.
 const PARALLEL: f64 = 0.999;
+/// A straight side: at least this many edges in a row …
+const SIDE_EDGES: usize = 4;
+/// … each turning less than this from the last (radians; 1°).
+const SIDE_TURN: f64 = PI / 180.0;
 /// Alternatives listed: sequences whose mismatch is within this share of the best one's.
 const ABOUT_AS_WELL: f64 = 0.25;
 
@@ -241,23 +251,69 @@ fn all_pairs(edges: &[usize]) -> Vec<(usize, usize)> {
         .collect()
 }
 
+/// Where the directions of lines through lone or stacked cut points start: the cloth's
+/// frame, not the table's, so that a turned cloth is searched alike.
+#[derive(Debug, Clone, Copy)]
+enum Frame<'a> {
+    /// The flat cloth, with the directions square to its straight sides (radians).
+    Flat(&'a [f64]),
+    /// After a fold along a line of this direction (radians).
+    After(f64),
+}
+
+/// The directions square to the straight sides of `border` (runs of at least
+/// [`SIDE_EDGES`] edges turning less than [`SIDE_TURN`] from one to the next), each once,
+/// in radians modulo π.
+fn square_to_sides(border: &[Point]) -> Vec<f64> {
+    let n = border.len();
+    let heading = |k: usize| {
+        let d = border[(k + 1) % n] - border[k];
+        d.y.atan2(d.x)
+    };
+    let turn = |k: usize| wrap_pi(heading((k + 1) % n) - heading(k)).abs();
+    // From a corner, so that no side is cut in two where the border starts.
+    let Some(corner) = (0..n).find(|&k| turn(k) >= SIDE_TURN) else { return Vec::new() };
+    let mut squares: Vec<f64> = Vec::new();
+    let mut run = 1;
+    for k in (corner + 1..=corner + n).map(|k| k % n) {
+        if turn(k) < SIDE_TURN {
+            run += 1;
+            continue;
+        }
+        let square = (heading(k) + PI / 2.0).rem_euclid(PI);
+        let apart = |a: f64| {
+            let d = (a - square).rem_euclid(PI);
+            d.min(PI - d)
+        };
+        if run >= SIDE_EDGES && squares.iter().all(|&a| apart(a) >= SIDE_TURN) {
+            squares.push(square);
+        }
+        run = 1;
+    }
+    squares
+}
+
 /// The folds that can be made on `state` along lines through two of the cut `points` that
 /// no fold before it ran through (creases meet the border at points of their own), each with
-/// the indices of the two points. Where two points lie together, the searched directions
-/// start from `heading` (the last fold's, radians), or on a flat state from the border's own
-/// at the point: the cloth's frame, not the table's, so that a turned cloth is searched alike
-/// (and folds square to the last one, as cloth is mostly folded, are tried exactly).
+/// the indices of the two points. Where two points lie together (stacked layers) the line's
+/// direction is searched, from the last fold's (or on a flat cloth the border's at the
+/// point), every π / [`DIRECTIONS`]. On a flat cloth lines through each point alone are
+/// tried too, square to each straight side: a crease that meets a straight side square to it
+/// leaves both its pieces on that side's line, so no cut shows it there.
 fn moves_on(
     state: &[Point],
     points: &[f64],
     used: &[usize],
-    heading: Option<f64>,
+    frame: Frame,
 ) -> Vec<(Move, [usize; 2])> {
     let n = state.len();
     let near = COINCIDE_EDGES * mean_edge(state);
     let free: Vec<usize> = (0..points.len()).filter(|k| !used.contains(k)).collect();
     let mut anchors: Vec<(Anchor, [usize; 2])> = Vec::new();
     for (k, &i) in free.iter().enumerate() {
+        if let Frame::Flat(squares) = frame {
+            anchors.extend(squares.iter().map(|&phi| (Anchor::Ray(points[i], phi), [i, i])));
+        }
         for &j in &free[k + 1..] {
             let (a, b) = (points[i], points[j]);
             let (pa, pb) = (point_at(state, a), point_at(state, b));
@@ -266,13 +322,15 @@ fn moves_on(
                 anchors.push((Anchor::Points([a, b]), [i, j]));
             }
             if apart < RAY_REACH * near {
-                // Layers stacked there (the cut points lie within an edge or two of the
-                // creases, so two that should meet may not quite): the line's direction is
-                // searched.
-                let base = heading.unwrap_or_else(|| {
-                    let along = point_at(state, a + 0.5) - point_at(state, a - 0.5);
-                    along.y.atan2(along.x)
-                });
+                // The cut points lie within an edge or two of the creases, so two that
+                // should meet may not quite.
+                let base = match frame {
+                    Frame::After(heading) => heading,
+                    Frame::Flat(_) => {
+                        let along = point_at(state, a + 0.5) - point_at(state, a - 0.5);
+                        along.y.atan2(along.x)
+                    }
+                };
                 anchors.extend(
                     (0..DIRECTIONS).map(|d| {
                         (Anchor::Ray(a, base + PI * d as f64 / DIRECTIONS as f64), [i, j])
@@ -309,6 +367,33 @@ struct Partial {
     set: usize,
     moves: Vec<Move>,
     used: Vec<usize>,
+}
+
+/// `moves` as bits, to tell equal sequences of folds apart from the others.
+fn key(moves: &[Move]) -> Vec<u64> {
+    moves
+        .iter()
+        .flat_map(|m| {
+            let (kind, [a, b]) = match m.anchor {
+                Anchor::Points(points) => (0, points),
+                Anchor::Ray(point, phi) => (1, [point, phi]),
+            };
+            let turn = match m.turn {
+                Turn::All => u64::MAX,
+                Turn::Holding(v) => v as u64,
+            };
+            [kind + 2 * u64::from(m.reversed), a.to_bits(), b.to_bits(), turn]
+        })
+        .collect()
+}
+
+impl Partial {
+    /// The cut set and the cut points its folds ran through, in any order.
+    fn through(&self) -> (usize, Vec<usize>) {
+        let mut used = self.used.clone();
+        used.sort_unstable();
+        (self.set, used)
+    }
 }
 
 /// A sequence judged at the flap height that fits it best.
@@ -368,25 +453,27 @@ fn search(
         .filter(|&m| m <= 2 * max_folds + 2 && m < n)
         .filter_map(|m| find_cuts(&offset, m).map(|c| c.points))
         .collect();
+    let squares = square_to_sides(before);
     let mut beam: Vec<Partial> = (0..cut_sets.len())
         .map(|set| Partial { set, moves: Vec::new(), used: Vec::new() })
         .collect();
     let mut found = Vec::new();
     for level in 0..max_folds {
         deadline.check()?;
-        // Every fold through the free cut points on each state of the beam, screened.
-        let mut scored: Vec<(f64, usize, Partial, Vec<u8>)> = beam
+        // Every fold through the free cut points on each state of the beam.
+        let candidates: Vec<(usize, Partial)> = beam
             .par_iter()
             .enumerate()
             .flat_map_iter(|(p, partial)| {
-                let (state, heading) = make(before, &partial.moves)
+                let (state, frame) = make(before, &partial.moves)
                     .map(|(t, made)| {
-                        let heading =
-                            made.last().map(|m| m.line.direction.y.atan2(m.line.direction.x));
-                        (t.state, heading)
+                        let frame = made.last().map_or(Frame::Flat(&squares), |m| {
+                            Frame::After(m.line.direction.y.atan2(m.line.direction.x))
+                        });
+                        (t.state, frame)
                     })
-                    .unwrap_or_default();
-                moves_on(&state, &cut_sets[partial.set], &partial.used, heading).into_iter().map(
+                    .unwrap_or((Vec::new(), Frame::Flat(&squares)));
+                moves_on(&state, &cut_sets[partial.set], &partial.used, frame).into_iter().map(
                     move |(m, through)| {
                         let mut longer = partial.clone();
                         longer.moves.push(m);
@@ -395,18 +482,43 @@ fn search(
                     },
                 )
             })
-            .filter_map(|(p, partial)| {
+            .collect();
+        // Screened once per distinct sequence of folds: the cut sets share many points,
+        // so the same folds come from several of them.
+        let mut first: HashMap<Vec<u64>, usize> = HashMap::new();
+        let mut distinct: Vec<usize> = Vec::new();
+        let slots: Vec<usize> = candidates
+            .iter()
+            .enumerate()
+            .map(|(c, (_, partial))| {
+                *first.entry(key(&partial.moves)).or_insert_with(|| {
+                    distinct.push(c);
+                    distinct.len() - 1
+                })
+            })
+            .collect();
+        let screened: Vec<Option<(f64, Vec<u8>)>> = distinct
+            .par_iter()
+            .map(|&c| {
                 if deadline.expired() {
                     return None;
                 }
-                let (turned, _) = make(before, &partial.moves)?;
-                Some((probes.screen.cost(&turned), p, partial, turned.groups().to_vec()))
+                let (turned, _) = make(before, &candidates[c].1.moves)?;
+                Some((probes.screen.cost(&turned), turned.groups().to_vec()))
+            })
+            .collect();
+        let mut scored: Vec<(f64, usize, Partial, Vec<u8>)> = candidates
+            .into_iter()
+            .zip(slots)
+            .filter_map(|((p, partial), slot)| {
+                let (cost, groups) = screened[slot].clone()?;
+                Some((cost, p, partial, groups))
             })
             .collect();
         scored.sort_by(|a, b| a.0.total_cmp(&b.0));
         // Distinct by what the folds moved.
-        let width = if level == 0 { FIRST_BEAM } else { BEAM };
         let mut kept: Vec<&(f64, usize, Partial, Vec<u8>)> = Vec::new();
+        let width = if level == 0 { FIRST_BEAM } else { BEAM };
         for s in &scored {
             if kept.len() == width {
                 break;
@@ -418,9 +530,21 @@ fn search(
         if kept.is_empty() {
             break;
         }
+        // Carried on: the beam, and the best sequence through each set of cut points the
+        // beam does not hold. The end disk ranks a sequence's first folds poorly when its
+        // last ones are still to come (sides folded in leave a cloth folded in half less
+        // explained than the flat one), but which creases they are is few enough to keep.
+        let mut carried: Vec<Partial> = kept.iter().map(|k| k.2.clone()).collect();
+        let mut through: HashSet<(usize, Vec<usize>)> =
+            carried.iter().map(Partial::through).collect();
+        for s in &scored {
+            if through.insert(s.2.through()) {
+                carried.push(s.2.clone());
+            }
+        }
         if level == 0 {
             // One fold is the step's own detection's business.
-            beam = kept.into_iter().map(|k| k.2.clone()).collect();
+            beam = carried;
             continue;
         }
         // Refined: the best of each state the beam came from first.
@@ -492,7 +616,7 @@ fn search(
                 break;
             }
         }
-        beam = kept.into_iter().map(|k| k.2.clone()).collect();
+        beam = carried;
     }
     Ok(found)
 }
@@ -695,12 +819,12 @@ pub fn explain(
                 left = now;
                 chosen = (best, others, false);
             } else {
-                // As many folds as the answer so far: the better one is kept.
+                // As many folds as the answer so far: the better one is kept, and longer
+                // sequences are still tried against it.
                 if without_one < left {
                     left = without_one;
                     chosen = (fewer, Vec::new(), false);
                 }
-                break;
             }
         }
     }
@@ -820,6 +944,36 @@ mod tests {
                 plain.explained
             );
         }
+    }
+
+    #[test]
+    fn straight_sides_give_the_directions_square_to_them() {
+        let apart = |a: f64, b: f64| {
+            let d = (a - b).rem_euclid(PI);
+            d.min(PI - d)
+        };
+        // A square, turned: two directions, square to its sides, whatever vertex it starts at.
+        for (angle, from) in [(0.0, 0), (0.3, 5)] {
+            let (c, s) = (f64::cos(angle), f64::sin(angle));
+            let mut turned: Vec<Point> = square(12)
+                .iter()
+                .map(|p| Point::new(c * p.x - s * p.y, s * p.x + c * p.y, 0.0))
+                .collect();
+            turned.rotate_left(from);
+            let mut squares = square_to_sides(&turned);
+            squares.sort_by(f64::total_cmp);
+            assert_eq!(squares.len(), 2, "{squares:?}");
+            assert!(apart(squares[0], angle) < 1e-9 || apart(squares[0], angle + PI / 2.0) < 1e-9);
+            assert!((apart(squares[0], squares[1]) - PI / 2.0).abs() < 1e-9);
+        }
+        // A circle has no straight side.
+        let circle: Vec<Point> = (0..100)
+            .map(|k| {
+                let t = 2.0 * PI * k as f64 / 100.0;
+                Point::new(t.cos(), t.sin(), 0.0)
+            })
+            .collect();
+        assert!(square_to_sides(&circle).is_empty());
     }
 
     #[test]
