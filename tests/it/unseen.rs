@@ -36,7 +36,7 @@ fn outline(corners: &[[f64; 2]], n: usize) -> Vec<[f64; 3]> {
 }
 
 /// The start frame of sample `index`: one of four convex shapes, jittered by 1e-5.
-fn random_start(rng: &mut SplitMix64, index: usize) -> Vec<[f64; 3]> {
+pub(crate) fn random_start(rng: &mut SplitMix64, index: usize) -> Vec<[f64; 3]> {
     let n = [40, 63, 75, 90, 101][rng.below(5)];
     let mut start = match index % 4 {
         0 => outline(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], n),
