@@ -204,6 +204,11 @@ impl Line {
         Line { point, direction: Vector2::new(phi.cos(), phi.sin()) }
     }
 
+    /// The angle of the line's direction to the x axis (the inverse of [`Line::at_angle`]).
+    pub(crate) fn angle(&self) -> f64 {
+        self.direction.y.atan2(self.direction.x)
+    }
+
     /// Reflection of `p` across the line, in XY, z kept.
     pub fn reflect(&self, p: &Point) -> Point {
         let (ux, uy) = (self.direction.x, self.direction.y);

@@ -52,7 +52,7 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::angle::{angle_to_param, param_to_angle, wrap_pi, wrap_tau, ArcVertices};
+use crate::angle::{angle_to_param, distance, param_to_angle, wrap_tau, ArcVertices};
 use crate::border::{point_at, Point};
 use crate::budget::Deadline;
 use crate::disk::Disk;
@@ -261,6 +261,11 @@ enum Frame<'a> {
     After(f64),
 }
 
+/// The angle between two lines of directions `a` and `b` (radians), in [0, π/2].
+fn between_lines(a: f64, b: f64) -> f64 {
+    distance(2.0 * a, 2.0 * b) / 2.0
+}
+
 /// The directions square to the straight sides of `border` (runs of at least
 /// [`SIDE_EDGES`] edges turning less than [`SIDE_TURN`] from one to the next), each once,
 /// in radians modulo π.
@@ -270,7 +275,7 @@ fn square_to_sides(border: &[Point]) -> Vec<f64> {
         let d = border[(k + 1) % n] - border[k];
         d.y.atan2(d.x)
     };
-    let turn = |k: usize| wrap_pi(heading((k + 1) % n) - heading(k)).abs();
+    let turn = |k: usize| distance(heading((k + 1) % n), heading(k));
     // From a corner, so that no side is cut in two where the border starts.
     let Some(corner) = (0..n).find(|&k| turn(k) >= SIDE_TURN) else { return Vec::new() };
     let mut squares: Vec<f64> = Vec::new();
@@ -281,11 +286,7 @@ fn square_to_sides(border: &[Point]) -> Vec<f64> {
             continue;
         }
         let square = (heading(k) + PI / 2.0).rem_euclid(PI);
-        let apart = |a: f64| {
-            let d = (a - square).rem_euclid(PI);
-            d.min(PI - d)
-        };
-        if run >= SIDE_EDGES && squares.iter().all(|&a| apart(a) >= SIDE_TURN) {
+        if run >= SIDE_EDGES && squares.iter().all(|&a| between_lines(a, square) >= SIDE_TURN) {
             squares.push(square);
         }
         run = 1;
@@ -467,9 +468,9 @@ fn search(
             .flat_map_iter(|(p, partial)| {
                 let (state, frame) = make(before, &partial.moves)
                     .map(|(t, made)| {
-                        let frame = made.last().map_or(Frame::Flat(&squares), |m| {
-                            Frame::After(m.line.direction.y.atan2(m.line.direction.x))
-                        });
+                        let frame = made
+                            .last()
+                            .map_or(Frame::Flat(&squares), |m| Frame::After(m.line.angle()));
                         (t.state, frame)
                     })
                     .unwrap_or((Vec::new(), Frame::Flat(&squares)));
@@ -517,8 +518,8 @@ fn search(
             .collect();
         scored.sort_by(|a, b| a.0.total_cmp(&b.0));
         // Distinct by what the folds moved.
-        let mut kept: Vec<&(f64, usize, Partial, Vec<u8>)> = Vec::new();
         let width = if level == 0 { FIRST_BEAM } else { BEAM };
+        let mut kept: Vec<&(f64, usize, Partial, Vec<u8>)> = Vec::new();
         for s in &scored {
             if kept.len() == width {
                 break;
@@ -948,10 +949,6 @@ mod tests {
 
     #[test]
     fn straight_sides_give_the_directions_square_to_them() {
-        let apart = |a: f64, b: f64| {
-            let d = (a - b).rem_euclid(PI);
-            d.min(PI - d)
-        };
         // A square, turned: two directions, square to its sides, whatever vertex it starts at.
         for (angle, from) in [(0.0, 0), (0.3, 5)] {
             let (c, s) = (f64::cos(angle), f64::sin(angle));
@@ -963,8 +960,11 @@ mod tests {
             let mut squares = square_to_sides(&turned);
             squares.sort_by(f64::total_cmp);
             assert_eq!(squares.len(), 2, "{squares:?}");
-            assert!(apart(squares[0], angle) < 1e-9 || apart(squares[0], angle + PI / 2.0) < 1e-9);
-            assert!((apart(squares[0], squares[1]) - PI / 2.0).abs() < 1e-9);
+            assert!(
+                between_lines(squares[0], angle) < 1e-9
+                    || between_lines(squares[0], angle + PI / 2.0) < 1e-9
+            );
+            assert!((between_lines(squares[0], squares[1]) - PI / 2.0).abs() < 1e-9);
         }
         // A circle has no straight side.
         let circle: Vec<Point> = (0..100)

@@ -479,7 +479,7 @@ pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
 /// direction and offset from `line`, and the arcs follow it. The result spans the arcs:
 /// `s` runs from the first point of the first arc to the last point of the last.
 fn refine_line(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synthesis {
-    let phi0 = line.direction.y.atan2(line.direction.x);
+    let phi0 = line.angle();
     let rho0 = line.direction.x * line.point.y - line.direction.y * line.point.x;
     let flat = super::is_flat(before);
     let probe = Probe::around(start, end, &arcs_left_of(before, line), flat, scale_of(flat));
