@@ -113,10 +113,10 @@ fn mean(values: impl Iterator<Item = f64>) -> f64 {
 }
 
 /// The nine development sequences, their middle frames dropped: the right fold count on at
-/// least 8 and the aligned RMSE within 1.5 times the floor's (issue 26's targets; measured
-/// 9 of 9, 0.0216 against 0.0331). The raw RMSE target (1.5 times the floor's 0.0398) is
-/// not met: on two of the nine the sequence found lands as the true end turned by a half
-/// turn (measured mean 0.391; one fold per step gave 0.696), so it is only held there.
+/// least 8, the RMSE and the aligned RMSE within 1.5 times the floor's (issue 26's targets;
+/// measured 9 of 9, RMSE 0.0441 against 0.0398, aligned 0.0161 against 0.0331; one fold per
+/// step gave 0.696 and 0.521). The raw RMSE holds only when the layers are ordered right: a
+/// sequence whose layers lie in another order lands as the end turned by a half turn.
 #[test]
 fn development_sequences_from_start_and_end() {
     let mut files: Vec<_> = ["physics-mujoco/border", "physics"]
@@ -163,7 +163,7 @@ fn development_sequences_from_start_and_end() {
     let floor_aligned = mean(rows.iter().map(|r| r.2.aligned_rmse));
     println!("{right}/9 right; RMSE {rmse:.4} (floor {floor_rmse:.4}), aligned {aligned:.4} (floor {floor_aligned:.4})");
     assert!(right >= 8, "{right} of 9 with the right fold count");
-    assert!(rmse <= 0.6, "RMSE {rmse} against the floor's {floor_rmse}");
+    assert!(rmse <= 1.5 * floor_rmse, "RMSE {rmse} against the floor's {floor_rmse}");
     assert!(
         aligned <= 1.5 * floor_aligned,
         "aligned {aligned} against the floor's {floor_aligned}"
@@ -267,19 +267,22 @@ fn exact_sequences() -> Vec<Exact> {
 
 /// Every exact sequence, placed two ways, from start and end alone. Issue 26 asks the right
 /// fold count on at least 90 % and RMSE ≤ 0.01; measured: 8 of 10 (all but the unturned
-/// eighths and thirds), and those land within an aligned RMSE of 0.004 (several land turned
-/// by a half turn, which only the layer order tells). Why the two fail (measured): placed
+/// eighths and thirds), those within an aligned RMSE of 0.004, and 7 of them within an
+/// RMSE of 0.0052 (the turned towel in thirds lands as the end moved by a third of the
+/// towel: another order of its layers, the same outline). Why the two fail (measured): placed
 /// on the table's axes with no noise, a crease meeting two straight sides square to them
 /// leaves every pair within an arc unchanged at both ends, so the cut finder's arcs tie
 /// exactly and it places no cut point there (with noise or turned, rounding shows the
 /// crease); the thirds' first crease is hidden at both ends, the eighths' at one end and
 /// its other end tied away. What is held: at least 8 right, each of those on the end up to
-/// a rigid motion, and none of the others reported as a confident fold.
+/// a rigid motion, 7 on the end as it lies, and none of the others reported as a confident
+/// fold.
 #[test]
 fn exact_sequences_from_start_and_end() {
     let mut right = 0;
     let mut total = 0;
     let mut worst: f64 = 0.0;
+    let mut landed = 0;
     for case in exact_sequences() {
         let end = fold_in_turn(&case.start, &case.lines);
         for (angle, scale, shift, noise) in
@@ -301,6 +304,7 @@ fn exact_sequences_from_start_and_end() {
             if analysis.folds.len() == case.lines.len() {
                 right += 1;
                 worst = worst.max(m.aligned_rmse);
+                landed += usize::from(m.rmse <= 0.01);
             } else {
                 assert!(
                     analysis.steps[0].unexplained,
@@ -311,8 +315,9 @@ fn exact_sequences_from_start_and_end() {
             }
         }
     }
-    println!("{right}/{total} right, worst aligned RMSE of those {worst:.4}");
+    println!("{right}/{total} right, worst aligned RMSE of those {worst:.4}, {landed} on the end");
     assert!(right >= 8, "{right} of {total} with the right fold count");
+    assert!(landed >= 7, "{landed} of {right} within an RMSE of 0.01");
     assert!(worst <= 0.01, "aligned RMSE {worst}");
 }
 
