@@ -122,7 +122,7 @@ const ABOUT_AS_WELL: f64 = 0.25;
 /// is a wrong line, which a cap would hide (capped there, a towel folded in thirds was read
 /// as three folds). Measured: caps of 1 to 2 put the nine development sequences' ends where
 /// they lie (RMSE 0.044–0.049 against 0.39 uncapped); 3 and above turn some a half turn.
-const CAPPED_MISMATCH: f64 = 1.5;
+pub const CAPPED_MISMATCH: f64 = 1.5;
 
 /// Which of the arcs left of a fold's line turn over.
 #[derive(Debug, Clone, Copy, PartialEq)]
