@@ -114,7 +114,7 @@ const SIDE_TURN: f64 = PI / 180.0;
 /// Alternatives listed: sequences whose mismatch is within this share of the best one's.
 const ABOUT_AS_WELL: f64 = 0.25;
 /// Most a pair's mismatch counts for where candidates are near right, when their lines are
-/// refined and their layers ordered (compressed units, on [`STACKED_SCALE`]): a truncated
+/// refined and their layers ordered (compressed units, on the stacked scale): a truncated
 /// loss. Pairs of nearly collinear edges, or of parallel edges stacked one above the other,
 /// turn noise of a ten-thousandth of the cloth's size into mismatches of several units;
 /// uncapped, those few pairs pull the lines and outweigh the many pairs that tell one layer
