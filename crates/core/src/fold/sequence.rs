@@ -75,14 +75,18 @@ pub const MAX_FOLDS: usize = 4;
 pub const INFORMATION: f64 = 0.05;
 /// First folds carried on to the second (a sequence's first fold explains little alone),
 /// besides the best through each set of cut points …
-const FIRST_BEAM: usize = 96;
+const FIRST_BEAM: usize = 16;
 /// … and longer sequences carried on to the next fold.
 const BEAM: usize = 8;
 /// Sequences of each length refined in full.
 const REFINED: usize = 6;
 /// Two cut points closer than this many times [`COINCIDE_EDGES`] mean edges on a state
-/// also give lines through one of them in every direction.
+/// also give lines through one of them in every direction …
 const RAY_REACH: f64 = 3.0;
+/// … every π / this (15°) …
+const COARSE_DIRECTIONS: usize = 12;
+/// … and the best this many such lines of a level again, π / [`DIRECTIONS`] either side.
+const FINER_RAYS: usize = 16;
 /// Twins of the best sequence refined: two folds land alike in up to eight ways (either
 /// order, either side of each).
 const TWINS: usize = 8;
@@ -310,7 +314,8 @@ fn square_to_sides(border: &[Point]) -> Vec<f64> {
 /// no fold before it ran through (creases meet the border at points of their own), each with
 /// the indices of the two points. Where two points lie together (stacked layers) the line's
 /// direction is searched, from the last fold's (or on a flat cloth the border's at the
-/// point), every π / [`DIRECTIONS`]. On a flat cloth lines through each point alone are
+/// point), every π / [`COARSE_DIRECTIONS`] (the search tries the best again finer). On a
+/// flat cloth lines through each point alone are
 /// tried too, square to each straight side: a crease that meets a straight side square to it
 /// leaves both its pieces on that side's line, so no cut shows it there.
 fn moves_on(
@@ -344,11 +349,9 @@ fn moves_on(
                         along.y.atan2(along.x)
                     }
                 };
-                anchors.extend(
-                    (0..DIRECTIONS).map(|d| {
-                        (Anchor::Ray(a, base + PI * d as f64 / DIRECTIONS as f64), [i, j])
-                    }),
-                );
+                anchors.extend((0..COARSE_DIRECTIONS).map(|d| {
+                    (Anchor::Ray(a, base + PI * d as f64 / COARSE_DIRECTIONS as f64), [i, j])
+                }));
             }
         }
     }
@@ -407,6 +410,54 @@ impl Partial {
         used.sort_unstable();
         (self.set, used)
     }
+}
+
+/// A candidate screened: its cost, the beam state it came from, the sequence, and what its
+/// folds moved ([`Turned::groups`]).
+type Scored = (f64, usize, Partial, Vec<u8>);
+
+/// `candidates` (each with the beam state it came from) screened on `probe`, best first;
+/// once per distinct sequence of folds: the cut sets share many points, so the same folds
+/// come from several of them. Those that cannot be made, or come after `deadline`, are left
+/// out.
+fn screen(
+    before: &[Point],
+    probe: &Probe,
+    candidates: Vec<(usize, Partial)>,
+    deadline: &Deadline,
+) -> Vec<Scored> {
+    let mut first: HashMap<Vec<u64>, usize> = HashMap::new();
+    let mut distinct: Vec<usize> = Vec::new();
+    let slots: Vec<usize> = candidates
+        .iter()
+        .enumerate()
+        .map(|(c, (_, partial))| {
+            *first.entry(key(&partial.moves)).or_insert_with(|| {
+                distinct.push(c);
+                distinct.len() - 1
+            })
+        })
+        .collect();
+    let screened: Vec<Option<(f64, Vec<u8>)>> = distinct
+        .par_iter()
+        .map(|&c| {
+            if deadline.expired() {
+                return None;
+            }
+            let (turned, _) = make(before, &candidates[c].1.moves)?;
+            Some((probe.cost(&turned), turned.groups().to_vec()))
+        })
+        .collect();
+    let mut scored: Vec<Scored> = candidates
+        .into_iter()
+        .zip(slots)
+        .filter_map(|((p, partial), slot)| {
+            let (cost, groups) = screened[slot].clone()?;
+            Some((cost, p, partial, groups))
+        })
+        .collect();
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    scored
 }
 
 /// A sequence judged at the flap height that fits it best.
@@ -496,42 +547,28 @@ fn search(
                 )
             })
             .collect();
-        // Screened once per distinct sequence of folds: the cut sets share many points,
-        // so the same folds come from several of them.
-        let mut first: HashMap<Vec<u64>, usize> = HashMap::new();
-        let mut distinct: Vec<usize> = Vec::new();
-        let slots: Vec<usize> = candidates
+        let mut scored = screen(before, &probes.screen, candidates, deadline);
+        // Rays were tried every π / COARSE_DIRECTIONS: the best are tried again a fine step
+        // either side.
+        let finer: Vec<(usize, Partial)> = scored
             .iter()
-            .enumerate()
-            .map(|(c, (_, partial))| {
-                *first.entry(key(&partial.moves)).or_insert_with(|| {
-                    distinct.push(c);
-                    distinct.len() - 1
+            .filter(|s| matches!(s.2.moves.last().map(|m| m.anchor), Some(Anchor::Ray(..))))
+            .take(FINER_RAYS)
+            .flat_map(|s| {
+                let step = PI / DIRECTIONS as f64;
+                [-1.0, 1.0].map(|d| {
+                    let mut turned = s.2.clone();
+                    let last = turned.moves.len() - 1;
+                    turned.moves[last] = turned.moves[last].moved([0.0, d], step);
+                    (s.1, turned)
                 })
             })
             .collect();
-        let screened: Vec<Option<(f64, Vec<u8>)>> = distinct
-            .par_iter()
-            .map(|&c| {
-                if deadline.expired() {
-                    return None;
-                }
-                let (turned, _) = make(before, &candidates[c].1.moves)?;
-                Some((probes.screen.cost(&turned), turned.groups().to_vec()))
-            })
-            .collect();
-        let mut scored: Vec<(f64, usize, Partial, Vec<u8>)> = candidates
-            .into_iter()
-            .zip(slots)
-            .filter_map(|((p, partial), slot)| {
-                let (cost, groups) = screened[slot].clone()?;
-                Some((cost, p, partial, groups))
-            })
-            .collect();
+        scored.extend(screen(before, &probes.screen, finer, deadline));
         scored.sort_by(|a, b| a.0.total_cmp(&b.0));
         // Distinct by what the folds moved.
         let width = if level == 0 { FIRST_BEAM } else { BEAM };
-        let mut kept: Vec<&(f64, usize, Partial, Vec<u8>)> = Vec::new();
+        let mut kept: Vec<&Scored> = Vec::new();
         for s in &scored {
             if kept.len() == width {
                 break;
