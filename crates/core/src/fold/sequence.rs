@@ -412,9 +412,15 @@ impl Partial {
     }
 }
 
-/// A candidate screened: its cost, the beam state it came from, the sequence, and what its
-/// folds moved ([`Turned::groups`]).
-type Scored = (f64, usize, Partial, Vec<u8>);
+/// A candidate sequence screened.
+struct Scored {
+    cost: f64,
+    /// The beam state it came from.
+    parent: usize,
+    partial: Partial,
+    /// What its folds moved ([`Turned::groups`]).
+    groups: Vec<u8>,
+}
 
 /// `candidates` (each with the beam state it came from) screened on `probe`, best first;
 /// once per distinct sequence of folds: the cut sets share many points, so the same folds
@@ -451,12 +457,12 @@ fn screen(
     let mut scored: Vec<Scored> = candidates
         .into_iter()
         .zip(slots)
-        .filter_map(|((p, partial), slot)| {
+        .filter_map(|((parent, partial), slot)| {
             let (cost, groups) = screened[slot].clone()?;
-            Some((cost, p, partial, groups))
+            Some(Scored { cost, parent, partial, groups })
         })
         .collect();
-    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
     scored
 }
 
@@ -552,20 +558,20 @@ fn search(
         // either side.
         let finer: Vec<(usize, Partial)> = scored
             .iter()
-            .filter(|s| matches!(s.2.moves.last().map(|m| m.anchor), Some(Anchor::Ray(..))))
+            .filter(|s| matches!(s.partial.moves.last().map(|m| m.anchor), Some(Anchor::Ray(..))))
             .take(FINER_RAYS)
             .flat_map(|s| {
                 let step = PI / DIRECTIONS as f64;
                 [-1.0, 1.0].map(|d| {
-                    let mut turned = s.2.clone();
-                    let last = turned.moves.len() - 1;
-                    turned.moves[last] = turned.moves[last].moved([0.0, d], step);
-                    (s.1, turned)
+                    let mut nudged = s.partial.clone();
+                    let last = nudged.moves.len() - 1;
+                    nudged.moves[last] = nudged.moves[last].moved([0.0, d], step);
+                    (s.parent, nudged)
                 })
             })
             .collect();
         scored.extend(screen(before, &probes.screen, finer, deadline));
-        scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+        scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         // Distinct by what the folds moved.
         let width = if level == 0 { FIRST_BEAM } else { BEAM };
         let mut kept: Vec<&Scored> = Vec::new();
@@ -573,7 +579,7 @@ fn search(
             if kept.len() == width {
                 break;
             }
-            if kept.iter().all(|k| k.3 != s.3) {
+            if kept.iter().all(|k| k.groups != s.groups) {
                 kept.push(s);
             }
         }
@@ -584,12 +590,12 @@ fn search(
         // beam does not hold. The end disk ranks a sequence's first folds poorly when its
         // last ones are still to come (sides folded in leave a cloth folded in half less
         // explained than the flat one), but which creases they are is few enough to keep.
-        let mut carried: Vec<Partial> = kept.iter().map(|k| k.2.clone()).collect();
+        let mut carried: Vec<Partial> = kept.iter().map(|k| k.partial.clone()).collect();
         let mut through: HashSet<(usize, Vec<usize>)> =
             carried.iter().map(Partial::through).collect();
         for s in &scored {
-            if through.insert(s.2.through()) {
-                carried.push(s.2.clone());
+            if through.insert(s.partial.through()) {
+                carried.push(s.partial.clone());
             }
         }
         if level == 0 {
@@ -601,14 +607,14 @@ fn search(
         let mut chosen: Vec<Vec<Move>> = Vec::new();
         let mut prefixes: Vec<usize> = Vec::new();
         for k in &kept {
-            if chosen.len() < REFINED && !prefixes.contains(&k.1) {
-                prefixes.push(k.1);
-                chosen.push(k.2.moves.clone());
+            if chosen.len() < REFINED && !prefixes.contains(&k.parent) {
+                prefixes.push(k.parent);
+                chosen.push(k.partial.moves.clone());
             }
         }
         for k in &kept {
-            if chosen.len() < REFINED && !chosen.contains(&k.2.moves) {
-                chosen.push(k.2.moves.clone());
+            if chosen.len() < REFINED && !chosen.contains(&k.partial.moves) {
+                chosen.push(k.partial.moves.clone());
             }
         }
         let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
@@ -633,17 +639,17 @@ fn search(
             let seen: Vec<Vec<u8>> =
                 judged.iter().map(|j| turned(before, &j.made, LIFT).groups().to_vec()).collect();
             let mut twins: Vec<(Vec<Move>, Vec<u8>)> = Vec::new();
-            for s in scored.iter().filter(|s| !seen.contains(&s.3)) {
+            for s in scored.iter().filter(|s| !seen.contains(&s.groups)) {
                 if twins.len() == TWINS {
                     break;
                 }
-                if twins.iter().any(|t| t.1 == s.3) {
+                if twins.iter().any(|t| t.1 == s.groups) {
                     continue;
                 }
-                let Some((t, _)) = make(before, &s.2.moves) else { continue };
+                let Some((t, _)) = make(before, &s.partial.moves) else { continue };
                 // Unrefined, a twin lands less alike.
                 if aligned_rmse_xy(&t.state, &first.state) < 2.0 * CONGRUENT {
-                    twins.push((s.2.moves.clone(), s.3.clone()));
+                    twins.push((s.partial.moves.clone(), s.groups.clone()));
                 }
             }
             let twins: Vec<Vec<Move>> = twins.into_iter().map(|t| t.0).collect();
