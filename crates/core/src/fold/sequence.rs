@@ -87,6 +87,11 @@ const RAY_REACH: f64 = 3.0;
 const COARSE_DIRECTIONS: usize = 12;
 /// … and the best this many such lines of a level again, π / [`DIRECTIONS`] either side.
 const FINER_RAYS: usize = 16;
+/// Candidates of a level screened in full, the best on a glance at every other screened
+/// edge (a quarter of the screen's pairs; making each candidate's state costs as much
+/// again). Measured on the development and generated sequences: 1000 or more change no
+/// answer; 800 lost one (sides in then in half, with noise, turned a half turn).
+const GLANCED: usize = 1500;
 /// Twins of the best sequence refined: two folds land alike in up to eight ways (either
 /// order, either side of each).
 const TWINS: usize = 8;
@@ -228,14 +233,17 @@ fn turned(before: &[Point], made: &[Made], lift: f64) -> Turned {
 /// The folds of `moves` made in turn on `before`; `None` when one of them cannot be made.
 fn make(before: &[Point], moves: &[Move]) -> Option<(Turned, Vec<Made>)> {
     let mut turned = Turned::unfolded(before);
-    let mut made = Vec::with_capacity(moves.len());
-    for m in moves {
-        let line = m.line(&turned.state)?;
-        let arcs = m.arcs(&turned.state, &line)?;
-        turned.fold(&arcs, &line, LIFT);
-        made.push(Made { line, arcs });
-    }
+    let made = moves.iter().map(|m| make_next(&mut turned, m)).collect::<Option<_>>()?;
     Some((turned, made))
+}
+
+/// The fold `m` made on `turned`; `None` when it cannot be made (`turned` is then left
+/// as it was).
+fn make_next(turned: &mut Turned, m: &Move) -> Option<Made> {
+    let line = m.line(&turned.state)?;
+    let arcs = m.arcs(&turned.state, &line)?;
+    turned.fold(&arcs, &line, LIFT);
+    Some(Made { line, arcs })
 }
 
 fn cost(probe: &Probe, before: &[Point], moves: &[Move]) -> f64 {
@@ -422,13 +430,15 @@ struct Scored {
     groups: Vec<u8>,
 }
 
-/// `candidates` (each with the beam state it came from) screened on `probe`, best first;
-/// once per distinct sequence of folds: the cut sets share many points, so the same folds
-/// come from several of them. Those that cannot be made, or come after `deadline`, are left
-/// out.
+/// `candidates` (each with the beam state it came from, made in `parents`) screened on
+/// `probes.screen`, best first; once per distinct sequence of folds: the cut sets share many
+/// points, so the same folds come from several of them. More than [`GLANCED`] are first
+/// glanced at on `probes.glance`, and only the best [`GLANCED`] of them, and the best through
+/// each set of cut points (which the beam carries on), screened. Those that cannot be made,
+/// or come after `deadline`, are left out.
 fn screen(
-    before: &[Point],
-    probe: &Probe,
+    parents: &[Option<(Turned, Vec<Made>)>],
+    probes: &Probes,
     candidates: Vec<(usize, Partial)>,
     deadline: &Deadline,
 ) -> Vec<Scored> {
@@ -444,14 +454,45 @@ fn screen(
             })
         })
         .collect();
+    // Candidate c's state: its last fold made on a copy of its parent's.
+    let made = |c: usize| -> Option<Turned> {
+        let (parent, partial) = &candidates[c];
+        let mut turned = parents[*parent].as_ref()?.0.clone();
+        make_next(&mut turned, partial.moves.last()?)?;
+        Some(turned)
+    };
+    let mut wanted = vec![true; distinct.len()];
+    if distinct.len() > GLANCED {
+        let glanced: Vec<f64> = distinct
+            .par_iter()
+            .map(|&c| match made(c) {
+                Some(turned) if !deadline.expired() => probes.glance.cost(&turned),
+                _ => f64::INFINITY,
+            })
+            .collect();
+        let mut ranked = glanced.clone();
+        let (_, &mut worst, _) = ranked.select_nth_unstable_by(GLANCED - 1, f64::total_cmp);
+        for (want, &cost) in wanted.iter_mut().zip(&glanced) {
+            *want = cost <= worst;
+        }
+        let mut by_glance: Vec<usize> = (0..candidates.len()).collect();
+        by_glance.sort_by(|&a, &b| glanced[slots[a]].total_cmp(&glanced[slots[b]]));
+        let mut through = HashSet::new();
+        for c in by_glance {
+            if through.insert(candidates[c].1.through()) {
+                wanted[slots[c]] = true;
+            }
+        }
+    }
     let screened: Vec<Option<(f64, Vec<u8>)>> = distinct
         .par_iter()
-        .map(|&c| {
-            if deadline.expired() {
+        .zip(&wanted)
+        .map(|(&c, &wanted)| {
+            if !wanted || deadline.expired() {
                 return None;
             }
-            let (turned, _) = make(before, &candidates[c].1.moves)?;
-            Some((probe.cost(&turned), turned.groups().to_vec()))
+            let turned = made(c)?;
+            Some((probes.screen.cost(&turned), turned.groups().to_vec()))
         })
         .collect();
     let mut scored: Vec<Scored> = candidates
@@ -493,6 +534,8 @@ fn judge_made(judge: &Probe, before: &[Point], made: Vec<Made>) -> Judged {
 /// strided pairs, every sequence and the one fold judged alike) and the order test's.
 struct Probes {
     screen: Probe,
+    /// A quarter of `screen`'s pairs, to rank many candidates before screening the best.
+    glance: Probe,
     judge: Probe,
     order: Probe,
 }
@@ -530,30 +573,31 @@ fn search(
     let mut found = Vec::new();
     for level in 0..max_folds {
         deadline.check()?;
-        // Every fold through the free cut points on each state of the beam.
+        // Every fold through the free cut points on each state of the beam, made once: each
+        // candidate makes only its last fold on a copy.
+        let parents: Vec<Option<(Turned, Vec<Made>)>> =
+            beam.par_iter().map(|partial| make(before, &partial.moves)).collect();
+        let (squares, cut_sets) = (&squares, &cut_sets);
         let candidates: Vec<(usize, Partial)> = beam
             .par_iter()
+            .zip(&parents)
             .enumerate()
-            .flat_map_iter(|(p, partial)| {
-                let (state, frame) = make(before, &partial.moves)
-                    .map(|(t, made)| {
-                        let frame = made
-                            .last()
-                            .map_or(Frame::Flat(&squares), |m| Frame::After(m.line.angle()));
-                        (t.state, frame)
-                    })
-                    .unwrap_or((Vec::new(), Frame::Flat(&squares)));
-                moves_on(&state, &cut_sets[partial.set], &partial.used, frame).into_iter().map(
-                    move |(m, through)| {
-                        let mut longer = partial.clone();
-                        longer.moves.push(m);
-                        longer.used.extend(through);
-                        (p, longer)
-                    },
-                )
+            .flat_map_iter(|(p, (partial, parent))| {
+                parent.iter().flat_map(move |(turned, made)| {
+                    let frame =
+                        made.last().map_or(Frame::Flat(squares), |m| Frame::After(m.line.angle()));
+                    moves_on(&turned.state, &cut_sets[partial.set], &partial.used, frame)
+                        .into_iter()
+                        .map(move |(m, through)| {
+                            let mut longer = partial.clone();
+                            longer.moves.push(m);
+                            longer.used.extend(through);
+                            (p, longer)
+                        })
+                })
             })
             .collect();
-        let mut scored = screen(before, &probes.screen, candidates, deadline);
+        let mut scored = screen(&parents, probes, candidates, deadline);
         // Rays were tried every π / COARSE_DIRECTIONS: the best are tried again a fine step
         // either side.
         let finer: Vec<(usize, Partial)> = scored
@@ -570,7 +614,7 @@ fn search(
                 })
             })
             .collect();
-        scored.extend(screen(before, &probes.screen, finer, deadline));
+        scored.extend(screen(&parents, probes, finer, deadline));
         scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         // Distinct by what the folds moved.
         let width = if level == 0 { FIRST_BEAM } else { BEAM };
@@ -831,8 +875,11 @@ pub fn explain(
         });
     }
     let strided = |samples: usize| all_pairs(&sampled_edges(n, samples));
+    let every_other: Vec<usize> = sampled_edges(n, SCREEN_SAMPLES).into_iter().step_by(2).collect();
+    let glanced_pairs = all_pairs(&every_other);
     let probes = Probes {
         screen: Probe::of(strided(SCREEN_SAMPLES), start, end, true, STACKED_SCALE),
+        glance: Probe::of(glanced_pairs, start, end, true, STACKED_SCALE),
         judge: Probe::of(strided(SAMPLES), start, end, true, STACKED_SCALE),
         order: Probe::of(strided(ORDER_SAMPLES), start, end, false, STACKED_SCALE)
             .capped(CAPPED_MISMATCH),

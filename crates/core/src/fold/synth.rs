@@ -83,6 +83,7 @@ thread_local! {
 }
 
 /// A synthesised state and which folds moved each of its vertices.
+#[derive(Clone)]
 pub(crate) struct Turned {
     pub(crate) state: Vec<Point>,
     /// Per vertex: the folds that moved it, one bit per fold in the order they were made
@@ -119,8 +120,9 @@ impl Turned {
         // A sequence holds at most `sequence::MAX_FOLDS` folds, well within the bits.
         debug_assert!(self.folds < 8);
         let bit = 1u8 << self.folds.min(7);
-        for (v, moved) in moved_mask(self.state.len(), arcs).into_iter().enumerate() {
-            if moved {
+        let n = self.state.len();
+        for arc in arcs {
+            for v in ArcVertices::of(n, arc[0], arc[1]).vertices() {
                 let p = self.state[v];
                 let r = line.reflect(&p);
                 self.state[v] = Point::new(r.x, r.y, 2.0 * axis - p.z);
