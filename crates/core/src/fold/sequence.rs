@@ -324,9 +324,9 @@ fn square_to_sides(border: &[Point]) -> Vec<f64> {
 /// the indices of the two points. Where two points lie together (stacked layers) the line's
 /// direction is searched, from the last fold's (or on a flat cloth the border's at the
 /// point), every π / [`COARSE_DIRECTIONS`] (the search tries the best again finer). On a
-/// flat cloth lines through each point alone are
-/// tried too, square to each straight side: a crease that meets a straight side square to it
-/// leaves both its pieces on that side's line, so no cut shows it there.
+/// flat cloth lines through each point alone are tried too, square to each straight side: a
+/// crease that meets a straight side square to it leaves both its pieces on that side's
+/// line, so no cut shows it there.
 fn moves_on(
     state: &[Point],
     points: &[f64],
