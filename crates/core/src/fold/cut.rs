@@ -19,6 +19,8 @@
 //! vertex shows as a cut through an edge: the cut locates each fold point within half an
 //! edge, and [`super::detect`] refines it inside that edge.
 
+use rayon::prelude::*;
+
 use crate::disk::{condensed_index, Disk};
 
 /// Relative tolerance of a tie in S.
@@ -243,32 +245,42 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     let stride = grid.div_ceil(COARSE_GRID);
     let coarse: Vec<usize> = (0..grid).step_by(stride).collect();
     let m = coarse.len();
+    // The change of every arc between two coarse positions, once: the programme reads each
+    // many times.
+    let arc_changes: Vec<f64> = (0..m * m).map(|k| within(coarse[k / m], coarse[k % m])).collect();
+    let arc = |a: usize, b: usize| arc_changes[a * m + b];
     // For each first cut point, the least change of `arcs` arcs: best[j][b] is the least
     // change of j arcs from the first point to coarse position b (unrolled, b > first).
     let solve = |first: usize| -> (f64, Vec<usize>) {
         let mut best = vec![vec![(f64::INFINITY, usize::MAX); m]; arcs];
-        for b in first + 1..m {
-            best[1][b] = (within(coarse[first], coarse[b]), first);
+        for (b, slot) in best[1].iter_mut().enumerate().skip(first + 1) {
+            *slot = (arc(first, b), first);
         }
         for j in 2..arcs {
-            for b in first + j..m {
-                let mut least = (f64::INFINITY, usize::MAX);
-                for a in first + j - 1..b {
-                    let v = best[j - 1][a].0 + within(coarse[a], coarse[b]);
+            let (done, rest) = best.split_at_mut(j);
+            let previous = &done[j - 1];
+            for (b, slot) in rest[0].iter_mut().enumerate().skip(first + j) {
+                *slot = (first + j - 1..b).fold((f64::INFINITY, usize::MAX), |least, a| {
+                    let v = previous[a].0 + arc(a, b);
                     if v < least.0 {
-                        least = (v, a);
+                        (v, a)
+                    } else {
+                        least
                     }
+                });
+            }
+        }
+        let last = best[arcs - 1].iter().enumerate().skip(first + arcs - 1).fold(
+            (f64::INFINITY, usize::MAX),
+            |last, (b, &(change, _))| {
+                let v = change + arc(b, first);
+                if v < last.0 {
+                    (v, b)
+                } else {
+                    last
                 }
-                best[j][b] = least;
-            }
-        }
-        let mut last = (f64::INFINITY, usize::MAX);
-        for b in first + arcs - 1..m {
-            let v = best[arcs - 1][b].0 + within(coarse[b], coarse[first] + grid);
-            if v < last.0 {
-                last = (v, b);
-            }
-        }
+            },
+        );
         if last.1 == usize::MAX {
             return (f64::INFINITY, Vec::new());
         }
@@ -283,7 +295,7 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     // A cyclic partition has a point in the first 1/arcs of the grid.
     let firsts: Vec<usize> = (0..m.div_ceil(arcs)).collect();
     let (_, mut points) = firsts
-        .iter()
+        .par_iter()
         .map(|&f| solve(f))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .filter(|(v, _)| v.is_finite())?;

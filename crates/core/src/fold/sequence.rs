@@ -50,6 +50,7 @@
 
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
+use std::sync;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -394,72 +395,113 @@ struct Partial {
     used: Vec<usize>,
 }
 
+impl Move {
+    /// The fold as bits, to tell equal folds apart from the others.
+    fn bits(&self) -> [u64; 4] {
+        let (kind, [a, b]) = match self.anchor {
+            Anchor::Points(points) => (0, points),
+            Anchor::Ray(point, phi) => (1, [point, phi]),
+        };
+        let turn = match self.turn {
+            Turn::All => u64::MAX,
+            Turn::Holding(v) => v as u64,
+        };
+        [kind + 2 * u64::from(self.reversed), a.to_bits(), b.to_bits(), turn]
+    }
+}
+
 /// `moves` as bits, to tell equal sequences of folds apart from the others.
 fn key(moves: &[Move]) -> Vec<u64> {
-    moves
-        .iter()
-        .flat_map(|m| {
-            let (kind, [a, b]) = match m.anchor {
-                Anchor::Points(points) => (0, points),
-                Anchor::Ray(point, phi) => (1, [point, phi]),
-            };
-            let turn = match m.turn {
-                Turn::All => u64::MAX,
-                Turn::Holding(v) => v as u64,
-            };
-            [kind + 2 * u64::from(m.reversed), a.to_bits(), b.to_bits(), turn]
-        })
-        .collect()
+    moves.iter().flat_map(Move::bits).collect()
+}
+
+/// The cut set a sequence's folds run through and how many times they ran through each of
+/// its points (four bits a point), in any order: a set has at most 8 points, and a sequence
+/// at most [`MAX_FOLDS`] folds of two points each.
+type Through = (usize, u32);
+
+/// `through` with the cut points `points` added.
+fn through_also((set, counts): Through, points: &[usize]) -> Through {
+    debug_assert!(points.iter().all(|&k| k < 8));
+    (set, points.iter().fold(counts, |c, &k| c + (1 << (4 * k))))
 }
 
 impl Partial {
     /// The cut set and the cut points its folds ran through, in any order.
-    fn through(&self) -> (usize, Vec<usize>) {
-        let mut used = self.used.clone();
-        used.sort_unstable();
-        (self.set, used)
+    fn through(&self) -> Through {
+        through_also((self.set, 0), &self.used)
     }
+
+    /// This sequence with `candidate`'s fold made next.
+    fn then(&self, candidate: &Candidate) -> Partial {
+        let mut longer = self.clone();
+        longer.moves.push(candidate.next);
+        longer.used.extend(candidate.points);
+        longer
+    }
+}
+
+/// One more fold on a state of the beam.
+#[derive(Clone, Copy)]
+struct Candidate {
+    /// The beam state it is made on.
+    parent: usize,
+    next: Move,
+    /// The cut points its line runs through.
+    points: [usize; 2],
+    /// Its sequence's [`Partial::through`].
+    through: Through,
 }
 
 /// A candidate sequence screened.
 struct Scored {
     cost: f64,
-    /// The beam state it came from.
-    parent: usize,
-    partial: Partial,
-    /// What its folds moved ([`Turned::groups`]).
-    groups: Vec<u8>,
+    candidate: Candidate,
+    /// What its folds moved ([`Turned::groups`]), shared by the equal sequences.
+    groups: sync::Arc<[u8]>,
 }
 
-/// `candidates` (each with the beam state it came from, made in `parents`) screened on
+impl Scored {
+    /// The sequence, its folds made on `beam`'s state.
+    fn partial(&self, beam: &[Partial]) -> Partial {
+        beam[self.candidate.parent].then(&self.candidate)
+    }
+}
+
+/// `candidates` (each on a state of `beam`, made in `parents`) screened on
 /// `probes.screen`, best first; once per distinct sequence of folds: the cut sets share many
 /// points, so the same folds come from several of them. More than [`GLANCED`] are first
 /// glanced at on `probes.glance`, and only the best [`GLANCED`] of them, and the best through
 /// each set of cut points (which the beam carries on), screened. Those that cannot be made,
 /// or come after `deadline`, are left out.
 fn screen(
+    beam: &[Partial],
     parents: &[Option<(Turned, Vec<Made>)>],
     probes: &Probes,
-    candidates: Vec<(usize, Partial)>,
+    candidates: Vec<Candidate>,
     deadline: &Deadline,
 ) -> Vec<Scored> {
-    let mut first: HashMap<Vec<u64>, usize> = HashMap::new();
+    // Equal sequences: equal folds on equal beam states.
+    let mut states: HashMap<Vec<u64>, usize> = HashMap::new();
+    let state_of: Vec<usize> =
+        beam.iter().enumerate().map(|(k, p)| *states.entry(key(&p.moves)).or_insert(k)).collect();
+    let mut first: HashMap<(usize, [u64; 4]), usize> = HashMap::new();
     let mut distinct: Vec<usize> = Vec::new();
     let slots: Vec<usize> = candidates
         .iter()
         .enumerate()
-        .map(|(c, (_, partial))| {
-            *first.entry(key(&partial.moves)).or_insert_with(|| {
-                distinct.push(c);
+        .map(|(k, c)| {
+            *first.entry((state_of[c.parent], c.next.bits())).or_insert_with(|| {
+                distinct.push(k);
                 distinct.len() - 1
             })
         })
         .collect();
-    // Candidate c's state: its last fold made on a copy of its parent's.
-    let made = |c: usize| -> Option<Turned> {
-        let (parent, partial) = &candidates[c];
-        let mut turned = parents[*parent].as_ref()?.0.clone();
-        make_next(&mut turned, partial.moves.last()?)?;
+    // Candidate k's state: its fold made on a copy of its parent's.
+    let made = |k: usize| -> Option<Turned> {
+        let c = &candidates[k];
+        let mut turned = parents[c.parent].as_ref()?.0.clone();
+        make_next(&mut turned, &c.next)?;
         Some(turned)
     };
     let mut wanted = vec![true; distinct.len()];
@@ -479,13 +521,13 @@ fn screen(
         let mut by_glance: Vec<usize> = (0..candidates.len()).collect();
         by_glance.sort_by(|&a, &b| glanced[slots[a]].total_cmp(&glanced[slots[b]]));
         let mut through = HashSet::new();
-        for c in by_glance {
-            if through.insert(candidates[c].1.through()) {
-                wanted[slots[c]] = true;
+        for k in by_glance {
+            if through.insert(candidates[k].through) {
+                wanted[slots[k]] = true;
             }
         }
     }
-    let screened: Vec<Option<(f64, Vec<u8>)>> = distinct
+    let screened: Vec<Option<(f64, sync::Arc<[u8]>)>> = distinct
         .par_iter()
         .zip(&wanted)
         .map(|(&c, &wanted)| {
@@ -493,15 +535,15 @@ fn screen(
                 return None;
             }
             let turned = made(c)?;
-            Some((probes.screen.cost(&turned), turned.groups().to_vec()))
+            Some((probes.screen.cost(&turned), turned.groups().into()))
         })
         .collect();
     let mut scored: Vec<Scored> = candidates
         .into_iter()
         .zip(slots)
-        .filter_map(|((parent, partial), slot)| {
+        .filter_map(|(candidate, slot)| {
             let (cost, groups) = screened[slot].clone()?;
-            Some(Scored { cost, parent, partial, groups })
+            Some(Scored { cost, candidate, groups })
         })
         .collect();
     scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
@@ -579,43 +621,42 @@ fn search(
         let parents: Vec<Option<(Turned, Vec<Made>)>> =
             beam.par_iter().map(|partial| make(before, &partial.moves)).collect();
         let (squares, cut_sets) = (&squares, &cut_sets);
-        let candidates: Vec<(usize, Partial)> = beam
+        let candidates: Vec<Candidate> = beam
             .par_iter()
             .zip(&parents)
             .enumerate()
-            .flat_map_iter(|(p, (partial, parent))| {
-                parent.iter().flat_map(move |(turned, made)| {
+            .flat_map_iter(|(parent, (partial, made))| {
+                let through = partial.through();
+                made.iter().flat_map(move |(turned, made)| {
                     let frame =
                         made.last().map_or(Frame::Flat(squares), |m| Frame::After(m.line.angle()));
                     moves_on(&turned.state, &cut_sets[partial.set], &partial.used, frame)
                         .into_iter()
-                        .map(move |(m, through)| {
-                            let mut longer = partial.clone();
-                            longer.moves.push(m);
-                            longer.used.extend(through);
-                            (p, longer)
+                        .map(move |(next, points)| Candidate {
+                            parent,
+                            next,
+                            points,
+                            through: through_also(through, &points),
                         })
                 })
             })
             .collect();
-        let mut scored = screen(&parents, probes, candidates, deadline);
+        let mut scored = screen(&beam, &parents, probes, candidates, deadline);
         // Rays were tried every π / COARSE_DIRECTIONS: the best are tried again a fine step
         // either side.
-        let finer: Vec<(usize, Partial)> = scored
+        let finer: Vec<Candidate> = scored
             .iter()
-            .filter(|s| matches!(s.partial.moves.last().map(|m| m.anchor), Some(Anchor::Ray(..))))
+            .filter(|s| matches!(s.candidate.next.anchor, Anchor::Ray(..)))
             .take(FINER_RAYS)
             .flat_map(|s| {
                 let step = PI / DIRECTIONS as f64;
-                [-1.0, 1.0].map(|d| {
-                    let mut nudged = s.partial.clone();
-                    let last = nudged.moves.len() - 1;
-                    nudged.moves[last] = nudged.moves[last].moved([0.0, d], step);
-                    (s.parent, nudged)
+                [-1.0, 1.0].map(|d| Candidate {
+                    next: s.candidate.next.moved([0.0, d], step),
+                    ..s.candidate
                 })
             })
             .collect();
-        scored.extend(screen(&parents, probes, finer, deadline));
+        scored.extend(screen(&beam, &parents, probes, finer, deadline));
         scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         // Distinct by what the folds moved.
         let width = if level == 0 { FIRST_BEAM } else { BEAM };
@@ -635,12 +676,11 @@ fn search(
         // beam does not hold. The end disk ranks a sequence's first folds poorly when its
         // last ones are still to come (sides folded in leave a cloth folded in half less
         // explained than the flat one), but which creases they are is few enough to keep.
-        let mut carried: Vec<Partial> = kept.iter().map(|k| k.partial.clone()).collect();
-        let mut through: HashSet<(usize, Vec<usize>)> =
-            carried.iter().map(Partial::through).collect();
+        let mut carried: Vec<Partial> = kept.iter().map(|k| k.partial(&beam)).collect();
+        let mut through: HashSet<Through> = carried.iter().map(Partial::through).collect();
         for s in &scored {
-            if through.insert(s.partial.through()) {
-                carried.push(s.partial.clone());
+            if through.insert(s.candidate.through) {
+                carried.push(s.partial(&beam));
             }
         }
         if level == 0 {
@@ -652,14 +692,14 @@ fn search(
         let mut chosen: Vec<Vec<Move>> = Vec::new();
         let mut prefixes: Vec<usize> = Vec::new();
         for k in &kept {
-            if chosen.len() < REFINED && !prefixes.contains(&k.parent) {
-                prefixes.push(k.parent);
-                chosen.push(k.partial.moves.clone());
+            if chosen.len() < REFINED && !prefixes.contains(&k.candidate.parent) {
+                prefixes.push(k.candidate.parent);
+                chosen.push(k.partial(&beam).moves);
             }
         }
         for k in &kept {
-            if chosen.len() < REFINED && !chosen.contains(&k.partial.moves) {
-                chosen.push(k.partial.moves.clone());
+            if chosen.len() < REFINED && !chosen.contains(&k.partial(&beam).moves) {
+                chosen.push(k.partial(&beam).moves);
             }
         }
         let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
@@ -683,18 +723,19 @@ fn search(
         if let Some(first) = judged.first() {
             let seen: Vec<Vec<u8>> =
                 judged.iter().map(|j| turned(before, &j.made, LIFT).groups().to_vec()).collect();
-            let mut twins: Vec<(Vec<Move>, Vec<u8>)> = Vec::new();
-            for s in scored.iter().filter(|s| !seen.contains(&s.groups)) {
+            let mut twins: Vec<(Vec<Move>, sync::Arc<[u8]>)> = Vec::new();
+            for s in scored.iter().filter(|s| !seen.iter().any(|g| **g == *s.groups)) {
                 if twins.len() == TWINS {
                     break;
                 }
                 if twins.iter().any(|t| t.1 == s.groups) {
                     continue;
                 }
-                let Some((t, _)) = make(before, &s.partial.moves) else { continue };
+                let moves = s.partial(&beam).moves;
+                let Some((t, _)) = make(before, &moves) else { continue };
                 // Unrefined, a twin lands less alike.
                 if aligned_rmse_xy(&t.state, &first.state) < 2.0 * CONGRUENT {
-                    twins.push((s.partial.moves.clone(), s.groups.clone()));
+                    twins.push((moves, s.groups.clone()));
                 }
             }
             let twins: Vec<Vec<Move>> = twins.into_iter().map(|t| t.0).collect();
@@ -749,7 +790,8 @@ fn layer_order(probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
 }
 
 /// Refine every fold of `moves` together: a pattern search over each fold's two parameters
-/// (all eight neighbours of one fold at a time), the step halving when none is better.
+/// (all eight neighbours of one fold at a time), the step halving when none is better. A
+/// neighbour already costed (a step's neighbourhood overlaps the last one's) is not again.
 fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<Move> {
     let arcs: Vec<[f64; 2]> = make(before, &moves)
         .map(|(_, made)| made.into_iter().flat_map(|m| m.arcs).collect())
@@ -757,6 +799,7 @@ fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<M
     let probe = Probe::around(start, end, &arcs, true, STACKED_SCALE).capped(CAPPED_MISMATCH);
     let angle_step = PI / DIRECTIONS as f64;
     let mut best = (cost(&probe, before, &moves), moves);
+    let mut costed: HashMap<Vec<u64>, f64> = HashMap::from([(key(&best.1), best.0)]);
     let mut h = 0.5;
     while h >= 0.125 {
         let centre = &best.1;
@@ -773,9 +816,18 @@ fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<M
                 })
             })
             .collect();
+        let keys: Vec<Vec<u64>> = neighbours.iter().map(|m| key(m)).collect();
+        let fresh: Vec<(Vec<u64>, f64)> = neighbours
+            .par_iter()
+            .zip(&keys)
+            .filter(|(_, k)| !costed.contains_key(*k))
+            .map(|(m, k)| (k.clone(), cost(&probe, before, m)))
+            .collect();
+        costed.extend(fresh);
         let better = neighbours
-            .into_par_iter()
-            .map(|m| (cost(&probe, before, &m), m))
+            .into_iter()
+            .zip(&keys)
+            .map(|(m, k)| (costed[k], m))
             .min_by(|a, b| a.0.total_cmp(&b.0));
         match better {
             Some(b) if b.0 < best.0 => best = b,
