@@ -79,7 +79,7 @@ fn fold_left_of(state: &[[f64; 3]], a: [f64; 2], angle: f64) -> Vec<[f64; 3]> {
         .collect()
 }
 
-#[divan::bench(args = [152])]
+#[divan::bench(args = [152, 300])]
 fn analyze_quarters(bencher: divan::Bencher, n: usize) {
     let start: Vec<[f64; 3]> = napkin(n).iter().map(|p| [p.x, p.y, p.z]).collect();
     let half = fold_left_of(&start, [0.013, 0.0], PI / 2.0);

@@ -28,3 +28,10 @@ for n in 76 300 1000; do
   rust=$(median analyze_fold "$n")
   awk -v n="$n" -v r="$rust" 'BEGIN { printf "%-10s %6d %12.3f ms\n", "analyze", n, r*1e3 }'
 done
+# The fold-sequence search (a napkin in quarters seen flat and folded) against the one-fold
+# analysis of the same cloth size, same run: issue 26 aims at 30x or less at N = 152.
+for n in 152 300; do
+  seq=$(median analyze_quarters "$n")
+  one=$(median analyze_fold "$n")
+  awk -v n="$n" -v s="$seq" -v o="$one" 'BEGIN { printf "%-10s %6d %12.3f ms %14s %9.1fx one fold\n", "sequence", n, s*1e3, "", s/o }'
+done
