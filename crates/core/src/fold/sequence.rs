@@ -698,8 +698,9 @@ fn search(
             }
         }
         for k in &kept {
-            if chosen.len() < REFINED && !chosen.contains(&k.partial(&beam).moves) {
-                chosen.push(k.partial(&beam).moves);
+            let moves = k.partial(&beam).moves;
+            if chosen.len() < REFINED && !chosen.contains(&moves) {
+                chosen.push(moves);
             }
         }
         let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
