@@ -197,6 +197,26 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
 /// then moves each point along the full half-edge grid.
 const COARSE_GRID: usize = 128;
 
+/// Half-grid positions either side within which only the largest row jump counts.
+const JUMP_REACH: usize = 6;
+
+/// How much the change of the edges on either side of half-grid position `h` differs,
+/// against every edge away from both: Σ_e |c(a, e) − c(b, e)|, with c = asinh g (`squashed`,
+/// so that the few large values of pairs near a crease do not outweigh the rest) and a, b
+/// the edges before and after the vertex `h / 2` (h even) or either side of the edge
+/// `(h − 1) / 2` (h odd). The edges of one piece move together, so their rows of g vary
+/// smoothly along it and jump where a crease separates them.
+fn row_jump(squashed: &Disk, h: usize) -> f64 {
+    let n = squashed.n();
+    let (a, b) = (((h + 2 * n - 1) / 2 - h % 2) % n, (h / 2 + h % 2) % n);
+    // The edges from a − 1 to b + 1 are left out: their pairs with a or b are neighbours'.
+    let beside = (b + n - a) % n + 3;
+    (0..n.saturating_sub(beside))
+        .map(|k| (b + 2 + k) % n)
+        .map(|e| (squashed.get(a, e) - squashed.get(b, e)).abs())
+        .sum()
+}
+
 /// The border split into arcs whose own pairs hold the least change: the cut of a fold
 /// sequence ([`find_cuts`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -216,6 +236,14 @@ pub struct Cuts {
 /// `COARSE_GRID` positions (O(arcs · grid³)), each point then moved along the half-edge
 /// grid while that lowers the change. `None` when g holds no change or the border has too
 /// few edges.
+///
+/// Ties: a crease meeting a straight side square to it changes no pair of that side (its
+/// edges stay on one line), so the side splits anywhere at the same change. Of splits that
+/// tie, the one whose points lie where the rows of g jump most is taken: at a point between
+/// edges a and b, Σ_e |asinh g(a, e) − asinh g(b, e)| over the edges e away from both, the
+/// largest within a few edges only. Each point's change is lowered by at most a tenth of
+/// the tie tolerance over the number of arcs, so a split of more change wins only within a
+/// tenth of the tolerance.
 ///
 /// ```
 /// use close_core::disk::Disk;
@@ -245,16 +273,42 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     let stride = grid.div_ceil(COARSE_GRID);
     let coarse: Vec<usize> = (0..grid).step_by(stride).collect();
     let m = coarse.len();
-    // The change of every arc between two coarse positions, once: the programme reads each
-    // many times.
-    let arc_changes: Vec<f64> = (0..m * m).map(|k| within(coarse[k / m], coarse[k % m])).collect();
+    // A crease shows as a jump at its own position and smaller ones beside it: only the
+    // largest within a few edges counts, so that ties are not split beside a crease already
+    // cut. Each coarse position takes the grid positions nearest it.
+    let squashed = Disk::from_values(n, g.values().iter().map(|v| v.asinh()).collect()).ok()?;
+    let fine: Vec<f64> = (0..grid).map(|h| row_jump(&squashed, h)).collect();
+    let peaks: Vec<f64> = (0..grid)
+        .map(|h| {
+            let beside = (1..=JUMP_REACH).flat_map(|d| [(h + d) % grid, (h + grid - d) % grid]);
+            let top = beside.into_iter().all(|k| fine[k] <= fine[h]);
+            if top {
+                fine[h]
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let jumps: Vec<f64> = coarse
+        .iter()
+        .map(|&c| {
+            (0..stride).map(|d| peaks[(c + grid + d - stride / 2) % grid]).fold(0.0, f64::max)
+        })
+        .collect();
+    let most = jumps.iter().copied().fold(0.0, f64::max);
+    let per_jump = if most > 0.0 { TIE * total / (10.0 * arcs as f64 * most) } else { 0.0 };
+    let bonus = |b: usize| per_jump * jumps[b];
+    // The change of every arc between two coarse positions, less its end point's bonus,
+    // once: the programme reads each many times.
+    let arc_changes: Vec<f64> =
+        (0..m * m).map(|k| within(coarse[k / m], coarse[k % m]) - bonus(k % m)).collect();
     let arc = |a: usize, b: usize| arc_changes[a * m + b];
     // For each first cut point, the least change of `arcs` arcs: best[j][b] is the least
     // change of j arcs from the first point to coarse position b (unrolled, b > first).
     let solve = |first: usize| -> (f64, Vec<usize>) {
         let mut best = vec![vec![(f64::INFINITY, usize::MAX); m]; arcs];
         for (b, slot) in best[1].iter_mut().enumerate().skip(first + 1) {
-            *slot = (arc(first, b), first);
+            *slot = (arc(first, b) - bonus(first), first);
         }
         for j in 2..arcs {
             let (done, rest) = best.split_at_mut(j);
@@ -273,7 +327,8 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
         let last = best[arcs - 1].iter().enumerate().skip(first + arcs - 1).fold(
             (f64::INFINITY, usize::MAX),
             |last, (b, &(change, _))| {
-                let v = change + arc(b, first);
+                // The first point's bonus is counted already.
+                let v = change + arc(b, first) + bonus(first);
                 if v < last.0 {
                     (v, b)
                 } else {
@@ -337,6 +392,7 @@ mod tests {
     use crate::angle::param_to_angle;
     use crate::border::Point;
     use crate::fold::reflect::apply;
+    use crate::fold::sequence::INFORMATION;
     use crate::geometry::{Fold, Folding};
 
     fn square(per_side: usize) -> Vec<Point> {
@@ -387,6 +443,43 @@ mod tests {
         let c = cut_of(&square(8), [29.3, 5.6]);
         assert_within_half_an_edge(&c, [5.6, 29.3]);
         assert_eq!(c.inside_edge, [true, true]);
+    }
+
+    #[test]
+    fn creases_square_to_straight_sides_are_cut_where_they_meet_them() {
+        // A towel 1.5 × 1 folded in thirds, the left third over, then the right one over it
+        // with the first flap's tip: three creases, each meeting the long sides square,
+        // where no pair of a side changes. Without the tie-break the first crease's two
+        // points slide along the sides to beside the tip's.
+        let corners = [[-0.75, -0.5], [0.75, -0.5], [0.75, 0.5], [-0.75, 0.5]];
+        let towel: Vec<Point> = (0..4)
+            .flat_map(|k| {
+                let (a, b): ([f64; 2], [f64; 2]) = (corners[k], corners[(k + 1) % 4]);
+                let steps = (30.0 * (b[0] - a[0]).abs().max((b[1] - a[1]).abs())) as usize;
+                (0..steps).map(move |i| {
+                    let t = i as f64 / steps as f64;
+                    Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
+                })
+            })
+            .collect();
+        // Every vertex beyond x = `crease` on the side `sign` reflected and laid on top.
+        let fold = |state: &[Point], crease: f64, sign: f64| -> Vec<Point> {
+            let top = state.iter().map(|p| p.z).fold(0.0, f64::max);
+            let over = |p: &Point| Point::new(2.0 * crease - p.x, p.y, 2.0 * top + 0.01 - p.z);
+            state.iter().map(|p| if sign * (p.x - crease) > 0.0 { over(p) } else { *p }).collect()
+        };
+        let folded = fold(&fold(&towel, -0.237, -1.0), 0.237, 1.0);
+        // Offset as the sequence search offsets it, else a split at the corners costs nothing.
+        let start = Disk::of_border(&towel);
+        let g = start.abs_diff(&Disk::of_border(&folded));
+        let offset = g.values().iter().zip(start.values()).map(|(c, s)| c - INFORMATION * s.abs());
+        let offset = Disk::from_values(g.n(), offset.collect()).unwrap();
+        let cuts = find_cuts(&offset, 6).unwrap();
+        // The creases at x = −0.711 (the tip's), −0.237 and 0.237 meet the bottom side in
+        // edges 1, 15 and 29, the top one in 90, 104 and 118.
+        for (got, truth) in cuts.points.iter().zip([1.5, 15.5, 29.5, 90.5, 104.5, 118.5]) {
+            assert!((got - truth).abs() <= 0.5, "{:?}", cuts.points);
+        }
     }
 
     #[test]

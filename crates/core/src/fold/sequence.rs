@@ -43,7 +43,10 @@
 //! disk than fewer ([`MARKEDLY`], [`MIN_GAIN`]): more than the answer so far (the best of
 //! fewer folds accepted), and more than any k − 1 of their own (else those are the answer
 //! so far, if better); each length is tried in turn; the search runs only when the step's one
-//! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. A fold or sequence that
+//! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. The search's own best single
+//! fold is weighed alike: it replaces the step's fold when it explains markedly more (a
+//! fold of several arcs on a flat start, which the step's one-fold search does not make),
+//! and sequences are then weighed against it. A fold or sequence that
 //! leaves more than [`UNEXPLAINED`] unexplained is not a confident fold.
 //!
 //! The end border's coordinates are never read: only its disk.
@@ -79,8 +82,10 @@ pub const INFORMATION: f64 = 0.05;
 const FIRST_BEAM: usize = 16;
 /// … and longer sequences carried on to the next fold.
 const BEAM: usize = 8;
-/// Sequences of each length refined in full.
+/// Sequences of each length refined in full …
 const REFINED: usize = 6;
+/// … and of single folds, the search's own one-fold answer.
+const SINGLES: usize = 2;
 /// Two cut points closer than this many times [`COINCIDE_EDGES`] mean edges on a state
 /// also give lines through one of them in every direction …
 const RAY_REACH: f64 = 3.0;
@@ -583,10 +588,10 @@ struct Probes {
     order: Probe,
 }
 
-/// The best sequence of each length from two folds up to `max_folds`, judged on `probes`,
-/// with the sequences of its length judged about as well (its twins and alternatives); a
-/// length whose best one `deeper` rejects is the last searched (the model selection needs
-/// no longer ones).
+/// The best sequence of each length from one fold up to `max_folds`, judged on `probes`,
+/// with the sequences of its length judged about as well (its twins and alternatives; none
+/// for one fold); a length of two or more whose best one `deeper` rejects is the last
+/// searched (the model selection needs no longer ones).
 /// [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires: the search is checked between candidates.
 fn search(
     before: &[Point],
@@ -613,6 +618,20 @@ fn search(
     let mut beam: Vec<Partial> = (0..cut_sets.len())
         .map(|set| Partial { set, moves: Vec::new(), used: Vec::new() })
         .collect();
+    // Sequences refined and judged, those that cannot be made, or come after `deadline`, left out.
+    let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
+        chosen
+            .into_par_iter()
+            .filter_map(|moves| {
+                if deadline.expired() {
+                    return None;
+                }
+                let moves = refine(before, start, end, moves);
+                let (_, made) = make(before, &moves)?;
+                Some(judge_made(&probes.judge, before, made))
+            })
+            .collect()
+    };
     let mut found = Vec::new();
     for level in 0..max_folds {
         deadline.check()?;
@@ -673,18 +692,30 @@ fn search(
             break;
         }
         // Carried on: the beam, and the best sequence through each set of cut points the
-        // beam does not hold. The end disk ranks a sequence's first folds poorly when its
-        // last ones are still to come (sides folded in leave a cloth folded in half less
-        // explained than the flat one), but which creases they are is few enough to keep.
+        // beam does not hold, with its last fold turning the smaller part and with it
+        // turning the larger, unless it moves what one carried already moves. The end disk
+        // ranks a sequence's first folds poorly when its last ones are still to come (sides
+        // folded in leave a cloth folded in half less explained than the flat one), but
+        // which creases they are, and which side of each turned, are few enough to keep.
         let mut carried: Vec<Partial> = kept.iter().map(|k| k.partial(&beam)).collect();
-        let mut through: HashSet<Through> = carried.iter().map(Partial::through).collect();
+        let smaller =
+            |s: &Scored| 2 * s.groups.iter().filter(|&&g| g & (1 << level) != 0).count() <= n;
+        let mut through: HashSet<(Through, bool)> =
+            kept.iter().map(|k| (k.candidate.through, smaller(k))).collect();
+        let mut moved: HashSet<sync::Arc<[u8]>> = kept.iter().map(|k| k.groups.clone()).collect();
         for s in &scored {
-            if through.insert(s.candidate.through) {
+            if through.insert((s.candidate.through, smaller(s))) && moved.insert(s.groups.clone()) {
                 carried.push(s.partial(&beam));
             }
         }
         if level == 0 {
-            // One fold is the step's own detection's business.
+            // The search's own best single fold, for the model selection to weigh against
+            // the step's detected one: a fold whose crease meets two straight sides square
+            // to them is found here, through one cut point in a searched direction.
+            let singles =
+                judge_all(kept.iter().take(SINGLES).map(|k| k.partial(&beam).moves).collect());
+            let best = singles.into_iter().min_by(|a, b| a.cost.total_cmp(&b.cost));
+            found.extend(best.map(|one| (one, Vec::new())));
             beam = carried;
             continue;
         }
@@ -703,19 +734,6 @@ fn search(
                 chosen.push(moves);
             }
         }
-        let judge_all = |chosen: Vec<Vec<Move>>| -> Vec<Judged> {
-            chosen
-                .into_par_iter()
-                .filter_map(|moves| {
-                    if deadline.expired() {
-                        return None;
-                    }
-                    let moves = refine(before, start, end, moves);
-                    let (_, made) = make(before, &moves)?;
-                    Some(judge_made(&probes.judge, before, made))
-                })
-                .collect()
-        };
         let mut judged = judge_all(chosen);
         deadline.check()?;
         judged.sort_by(|a, b| a.cost.total_cmp(&b.cost));
@@ -957,6 +975,13 @@ pub fn explain(
             if now > MARKEDLY * left || left - now < MIN_GAIN {
                 // Not markedly better than the answer so far; a longer one still may be
                 // (a sequence's first folds can explain little before its last is made).
+                continue;
+            }
+            if best.made.len() == 1 {
+                // The search's own fold, markedly better than the step's: one the one-fold
+                // search did not make (a fold of several arcs on a flat start).
+                left = now;
+                chosen = (best, others, false);
                 continue;
             }
             // Its own folds less any one are a (k − 1)-fold answer too: each fold must add
