@@ -93,7 +93,9 @@ FoldLabelDict = TypedDict(
     },
 )
 
-SequenceClass = Literal["in_quarters", "in_eighths", "in_thirds", "sides_in_then_half", "folds"]
+SequenceClass = Literal[
+    "in_quarters", "in_eighths", "in_thirds", "sides_in_then_half", "half_then_sides_in", "folds"
+]
 
 # How a sequence of folds reads as a whole. schema/analysis.json#/$defs/SequenceLabel
 SequenceLabelDict = TypedDict(

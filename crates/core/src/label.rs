@@ -24,8 +24,9 @@
 //! border's vertices of the state it is made on (within [`SEQUENCE_HALF_PERCENT`]), "in
 //! quarters" for two such folds, "in eighths" for three; "in thirds" for two sides folded in
 //! alike (less than half each) at disjoint ends of the border; "both sides folded in, then
-//! folded in half" for those two and a fold in half after them. The sentence is made from the class,
-//! so the text and the structured field cannot disagree.
+//! folded in half" for those two and a fold in half after them, "folded in half, then both
+//! sides folded in" for the other order. The sentence is made from the class, so the text
+//! and the structured field cannot disagree.
 //!
 //! ```
 //! use close_core::geometry::{Fold, Folding};
@@ -160,6 +161,8 @@ pub enum SequenceClass {
     InThirds,
     /// Two sides folded in at disjoint ends, then a fold in half.
     SidesInThenHalf,
+    /// A fold in half, then two sides of it folded in at disjoint ends.
+    HalfThenSidesIn,
     /// Any other sequence, told fold by fold.
     Folds,
 }
@@ -188,7 +191,7 @@ fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> Sequence
                 FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
             )
     };
-    // Two folds turning disjoint ends of the start border (no vertex on both).
+    // Folds turning disjoint ends of the start border (no vertex on both).
     let disjoint = |a: &Folding, b: &Folding| {
         !a.arcs.iter().any(|x| {
             b.arcs.iter().any(|y| {
@@ -198,16 +201,19 @@ fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> Sequence
             })
         })
     };
-    let ends = folds.len() >= 2
-        && side_in(0)
-        && side_in(1)
-        && (labels[0].folded_percent - labels[1].folded_percent).abs() <= EVEN_PERCENT
-        && disjoint(&folds[0], &folds[1]);
+    // Folds j and k: two sides folded in alike at disjoint ends.
+    let ends = |j: usize, k: usize| {
+        side_in(j)
+            && side_in(k)
+            && (labels[j].folded_percent - labels[k].folded_percent).abs() <= EVEN_PERCENT
+            && disjoint(&folds[j], &folds[k])
+    };
     let class = match (folds.len(), in_half.as_slice()) {
         (2, [true, true]) => SequenceClass::InQuarters,
         (3, [true, true, true]) => SequenceClass::InEighths,
-        (2, _) if ends => SequenceClass::InThirds,
-        (3, [_, _, true]) if ends => SequenceClass::SidesInThenHalf,
+        (2, _) if ends(0, 1) => SequenceClass::InThirds,
+        (3, [_, _, true]) if ends(0, 1) => SequenceClass::SidesInThenHalf,
+        (3, [true, _, _]) if ends(1, 2) => SequenceClass::HalfThenSidesIn,
         _ => SequenceClass::Folds,
     };
     let text = match class {
@@ -221,6 +227,7 @@ fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> Sequence
             "Folded in thirds (one side folded in, then the other side over it).".to_string()
         }
         SequenceClass::SidesInThenHalf => "Both sides folded in, then folded in half.".to_string(),
+        SequenceClass::HalfThenSidesIn => "Folded in half, then both sides folded in.".to_string(),
         SequenceClass::Folds => {
             let phrases: Vec<&str> = labels.iter().map(|l| l.class.phrase()).collect();
             format!("Folded {} times: {}.", labels.len(), phrases.join(", then "))
@@ -681,9 +688,10 @@ mod tests {
         let third = |a: f64, b: f64| turning(&[[a, b]]);
         let sides = [third(50.7, 6.3), third(12.7, 44.3)];
         let sides_in_then_half = [sides[0].clone(), sides[1].clone(), turning(&[[9.5, 47.5]])];
+        let half_then_sides_in = [turning(&[[9.5, 47.5]]), sides[0].clone(), sides[1].clone()];
         // One side folded, then a corner: no name for the whole.
         let other = [third(55.0, 2.0), turning(&[[12.0, 26.0]])];
-        let cases: [(&[Folding], SequenceClass, &str); 4] = [
+        let cases: [(&[Folding], SequenceClass, &str); 5] = [
             (
                 &quarters,
                 SequenceClass::InQuarters,
@@ -694,6 +702,11 @@ mod tests {
                 &sides_in_then_half,
                 SequenceClass::SidesInThenHalf,
                 "Both sides folded in, then folded in half.",
+            ),
+            (
+                &half_then_sides_in,
+                SequenceClass::HalfThenSidesIn,
+                "Folded in half, then both sides folded in.",
             ),
             (&other, SequenceClass::Folds, "Folded 2 times: one side folded, then corner folded."),
         ];
