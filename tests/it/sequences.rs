@@ -268,8 +268,9 @@ fn exact_sequences() -> Vec<Exact> {
 /// Every exact sequence, placed two ways, from start and end alone. Issue 26 asks the right
 /// fold count on at least 90 % and RMSE ≤ 0.01; measured: 10 of 10, all within an aligned
 /// RMSE of 0.004, and 9 of them within an RMSE of 0.0052 (the unturned napkin in eighths
-/// lands as the end moved rigidly: another order of its layers, the same outline, which no
-/// disk tells apart). Placed on the table's axes with no noise, a crease meeting two
+/// lands as the end moved rigidly, its layers in another order: its true first fold is
+/// crowded out of the carried states by a line along a side that turns the whole cloth
+/// over). Placed on the table's axes with no noise, a crease meeting two
 /// straight sides square to them leaves every pair within an arc unchanged at both ends;
 /// the cut finder's tie-break towards where the rows of g jump puts its points there
 /// (without it, 8 of 10). What is held: at least 9 right, each of those on the end up to a

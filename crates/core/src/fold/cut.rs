@@ -280,8 +280,9 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     let fine: Vec<f64> = (0..grid).map(|h| row_jump(&squashed, h)).collect();
     let peaks: Vec<f64> = (0..grid)
         .map(|h| {
-            let beside = (1..=JUMP_REACH).flat_map(|d| [(h + d) % grid, (h + grid - d) % grid]);
-            let top = beside.into_iter().all(|k| fine[k] <= fine[h]);
+            let top = (1..=JUMP_REACH)
+                .flat_map(|d| [(h + d) % grid, (h + grid - d) % grid])
+                .all(|k| fine[k] <= fine[h]);
             if top {
                 fine[h]
             } else {
@@ -298,8 +299,9 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     let most = jumps.iter().copied().fold(0.0, f64::max);
     let per_jump = if most > 0.0 { TIE * total / (10.0 * arcs as f64 * most) } else { 0.0 };
     let bonus = |b: usize| per_jump * jumps[b];
-    // The change of every arc between two coarse positions, less its end point's bonus,
-    // once: the programme reads each many times.
+    // The change of every arc between two coarse positions, less its end point's bonus (so
+    // a closed partition counts each point's once), once: the programme reads each many
+    // times.
     let arc_changes: Vec<f64> =
         (0..m * m).map(|k| within(coarse[k / m], coarse[k % m]) - bonus(k % m)).collect();
     let arc = |a: usize, b: usize| arc_changes[a * m + b];
@@ -308,7 +310,7 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     let solve = |first: usize| -> (f64, Vec<usize>) {
         let mut best = vec![vec![(f64::INFINITY, usize::MAX); m]; arcs];
         for (b, slot) in best[1].iter_mut().enumerate().skip(first + 1) {
-            *slot = (arc(first, b) - bonus(first), first);
+            *slot = (arc(first, b), first);
         }
         for j in 2..arcs {
             let (done, rest) = best.split_at_mut(j);
@@ -327,8 +329,7 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
         let last = best[arcs - 1].iter().enumerate().skip(first + arcs - 1).fold(
             (f64::INFINITY, usize::MAX),
             |last, (b, &(change, _))| {
-                // The first point's bonus is counted already.
-                let v = change + arc(b, first) + bonus(first);
+                let v = change + arc(b, first);
                 if v < last.0 {
                     (v, b)
                 } else {
