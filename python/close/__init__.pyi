@@ -99,7 +99,13 @@ SequenceClass = Literal[
 
 # How a sequence of folds reads as a whole. schema/analysis.json#/$defs/SequenceLabel
 SequenceLabelDict = TypedDict(
-    "SequenceLabelDict", {"class": SequenceClass, "in_half": List[bool], "text": str}
+    "SequenceLabelDict",
+    {
+        "class": SequenceClass,
+        "across_percent": List[Optional[float]],
+        "in_half": List[bool],
+        "text": str,
+    },
 )
 
 class LabelDict(TypedDict):

@@ -292,7 +292,7 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let folds: Vec<Fold> = foldings.iter().map(|f| f.fold).collect();
     let metrics = steps.last().map(|s| s.metrics);
     let n = sample.len();
-    let mut label = label(n, &found.vertices, &foldings);
+    let mut label = label(&frames[0], &found.vertices, &foldings);
     // A cloth only moved across the table is in the same state: the aligned error decides.
     let changed: Vec<usize> = steps
         .iter()

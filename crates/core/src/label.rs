@@ -20,20 +20,31 @@
 //! is `border_indices[vertex]`).
 //!
 //! A sequence of two or more folds is also read as a whole, as a person would say it
-//! ([`SequenceClass`], our extension): each fold "in half" when it turns over half the
-//! border's vertices of the state it is made on (within [`SEQUENCE_HALF_PERCENT`]), "in
-//! quarters" for two such folds, "in eighths" for three; "in thirds" for two sides folded in
-//! alike (less than half each) at disjoint ends of the border; "both sides folded in, then
-//! folded in half" for those two and a fold in half after them, "folded in half, then both
-//! sides folded in" for the other order. The sentence is made from the class, so the text
-//! and the structured field cannot disagree.
+//! ([`SequenceClass`], our extension), from where each fold's line lies across the state it
+//! is made on (the folds replayed on the start border): across the line, the share of that
+//! state's width on the side turned over, and how far the flap reaches. A fold is "in half"
+//! when that share is within [`SEQUENCE_HALF_PERCENT`] of 50 %: a stacked napkin's third
+//! fold in half turns a quarter of its start border, but half the state it is made on. Two
+//! such folds are "in quarters", three "in eighths"; two sides folded in are two folds from
+//! opposite sides, along nearly parallel lines, whose flaps reach alike (within
+//! [`EVEN_PERCENT`] of the start's width): "in thirds" alone (the second then folds half
+//! the state over the first), "both sides folded in, then folded in half" with a fold in
+//! half after them, "folded in half, then both sides folded in" in the other order. Whether
+//! a fold after the first is "in half" in its own label is judged the same way; its corners
+//! and sides are still those of the start border. The sentences are made from the classes,
+//! so the text and the structured fields cannot disagree.
 //!
 //! ```
+//! use close_core::border::Point;
 //! use close_core::geometry::{Fold, Folding};
 //! use close_core::label::{label, FoldClass};
 //! use std::f64::consts::PI;
 //! // A square of 8 vertices with corners at 0, 2, 4, 6, folded along the diagonal 0–4.
-//! let l = label(8, &[0, 2, 4, 6], &[Folding::new(Fold::new(0.0, PI))]);
+//! let square: Vec<Point> = [[0, 0], [1, 0], [2, 0], [2, 1], [2, 2], [1, 2], [0, 2], [0, 1]]
+//!     .iter()
+//!     .map(|&[x, y]| Point::new(x as f64, y as f64, 0.0))
+//!     .collect();
+//! let l = label(&square, &[0, 2, 4, 6], &[Folding::new(Fold::new(0.0, PI))]);
 //! assert_eq!(l.folds[0].class, FoldClass::DiagonallyFoldedInHalf);
 //! assert_eq!(l.folds[0].folded_corners, vec![2]);
 //! ```
@@ -41,7 +52,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::angle::{angle_to_param, wrap_tau, ON_LINE_EDGES};
-use crate::geometry::{Arc, Fold, Folding};
+use crate::border::Point;
+use crate::fold::apply;
+use crate::geometry::{Arc, Fold, Folding, Line, Vector2};
 
 /// More corners than this and the cloth is called circular.
 pub const CIRCULAR_CORNERS: usize = 20;
@@ -50,8 +63,8 @@ pub const CIRCULAR_CORNERS: usize = 20;
 /// vertex or two (1.1 of 172 on `physics__pentagon_f1_half_axis`, 1.4 of 190 on
 /// `physics__trousers_f1_half_left_onto_right`), a few degrees on the fold circle.
 const ON_LINE_SHARE: f64 = 0.015;
-/// Percentages this close count as equal (askew otherwise).
-const EVEN_PERCENT: f64 = 10.0;
+/// Percentages this close count as equal (askew otherwise; of a sequence's flaps, alike).
+pub const EVEN_PERCENT: f64 = 10.0;
 /// A fold whose folded share is this close to 50% is "in half".
 const HALF_PERCENT: f64 = 12.0;
 
@@ -144,9 +157,12 @@ pub struct Label {
     pub sequence: Option<SequenceLabel>,
 }
 
-/// A fold of a sequence turning this close to 50% of the border's vertices is "in half"
-/// (tighter than `HALF_PERCENT`: a towel's third, 40% of its border, is not a half).
+/// A fold of a sequence whose line leaves this close to 50 % of its state's width on the
+/// side turned over is "in half" (tighter than `HALF_PERCENT`: a towel's third is no half).
 pub const SEQUENCE_HALF_PERCENT: f64 = 6.0;
+/// Two folds' turned sides this close to opposite (the cosine between them at most its
+/// negation: 26°) are folded in from opposite sides.
+const OPPOSITE_COSINE: f64 = 0.9;
 
 /// How a sequence of folds reads as a whole.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -157,11 +173,11 @@ pub enum SequenceClass {
     InQuarters,
     /// Three folds, each in half.
     InEighths,
-    /// Two sides folded in (less than half each, alike) at disjoint ends of the border.
+    /// Two sides folded in from opposite sides, their flaps alike (the second over the first).
     InThirds,
-    /// Two sides folded in at disjoint ends, then a fold in half.
+    /// Two sides folded in, then a fold in half.
     SidesInThenHalf,
-    /// A fold in half, then two sides of it folded in at disjoint ends.
+    /// A fold in half, then two sides of it folded in.
     HalfThenSidesIn,
     /// Any other sequence, told fold by fold.
     Folds,
@@ -172,43 +188,106 @@ pub enum SequenceClass {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct SequenceLabel {
     pub class: SequenceClass,
-    /// Whether each fold, in order, turned half the border over (within
-    /// [`SEQUENCE_HALF_PERCENT`]).
+    /// Where each fold's line lies across the state it is made on: the share (percent) of
+    /// that state's width, measured across the line, on the side turned over; `None` for a
+    /// fold without a line there.
+    pub across_percent: Vec<Option<f64>>,
+    /// Whether each fold, in order, folded its state in half (`across_percent` within
+    /// [`SEQUENCE_HALF_PERCENT`] of 50).
     pub in_half: Vec<bool>,
     pub text: String,
 }
 
-/// The sequence label of `folds` (two or more) and their labels.
-fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> SequenceLabel {
+/// Where a fold's line lies across the state it is made on.
+#[derive(Debug, Clone, Copy)]
+struct Across {
+    /// Unit normal to the line, towards the side turned over.
+    towards: Vector2,
+    /// How far the turned vertices reach past the line.
+    flap: f64,
+    /// How far the state reaches past the line on the side that stays.
+    rest: f64,
+    /// The start state's width along `towards`.
+    start_width: f64,
+}
+
+impl Across {
+    /// Of `folding`, made along `line` on `state` (start state `start`): `None` when it turns
+    /// no vertex or the state has no width across the line.
+    fn of(start: &[Point], state: &[Point], folding: &Folding, line: &Line) -> Option<Across> {
+        let normal = Vector2::new(-line.direction.y, line.direction.x);
+        let offset = |p: &Point| normal.dot(&(p.xy() - line.point));
+        let turned: Vec<usize> =
+            folding.arcs.iter().flat_map(|arc| arc.folded_vertices(state.len())).collect();
+        let side = turned.iter().map(|&v| offset(&state[v])).sum::<f64>().signum();
+        let flap = turned.iter().map(|&v| side * offset(&state[v])).fold(0.0, f64::max);
+        let rest = state.iter().map(|p| -side * offset(p)).fold(0.0, f64::max);
+        let (low, high) = start
+            .iter()
+            .map(offset)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| (lo.min(t), hi.max(t)));
+        (flap + rest > 0.0 && high > low).then(|| Across {
+            towards: side * normal,
+            flap,
+            rest,
+            start_width: high - low,
+        })
+    }
+
+    fn percent(&self) -> f64 {
+        100.0 * self.flap / (self.flap + self.rest)
+    }
+
+    fn in_half(&self) -> bool {
+        (self.percent() - 50.0).abs() <= SEQUENCE_HALF_PERCENT
+    }
+}
+
+/// Each of `folds` made in turn on `start`: where its line lies across its state.
+fn across_states(start: &[Point], folds: &[Folding]) -> Vec<Option<Across>> {
+    let mut state = start.to_vec();
+    folds
+        .iter()
+        .map(|folding| {
+            let across =
+                folding.line_on(&state).and_then(|line| Across::of(start, &state, folding, &line));
+            state = apply(&state, folding);
+            across
+        })
+        .collect()
+}
+
+/// The sequence label of two or more folds: where each lies `across` its state, and their
+/// labels.
+fn label_sequence(across: &[Option<Across>], labels: &[FoldLabel]) -> SequenceLabel {
+    let across_percent: Vec<Option<f64>> =
+        across.iter().map(|a| a.as_ref().map(Across::percent)).collect();
     let in_half: Vec<bool> =
-        labels.iter().map(|l| (l.folded_percent - 50.0).abs() <= SEQUENCE_HALF_PERCENT).collect();
-    // A side folded in: less than half, and no corner or diagonal fold (a third of a
-    // towel, 40 % of its border, is "folded in half" alone by the wider HALF_PERCENT).
+        across.iter().map(|a| a.as_ref().is_some_and(Across::in_half)).collect();
+    // A side folded in: less than half its state, and no corner or diagonal fold.
     let side_in = |k: usize| {
-        labels[k].folded_percent < 50.0 - SEQUENCE_HALF_PERCENT
+        across_percent[k].is_some_and(|p| p < 50.0 - SEQUENCE_HALF_PERCENT)
             && !matches!(
                 labels[k].class,
                 FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
             )
     };
-    // Folds turning disjoint ends of the start border (no vertex on both).
-    let disjoint = |a: &Folding, b: &Folding| {
-        !a.arcs.iter().any(|x| {
-            b.arcs.iter().any(|y| {
-                (0..n).any(|v| {
-                    x.folds_vertex(n, v, ON_LINE_EDGES) && y.folds_vertex(n, v, ON_LINE_EDGES)
-                })
-            })
-        })
+    // Folds j and k: two sides folded in from opposite sides, their flaps alike (the second
+    // may fold half of what is left, as the last third of a towel does).
+    let ends = |j: usize, k: usize| match (across[j], across[k]) {
+        (Some(a), Some(b)) => {
+            side_in(j)
+                && !matches!(
+                    labels[k].class,
+                    FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
+                )
+                && a.towards.dot(&b.towards) <= -OPPOSITE_COSINE
+                && 100.0 * (a.flap - b.flap).abs()
+                    <= EVEN_PERCENT * a.start_width.max(b.start_width)
+        }
+        _ => false,
     };
-    // Folds j and k: two sides folded in alike at disjoint ends.
-    let ends = |j: usize, k: usize| {
-        side_in(j)
-            && side_in(k)
-            && (labels[j].folded_percent - labels[k].folded_percent).abs() <= EVEN_PERCENT
-            && disjoint(&folds[j], &folds[k])
-    };
-    let class = match (folds.len(), in_half.as_slice()) {
+    let class = match (labels.len(), in_half.as_slice()) {
         (2, [true, true]) => SequenceClass::InQuarters,
         (3, [true, true, true]) => SequenceClass::InEighths,
         (2, _) if ends(0, 1) => SequenceClass::InThirds,
@@ -233,7 +312,7 @@ fn label_sequence(n: usize, folds: &[Folding], labels: &[FoldLabel]) -> Sequence
             format!("Folded {} times: {}.", labels.len(), phrases.join(", then "))
         }
     };
-    SequenceLabel { class, in_half, text }
+    SequenceLabel { class, across_percent, in_half, text }
 }
 
 /// Length of the overlap of two cyclic intervals [a, a+la] and [b, b+lb] on a circle of length n.
@@ -248,20 +327,31 @@ fn overlap(n: f64, a: f64, la: f64, b: f64, lb: f64) -> f64 {
         .sum()
 }
 
-/// Label a border of `n` vertices with corners at `corner_vertices` (sorted) and `folds`,
-/// in order. A fold of one arc is labelled by its fold (f1, f2). A fold of several arcs (a
-/// multi-arc fold) is classed by the pair that spans its arcs; its folded corners and share
-/// are those of its arcs, and its sentence says how many separate flaps turned over. Lines
-/// play no part.
+/// Label the border `start` (its first state) with corners at `corner_vertices` (sorted)
+/// and `folds`, made in turn on it. A fold of one arc is labelled by its fold (f1, f2). A
+/// fold of several arcs (a multi-arc fold) is classed by the pair that spans its arcs; its
+/// folded corners and share are those of its arcs, and its sentence says how many separate
+/// flaps turned over. Each fold's corners and sides are told on the start border; whether a
+/// later fold of a sequence is "in half", and the sequence as a whole, by where its line
+/// lies across the state it is made on.
 ///
 /// A cloth with no fold is "not folded" — unless it changed: see `Label::changed_without_fold`.
-pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
+pub fn label(start: &[Point], corner_vertices: &[usize], folds: &[Folding]) -> Label {
+    let n = start.len();
     let circular = corner_vertices.len() > CIRCULAR_CORNERS || corner_vertices.is_empty();
+    let across = if folds.len() >= 2 { across_states(start, folds) } else { Vec::new() };
+    let in_half = |k: usize| across[k].as_ref().is_some_and(Across::in_half);
     let fold_labels: Vec<FoldLabel> = folds
         .iter()
-        .map(|f| match f.arcs.as_slice() {
-            several @ [_, _, ..] => label_multi_arc(n, corner_vertices, f.fold, several, circular),
-            _ => label_fold(n, corner_vertices, f.fold, circular),
+        .enumerate()
+        .map(|(k, f)| {
+            let made_in_half = (k > 0).then(|| in_half(k));
+            match f.arcs.as_slice() {
+                several @ [_, _, ..] => {
+                    label_multi_arc(n, corner_vertices, f.fold, several, circular, made_in_half)
+                }
+                _ => label_fold(n, corner_vertices, f.fold, circular, made_in_half),
+            }
         })
         .collect();
     let mut text = if corner_vertices.len() > CIRCULAR_CORNERS {
@@ -274,7 +364,7 @@ pub fn label(n: usize, corner_vertices: &[usize], folds: &[Folding]) -> Label {
     if fold_labels.is_empty() {
         text.push_str(" It is not folded.");
     }
-    let sequence = (fold_labels.len() >= 2).then(|| label_sequence(n, folds, &fold_labels));
+    let sequence = (fold_labels.len() >= 2).then(|| label_sequence(&across, &fold_labels));
     if let Some(sequence) = &sequence {
         text.push(' ');
         text.push_str(&sequence.text);
@@ -315,7 +405,16 @@ impl Label {
     }
 }
 
-fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLabel {
+/// The label of `fold` on a border of `n` vertices. `made_in_half`, for a later fold of a
+/// sequence, says whether it folds the state it is made on in half: that, not its share of
+/// the start border, decides "in half".
+fn label_fold(
+    n: usize,
+    corners: &[usize],
+    fold: Fold,
+    circular: bool,
+    made_in_half: Option<bool>,
+) -> FoldLabel {
     let nf = n as f64;
     let s1 = angle_to_param(fold.f1, n);
     let span = angle_to_param(fold.f2 - fold.f1, n);
@@ -382,7 +481,7 @@ fn label_fold(n: usize, corners: &[usize], fold: Fold, circular: bool) -> FoldLa
         [one] => !even(one.folded_percent, 50.0),
         _ => false,
     };
-    let half = (folded_percent - 50.0).abs() <= HALF_PERCENT;
+    let half = made_in_half.unwrap_or((folded_percent - 50.0).abs() <= HALF_PERCENT);
     let class = if circular {
         if half {
             FoldClass::FoldedInHalf
@@ -436,8 +535,9 @@ fn label_multi_arc(
     fold: Fold,
     arcs: &[Arc],
     circular: bool,
+    made_in_half: Option<bool>,
 ) -> FoldLabel {
-    let mut out = label_fold(n, corners, fold, circular);
+    let mut out = label_fold(n, corners, fold, circular, made_in_half);
     let nf = n as f64;
     let on_arcs = |v: usize| {
         arcs.iter().any(|&Arc { a, b }| {
@@ -543,6 +643,27 @@ mod tests {
 
     const SQUARE: [usize; 4] = [0, 19, 38, 57];
 
+    /// The unit square's border: 76 vertices, 19 a side, anticlockwise from (0, 0); the
+    /// corners at `SQUARE`.
+    fn square() -> Vec<Point> {
+        (0..76)
+            .map(|k| {
+                let t = (k % 19) as f64 / 19.0;
+                let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 19];
+                Point::new(x, y, 0.0)
+            })
+            .collect()
+    }
+    /// A border of `n` vertices on the unit circle.
+    fn ring(n: usize) -> Vec<Point> {
+        (0..n)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / n as f64;
+                Point::new(t.cos(), t.sin(), 0.0)
+            })
+            .collect()
+    }
+
     /// Ordinary folds, one arc each.
     fn folds(pairs: &[[f64; 2]]) -> Vec<Folding> {
         pairs.iter().map(|&f| Folding::new(Fold::from(f))).collect()
@@ -553,8 +674,9 @@ mod tests {
 
     #[test]
     fn classes_of_the_napkin_folds() {
-        let class =
-            |a: f64, b: f64| label(76, &SQUARE, &folds(&[[angle(a), angle(b)]])).folds[0].class;
+        let class = |a: f64, b: f64| {
+            label(&square(), &SQUARE, &folds(&[[angle(a), angle(b)]])).folds[0].class
+        };
         assert_eq!(class(9.5, 47.5), FoldClass::FoldedInHalf);
         assert_eq!(class(0.0, 38.0), FoldClass::DiagonallyFoldedInHalf);
         assert_eq!(class(57.0, 19.0), FoldClass::DiagonallyFoldedInHalf);
@@ -566,7 +688,7 @@ mod tests {
 
     #[test]
     fn corner_fold_reports_its_sides() {
-        let l = label(76, &SQUARE, &folds(&[[angle(12.0), angle(26.0)]]));
+        let l = label(&square(), &SQUARE, &folds(&[[angle(12.0), angle(26.0)]]));
         let c = &l.folds[0].corner_sides[0];
         assert_eq!((c.corner, c.vertex), (2, 19));
         // Each 1-based corner number has its border vertex beside it.
@@ -589,7 +711,7 @@ mod tests {
             arcs: arcs.iter().map(|&a| a.into()).collect(),
             line: None,
         };
-        let l = label(76, &SQUARE, &[folding]);
+        let l = label(&square(), &SQUARE, &[folding]);
         assert_eq!(l.folds[0].folded_corners, vec![2]);
         assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
     }
@@ -598,7 +720,7 @@ mod tests {
     fn fold_on_a_corner_is_not_a_coin_flip() {
         // A hair either side of the corner gives the same answer.
         for eps in [-1e-9, 0.0, 1e-9] {
-            let l = label(76, &SQUARE, &folds(&[[angle(eps), angle(38.0 - eps)]]));
+            let l = label(&square(), &SQUARE, &folds(&[[angle(eps), angle(38.0 - eps)]]));
             assert_eq!(l.folds[0].folded_corners, vec![2]);
             assert_eq!(l.folds[0].corners_on_fold_line, vec![1, 3]);
             assert_eq!(l.folds[0].folded_corner_vertices, vec![19]);
@@ -612,7 +734,7 @@ mod tests {
         // them) folded along its axis: a vertex past corner 4 to the middle of side 1–2.
         let pentagon = [0, 28, 60, 99, 140];
         let l = label(
-            172,
+            &ring(172),
             &pentagon,
             &folds(&[[param_to_angle(100.1, 172), param_to_angle(14.0, 172)]]),
         );
@@ -622,7 +744,7 @@ mod tests {
         assert!(l.text.contains("through corner 4") && !l.text.contains("side 4–5"), "{}", l.text);
         // Off the middle of the opposite side, it is askew.
         let off = label(
-            172,
+            &ring(172),
             &pentagon,
             &folds(&[[param_to_angle(100.1, 172), param_to_angle(22.0, 172)]]),
         );
@@ -631,14 +753,14 @@ mod tests {
 
     #[test]
     fn a_change_without_a_fold_is_said() {
-        let mut l = label(76, &SQUARE, &[]);
+        let mut l = label(&square(), &SQUARE, &[]);
         l.changed_without_fold(&[1]);
         assert_eq!(l.text, "Cloth has 4 corners. It changed, but no fold found (step 1).");
-        let mut folded = label(76, &SQUARE, &folds(&[[angle(9.5), angle(47.5)]]));
+        let mut folded = label(&square(), &SQUARE, &folds(&[[angle(9.5), angle(47.5)]]));
         let before = folded.text.clone();
         folded.changed_without_fold(&[2, 3]);
         assert_eq!(folded.text, format!("{before} It changed, but no fold found (steps 2, 3)."));
-        let mut still = label(76, &SQUARE, &[]);
+        let mut still = label(&square(), &SQUARE, &[]);
         still.changed_without_fold(&[]);
         assert!(still.text.ends_with("It is not folded."));
     }
@@ -646,17 +768,17 @@ mod tests {
     #[test]
     fn round_cloth() {
         let corners: Vec<usize> = (0..64).collect();
-        let l = label(64, &corners, &folds(&[[0.0, PI]]));
+        let l = label(&ring(64), &corners, &folds(&[[0.0, PI]]));
         assert!(l.circular);
         assert_eq!(l.folds[0].class, FoldClass::FoldedInHalf);
         assert!(l.text.starts_with("Cloth is circular"));
-        let unfolded = label(64, &corners, &[]);
+        let unfolded = label(&ring(64), &corners, &[]);
         assert!(unfolded.text.contains("not folded"));
     }
 
     #[test]
     fn a_cloth_without_corners_is_told_by_its_border() {
-        let l = label(160, &[], &folds(&[[PI / 2.0, 3.0 * PI / 2.0]]));
+        let l = label(&ring(160), &[], &folds(&[[PI / 2.0, 3.0 * PI / 2.0]]));
         assert_eq!(l.corners, 0);
         assert!(l.text.starts_with("Cloth has no corners."), "{}", l.text);
         let fold = &l.folds[0];
@@ -679,23 +801,47 @@ mod tests {
         Folding { fold: Fold::span(&arcs).unwrap(), arcs, line: None }
     }
 
+    /// `folding` made along the line through `point` in `direction` (where its two points
+    /// coincide on a stacked state).
+    fn along(folding: Folding, point: [f64; 2], direction: [f64; 2]) -> Folding {
+        let line = Line { point: point.into(), direction: direction.into() };
+        Folding { line: Some(line), ..folding }
+    }
+
     #[test]
     fn sequences_read_as_a_whole_and_the_text_says_the_class() {
-        // The square of 76 vertices: in half (left onto right), then its two top quarters
-        // (one of each layer) down.
-        let quarters = [turning(&[[47.5, 9.5]]), turning(&[[28.5, 47.5], [47.5, 66.5]])];
-        // Opposite ends in (a third of the width each), then in half across.
+        // The unit square: in half (left onto right, x = 0.5), then its top half down across
+        // both layers (y = 0.5), then what is right of x = 0.75 (of both, 4 layers) over.
+        let quarters = [
+            turning(&[[47.5, 9.5]]),
+            along(turning(&[[28.5, 47.5], [47.5, 66.5]]), [0.0, 0.5], [1.0, 0.0]),
+        ];
+        let mut eighths = quarters.to_vec();
+        eighths.push(along(turning(&[[14.25, 42.75], [52.25, 4.75]]), [0.75, 0.0], [0.0, 1.0]));
+        // In thirds: the left third in (x = 1/3), then the right one over it (x = 2/3).
         let third = |a: f64, b: f64| turning(&[[a, b]]);
         let sides = [third(50.7, 6.3), third(12.7, 44.3)];
-        let sides_in_then_half = [sides[0].clone(), sides[1].clone(), turning(&[[9.5, 47.5]])];
-        let half_then_sides_in = [turning(&[[9.5, 47.5]]), sides[0].clone(), sides[1].clone()];
+        // Then in half across (y = 0.5).
+        let sides_in_then_half = [sides[0].clone(), sides[1].clone(), turning(&[[28.5, 66.5]])];
+        // In half (x = 0.5, right onto left), then a quarter of what is left in from each
+        // side, each through both layers (x = 0.125, x = 0.375).
+        let half_then_sides_in = [
+            turning(&[[9.5, 47.5]]),
+            along(turning(&[[16.625, 40.375], [54.625, 2.375]]), [0.125, 0.0], [0.0, 1.0]),
+            turning(&[[7.125, 11.875], [45.125, 49.875]]),
+        ];
         // One side folded, then a corner: no name for the whole.
         let other = [third(55.0, 2.0), turning(&[[12.0, 26.0]])];
-        let cases: [(&[Folding], SequenceClass, &str); 5] = [
+        let cases: [(&[Folding], SequenceClass, &str); 6] = [
             (
                 &quarters,
                 SequenceClass::InQuarters,
                 "Folded in quarters (in half, then in half again).",
+            ),
+            (
+                &eighths,
+                SequenceClass::InEighths,
+                "Folded in eighths (in half, then in half again, and again).",
             ),
             (&sides, SequenceClass::InThirds, "Folded in thirds"),
             (
@@ -711,20 +857,58 @@ mod tests {
             (&other, SequenceClass::Folds, "Folded 2 times: one side folded, then corner folded."),
         ];
         for (folds, class, says) in cases {
-            let l = label(76, &SQUARE, folds);
+            let l = label(&square(), &SQUARE, folds);
             let sequence = l.sequence.as_ref().expect("two folds or more");
-            assert_eq!(sequence.class, class, "{}", l.text);
+            assert_eq!(sequence.class, class, "{} {:?}", l.text, sequence.across_percent);
             assert!(sequence.text.starts_with(says), "{}", sequence.text);
             assert!(l.text.contains(&sequence.text), "{}", l.text);
             assert_eq!(sequence.in_half.len(), folds.len());
         }
-        assert!(label(76, &SQUARE, &quarters[..1]).sequence.is_none());
+        assert!(label(&square(), &SQUARE, &quarters[..1]).sequence.is_none());
+    }
+
+    #[test]
+    fn a_later_fold_is_told_by_where_it_lies_across_its_state() {
+        let across = |folds: &[Folding]| {
+            let l = label(&square(), &SQUARE, folds);
+            let sequence = l.sequence.expect("two folds or more");
+            let percent: Vec<f64> =
+                sequence.across_percent.iter().map(|p| p.expect("a line")).collect();
+            (l.folds, percent, sequence.text)
+        };
+        // The eighths' third fold turns 75 % of the start border over, and half its state.
+        let eighths = [
+            turning(&[[47.5, 9.5]]),
+            along(turning(&[[28.5, 66.5]]), [0.0, 0.5], [1.0, 0.0]),
+            along(turning(&[[14.25, 42.75], [52.25, 4.75]]), [0.75, 0.0], [0.0, 1.0]),
+        ];
+        let (folds, percent, _) = across(&eighths);
+        assert!((folds[2].folded_percent - 75.0).abs() < 1.0, "{}", folds[2].folded_percent);
+        assert_eq!(folds[2].class, FoldClass::FoldedInHalf, "{}", folds[2].text);
+        // Within a vertex: the square's vertices are 1/19 apart.
+        for p in percent {
+            assert!((p - 50.0).abs() < 3.0, "{p}");
+        }
+        // A towel's left quarter in (x = 1/4), then what is left folded in half the same way
+        // (x = 5/8): 25 % and 50 % across, though the second turns 37.5 % of the border.
+        let side_then_half = [turning(&[[52.25, 4.75]]), turning(&[[11.875, 45.125]])];
+        let (folds, percent, text) = across(&side_then_half);
+        assert!((folds[1].folded_percent - 43.75).abs() < 1e-9, "{}", folds[1].folded_percent);
+        assert!((percent[0] - 25.0).abs() < 3.0 && (percent[1] - 50.0).abs() < 3.0, "{percent:?}");
+        assert_eq!(folds[1].class, FoldClass::FoldedInHalf);
+        assert_eq!(text, "Folded 2 times: one side folded, then folded in half.");
+        // Stacked layers whose two points coincide, without a line: nowhere across.
+        let unseen = [turning(&[[47.5, 9.5]]), turning(&[[28.5, 66.5]])];
+        let l = label(&square(), &SQUARE, &unseen);
+        let sequence = l.sequence.expect("two folds");
+        assert_eq!(sequence.across_percent[1], None);
+        assert_eq!(sequence.in_half, vec![true, false]);
     }
 
     #[test]
     fn a_multi_arc_fold_names_only_the_corners_its_arcs_turn() {
         // Two flaps, around corners 2 and 4; corner 3 lies between them and stays.
-        let l = label(76, &SQUARE, &[turning(&[[12.0, 26.0], [50.0, 64.0]])]);
+        let l = label(&square(), &SQUARE, &[turning(&[[12.0, 26.0], [50.0, 64.0]])]);
         let fold = &l.folds[0];
         assert_eq!(fold.folded_corners, vec![2, 4]);
         assert!(fold.text.contains("Corners 2, 4 are folded"), "{}", fold.text);
