@@ -30,8 +30,9 @@
 //! [`EVEN_PERCENT`] of the start's width): "in thirds" alone (the second then folds half
 //! the state over the first), "both sides folded in, then folded in half" with a fold in
 //! half after them, "folded in half, then both sides folded in" in the other order. Whether
-//! a fold after the first is "in half" in its own label is judged the same way; its corners
-//! and sides are still those of the start border. The sentences are made from the classes,
+//! a fold after the first is "in half" in its own label is judged the same way, and it is
+//! never called askew (the start border's sides are not its state's); its corners and the
+//! sides it cuts are still told on the start border. The sentences are made from the classes,
 //! so the text and the structured fields cannot disagree.
 //!
 //! ```
@@ -407,7 +408,7 @@ impl Label {
 
 /// The label of `fold` on a border of `n` vertices. `made_in_half`, for a later fold of a
 /// sequence, says whether it folds the state it is made on in half: that, not its share of
-/// the start border, decides "in half".
+/// the start border, decides "in half", and no such fold is called askew.
 fn label_fold(
     n: usize,
     corners: &[usize],
@@ -475,12 +476,14 @@ fn label_fold(
     };
     let even = |a: f64, b: f64| (a - b).abs() <= EVEN_PERCENT;
     // Symmetric: the two cut sides folded alike, or, through a corner, the one cut side
-    // cut in half (the axis through a corner and the middle of the opposite side).
-    let askew = match cut_sides.as_slice() {
-        [a, b] => !even(a.folded_percent, b.folded_percent),
-        [one] => !even(one.folded_percent, 50.0),
-        _ => false,
-    };
+    // cut in half (the axis through a corner and the middle of the opposite side). Not
+    // judged for a later fold of a sequence: the start border's sides are not its state's.
+    let askew = made_in_half.is_none()
+        && match cut_sides.as_slice() {
+            [a, b] => !even(a.folded_percent, b.folded_percent),
+            [one] => !even(one.folded_percent, 50.0),
+            _ => false,
+        };
     let half = made_in_half.unwrap_or((folded_percent - 50.0).abs() <= HALF_PERCENT);
     let class = if circular {
         if half {
@@ -897,6 +900,13 @@ mod tests {
         assert!((percent[0] - 25.0).abs() < 3.0 && (percent[1] - 50.0).abs() < 3.0, "{percent:?}");
         assert_eq!(folds[1].class, FoldClass::FoldedInHalf);
         assert_eq!(text, "Folded 2 times: one side folded, then folded in half.");
+        // Nor is a later fold askew: the start border's sides are not its state's.
+        let askew = Fold::new(angle(5.32), angle(44.84));
+        assert_eq!(label_fold(76, &SQUARE, askew, false, None).class, FoldClass::FoldedInHalfAskew);
+        assert_eq!(
+            label_fold(76, &SQUARE, askew, false, Some(true)).class,
+            FoldClass::FoldedInHalf
+        );
         // Stacked layers whose two points coincide, without a line: nowhere across.
         let unseen = [turning(&[[47.5, 9.5]]), turning(&[[28.5, 66.5]])];
         let l = label(&square(), &SQUARE, &unseen);
