@@ -127,6 +127,17 @@ const PARALLEL: f64 = 0.999;
 const SIDE_EDGES: usize = 4;
 /// … each turning less than this from the last (radians; 1°).
 const SIDE_TURN: f64 = PI / 180.0;
+/// A vertex within this share of a mean edge of a fold's line lies on it.
+const ON_LINE: f64 = 0.1;
+/// A twin that moves the cloth this share further across the table (its vertices' summed
+/// distance from where they lay at the step's start) than the sequence it would replace
+/// does not replace it. The disk sees neither where a cloth lies nor, but faintly, the
+/// order of its layers, and a person folds the smaller part over and leaves the cloth
+/// where it lay. Measured: 2–10 % keep every development sequence and generated variant
+/// where it lies; 0 moves the noisy napkin in quarters aside (and the development ends to
+/// an RMSE of 0.21); 20 % lets the noisy sides-in napkin land as a congruent twin that
+/// moves the cloth 15 % further (RMSE 1.40).
+const FURTHER: f64 = 0.05;
 /// Alternatives listed: sequences whose mismatch is within this share of the best one's.
 const ABOUT_AS_WELL: f64 = 0.25;
 /// Most a pair's mismatch counts for where candidates are near right, when their lines are
@@ -182,9 +193,17 @@ impl Move {
     }
 
     /// The arcs this fold turns over on `state` (border parameters): `None` when it turns
-    /// fewer than two vertices, or leaves fewer than two.
+    /// fewer than two vertices, or leaves fewer than two, or when no cloth lies right of its
+    /// line (within [`ON_LINE`] of a mean edge): a line along a straight side, all the
+    /// cloth left of it, turns the whole cloth over, which is no fold though it lands
+    /// congruent to one.
     fn arcs(&self, state: &[Point], line: &Line) -> Option<Vec<[f64; 2]>> {
         let n = state.len();
+        let right =
+            state.iter().map(|p| -line.direction.perp(&(p.xy() - line.point))).fold(0.0, f64::max);
+        if right <= ON_LINE * mean_edge(state) {
+            return None;
+        }
         let left = arcs_left_of(state, line);
         let arcs: Vec<[f64; 2]> = match self.turn {
             Turn::All => left,
@@ -770,7 +789,7 @@ fn search(
                 new
             });
         }
-        if let Some(best) = layer_order(&probes.order, &mut judged) {
+        if let Some(best) = layer_order(before, &probes.order, &mut judged) {
             let last = !deeper(&best);
             found.push((best, judged));
             if last {
@@ -784,17 +803,24 @@ fn search(
 
 /// Take out of `judged` (best first) the sequence of least mismatch, but that one which
 /// explains the end disk about as well ([`ABOUT_AS_WELL`]) and lands like it (within
-/// [`CONGRUENT`]), its layers stacked in another order, and whose heights fit the measured
-/// disk better, on each one's outline, on `probe`.
-fn layer_order(probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
+/// [`CONGRUENT`]), its layers stacked in another order, whose heights fit the measured
+/// disk better, on each one's outline, on `probe`, and which moves the cloth from `before`
+/// not markedly further ([`FURTHER`]).
+fn layer_order(before: &[Point], probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
     let with = |xy: &[Point], z: &[Point]| -> Vec<Point> {
         xy.iter().zip(z).map(|(p, q)| Point::new(p.x, p.y, q.z)).collect()
     };
+    // How far each moves the cloth across the table.
+    let moved: Vec<f64> = judged
+        .iter()
+        .map(|j| j.state.iter().zip(before).map(|(p, q)| (p.xy() - q.xy()).norm()).sum::<f64>())
+        .collect();
     let mut best = 0;
     for k in 1..judged.len() {
         let (a, b) = (&judged[best].state, &judged[k].state);
         if judged[k].cost > (1.0 + ABOUT_AS_WELL) * judged[0].cost
             || aligned_rmse_xy(a, b) > CONGRUENT
+            || moved[k] > (1.0 + FURTHER) * moved[best]
         {
             continue;
         }
@@ -1085,6 +1111,22 @@ mod tests {
         let single = detect(before, &start, &end, FoldMethod::Cut);
         explain(before, &start, &end, &single, max_folds, &Deadline::default())
             .expect("no deadline")
+    }
+
+    #[test]
+    fn a_line_along_a_side_turns_nothing_over() {
+        // Rays from vertex 0, the bottom left corner, along the bottom side: the whole
+        // square lies left of it or on it (a flip, no fold); a degree up, a sliver of the
+        // bottom side lies right of it and the rest folds over it.
+        let state = square(8);
+        let ray =
+            |angle: f64| Move { anchor: Anchor::Ray(0.0, angle), reversed: false, turn: Turn::All };
+        let arcs = |m: Move| m.arcs(&state, &m.line(&state).expect("a ray has a line"));
+        assert_eq!(arcs(ray(0.0)), None);
+        let sliver = arcs(ray(1f64.to_radians())).expect("a fold");
+        assert_eq!(sliver.len(), 1);
+        // Turned the other way round, the line leaves the whole square right of it: no arc.
+        assert_eq!(arcs(Move { reversed: true, ..ray(0.0) }), None);
     }
 
     #[test]
