@@ -265,23 +265,18 @@ fn label_sequence(across: &[Option<Across>], labels: &[FoldLabel]) -> SequenceLa
         across.iter().map(|a| a.as_ref().map(Across::percent)).collect();
     let in_half: Vec<bool> =
         across.iter().map(|a| a.as_ref().is_some_and(Across::in_half)).collect();
-    // A side folded in: less than half its state, and no corner or diagonal fold.
-    let side_in = |k: usize| {
-        across_percent[k].is_some_and(|p| p < 50.0 - SEQUENCE_HALF_PERCENT)
-            && !matches!(
-                labels[k].class,
-                FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
-            )
+    // A side's fold: no corner or diagonal fold.
+    let of_a_side = |k: usize| {
+        !matches!(labels[k].class, FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf)
     };
-    // Folds j and k: two sides folded in from opposite sides, their flaps alike (the second
-    // may fold half of what is left, as the last third of a towel does).
+    // Folds j and k: two sides folded in from opposite sides, the first less than half its
+    // state, their flaps alike (the second may fold half of what is left, as the last third
+    // of a towel does).
     let ends = |j: usize, k: usize| match (across[j], across[k]) {
         (Some(a), Some(b)) => {
-            side_in(j)
-                && !matches!(
-                    labels[k].class,
-                    FoldClass::CornerFolded | FoldClass::DiagonallyFoldedInHalf
-                )
+            a.percent() < 50.0 - SEQUENCE_HALF_PERCENT
+                && of_a_side(j)
+                && of_a_side(k)
                 && a.towards.dot(&b.towards) <= -OPPOSITE_COSINE
                 && 100.0 * (a.flap - b.flap).abs()
                     <= EVEN_PERCENT * a.start_width.max(b.start_width)
