@@ -8,7 +8,7 @@ use crate::common;
 use std::f64::consts::{PI, TAU};
 
 use close::eval::evaluate;
-use close::fold::MAX_SAME_TO_CROSS;
+use close::fold::Params;
 use close::formats::Truth;
 use close::rng::SplitMix64;
 use close::{analyze, FrameRange, Sample};
@@ -128,7 +128,7 @@ const EDGES: f64 = 0.85;
 
 /// The no-fold rule sits between pure noise and noisy folds: on the same cloths, an end
 /// frame that is the start plus noise has a same-to-cross ratio above
-/// [`MAX_SAME_TO_CROSS`] (no fold), and a fold with the same noise one below it.
+/// the search's `max_same_to_cross` (no fold), and a fold with the same noise one below it.
 #[test]
 fn the_no_fold_threshold_separates_noise_from_noisy_folds() {
     let mut rng = SplitMix64::new(9);
@@ -157,8 +157,9 @@ fn the_no_fold_threshold_separates_noise_from_noisy_folds() {
         fold_high = fold_high.max(fold_ratio);
         noise_low = noise_low.min(noise_ratio);
     }
-    println!("noisy folds up to {fold_high:.2}, noise from {noise_low:.2}, threshold {MAX_SAME_TO_CROSS}");
-    assert!(fold_high < MAX_SAME_TO_CROSS && MAX_SAME_TO_CROSS < noise_low);
+    let threshold = Params::default().detect.max_same_to_cross;
+    println!("noisy folds up to {fold_high:.2}, noise from {noise_low:.2}, threshold {threshold}");
+    assert!(fold_high < threshold && threshold < noise_low);
 }
 
 /// The test-side fold agrees with its own definition: a folded vertex lands at its mirror

@@ -17,7 +17,7 @@ use crate::confidence::{judge, Confidence};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
 use crate::fold::sequence::{explain, Alternative, ExplainedFold, StepFolds, MAX_FOLDS};
-use crate::fold::{apply, detect, FoldDetection, FoldMethod};
+use crate::fold::{apply, detect, FoldDetection, FoldMethod, Params};
 use crate::geometry::{Fold, Folding, Line};
 use crate::label::{label, Label, CHANGED_RMSE};
 use crate::metrics::{Metrics, RigidMotion};
@@ -40,6 +40,8 @@ pub struct Options {
     /// Most folds one step may hold (1: one fold per step, as the paper reads a step; at most
     /// [`crate::fold::sequence::MAX_FOLDS`]). Default [`DEFAULT_MAX_FOLDS`].
     pub max_folds: usize,
+    /// The fold search's knobs; the default is as measured ([`crate::fold::params`]).
+    pub fold: Params,
     /// Checked while the disks are computed and between steps: once expired, the analysis
     /// stops with [`Error::Cancelled`]. The default never expires.
     pub deadline: Deadline,
@@ -54,6 +56,7 @@ impl Default for Options {
             frames: FrameRange::default(),
             method: FoldMethod::default(),
             max_folds: DEFAULT_MAX_FOLDS,
+            fold: Params::default(),
             deadline: Deadline::default(),
             budget: Budget::default(),
         }
@@ -277,6 +280,7 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
             options.max_folds
         )));
     }
+    options.fold.check()?;
     let frames = &sample.frames[start..=end];
     options.budget.analysis(frames.len(), sample.len())?;
     let norm = Normalisation::of(&frames[0])?;
@@ -345,7 +349,7 @@ fn analyse_steps(
         let after = Disk::of_border_until(&after_border, &options.deadline)?;
         let (before_border, before) =
             previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
-        let mut detection = detect(before_border, before, &after, options.method);
+        let mut detection = detect(before_border, before, &after, options.method, &options.fold);
         let found = if options.method == FoldMethod::Cut {
             explain(
                 before_border,
@@ -353,6 +357,7 @@ fn analyse_steps(
                 &after,
                 &detection,
                 options.max_folds,
+                &options.fold,
                 &options.deadline,
             )?
         } else {
@@ -531,6 +536,32 @@ mod tests {
         assert!(moved(&analysis.steps[0].predicted) > 0.3);
         assert_eq!(analysis.steps[0].predicted, analysis.steps[1].predicted);
         assert_eq!(analysis.steps[1].predicted, analysis.predicted_end);
+    }
+
+    #[test]
+    fn the_fold_search_reads_its_knobs_from_the_options() {
+        // The square of 40 vertices folded in half: one fold as measured; none when no cut
+        // may have a side to it; an error naming a knob the search cannot run with.
+        let square: Vec<[f64; 3]> = (0..40)
+            .map(|k| {
+                let t = (k % 10) as f64 / 10.0;
+                let [x, y] = [[t, 0.0], [1.0, t], [1.0 - t, 1.0], [0.0, 1.0 - t]][k / 10];
+                [x, y, 0.0]
+            })
+            .collect();
+        let folded = square
+            .iter()
+            .map(|&[x, y, z]| if x > 0.5 { [1.0 - x, y, 0.01] } else { [x, y, z] })
+            .collect();
+        let sample = crate::border::prepare(vec![square, folded]).unwrap();
+        let with = |fold: Params| analyze_with(&sample, Options { fold, ..Options::default() });
+        assert_eq!(with(Params::default()).unwrap().folds.len(), 1);
+        let mut sideless = Params::default();
+        sideless.detect.max_same_to_cross = -1.0;
+        assert!(with(sideless).unwrap().folds.is_empty());
+        let mut broken = Params::default();
+        broken.synthesis.samples = 0;
+        assert!(matches!(with(broken), Err(Error::InvalidArgument(m)) if m.contains("samples")));
     }
 
     #[test]

@@ -4,7 +4,8 @@
 //! The evidence is what the step reports ([`FoldDetection`], [`Metrics`]); a step is of
 //! [`Level::Low`] confidence when any of it passes its limit ([`Limits::DEFAULT`]):
 //! - the cut's same-to-cross ratio (0 for an exact fold, about 1 for change with no side to
-//!   it; the detector gives up at [`crate::fold::MAX_SAME_TO_CROSS`]) above 1;
+//!   it; the detector gives up at [`crate::fold::params::DetectParams::max_same_to_cross`])
+//!   above 1;
 //! - the cut's residual (the share of the change the cut leaves unexplained) above 0.6;
 //! - the orientation decided by its tie-break, or its two flip scores closer than a
 //!   relative margin of 0.25 (|a − b| / max(a, b); 0 is a tie, 1 one side only);

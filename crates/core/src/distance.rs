@@ -327,8 +327,10 @@ pub fn fold_distances(a: &FoldBatch<'_>, b: &FoldBatch<'_>) -> Result<Vec<f64>> 
 }
 
 /// Two fold points closer than this share of the mean edge length lie on top of each other
-/// (a fold through stacked layers): the line through them is no guide.
-const COINCIDE_EDGES: f64 = 0.5;
+/// (a fold through stacked layers): the line through them is no guide. (Not the fold
+/// search's [`crate::fold::params::SynthesisParams::coincide_edges`]: this one only tells a
+/// line through two points from none.)
+const ON_TOP_EDGES: f64 = 0.5;
 
 /// How the line of a fold is found in the state before it.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -361,7 +363,7 @@ pub fn fold_line(before: &[Point], fold: [f64; 2], how: LineOf) -> Option<Line> 
         LineOf::Points => {
             let perimeter: f64 =
                 (0..n).map(|k| (before[(k + 1) % n].xy() - before[k].xy()).norm()).sum();
-            ((q.xy() - p.xy()).norm() > COINCIDE_EDGES * perimeter / n as f64)
+            ((q.xy() - p.xy()).norm() > ON_TOP_EDGES * perimeter / n as f64)
                 .then(|| Line::through(&p, &q))
                 .flatten()
         }

@@ -21,9 +21,10 @@
 
 use rayon::prelude::*;
 
+use super::params::CutParams;
 use crate::disk::{condensed_index, Disk};
 
-/// Relative tolerance of a tie in S.
+/// Relative tolerance of a tie in S: a rounding tolerance of the sums, not a knob.
 const TIE: f64 = 1e-7;
 
 /// The best cut found: positions in vertex units on the half-edge grid, both in [0, N).
@@ -193,13 +194,6 @@ pub fn find_cut(g: &Disk) -> Option<Cut> {
     })
 }
 
-/// Most grid positions the partition search ([`find_cuts`]) tries per cut point at first; it
-/// then moves each point along the full half-edge grid.
-const COARSE_GRID: usize = 128;
-
-/// Half-grid positions either side within which only the largest row jump counts.
-const JUMP_REACH: usize = 6;
-
 /// How much the change of the edges on either side of half-grid position `h` differs,
 /// against every edge away from both: Σ_e |c(a, e) − c(b, e)|, with c = asinh g (`squashed`,
 /// so that the few large values of pairs near a crease do not outweigh the rest) and a, b
@@ -233,7 +227,7 @@ pub struct Cuts {
 /// rigidly, so every pair inside a piece keeps |dGLI| and a border arc inside one piece
 /// holds no change; the cut points are where the creases meet the border ([`find_cut`] is
 /// the case of two arcs). The search is a dynamic programme over a grid of at most
-/// `COARSE_GRID` positions (O(arcs · grid³)), each point then moved along the half-edge
+/// [`CutParams::coarse_grid`] positions (O(arcs · grid³)), each point then moved along the half-edge
 /// grid while that lowers the change. `None` when g holds no change or the border has too
 /// few edges.
 ///
@@ -241,24 +235,24 @@ pub struct Cuts {
 /// edges stay on one line), so the side splits anywhere at the same change. Of splits that
 /// tie, the one whose points lie where the rows of g jump most is taken: at a point between
 /// edges a and b, Σ_e |asinh g(a, e) − asinh g(b, e)| over the edges e away from both, the
-/// largest within a few edges only. Each point's change is lowered by at most a tenth of
+/// largest within [`CutParams::jump_reach_half_edges`] only. Each point's change is lowered by at most a tenth of
 /// the tie tolerance over the number of arcs, so a split of more change wins only within a
 /// tenth of the tolerance.
 ///
 /// ```
 /// use close_core::disk::Disk;
-/// use close_core::fold::cut::find_cuts;
+/// use close_core::fold::{cut::find_cuts, params::CutParams};
 /// // Twelve edges in four runs of three whose own pairs did not change.
 /// let n = 12;
 /// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
 ///     .map(|(i, j)| if i / 3 == j / 3 { 0.0 } else { 1.0 })
 ///     .collect();
-/// let cuts = find_cuts(&Disk::from_values(n, values).unwrap(), 4).unwrap();
+/// let cuts = find_cuts(&Disk::from_values(n, values).unwrap(), 4, &CutParams::default()).unwrap();
 /// assert_eq!(cuts.residual, 0.0);
 /// // Each cut between two runs, within the half edge that holds no pair of its own.
 /// assert!(cuts.points.iter().zip([0.0, 3.0, 6.0, 9.0]).all(|(p, q)| (p - q).abs() <= 0.5));
 /// ```
-pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
+pub fn find_cuts(g: &Disk, arcs: usize, params: &CutParams) -> Option<Cuts> {
     let n = g.n();
     let grid = 2 * n;
     if arcs < 2 || arcs > n {
@@ -270,7 +264,7 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
         return None;
     }
     let within = |h1: usize, h2: usize| sums.within(arc_edges(n, h1 % grid, h2 % grid));
-    let stride = grid.div_ceil(COARSE_GRID);
+    let stride = grid.div_ceil(params.coarse_grid);
     let coarse: Vec<usize> = (0..grid).step_by(stride).collect();
     let m = coarse.len();
     // A crease shows as a jump at its own position and smaller ones beside it: only the
@@ -280,7 +274,7 @@ pub fn find_cuts(g: &Disk, arcs: usize) -> Option<Cuts> {
     let fine: Vec<f64> = (0..grid).map(|h| row_jump(&squashed, h)).collect();
     let peaks: Vec<f64> = (0..grid)
         .map(|h| {
-            let top = (1..=JUMP_REACH)
+            let top = (1..=params.jump_reach_half_edges)
                 .flat_map(|d| [(h + d) % grid, (h + grid - d) % grid])
                 .all(|k| fine[k] <= fine[h]);
             if top {
@@ -393,7 +387,6 @@ mod tests {
     use crate::angle::param_to_angle;
     use crate::border::Point;
     use crate::fold::reflect::apply;
-    use crate::fold::sequence::INFORMATION;
     use crate::geometry::{Fold, Folding};
 
     fn square(per_side: usize) -> Vec<Point> {
@@ -473,9 +466,13 @@ mod tests {
         // Offset as the sequence search offsets it, else a split at the corners costs nothing.
         let start = Disk::of_border(&towel);
         let g = start.abs_diff(&Disk::of_border(&folded));
-        let offset = g.values().iter().zip(start.values()).map(|(c, s)| c - INFORMATION * s.abs());
+        let offset = g
+            .values()
+            .iter()
+            .zip(start.values())
+            .map(|(c, s)| c - CutParams::default().start_share * s.abs());
         let offset = Disk::from_values(g.n(), offset.collect()).unwrap();
-        let cuts = find_cuts(&offset, 6).unwrap();
+        let cuts = find_cuts(&offset, 6, &CutParams::default()).unwrap();
         // The creases at x = −0.711 (the tip's), −0.237 and 0.237 meet the bottom side in
         // edges 1, 15 and 29, the top one in 90, 104 and 118.
         for (got, truth) in cuts.points.iter().zip([1.5, 15.5, 29.5, 90.5, 104.5, 118.5]) {

@@ -3,10 +3,10 @@
 //!
 //! 1. The loss repeats in a1 with period 2πL, so a1 is bounded to [−π, π] (through
 //!    a1 = π·sin u, which keeps L-BFGS unconstrained) and minima on the bound are dropped.
-//! 2. Minima whose rim coordinates f = a0 + a1 lie within [`MERGE_EDGES`] edges of each other
+//! 2. Minima whose rim coordinates f = a0 + a1 lie within [`CurveParams::merge_edges`] edges of each other
 //!    are one curve; the lower loss is kept.
 //! 3. The rim coordinate of each kept curve is refined on the rim rings alone (rings
-//!    d ≤ [`RIM_RINGS`] near f, a1 = 0) with Brent's method, since the straight line
+//!    d ≤ [`CurveParams::rim_rings`] near f, a1 = 0) with Brent's method, since the straight line
 //!    extrapolated to the rim is biased.
 
 use std::cell::RefCell;
@@ -20,21 +20,14 @@ use nalgebra::Vector2;
 use rayon::prelude::*;
 
 use super::loss::{exact_loss, ring_cells, Cell, RingTables};
+use super::params::{CurveParams, Params};
 use crate::angle::{edge, wrap_pi, wrap_tau, TAU};
 use crate::disk::Disk;
 use crate::geometry::Fold;
 
-/// Starting curves a0 = 2πm/STARTS, a1 = 0.
+/// Starting curves a0 = 2πm/STARTS, a1 = 0: the paper's 20.
 pub const STARTS: usize = 20;
-/// Minima closer than this many edges at the rim are one curve.
-pub const MERGE_EDGES: f64 = 4.0;
-/// Rings used to refine a curve's rim coordinate.
-pub const RIM_RINGS: usize = 4;
-/// Half-width, in edges, of the rim window the refinement reads.
-const RIM_WINDOW_EDGES: f64 = 6.0;
-/// How far, in edges, the refinement may move a rim coordinate.
-const RIM_SEARCH_EDGES: f64 = 2.0;
-/// Bound on the slope a1.
+/// Bound on the slope a1: the loss repeats in a1 with period 2πL (fix 1 above).
 const A1_BOUND: f64 = PI;
 
 /// A fitted fold curve θ̂ = a0 + a1·r.
@@ -109,7 +102,9 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
 }
 
 /// Every distinct local minimum with negative loss of the diff disk `g` (tabulated in
-/// `tables`), lowest loss first, rim coordinates refined: the paper's free fit.
+/// `tables`), lowest loss first, rim coordinates refined: the paper's free fit, with the
+/// knobs of `params` ([`Params::curves`], and [`super::params::DetectParams::flat_diff`]
+/// for a rim cell that changed).
 ///
 /// ```
 /// use close_core::disk::{position, Disk};
@@ -120,10 +115,12 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
 ///     .map(|(i, j)| (-(close_core::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp())
 ///     .collect();
 /// let g = Disk::from_values(n, values).unwrap();
-/// let curves = fit_curves(&g, &close_core::fold::loss::RingTables::new(&g));
+/// let params = close_core::fold::Params::default();
+/// let curves = fit_curves(&g, &close_core::fold::loss::RingTables::new(&g, &params.curves), &params);
 /// assert!(close_core::angle::distance(curves[0].rim, 1.0) < close_core::angle::edge(n));
 /// ```
-pub fn fit_curves(g: &Disk, tables: &RingTables) -> Vec<Curve> {
+pub fn fit_curves(g: &Disk, tables: &RingTables, params: &Params) -> Vec<Curve> {
+    let curves = &params.curves;
     let n = g.n();
     let mut minima: Vec<(f64, f64, f64)> = (0..STARTS)
         .into_par_iter()
@@ -131,7 +128,7 @@ pub fn fit_curves(g: &Disk, tables: &RingTables) -> Vec<Curve> {
         .filter(|&(_, a1, loss)| loss < 0.0 && a1.abs() < A1_BOUND * (1.0 - 1e-3))
         .collect();
     minima.sort_by(|a, b| a.2.total_cmp(&b.2));
-    let merge = MERGE_EDGES * edge(n);
+    let merge = curves.merge_edges * edge(n);
     let mut kept: Vec<(f64, f64, f64)> = Vec::new();
     for m in minima {
         let rim = m.0 + m.1;
@@ -139,13 +136,14 @@ pub fn fit_curves(g: &Disk, tables: &RingTables) -> Vec<Curve> {
             kept.push(m);
         }
     }
-    let rim_cells = rim_cells(g);
-    let reach = RIM_SEARCH_EDGES * edge(n);
+    let rim_cells = rim_cells(g, curves);
+    let reach = curves.rim_search_edges * edge(n);
     kept.into_iter()
         .map(|(a0, a1, loss)| {
             let rim = wrap_tau(a0 + a1);
             // A refinement that runs to the edge of its range found no minimum near the line.
-            let refined = refine_rim(&rim_cells, n, rim, rim - reach, rim + reach)
+            let window = (rim - reach, rim + reach);
+            let refined = refine_rim(&rim_cells, n, rim, window, params)
                 .filter(|r| (wrap_pi(r - rim).abs() - reach).abs() > 1e-3 * reach)
                 .unwrap_or(rim);
             Curve { a0, a1, loss, rim: refined }
@@ -177,7 +175,9 @@ fn slopes(n: usize) -> usize {
 /// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| position(n, i, j).angle))
 ///     .map(|angle| ridge(angle, 1.0) + ridge(angle, 4.0))
 ///     .collect();
-/// let curves = curves_through(&RingTables::new(&Disk::from_values(n, values).unwrap()), n, close_core::geometry::Fold::new(1.0, 4.0));
+/// let g = Disk::from_values(n, values).unwrap();
+/// let tables = RingTables::new(&g, &close_core::fold::params::CurveParams::default());
+/// let curves = curves_through(&tables, n, close_core::geometry::Fold::new(1.0, 4.0));
 /// // Each fold point gets the radial curve ending there.
 /// assert_eq!(curves.iter().map(|c| c.rim).collect::<Vec<_>>(), vec![1.0, 4.0]);
 /// assert!(curves.iter().all(|c| c.a1.abs() < 0.1 && c.loss < 0.0));
@@ -241,17 +241,23 @@ impl CostFunction for RimProblem<'_> {
 }
 
 /// The cells of the rim rings, which the refinement reads.
-pub(crate) fn rim_cells(g: &Disk) -> Vec<Cell> {
-    (1..=RIM_RINGS.min(g.layers())).flat_map(|d| ring_cells(g, d)).collect()
+pub(crate) fn rim_cells(g: &Disk, params: &CurveParams) -> Vec<Cell> {
+    (1..=params.rim_rings.min(g.layers())).flat_map(|d| ring_cells(g, d)).collect()
 }
 
 /// Refine a rim coordinate on the rim rings near it, with the curve held radial, searching
 /// angles in [lo, hi]. `None` when the rim holds no change there or the solver fails.
-pub(crate) fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f64) -> Option<f64> {
+pub(crate) fn refine_rim(
+    rim_cells: &[Cell],
+    n: usize,
+    rim: f64,
+    (lo, hi): (f64, f64),
+    params: &Params,
+) -> Option<f64> {
     let edge = edge(n);
     let near: Vec<Cell> = rim_cells
         .iter()
-        .filter(|c| wrap_pi(c.angle - rim).abs() <= RIM_WINDOW_EDGES * edge)
+        .filter(|c| wrap_pi(c.angle - rim).abs() <= params.curves.rim_window_edges * edge)
         .map(|c| Cell { angle: rim + wrap_pi(c.angle - rim), ..*c })
         .collect();
     let (lo, hi) = (rim + wrap_pi(lo - rim), rim + wrap_pi(hi - rim));
@@ -259,7 +265,10 @@ pub(crate) fn refine_rim(rim_cells: &[Cell], n: usize, rim: f64, lo: f64, hi: f6
     // change elsewhere (pairs reaching a nearby corner) would pull the minimum to a bound.
     let tiny = 1e-9 * edge;
     let informative = near.iter().any(|c| {
-        c.layer == 1 && c.angle >= lo - tiny && c.angle <= hi + tiny && c.value > super::FLAT_DIFF
+        c.layer == 1
+            && c.angle >= lo - tiny
+            && c.angle <= hi + tiny
+            && c.value > params.detect.flat_diff
     });
     if !informative {
         return None;
@@ -297,7 +306,8 @@ mod tests {
     }
 
     fn fit(g: &Disk) -> Vec<Curve> {
-        fit_curves(g, &RingTables::new(g))
+        let params = Params::default();
+        fit_curves(g, &RingTables::new(g, &params.curves), &params)
     }
 
     #[test]
@@ -306,16 +316,15 @@ mod tests {
         let g = ridged(n, &[(1.0, 0.0), (4.0, 0.5)]);
         // The fold points sit a little off the ridges' rim ends, as a cut's may: the curves
         // still end at the fold points, and follow the ridges' slopes.
-        let curves = curves_through(&RingTables::new(&g), n, Fold::new(1.05, 3.95));
+        let tables = |g: &Disk| RingTables::new(g, &CurveParams::default());
+        let curves = curves_through(&tables(&g), n, Fold::new(1.05, 3.95));
         assert_eq!(curves.len(), 2);
         for (curve, (f, slope)) in curves.iter().zip([(1.05, 0.0), (3.95, 0.5)]) {
             assert!((curve.a0 + curve.a1 - f).abs() < 1e-12 && curve.rim == f, "{curve:?}");
             assert!((curve.a1 - slope).abs() < 0.15 && curve.loss < 0.0, "{curve:?}");
         }
         // No change at all: no line through a fold point has negative loss, no curve.
-        assert!(
-            curves_through(&RingTables::new(&ridged(n, &[])), n, Fold::new(1.05, 3.95)).is_empty()
-        );
+        assert!(curves_through(&tables(&ridged(n, &[])), n, Fold::new(1.05, 3.95)).is_empty());
     }
 
     #[test]
@@ -333,8 +342,10 @@ mod tests {
     fn minima_closer_than_the_merge_distance_are_one_curve() {
         let n = 60;
         let curves = fit(&ridged(n, &[(2.0, 0.0)]));
-        let near: Vec<_> =
-            curves.iter().filter(|c| wrap_pi(c.rim - 2.0).abs() < MERGE_EDGES * edge(n)).collect();
+        let near: Vec<_> = curves
+            .iter()
+            .filter(|c| wrap_pi(c.rim - 2.0).abs() < CurveParams::default().merge_edges * edge(n))
+            .collect();
         assert_eq!(near.len(), 1, "{curves:?}");
     }
 

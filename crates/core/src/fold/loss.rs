@@ -21,6 +21,7 @@ use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 
+use super::params::CurveParams;
 use crate::angle::wrap_pi;
 use crate::disk::{ring_angle, Disk};
 
@@ -91,21 +92,18 @@ pub struct RingTables {
 }
 
 impl RingTables {
-    /// At most this many rings are tabulated; beyond it every k-th ring stands for k rings.
-    pub const MAX_RINGS: usize = 96;
-    /// At most this many grid angles per ring.
-    pub const MAX_GRID: usize = 2048;
-
-    /// Tabulate the loss of the diff disk `g`.
+    /// Tabulate the loss of the diff disk `g`, on at most [`CurveParams::max_rings`] rings
+    /// (beyond it every k-th ring stands for k rings) of at most [`CurveParams::max_grid`]
+    /// grid angles.
     ///
     /// Each ring's table is the circular convolution of its √g and g profiles with the
     /// kernels, computed by FFT: O(grid·log grid) per ring instead of O(N·grid).
-    pub fn new(g: &Disk) -> RingTables {
+    pub fn new(g: &Disk, params: &CurveParams) -> RingTables {
         let n = g.n();
-        // Half-edge cell angles fall on the grid exactly up to MAX_GRID points; beyond it,
+        // Half-edge cell angles fall on the grid exactly up to `max_grid` points; beyond it,
         // cells share grid points (their weights add), which bounds the work for huge N.
         let per_edge = if n <= 128 { 4 } else { 2 };
-        let grid = (per_edge * n).min(Self::MAX_GRID);
+        let grid = (per_edge * n).min(params.max_grid);
         let step = crate::angle::TAU / grid as f64;
         let mut planner = RealFftPlanner::<f64>::new();
         let (forward, inverse) = (planner.plan_fft_forward(grid), planner.plan_fft_inverse(grid));
@@ -118,7 +116,7 @@ impl RingTables {
         };
         let (ka, kb) = (spectrum(kernel_sqrt_g), spectrum(kernel_g));
         let l = g.layers();
-        let stride = l.div_ceil(Self::MAX_RINGS).max(1);
+        let stride = l.div_ceil(params.max_rings).max(1);
         let rings = (1..=l)
             .step_by(stride)
             .collect::<Vec<_>>()
@@ -145,7 +143,7 @@ impl RingTables {
                     .collect();
                 // The spectrum of a real signal: its DC and Nyquist terms are real.
                 product[0].im = 0.0;
-                if let Some(last) = product.last_mut().filter(|_| grid % 2 == 0) {
+                if let Some(last) = product.last_mut().filter(|_| grid.is_multiple_of(2)) {
                     last.im = 0.0;
                 }
                 let mut table = inverse.make_output_vec();
@@ -259,7 +257,7 @@ mod tests {
     fn tables_match_the_exact_loss() {
         let n = 40;
         let g = synthetic_diff(n, 1.0);
-        let tables = RingTables::new(&g);
+        let tables = RingTables::new(&g, &CurveParams::default());
         let cells: Vec<Cell> = (1..=n / 2).flat_map(|d| ring_cells(&g, d)).collect();
         for &(a0, a1) in &[(1.0, 0.0), (0.7, 0.3), (5.0, -1.2), (3.1, 2.0)] {
             let exact = exact_loss(&cells, a0, a1);
@@ -283,7 +281,7 @@ mod tests {
 
     #[test]
     fn many_curves_at_once_are_each_the_same() {
-        let tables = RingTables::new(&synthetic_diff(50, 2.5));
+        let tables = RingTables::new(&synthetic_diff(50, 2.5), &CurveParams::default());
         let curves: Vec<(f64, f64)> =
             (0..200).map(|k| (-7.0 + 0.07 * k as f64, -3.0 + 0.03 * k as f64)).collect();
         for (loss, &(a0, a1)) in tables.losses(&curves).iter().zip(&curves) {
@@ -294,7 +292,7 @@ mod tests {
     #[test]
     fn the_loss_is_lowest_on_the_ridge() {
         let g = synthetic_diff(60, 2.0);
-        let tables = RingTables::new(&g);
+        let tables = RingTables::new(&g, &CurveParams::default());
         let on = tables.loss_and_gradient(2.0, 0.0).0;
         assert!(on < 0.0);
         assert!(on < tables.loss_and_gradient(2.5, 0.0).0);

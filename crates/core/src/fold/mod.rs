@@ -18,6 +18,7 @@ pub mod cut;
 pub mod fit;
 pub mod loss;
 pub mod orientation;
+pub mod params;
 pub mod reflect;
 pub mod sequence;
 pub mod synth;
@@ -27,6 +28,7 @@ use serde::{Deserialize, Serialize};
 pub use cut::Cut;
 pub use fit::Curve;
 pub use orientation::Orientation;
+pub use params::Params;
 pub use reflect::apply;
 pub use synth::Synthesis;
 
@@ -36,14 +38,9 @@ use crate::disk::Disk;
 use crate::geometry::{Arc, Fold};
 use loss::RingTables;
 
-/// A diff disk whose largest cell is below this has no fold.
-pub const FLAT_DIFF: f64 = 1e-6;
-/// A cut whose same-side pairs change this many times as much, on average, as the pairs
-/// across it has no side to it: noise, not a fold. (Measured: folds with noise up to 1.5;
-/// noise alone 3.6 and more.)
-pub const MAX_SAME_TO_CROSS: f64 = 2.5;
-/// A start state whose heights span no more than this (normalised units) is flat.
-pub const FLAT_HEIGHT: f64 = 1e-9;
+/// A start state whose heights span no more than this (normalised units) is flat: a
+/// rounding tolerance, not a knob.
+const FLAT_HEIGHT: f64 = 1e-9;
 
 /// How the two fold points are chosen.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -97,12 +94,13 @@ pub(crate) fn is_flat(points: &[Point]) -> bool {
 ///
 /// `before` is the step's start border, normalised as the disks were (`start` is its disk);
 /// `end` is the disk of the step's end state. Only disks are compared: `before` is the state
-/// that candidate folds are applied to ([`synth`]), the end border is never seen.
+/// that candidate folds are applied to ([`synth`]), the end border is never seen. `params`
+/// holds the search's knobs ([`Params::default`] as measured).
 ///
 /// ```
 /// use close_core::border::Point;
 /// use close_core::disk::Disk;
-/// use close_core::fold::{detect, FoldMethod};
+/// use close_core::fold::{detect, FoldMethod, Params};
 /// // A square of 32 vertices; its left half (vertices 9…23) turned over the line x = 0.
 /// let square: Vec<Point> = (0..32)
 ///     .map(|k| {
@@ -113,13 +111,20 @@ pub(crate) fn is_flat(points: &[Point]) -> bool {
 ///     .collect();
 /// let end: Vec<Point> =
 ///     square.iter().map(|p| if p.x < -1e-9 { Point::new(-p.x, p.y, 0.02) } else { *p }).collect();
-/// let found = detect(&square, &Disk::of_border(&square), &Disk::of_border(&end), FoldMethod::Cut);
+/// let (start, end) = (Disk::of_border(&square), Disk::of_border(&end));
+/// let found = detect(&square, &start, &end, FoldMethod::Cut, &Params::default());
 /// let close_core::geometry::Fold { f1, f2 } = found.fold.unwrap();
 /// // Vertex 4 (the middle of the bottom side) sits at angle 2π·4/32 and vertex 20 at 2π·20/32.
 /// let edge = close_core::angle::edge(32);
 /// assert!((f1 - 20.0 * edge).abs() < 0.3 * edge && (f2 - 4.0 * edge).abs() < 0.3 * edge);
 /// ```
-pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) -> FoldDetection {
+pub fn detect(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    method: FoldMethod,
+    params: &Params,
+) -> FoldDetection {
     let g = start.abs_diff(end);
     let mut found = FoldDetection {
         fold: None,
@@ -129,25 +134,28 @@ pub fn detect(before: &[Point], start: &Disk, end: &Disk, method: FoldMethod) ->
         orientation: None,
         synthesis: None,
     };
-    if g.values().iter().all(|&v| v <= FLAT_DIFF) {
+    if g.values().iter().all(|&v| v <= params.detect.flat_diff) {
         return found;
     }
     let n = g.n();
     // The loss is tabulated while the cut is searched and refined: both are independent and
     // neither fills both cores alone.
     let (tables, (cut, by_cut)) = rayon::join(
-        || RingTables::new(&g),
+        || RingTables::new(&g, &params.curves),
         || {
             let cut = cut::find_cut(&g);
-            (cut, (method == FoldMethod::Cut).then(|| fold_by_cut(before, start, end, cut)))
+            let by_cut =
+                (method == FoldMethod::Cut).then(|| fold_by_cut(before, start, end, cut, params));
+            (cut, by_cut)
         },
     );
     found.cut = cut;
     match by_cut {
         None => {
-            found.curves = fit::fit_curves(&g, &tables);
+            found.curves = fit::fit_curves(&g, &tables, params);
             if let [first, second, ..] = found.curves[..] {
-                let (fold, orientation) = orientation::orient(start, end, first.rim, second.rim);
+                let (fold, orientation) =
+                    orientation::orient(start, end, first.rim, second.rim, &params.detect);
                 found.fold = Some(fold);
                 found.orientation = Some(orientation);
                 found.arcs = vec![fold.arc()];
@@ -175,21 +183,24 @@ fn fold_by_cut(
     start: &Disk,
     end: &Disk,
     cut: Option<Cut>,
+    params: &Params,
 ) -> (Option<Synthesis>, Option<Orientation>) {
     let n = start.n();
+    let synthesis = &params.synthesis;
     if is_flat(before) {
-        let Some(cut) = cut.filter(|c| c.same_to_cross <= MAX_SAME_TO_CROSS) else {
+        let Some(cut) = cut.filter(|c| c.same_to_cross <= params.detect.max_same_to_cross) else {
             return (None, None);
         };
         let (p, q) = (param_to_angle(cut.p1, n), param_to_angle(cut.p2, n));
-        let (fold, orientation) = orientation::orient(start, end, p, q);
+        let (fold, orientation) = orientation::orient(start, end, p, q, &params.detect);
         let s = [fold.f1, fold.f2].map(|f| angle_to_param(f, n));
-        (Some(synth::refine(before, start, end, &Synthesis::guess(s))), Some(orientation))
+        let refined = synth::refine(before, start, end, &Synthesis::guess(s), synthesis);
+        (Some(refined), Some(orientation))
     } else {
-        let refined = synth::search_line(before, start, end)
+        let refined = synth::search_line(before, start, end, synthesis)
             .iter()
-            .map(|found| synth::refine(before, start, end, found))
-            .filter(|r| r.mismatch < synth::MAX_MISMATCH_RATIO * r.unfolded_mismatch)
+            .map(|found| synth::refine(before, start, end, found, synthesis))
+            .filter(|r| r.mismatch < synthesis.max_mismatch_share * r.unfolded_mismatch)
             .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch));
         (refined, None)
     }
@@ -220,7 +231,8 @@ mod tests {
     }
 
     fn run(before: &[Point], after: &[Point]) -> FoldDetection {
-        detect(before, &Disk::of_border(before), &Disk::of_border(after), FoldMethod::Cut)
+        let (start, end) = (Disk::of_border(before), Disk::of_border(after));
+        detect(before, &start, &end, FoldMethod::Cut, &Params::default())
     }
 
     #[test]

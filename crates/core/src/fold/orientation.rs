@@ -10,16 +10,14 @@
 //! folded side, near 0 on the other. Straight sides carry signal through every pair across
 //! them, not only through corners.
 //!
-//! Tie-break, when the two arcs flip alike (within [`TIE_MARGIN`]) or carry no signal: the
+//! Tie-break, when the two arcs flip alike (within [`DetectParams::tie_share`]) or carry no signal: the
 //! arc with fewer vertices is the folded one (a cloth is folded smaller part over larger),
 //! and for equal arcs the one that starts at the smaller angle.
 
+use super::params::DetectParams;
 use crate::angle::wrap_tau;
 use crate::disk::Disk;
 use crate::geometry::{Arc, Fold};
-
-/// Flip scores closer than this are a tie.
-pub const TIE_MARGIN: f64 = 0.1;
 
 /// How the orientation was decided.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -72,17 +70,24 @@ fn flip_score(start: &Disk, end: &Disk, edges: &[usize]) -> f64 {
 /// let end: Vec<Point> = square.iter().map(|p| if p.x > 0.5 { Point::new(1.0 - p.x, p.y, 0.02) } else { *p }).collect();
 /// let (p, q) = (close_core::angle::param_to_angle(10.0, 16), close_core::angle::param_to_angle(2.0, 16));
 /// // Given the wrong way round, the points are swapped.
-/// let (fold, how) = orient(&Disk::of_border(&square), &Disk::of_border(&end), p, q);
+/// let params = close_core::fold::params::DetectParams::default();
+/// let (fold, how) = orient(&Disk::of_border(&square), &Disk::of_border(&end), p, q, &params);
 /// assert_eq!(fold, close_core::geometry::Fold::new(q, p));
 /// assert!(how.swapped && !how.tie_break);
 /// ```
-pub fn orient(start: &Disk, end: &Disk, p: f64, q: f64) -> (Fold, Orientation) {
+pub fn orient(
+    start: &Disk,
+    end: &Disk,
+    p: f64,
+    q: f64,
+    params: &DetectParams,
+) -> (Fold, Orientation) {
     let n = start.n();
     let forward = edges_inside(n, p, q);
     let backward = edges_inside(n, q, p);
     let flip_forward = flip_score(start, end, &forward);
     let flip_backward = flip_score(start, end, &backward);
-    let tie_break = (flip_forward - flip_backward).abs() < TIE_MARGIN;
+    let tie_break = (flip_forward - flip_backward).abs() < params.tie_share;
     let swapped = if tie_break {
         let (span_forward, span_backward) = (wrap_tau(q - p), wrap_tau(p - q));
         if (span_forward - span_backward).abs() > 1e-9 {
@@ -129,9 +134,10 @@ mod tests {
                 })
                 .collect();
         let (a, b) = (param_to_angle(14.0, 16), param_to_angle(2.0, 16));
-        let (fold, how) = orient(&Disk::of_border(&start), &Disk::of_border(&end), a, b);
+        let params = DetectParams::default();
+        let (fold, how) = orient(&Disk::of_border(&start), &Disk::of_border(&end), a, b, &params);
         assert_eq!(fold, Fold::new(a, b));
-        assert!(!how.swapped && how.flip_forward > how.flip_backward + TIE_MARGIN, "{how:?}");
+        assert!(!how.swapped && how.flip_forward > how.flip_backward + params.tie_share, "{how:?}");
     }
 
     #[test]
@@ -139,7 +145,7 @@ mod tests {
         let start = square();
         let disk = Disk::of_border(&start);
         let (a, b) = (param_to_angle(3.0, 16), param_to_angle(6.0, 16));
-        let (fold, how) = orient(&disk, &disk, b, a);
+        let (fold, how) = orient(&disk, &disk, b, a, &DetectParams::default());
         assert!(how.tie_break && how.swapped);
         assert_eq!(fold, Fold::new(a, b));
     }

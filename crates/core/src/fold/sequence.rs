@@ -13,7 +13,7 @@
 //! change within themselves ([`super::cut::find_cuts`]) puts its m cut points where the
 //! creases meet the border. Straight sides hold no change at all (collinear edges have dGLI
 //! 0 before and after), so a split at a corner would cost nothing: each pair's change is
-//! offset by [`INFORMATION`] times its start |dGLI|, which favours arcs whose pairs could
+//! offset by [`CutParams::start_share`] times its start |dGLI|, which favours arcs whose pairs could
 //! have shown a change.
 //!
 //! **Analysis by synthesis.** Each fold of a candidate sequence is a line on the state it is
@@ -34,20 +34,20 @@
 //!
 //! **Layer order.** Two perpendicular half folds done in either order land alike on the
 //! table, but for a rigid motion, which no disk sees: what tells them apart is the order of
-//! their layers. A sequence whose end lands like the best one's (within [`CONGRUENT`]) is
+//! their layers. A sequence whose end lands like the best one's (within [`LayerOrderParams::congruent`]) is
 //! compared with it on the order alone: each one's outline with each one's heights. Lines
-//! are refined and layers ordered on a truncated loss ([`CAPPED_MISMATCH`]), as a few pairs
+//! are refined and layers ordered on a truncated loss ([`LayerOrderParams::capped_mismatch`]), as a few pairs
 //! of nearly collinear or stacked edges turn measurement noise into large mismatches.
 //!
 //! **Model selection.** k folds are reported only when they explain markedly more of the end
-//! disk than fewer ([`MARKEDLY`], [`MIN_GAIN`]): more than the answer so far (the best of
+//! disk than fewer ([`SelectionParams`]): more than the answer so far (the best of
 //! fewer folds accepted), and more than any k − 1 of their own (else those are the answer
 //! so far, if better); each length is tried in turn; the search runs only when the step's one
-//! fold leaves more than [`EXPLAINED_BY_ONE`] of it unexplained. The search's own best single
+//! fold leaves more than [`SelectionParams::explained_by_one_share`] of it unexplained. The search's own best single
 //! fold is weighed alike: it replaces the step's fold when it explains markedly more (a
 //! fold of several arcs on a flat start, which the step's one-fold search does not make),
 //! and sequences are then weighed against it. A fold or sequence that
-//! leaves more than [`UNEXPLAINED`] unexplained is not a confident fold.
+//! leaves more than [`SelectionParams::unexplained_share`] unexplained is not a confident fold.
 //!
 //! The end border's coordinates are never read: only its disk.
 
@@ -67,89 +67,15 @@ use crate::geometry::{Arc, Fold, Folding, Line, Point2};
 use crate::metrics::aligned_rmse_xy;
 
 use super::cut::find_cuts;
-use super::synth::{
-    arcs_left_of, mean_edge, sampled_edges, Probe, Turned, COINCIDE_EDGES, DIRECTIONS, LIFT,
-    SAMPLES, SCREEN_SAMPLES, STACKED_SCALE,
-};
+#[cfg(doc)]
+use super::params::{CutParams, LayerOrderParams, SelectionParams};
+use super::params::{Params, SequenceParams};
+use super::synth::{arcs_left_of, mean_edge, sampled_edges, Probe, Turned};
 use super::FoldDetection;
 
-/// Most folds one step may hold.
+/// Most folds one step may hold: a capacity, not a knob (a synthesised state keeps one bit
+/// per fold made, and a sequence's cut points four bits each).
 pub const MAX_FOLDS: usize = 4;
-/// Weight of a pair's start |dGLI| against its change when the creases are placed.
-pub const INFORMATION: f64 = 0.05;
-/// First folds carried on to the second (a sequence's first fold explains little alone),
-/// besides the best through each set of cut points …
-const FIRST_BEAM: usize = 16;
-/// … and longer sequences carried on to the next fold.
-const BEAM: usize = 8;
-/// Sequences of each length refined in full …
-const REFINED: usize = 6;
-/// … and of single folds, the search's own one-fold answer.
-const SINGLES: usize = 2;
-/// Two cut points closer than this many times [`COINCIDE_EDGES`] mean edges on a state
-/// also give lines through one of them in every direction …
-const RAY_REACH: f64 = 3.0;
-/// … every π / this (15°) …
-const COARSE_DIRECTIONS: usize = 12;
-/// … and the best this many such lines of a level again, π / [`DIRECTIONS`] either side.
-const FINER_RAYS: usize = 16;
-/// Candidates of a level screened in full, the best on a glance at every other screened
-/// edge (a quarter of the screen's pairs; making each candidate's state costs as much
-/// again). Measured on the development and generated sequences: 1000 or more change no
-/// answer; 800 lost one (sides in then in half, with noise, turned a half turn).
-const GLANCED: usize = 1500;
-/// Twins of the best sequence refined: two folds land alike in up to eight ways (either
-/// order, either side of each), the best and seven others. (Measured: six lose the layer
-/// order of one development sequence.)
-const TWINS: usize = 7;
-/// Two end states this close once one is moved rigidly onto the other (aligned RMSE,
-/// normalised units) land alike on the table.
-pub const CONGRUENT: f64 = 0.05;
-/// Flap heights above the stack tried when sequences are judged (normalised units: a
-/// cloth's thickness, doubled at a crease, is 0.25–8 % of its size).
-const LIFTS: [f64; 7] = [0.0025, 0.005, 0.0075, 0.01, 0.02, 0.04, 0.08];
-/// Edges sampled for the layer-order test, all pairs of them.
-const ORDER_SAMPLES: usize = 96;
-/// A step whose one fold leaves at most this share of its end disk's mismatch unexplained
-/// is one fold: no sequence is searched.
-pub const EXPLAINED_BY_ONE: f64 = 0.4;
-/// k folds only when they leave at most this share of what k − 1 left …
-pub const MARKEDLY: f64 = 0.6;
-/// … and explain at least this share of the whole more.
-pub const MIN_GAIN: f64 = 0.2;
-/// A sequence (or one fold) leaving more than this share of the end disk's mismatch
-/// unexplained is not a confident fold.
-pub const UNEXPLAINED: f64 = 0.6;
-/// Two fold lines whose directions' cosine is at least this (2.6°) run along one line when
-/// they also lie within [`COINCIDE_EDGES`] mean edges of each other.
-const PARALLEL: f64 = 0.999;
-/// A straight side: at least this many edges in a row …
-const SIDE_EDGES: usize = 4;
-/// … each turning less than this from the last (radians; 1°).
-const SIDE_TURN: f64 = PI / 180.0;
-/// A vertex within this share of a mean edge of a fold's line lies on it.
-const ON_LINE: f64 = 0.1;
-/// A twin that moves the cloth this share further across the table (its vertices' summed
-/// distance from where they lay at the step's start) than the sequence it would replace
-/// does not replace it. The disk sees neither where a cloth lies nor, but faintly, the
-/// order of its layers, and a person folds the smaller part over and leaves the cloth
-/// where it lay. Measured: 2–10 % keep every development sequence and generated variant
-/// where it lies; 0 moves the noisy napkin in quarters aside (and the development ends to
-/// an RMSE of 0.21); 20 % lets the noisy sides-in napkin land as a congruent twin that
-/// moves the cloth 15 % further (RMSE 1.40).
-const FURTHER: f64 = 0.05;
-/// Alternatives listed: sequences whose mismatch is within this share of the best one's.
-const ABOUT_AS_WELL: f64 = 0.25;
-/// Most a pair's mismatch counts for where candidates are near right, when their lines are
-/// refined and their layers ordered (compressed units, on the stacked scale): a truncated
-/// loss. Pairs of nearly collinear edges, or of parallel edges stacked one above the other,
-/// turn noise of a ten-thousandth of the cloth's size into mismatches of several units;
-/// uncapped, those few pairs pull the lines and outweigh the many pairs that tell one layer
-/// order from another. Screening and judging keep the plain mean: there a large mismatch
-/// is a wrong line, which a cap would hide (capped there, a towel folded in thirds was read
-/// as three folds). Measured: caps of 1 to 2 put the nine development sequences' ends where
-/// they lie (RMSE 0.044–0.049 against 0.39 uncapped); 3 and above turn some a half turn.
-pub const CAPPED_MISMATCH: f64 = 1.5;
 
 /// Which of the arcs left of a fold's line turn over.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -194,14 +120,14 @@ impl Move {
 
     /// The arcs this fold turns over on `state` (border parameters): `None` when it turns
     /// fewer than two vertices, or leaves fewer than two, or when no cloth lies right of its
-    /// line (within [`ON_LINE`] of a mean edge): a line along a straight side, all the
+    /// line (within [`SequenceParams::on_line_edges`]): a line along a straight side, all the
     /// cloth left of it, turns the whole cloth over, which is no fold though it lands
     /// congruent to one.
-    fn arcs(&self, state: &[Point], line: &Line) -> Option<Vec<[f64; 2]>> {
+    fn arcs(&self, state: &[Point], line: &Line, on_line_edges: f64) -> Option<Vec<[f64; 2]>> {
         let n = state.len();
         let right =
             state.iter().map(|p| -line.direction.perp(&(p.xy() - line.point))).fold(0.0, f64::max);
-        if right <= ON_LINE * mean_edge(state) {
+        if right <= on_line_edges * mean_edge(state) {
             return None;
         }
         let left = arcs_left_of(state, line);
@@ -257,35 +183,36 @@ fn turned(before: &[Point], made: &[Made], lift: f64) -> Turned {
 }
 
 /// The folds of `moves` made in turn on `before`; `None` when one of them cannot be made.
-fn make(before: &[Point], moves: &[Move]) -> Option<(Turned, Vec<Made>)> {
+fn make(before: &[Point], moves: &[Move], params: &Params) -> Option<(Turned, Vec<Made>)> {
     let mut turned = Turned::unfolded(before);
-    let made = moves.iter().map(|m| make_next(&mut turned, m)).collect::<Option<_>>()?;
+    let made = moves.iter().map(|m| make_next(&mut turned, m, params)).collect::<Option<_>>()?;
     Some((turned, made))
 }
 
 /// The fold `m` made on `turned`; `None` when it cannot be made (`turned` is then left
 /// as it was).
-fn make_next(turned: &mut Turned, m: &Move) -> Option<Made> {
+fn make_next(turned: &mut Turned, m: &Move, params: &Params) -> Option<Made> {
     let line = m.line(&turned.state)?;
-    let arcs = m.arcs(&turned.state, &line)?;
-    turned.fold(&arcs, &line, LIFT);
+    let arcs = m.arcs(&turned.state, &line, params.sequence.on_line_edges)?;
+    turned.fold(&arcs, &line, params.synthesis.lift);
     Some(Made { line, arcs })
 }
 
-fn cost(probe: &Probe, before: &[Point], moves: &[Move]) -> f64 {
-    make(before, moves).map_or(f64::INFINITY, |(turned, _)| probe.cost(&turned))
+fn cost(probe: &Probe, before: &[Point], moves: &[Move], params: &Params) -> f64 {
+    make(before, moves, params).map_or(f64::INFINITY, |(turned, _)| probe.cost(&turned))
 }
 
 /// `made` with folds `j` and `j + 1` made as one when they run along one line, turning the
 /// same side (a multi-arc fold made as two): fold `j` turning every arc left of its line.
-fn merged(before: &[Point], made: &[Made], j: usize) -> Option<Vec<Made>> {
+fn merged(before: &[Point], made: &[Made], j: usize, params: &Params) -> Option<Vec<Made>> {
     let (a, b) = (&made[j].line, &made[j + 1].line);
     let (u, v) = (a.direction.normalize(), b.direction.normalize());
     let apart = u.perp(&(b.point - a.point)).abs();
-    if u.dot(&v) < PARALLEL || apart > COINCIDE_EDGES * mean_edge(before) {
+    let near = params.synthesis.coincide_edges * mean_edge(before);
+    if u.dot(&v) < params.sequence.parallel_cos || apart > near {
         return None;
     }
-    let state = turned(before, &made[..j], LIFT).state;
+    let state = turned(before, &made[..j], params.synthesis.lift).state;
     let mut joined = made[..j].to_vec();
     joined.push(Made { line: *a, arcs: arcs_left_of(&state, a) });
     joined.extend_from_slice(&made[j + 2..]);
@@ -317,9 +244,10 @@ fn between_lines(a: f64, b: f64) -> f64 {
 }
 
 /// The directions square to the straight sides of `border` (runs of at least
-/// [`SIDE_EDGES`] edges turning less than [`SIDE_TURN`] from one to the next), each once,
-/// in radians modulo π.
-fn square_to_sides(border: &[Point]) -> Vec<f64> {
+/// [`SequenceParams::side_edges`] edges turning less than [`SequenceParams::side_turn_rad`]
+/// from one to the next), each once, in radians modulo π.
+fn square_to_sides(border: &[Point], params: &SequenceParams) -> Vec<f64> {
+    let side_turn = params.side_turn_rad;
     let n = border.len();
     let heading = |k: usize| {
         let d = border[(k + 1) % n] - border[k];
@@ -327,16 +255,18 @@ fn square_to_sides(border: &[Point]) -> Vec<f64> {
     };
     let turn = |k: usize| distance(heading((k + 1) % n), heading(k));
     // From a corner, so that no side is cut in two where the border starts.
-    let Some(corner) = (0..n).find(|&k| turn(k) >= SIDE_TURN) else { return Vec::new() };
+    let Some(corner) = (0..n).find(|&k| turn(k) >= side_turn) else { return Vec::new() };
     let mut squares: Vec<f64> = Vec::new();
     let mut run = 1;
     for k in (corner + 1..=corner + n).map(|k| k % n) {
-        if turn(k) < SIDE_TURN {
+        if turn(k) < side_turn {
             run += 1;
             continue;
         }
         let square = (heading(k) + PI / 2.0).rem_euclid(PI);
-        if run >= SIDE_EDGES && squares.iter().all(|&a| between_lines(a, square) >= SIDE_TURN) {
+        if run >= params.side_edges
+            && squares.iter().all(|&a| between_lines(a, square) >= side_turn)
+        {
             squares.push(square);
         }
         run = 1;
@@ -348,7 +278,7 @@ fn square_to_sides(border: &[Point]) -> Vec<f64> {
 /// no fold before it ran through (creases meet the border at points of their own), each with
 /// the indices of the two points. Where two points lie together (stacked layers) the line's
 /// direction is searched, from the last fold's (or on a flat cloth the border's at the
-/// point), every π / [`COARSE_DIRECTIONS`] (the search tries the best again finer). On a
+/// point), every π / [`SequenceParams::coarse_directions`] (the search tries the best again finer). On a
 /// flat cloth lines through each point alone are tried too, square to each straight side: a
 /// crease that meets a straight side square to it leaves both its pieces on that side's
 /// line, so no cut shows it there.
@@ -357,9 +287,11 @@ fn moves_on(
     points: &[f64],
     used: &[usize],
     frame: Frame,
+    params: &Params,
 ) -> Vec<(Move, [usize; 2])> {
     let n = state.len();
-    let near = COINCIDE_EDGES * mean_edge(state);
+    let near = params.synthesis.coincide_edges * mean_edge(state);
+    let coarse = params.sequence.coarse_directions;
     let free: Vec<usize> = (0..points.len()).filter(|k| !used.contains(k)).collect();
     let mut anchors: Vec<(Anchor, [usize; 2])> = Vec::new();
     for (k, &i) in free.iter().enumerate() {
@@ -373,7 +305,7 @@ fn moves_on(
             if apart >= near {
                 anchors.push((Anchor::Points([a, b]), [i, j]));
             }
-            if apart < RAY_REACH * near {
+            if apart < params.sequence.ray_reach * near {
                 // The cut points lie within an edge or two of the creases, so two that
                 // should meet may not quite.
                 let base = match frame {
@@ -383,9 +315,10 @@ fn moves_on(
                         along.y.atan2(along.x)
                     }
                 };
-                anchors.extend((0..COARSE_DIRECTIONS).map(|d| {
-                    (Anchor::Ray(a, base + PI * d as f64 / COARSE_DIRECTIONS as f64), [i, j])
-                }));
+                anchors.extend(
+                    (0..coarse)
+                        .map(|d| (Anchor::Ray(a, base + PI * d as f64 / coarse as f64), [i, j])),
+                );
             }
         }
     }
@@ -494,8 +427,8 @@ impl Scored {
 
 /// `candidates` (each on a state of `beam`, made in `parents`) screened on
 /// `probes.screen`, best first; once per distinct sequence of folds: the cut sets share many
-/// points, so the same folds come from several of them. More than [`GLANCED`] are first
-/// glanced at on `probes.glance`, and only the best [`GLANCED`] of them, and the best through
+/// points, so the same folds come from several of them. More than [`SequenceParams::glanced`] are first
+/// glanced at on `probes.glance`, and only the best so many of them, and the best through
 /// each set of cut points (which the beam carries on), screened. Those that cannot be made,
 /// or come after `deadline`, are left out.
 fn screen(
@@ -504,7 +437,9 @@ fn screen(
     probes: &Probes,
     candidates: Vec<Candidate>,
     deadline: &Deadline,
+    params: &Params,
 ) -> Vec<Scored> {
+    let glanced_best = params.sequence.glanced;
     // Equal sequences: equal folds on equal beam states.
     let mut states: HashMap<Vec<u64>, usize> = HashMap::new();
     let state_of: Vec<usize> =
@@ -525,11 +460,11 @@ fn screen(
     let made = |k: usize| -> Option<Turned> {
         let c = &candidates[k];
         let mut turned = parents[c.parent].as_ref()?.0.clone();
-        make_next(&mut turned, &c.next)?;
+        make_next(&mut turned, &c.next, params)?;
         Some(turned)
     };
     let mut wanted = vec![true; distinct.len()];
-    if distinct.len() > GLANCED {
+    if distinct.len() > glanced_best {
         let glanced: Vec<f64> = distinct
             .par_iter()
             .map(|&c| match made(c) {
@@ -538,7 +473,7 @@ fn screen(
             })
             .collect();
         let mut ranked = glanced.clone();
-        let (_, &mut worst, _) = ranked.select_nth_unstable_by(GLANCED - 1, f64::total_cmp);
+        let (_, &mut worst, _) = ranked.select_nth_unstable_by(glanced_best - 1, f64::total_cmp);
         for (want, &cost) in wanted.iter_mut().zip(&glanced) {
             *want = cost <= worst;
         }
@@ -584,16 +519,17 @@ struct Judged {
     state: Vec<Point>,
 }
 
-/// `made` judged on `judge` at each of [`LIFTS`], the best kept.
-fn judge_made(judge: &Probe, before: &[Point], made: Vec<Made>) -> Judged {
-    let (cost, lift, state) = LIFTS
+/// `made` judged on `judge` at each of `lifts` (at least one, [`SequenceParams::lifts`]), the
+/// best kept.
+fn judge_made(judge: &Probe, before: &[Point], made: Vec<Made>, lifts: &[f64]) -> Judged {
+    let (cost, lift, state) = lifts
         .iter()
         .map(|&lift| {
             let t = turned(before, &made, lift);
             (judge.cost(&t), lift, t.state)
         })
         .min_by(|a, b| a.0.total_cmp(&b.0))
-        .expect("LIFTS is not empty");
+        .expect("Params::check keeps a lift to try");
     Judged { cost, made, lift, state }
 }
 
@@ -607,33 +543,44 @@ struct Probes {
     order: Probe,
 }
 
+/// One step as the search sees it: its start border (normalised as the disks were), its
+/// start disk and the measured end disk.
+#[derive(Clone, Copy)]
+struct Seen<'a> {
+    before: &'a [Point],
+    start: &'a Disk,
+    end: &'a Disk,
+}
+
 /// The best sequence of each length from one fold up to `max_folds`, judged on `probes`,
 /// with the sequences of its length judged about as well (its twins and alternatives; none
 /// for one fold); a length of two or more whose best one `deeper` rejects is the last
 /// searched (the model selection needs no longer ones).
 /// [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires: the search is checked between candidates.
 fn search(
-    before: &[Point],
-    start: &Disk,
-    end: &Disk,
+    seen: &Seen,
     probes: &Probes,
+    params: &Params,
     max_folds: usize,
     deeper: impl Fn(&Judged) -> bool,
     deadline: &Deadline,
 ) -> Result<Vec<(Judged, Vec<Judged>)>> {
+    let Seen { before, start, end } = *seen;
     let n = before.len();
     let g = start.abs_diff(end);
+    let weight = params.cut.start_share;
     let offset: Vec<f64> =
-        g.values().iter().zip(start.values()).map(|(c, s)| c - INFORMATION * s.abs()).collect();
+        g.values().iter().zip(start.values()).map(|(c, s)| c - weight * s.abs()).collect();
     let Ok(offset) = Disk::from_values(n, offset) else { return Ok(Vec::new()) };
     // Cut points of as many arcs as the sequences could make: 2 per fold line on a flat
     // cloth, more where it crosses layers.
     let cut_sets: Vec<Vec<f64>> = [4usize, 6, 8]
         .into_iter()
         .filter(|&m| m <= 2 * max_folds + 2 && m < n)
-        .filter_map(|m| find_cuts(&offset, m).map(|c| c.points))
+        .filter_map(|m| find_cuts(&offset, m, &params.cut).map(|c| c.points))
         .collect();
-    let squares = square_to_sides(before);
+    let (q, lift) = (&params.sequence, params.synthesis.lift);
+    let squares = square_to_sides(before, q);
     let mut beam: Vec<Partial> = (0..cut_sets.len())
         .map(|set| Partial { set, moves: Vec::new(), used: Vec::new() })
         .collect();
@@ -645,9 +592,9 @@ fn search(
                 if deadline.expired() {
                     return None;
                 }
-                let moves = refine(before, start, end, moves);
-                let (_, made) = make(before, &moves)?;
-                Some(judge_made(&probes.judge, before, made))
+                let moves = refine(seen, moves, params);
+                let (_, made) = make(before, &moves, params)?;
+                Some(judge_made(&probes.judge, before, made, &q.lifts))
             })
             .collect()
     };
@@ -657,7 +604,7 @@ fn search(
         // Every fold through the free cut points on each state of the beam, made once: each
         // candidate makes only its last fold on a copy.
         let parents: Vec<Option<(Turned, Vec<Made>)>> =
-            beam.par_iter().map(|partial| make(before, &partial.moves)).collect();
+            beam.par_iter().map(|partial| make(before, &partial.moves, params)).collect();
         let (squares, cut_sets) = (&squares, &cut_sets);
         let candidates: Vec<Candidate> = beam
             .par_iter()
@@ -668,7 +615,7 @@ fn search(
                 made.iter().flat_map(move |(turned, made)| {
                     let frame =
                         made.last().map_or(Frame::Flat(squares), |m| Frame::After(m.line.angle()));
-                    moves_on(&turned.state, &cut_sets[partial.set], &partial.used, frame)
+                    moves_on(&turned.state, &cut_sets[partial.set], &partial.used, frame, params)
                         .into_iter()
                         .map(move |(next, points)| Candidate {
                             parent,
@@ -679,25 +626,25 @@ fn search(
                 })
             })
             .collect();
-        let mut scored = screen(&beam, &parents, probes, candidates, deadline);
-        // Rays were tried every π / COARSE_DIRECTIONS: the best are tried again a fine step
+        let mut scored = screen(&beam, &parents, probes, candidates, deadline, params);
+        // Rays were tried every π / `coarse_directions`: the best are tried again a fine step
         // either side.
         let finer: Vec<Candidate> = scored
             .iter()
             .filter(|s| matches!(s.candidate.next.anchor, Anchor::Ray(..)))
-            .take(FINER_RAYS)
+            .take(q.finer_rays)
             .flat_map(|s| {
-                let step = PI / DIRECTIONS as f64;
+                let step = PI / params.synthesis.directions as f64;
                 [-1.0, 1.0].map(|d| Candidate {
                     next: s.candidate.next.moved([0.0, d], step),
                     ..s.candidate
                 })
             })
             .collect();
-        scored.extend(screen(&beam, &parents, probes, finer, deadline));
+        scored.extend(screen(&beam, &parents, probes, finer, deadline, params));
         scored.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         // Distinct by what the folds moved.
-        let width = if level == 0 { FIRST_BEAM } else { BEAM };
+        let width = if level == 0 { q.first_beam } else { q.beam };
         let mut kept: Vec<&Scored> = Vec::new();
         for s in &scored {
             if kept.len() == width {
@@ -732,7 +679,7 @@ fn search(
             // the step's detected one: a fold whose crease meets two straight sides square
             // to them is found here, through one cut point in a searched direction.
             let singles =
-                judge_all(kept.iter().take(SINGLES).map(|k| k.partial(&beam).moves).collect());
+                judge_all(kept.iter().take(q.singles).map(|k| k.partial(&beam).moves).collect());
             let best = singles.into_iter().min_by(|a, b| a.cost.total_cmp(&b.cost));
             found.extend(best.map(|one| (one, Vec::new())));
             beam = carried;
@@ -742,14 +689,14 @@ fn search(
         let mut chosen: Vec<Vec<Move>> = Vec::new();
         let mut prefixes: Vec<usize> = Vec::new();
         for k in &kept {
-            if chosen.len() < REFINED && !prefixes.contains(&k.candidate.parent) {
+            if chosen.len() < q.refined && !prefixes.contains(&k.candidate.parent) {
                 prefixes.push(k.candidate.parent);
                 chosen.push(k.partial(&beam).moves);
             }
         }
         for k in &kept {
             let moves = k.partial(&beam).moves;
-            if chosen.len() < REFINED && !chosen.contains(&moves) {
+            if chosen.len() < q.refined && !chosen.contains(&moves) {
                 chosen.push(moves);
             }
         }
@@ -760,19 +707,19 @@ fn search(
         // the layer order can decide between them.
         if let Some(first) = judged.first() {
             let seen: Vec<Vec<u8>> =
-                judged.iter().map(|j| turned(before, &j.made, LIFT).groups().to_vec()).collect();
+                judged.iter().map(|j| turned(before, &j.made, lift).groups().to_vec()).collect();
             let mut twins: Vec<(Vec<Move>, sync::Arc<[u8]>)> = Vec::new();
             for s in scored.iter().filter(|s| !seen.iter().any(|g| **g == *s.groups)) {
-                if twins.len() == TWINS {
+                if twins.len() == q.twins {
                     break;
                 }
                 if twins.iter().any(|t| t.1 == s.groups) {
                     continue;
                 }
                 let moves = s.partial(&beam).moves;
-                let Some((t, _)) = make(before, &moves) else { continue };
+                let Some((t, _)) = make(before, &moves, params) else { continue };
                 // Unrefined, a twin lands less alike.
-                if aligned_rmse_xy(&t.state, &first.state) < 2.0 * CONGRUENT {
+                if aligned_rmse_xy(&t.state, &first.state) < 2.0 * params.layer_order.congruent {
                     twins.push((moves, s.groups.clone()));
                 }
             }
@@ -783,13 +730,13 @@ fn search(
             // Refined from different starts, two may have become one.
             let mut groups: Vec<Vec<u8>> = Vec::new();
             judged.retain(|j| {
-                let g = turned(before, &j.made, LIFT).groups().to_vec();
+                let g = turned(before, &j.made, lift).groups().to_vec();
                 let new = !groups.contains(&g);
                 groups.push(g);
                 new
             });
         }
-        if let Some(best) = layer_order(before, &probes.order, &mut judged) {
+        if let Some(best) = layer_order(before, &probes.order, &mut judged, params) {
             let last = !deeper(&best);
             found.push((best, judged));
             if last {
@@ -802,11 +749,17 @@ fn search(
 }
 
 /// Take out of `judged` (best first) the sequence of least mismatch, but that one which
-/// explains the end disk about as well ([`ABOUT_AS_WELL`]) and lands like it (within
-/// [`CONGRUENT`]), its layers stacked in another order, whose heights fit the measured
-/// disk better, on each one's outline, on `probe`, and which moves the cloth from `before`
-/// not markedly further ([`FURTHER`]).
-fn layer_order(before: &[Point], probe: &Probe, judged: &mut Vec<Judged>) -> Option<Judged> {
+/// explains the end disk about as well ([`SelectionParams::about_as_well_share`]) and lands
+/// like it (within [`LayerOrderParams::congruent`]), its layers stacked in another order,
+/// whose heights fit the measured disk better, on each one's outline, on `probe`, and which
+/// moves the cloth from `before` not markedly further ([`LayerOrderParams::further_share`]).
+fn layer_order(
+    before: &[Point],
+    probe: &Probe,
+    judged: &mut Vec<Judged>,
+    params: &Params,
+) -> Option<Judged> {
+    let (order, about_as_well) = (&params.layer_order, params.selection.about_as_well_share);
     let with = |xy: &[Point], z: &[Point]| -> Vec<Point> {
         xy.iter().zip(z).map(|(p, q)| Point::new(p.x, p.y, q.z)).collect()
     };
@@ -818,9 +771,9 @@ fn layer_order(before: &[Point], probe: &Probe, judged: &mut Vec<Judged>) -> Opt
     let mut best = 0;
     for k in 1..judged.len() {
         let (a, b) = (&judged[best].state, &judged[k].state);
-        if judged[k].cost > (1.0 + ABOUT_AS_WELL) * judged[0].cost
-            || aligned_rmse_xy(a, b) > CONGRUENT
-            || moved[k] > (1.0 + FURTHER) * moved[best]
+        if judged[k].cost > (1.0 + about_as_well) * judged[0].cost
+            || aligned_rmse_xy(a, b) > order.congruent
+            || moved[k] > (1.0 + order.further_share) * moved[best]
         {
             continue;
         }
@@ -837,16 +790,19 @@ fn layer_order(before: &[Point], probe: &Probe, judged: &mut Vec<Judged>) -> Opt
 /// Refine every fold of `moves` together: a pattern search over each fold's two parameters
 /// (all eight neighbours of one fold at a time), the step halving when none is better. A
 /// neighbour already costed (a step's neighbourhood overlaps the last one's) is not again.
-fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<Move> {
-    let arcs: Vec<[f64; 2]> = make(before, &moves)
+fn refine(seen: &Seen, moves: Vec<Move>, params: &Params) -> Vec<Move> {
+    let Seen { before, start, end } = *seen;
+    let arcs: Vec<[f64; 2]> = make(before, &moves, params)
         .map(|(_, made)| made.into_iter().flat_map(|m| m.arcs).collect())
         .unwrap_or_default();
-    let probe = Probe::around(start, end, &arcs, true, STACKED_SCALE).capped(CAPPED_MISMATCH);
-    let angle_step = PI / DIRECTIONS as f64;
-    let mut best = (cost(&probe, before, &moves), moves);
+    let synthesis = &params.synthesis;
+    let probe = Probe::around(start, end, &arcs, true, synthesis.stacked_scale, synthesis)
+        .capped(params.layer_order.capped_mismatch);
+    let angle_step = PI / synthesis.directions as f64;
+    let mut best = (cost(&probe, before, &moves, params), moves);
     let mut costed: HashMap<Vec<u64>, f64> = HashMap::from([(key(&best.1), best.0)]);
     let mut h = 0.5;
-    while h >= 0.125 {
+    while h >= synthesis.step_edges {
         let centre = &best.1;
         let neighbours: Vec<Vec<Move>> = (0..centre.len())
             .flat_map(|k| {
@@ -866,7 +822,7 @@ fn refine(before: &[Point], start: &Disk, end: &Disk, moves: Vec<Move>) -> Vec<M
             .par_iter()
             .zip(&keys)
             .filter(|(_, k)| !costed.contains_key(*k))
-            .map(|(m, k)| (k.clone(), cost(&probe, before, m)))
+            .map(|(m, k)| (k.clone(), cost(&probe, before, m, params)))
             .collect();
         costed.extend(fresh);
         let better = neighbours
@@ -916,7 +872,8 @@ pub struct StepFolds {
     pub alternatives: Vec<Alternative>,
     /// Share of the step's mismatch `folds` explain.
     pub explained: f64,
-    /// True when the best fold or sequence found left more than [`UNEXPLAINED`] of the
+    /// True when the best fold or sequence found left more than
+    /// [`SelectionParams::unexplained_share`] of the
     /// mismatch: the step changed, but no fold found explains it, and none is reported.
     pub unexplained: bool,
 }
@@ -950,8 +907,10 @@ pub fn explain(
     end: &Disk,
     single: &FoldDetection,
     max_folds: usize,
+    params: &Params,
     deadline: &Deadline,
 ) -> Result<StepFolds> {
+    params.check()?;
     let n = before.len();
     let Some(fold) = single.fold else { return Ok(StepFolds::default()) };
     let direction = single.synthesis.as_ref().and_then(|s| s.direction);
@@ -972,33 +931,37 @@ pub fn explain(
             ..StepFolds::default()
         });
     }
+    let (synthesis, select) = (&params.synthesis, &params.selection);
+    let scale = synthesis.stacked_scale;
     let strided = |samples: usize| all_pairs(&sampled_edges(n, samples));
-    let every_other: Vec<usize> = sampled_edges(n, SCREEN_SAMPLES).into_iter().step_by(2).collect();
+    let every_other: Vec<usize> =
+        sampled_edges(n, synthesis.screen_samples).into_iter().step_by(2).collect();
     let glanced_pairs = all_pairs(&every_other);
     let probes = Probes {
-        screen: Probe::of(strided(SCREEN_SAMPLES), start, end, true, STACKED_SCALE),
-        glance: Probe::of(glanced_pairs, start, end, true, STACKED_SCALE),
-        judge: Probe::of(strided(SAMPLES), start, end, true, STACKED_SCALE),
-        order: Probe::of(strided(ORDER_SAMPLES), start, end, false, STACKED_SCALE)
-            .capped(CAPPED_MISMATCH),
+        screen: Probe::of(strided(synthesis.screen_samples), start, end, true, scale),
+        glance: Probe::of(glanced_pairs, start, end, true, scale),
+        judge: Probe::of(strided(synthesis.samples), start, end, true, scale),
+        order: Probe::of(strided(params.layer_order.order_samples), start, end, false, scale)
+            .capped(params.layer_order.capped_mismatch),
     };
+    let lifts = &params.sequence.lifts;
     let unfolded = probes.judge.unfolded();
     let share = |cost: f64| if unfolded > 0.0 { cost / unfolded } else { 0.0 };
     let Some(line) = single_folding().line else { return Ok(StepFolds::default()) };
     let arcs = single.arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect();
-    let one = judge_made(&probes.judge, before, vec![Made { line, arcs }]);
+    let one = judge_made(&probes.judge, before, vec![Made { line, arcs }], lifts);
     let mut left = share(one.cost);
     // The answer so far, its alternatives, and whether it is the step's own detected fold.
     let mut chosen = (one, Vec::new(), true);
-    if max_folds >= 2 && left > EXPLAINED_BY_ONE {
-        // A sequence leaving less than MIN_GAIN unexplained cannot be beaten markedly: no
-        // longer one is searched.
-        let deeper = |best: &Judged| share(best.cost) >= MIN_GAIN;
-        for (best, others) in
-            search(before, start, end, &probes, max_folds.min(MAX_FOLDS), deeper, deadline)?
-        {
+    if max_folds >= 2 && left > select.explained_by_one_share {
+        // A sequence leaving less than `min_gain_share` unexplained cannot be beaten markedly:
+        // no longer one is searched.
+        let deeper = |best: &Judged| share(best.cost) >= select.min_gain_share;
+        let seen = Seen { before, start, end };
+        let max_folds = max_folds.min(MAX_FOLDS);
+        for (best, others) in search(&seen, &probes, params, max_folds, deeper, deadline)? {
             let now = share(best.cost);
-            if now > MARKEDLY * left || left - now < MIN_GAIN {
+            if now > select.markedly_share * left || left - now < select.min_gain_share {
                 // Not markedly better than the answer so far; a longer one still may be
                 // (a sequence's first folds can explain little before its last is made).
                 continue;
@@ -1017,14 +980,16 @@ pub fn explain(
             let dropped = (0..folds).map(|skip| {
                 (0..folds).filter(|&k| k != skip).map(|k| best.made[k].clone()).collect()
             });
-            let joined = (0..folds - 1).filter_map(|j| merged(before, &best.made, j));
+            let joined = (0..folds - 1).filter_map(|j| merged(before, &best.made, j, params));
             let fewer = dropped
                 .chain(joined)
-                .map(|made| judge_made(&probes.judge, before, made))
+                .map(|made| judge_made(&probes.judge, before, made, lifts))
                 .min_by(|a, b| a.cost.total_cmp(&b.cost))
                 .expect("a sequence holds two folds or more");
             let without_one = share(fewer.cost);
-            if now <= MARKEDLY * without_one && without_one - now >= MIN_GAIN {
+            if now <= select.markedly_share * without_one
+                && without_one - now >= select.min_gain_share
+            {
                 left = now;
                 chosen = (best, others, false);
             } else {
@@ -1042,7 +1007,7 @@ pub fn explain(
         folds: j.explained(&probes.judge, before, unfolded),
         explained: 1.0 - share(j.cost),
     };
-    if left > UNEXPLAINED {
+    if left > select.unexplained_share {
         return Ok(StepFolds {
             alternatives: vec![alternative(&best)],
             unexplained: true,
@@ -1059,7 +1024,7 @@ pub fn explain(
         folds,
         alternatives: others
             .iter()
-            .filter(|o| o.cost <= (1.0 + ABOUT_AS_WELL) * best.cost)
+            .filter(|o| o.cost <= (1.0 + select.about_as_well_share) * best.cost)
             .map(alternative)
             .collect(),
         explained: 1.0 - left,
@@ -1108,8 +1073,9 @@ mod tests {
 
     fn explained(before: &[Point], after: &[Point], max_folds: usize) -> StepFolds {
         let (start, end) = (Disk::of_border(before), Disk::of_border(after));
-        let single = detect(before, &start, &end, FoldMethod::Cut);
-        explain(before, &start, &end, &single, max_folds, &Deadline::default())
+        let params = Params::default();
+        let single = detect(before, &start, &end, FoldMethod::Cut, &params);
+        explain(before, &start, &end, &single, max_folds, &params, &Deadline::default())
             .expect("no deadline")
     }
 
@@ -1121,7 +1087,8 @@ mod tests {
         let state = square(8);
         let ray =
             |angle: f64| Move { anchor: Anchor::Ray(0.0, angle), reversed: false, turn: Turn::All };
-        let arcs = |m: Move| m.arcs(&state, &m.line(&state).expect("a ray has a line"));
+        let on_line = Params::default().sequence.on_line_edges;
+        let arcs = |m: Move| m.arcs(&state, &m.line(&state).expect("a ray has a line"), on_line);
         assert_eq!(arcs(ray(0.0)), None);
         let sliver = arcs(ray(1f64.to_radians())).expect("a fold");
         assert_eq!(sliver.len(), 1);
@@ -1139,7 +1106,8 @@ mod tests {
         let quarters = fold_all(&half, [0.0, 0.013], 0.0);
         let twice = explained(&flat, &quarters, 3);
         assert_eq!(twice.folds.len(), 2, "explained {}", twice.explained);
-        assert!(twice.explained > 1.0 - EXPLAINED_BY_ONE, "{}", twice.explained);
+        let explained_by_one = Params::default().selection.explained_by_one_share;
+        assert!(twice.explained > 1.0 - explained_by_one, "{}", twice.explained);
         // The folds' shares add up to the sequence's.
         let sum: f64 = twice.folds.iter().filter_map(|f| f.explained).sum();
         assert!((sum - twice.explained).abs() < 1e-9, "{sum} vs {}", twice.explained);
@@ -1181,7 +1149,7 @@ mod tests {
                 .map(|p| Point::new(c * p.x - s * p.y, s * p.x + c * p.y, 0.0))
                 .collect();
             turned.rotate_left(from);
-            let mut squares = square_to_sides(&turned);
+            let mut squares = square_to_sides(&turned, &SequenceParams::default());
             squares.sort_by(f64::total_cmp);
             assert_eq!(squares.len(), 2, "{squares:?}");
             assert!(
@@ -1197,7 +1165,7 @@ mod tests {
                 Point::new(t.cos(), t.sin(), 0.0)
             })
             .collect();
-        assert!(square_to_sides(&circle).is_empty());
+        assert!(square_to_sides(&circle, &SequenceParams::default()).is_empty());
     }
 
     #[test]
@@ -1205,10 +1173,11 @@ mod tests {
         let flat = square(24);
         let quarters = fold_all(&fold_all(&flat, [0.013, 0.0], PI / 2.0), [0.0, 0.013], 0.0);
         let (start, end) = (Disk::of_border(&flat), Disk::of_border(&quarters));
-        let single = detect(&flat, &start, &end, FoldMethod::Cut);
+        let params = Params::default();
+        let single = detect(&flat, &start, &end, FoldMethod::Cut, &params);
         let deadline = Deadline::default();
         deadline.cancel();
-        let stopped = explain(&flat, &start, &end, &single, 3, &deadline);
+        let stopped = explain(&flat, &start, &end, &single, 3, &params, &deadline);
         assert!(matches!(stopped, Err(crate::error::Error::Cancelled)), "{stopped:?}");
     }
 }

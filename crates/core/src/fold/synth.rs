@@ -6,17 +6,17 @@
 //! representation sees it (Kamat, Borràs, Torras, "CloSE", Sec. III: the dGLI disk of a
 //! state): for a candidate fold we synthesise the end state from the START border of the
 //! step (the flap turned over the line, i.e. rotated by π about it, and laid
-//! [`LIFT`] above the highest vertex), compute the dGLI of a fixed set of probe pairs on it,
+//! [`SynthesisParams::lift`] above the highest vertex), compute the dGLI of a fixed set of probe pairs on it,
 //! and compare them with the measured END disk. The candidate whose disk matches best wins.
 //! The end border's coordinates are never read, only its disk.
 //!
 //! Probe pairs: every edge near a fold point against a strided sample of all edges, and a
 //! strided sample of flap edges against the rest. Values are compared after
-//! `asinh(v / SCALE)`, so that pairs of stacked layers, whose dGLI grows like 1/height,
+//! `asinh(v / s)` ([`SynthesisParams::flat_scale`], [`SynthesisParams::stacked_scale`]), so that pairs of stacked layers, whose dGLI grows like 1/height,
 //! do not drown the others while the synthesised height differs from the real one.
 //!
 //! Two parametrisations: normally the line runs through the border points at s1 and s2,
-//! both searched within [`REACH`] edges of the cut. When those two points (nearly) coincide
+//! both searched within [`SynthesisParams::reach_edges`] of the cut. When those two points (nearly) coincide
 //! in the step's start frame (a second fold through two stacked layers), they do not give a
 //! direction, so the line is the midpoint of the two points and a searched direction.
 
@@ -32,49 +32,7 @@ use crate::disk::Disk;
 use crate::geometry::{Line, Point2, Vector2};
 use crate::gli::dgli_each;
 
-/// Height of a synthesised flap above the highest vertex of the start state (normalised
-/// units: the crease of real cloth is a few millimetres thick, ~1–3 % of its size).
-pub const LIFT: f64 = 0.02;
-/// How far, in edges, each fold point is searched from the cut's.
-pub const REACH: f64 = 1.0;
-/// Search step of a fold point, in edges.
-const STEP: f64 = 0.125;
-/// Fold points closer than this many mean edge lengths give no direction.
-pub const COINCIDE_EDGES: f64 = 3.0;
-/// Distinct arcs of the line search refined in full.
-const CANDIDATES: usize = 3;
-/// Scale of the compression of dGLI values before comparing, on a flat start.
-const SCALE: f64 = 1.0;
-/// The same on a stacked start: asinh(v / s) is close to sign(v)·ln(2|v| / s) for every
-/// value but the smallest, so a pair counts by its sign and the order of its magnitude.
-/// Stacked layers that slide and bunch (MuJoCo cloth) change their pairs' magnitudes
-/// several-fold without changing their signs. (Measured, foldeval step 2: 1.0 → 0.03 took
-/// MuJoCo second folds from a wrong line on two of six to mean RMSE 0.071; 0.003–0.1 are
-/// alike, 0.3 and up lose the circle's second fold. On flat starts it moved the built-in
-/// towels' exact folds by a tenth of a degree, so those keep 1.0.)
-pub(crate) const STACKED_SCALE: f64 = 0.03;
-
-/// The compression's scale of a step that starts `flat` or stacked.
-pub(crate) fn scale_of(flat: bool) -> f64 {
-    if flat {
-        SCALE
-    } else {
-        STACKED_SCALE
-    }
-}
-/// Edges on each side of a fold point whose rows are probed.
-pub(crate) const NEAR: usize = 3;
-/// Most probe edges sampled along the whole border (the cost per candidate is bounded
-/// whatever N; half as many lose a third of the accuracy on the physics folds).
-pub(crate) const SAMPLES: usize = 48;
-/// Probe edges of the line search's screen, all pairs of them: a quarter of the pairs of
-/// [`SAMPLES`] ranks lines as well (its candidates are refined with the full probe).
-pub(crate) const SCREEN_SAMPLES: usize = 24;
-/// Directions per half turn tried when the fold points coincide or the line is searched.
-pub(crate) const DIRECTIONS: usize = 36;
-/// A stacked step whose best line does not bring the mismatch below this share of the
-/// unfolded state's has no fold. (Measured on physics second folds: 0.46–0.64.)
-pub const MAX_MISMATCH_RATIO: f64 = 0.8;
+use super::params::SynthesisParams;
 
 thread_local! {
     /// [`Probe::cost`]'s buffers (each pair's value, the pairs that need a dGLI), kept per
@@ -167,7 +125,7 @@ fn moved_mask(n: usize, arcs: &[[f64; 2]]) -> Vec<bool> {
 }
 
 /// Height of the axis a flap of `before` is turned about: `lift`/2 above its highest vertex,
-/// so the flap lies `lift` above the stack (the synthesis uses [`LIFT`]).
+/// so the flap lies `lift` above the stack (the synthesis uses [`SynthesisParams::lift`]).
 pub(crate) fn flap_axis(before: &[Point], lift: f64) -> f64 {
     before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max) + lift / 2.0
 }
@@ -183,7 +141,8 @@ pub(crate) struct Probe {
     /// and the negation is exact; on a stacked one it holds to first order in ε, which is
     /// close enough to screen lines ([`search_line`]) but not to refine them.
     flap_negates: bool,
-    /// The compression's scale ([`SCALE`], [`STACKED_SCALE`]).
+    /// The compression's scale ([`SynthesisParams::flat_scale`],
+    /// [`SynthesisParams::stacked_scale`]).
     scale: f64,
     /// Most a pair's mismatch counts for ([`Probe::capped`]; infinite unless capped).
     cap: f64,
@@ -213,19 +172,23 @@ impl Probe {
     /// Probe pairs around the ends of the folded `arcs`: every edge near them against a
     /// strided sample of all edges, and sampled edges of the folded arcs against the rest.
     /// On a flat start the flap's pairs take their negated start values ([`Probe::flap_negates`]).
+    /// [`SynthesisParams::samples`] edges are sampled, [`SynthesisParams::near_edges`] taken
+    /// either side of each end.
     pub(crate) fn around(
         start: &Disk,
         end: &Disk,
         arcs: &[[f64; 2]],
         flap_negates: bool,
         scale: f64,
+        params: &SynthesisParams,
     ) -> Probe {
         let n = end.n();
-        let sampled = sampled_edges(n, SAMPLES);
+        let sampled = sampled_edges(n, params.samples);
+        let reach = params.near_edges as isize;
         let mut near: Vec<usize> = Vec::new();
         for p in arcs.iter().flatten() {
             let k = p.floor() as isize;
-            for d in -(NEAR as isize)..=(NEAR as isize) {
+            for d in -reach..=reach {
                 near.push((k + d).rem_euclid(n as isize) as usize);
             }
         }
@@ -381,13 +344,21 @@ fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
 /// a pattern search over them. A fold of several arcs is refined by its line (direction and
 /// offset), the arcs following it. The result's `mismatch` is infinite when the guess holds
 /// several arcs and gives no line.
-pub(crate) fn refine(before: &[Point], start: &Disk, end: &Disk, guess: &Synthesis) -> Synthesis {
+pub(crate) fn refine(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    guess: &Synthesis,
+    params: &SynthesisParams,
+) -> Synthesis {
     let heading = guess.direction.map(|d| d.y.atan2(d.x));
     match (guess.arcs.len(), heading) {
-        (0 | 1, heading) => refine_points(before, start, end, guess.s, heading),
-        (_, Some(phi)) => refine_line(before, start, end, &crossing_line(before, guess.s[0], phi)),
+        (0 | 1, heading) => refine_points(before, start, end, guess.s, heading, params),
+        (_, Some(phi)) => {
+            refine_line(before, start, end, &crossing_line(before, guess.s[0], phi), params)
+        }
         (_, None) => match line_of(before, guess.s, None) {
-            Some(line) => refine_line(before, start, end, &line),
+            Some(line) => refine_line(before, start, end, &line, params),
             None => Synthesis { mismatch: f64::INFINITY, ..guess.clone() },
         },
     }
@@ -404,7 +375,7 @@ pub(crate) fn mean_edge(points: &[Point]) -> f64 {
 /// pattern search (all eight neighbours in (s1, s2), so a line sliding along both sides
 /// at once is followed; the step halves when none is better). When the two points
 /// coincide the direction is searched too: from `heading` (the direction of a line that
-/// gave `s`, radians) or else the best of [`DIRECTIONS`] per half turn, again over a half
+/// gave `s`, radians) or else the best of [`SynthesisParams::directions`] per half turn, again over a half
 /// turn from the best start, then with the points.
 fn refine_points(
     before: &[Point],
@@ -412,12 +383,14 @@ fn refine_points(
     end: &Disk,
     s: [f64; 2],
     heading: Option<f64>,
+    params: &SynthesisParams,
 ) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
     let flat = super::is_flat(before);
-    let probe = Probe::around(start, end, &[s], flat, scale_of(flat));
-    let axis = flap_axis(before, LIFT);
+    let probe = Probe::around(start, end, &[s], flat, params.scale(flat), params);
+    let axis = flap_axis(before, params.lift);
+    let directions = params.directions;
     let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
         line_of(before, s, phi)
@@ -425,11 +398,11 @@ fn refine_points(
     });
     let half_turn = |search: &mut Search<_>, s: [f64; 2]| {
         search
-            .least((0..DIRECTIONS).map(|k| (s, Some(PI * k as f64 / DIRECTIONS as f64))).collect())
+            .least((0..directions).map(|k| (s, Some(PI * k as f64 / directions as f64))).collect())
             .and_then(|((_, phi), _)| phi)
     };
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
-    let coincide = (a.xy() - b.xy()).norm() < COINCIDE_EDGES * mean_edge(before);
+    let coincide = (a.xy() - b.xy()).norm() < params.coincide_edges * mean_edge(before);
     let phi = if coincide { heading.or_else(|| half_turn(&mut search, s)) } else { None };
     // Start from the best of the given points and their snaps to the vertices either side and
     // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
@@ -441,8 +414,8 @@ fn refine_points(
     let start = search.least(starts).map_or(s, |((t, _), _)| t);
     let phi = if coincide { half_turn(&mut search, start) } else { None };
     let mut best = search.least(vec![(start, phi)]).unwrap_or(((start, phi), f64::INFINITY));
-    let (mut h, mut h_phi) = (0.5, PI / DIRECTIONS as f64 / 2.0);
-    while h >= STEP {
+    let (mut h, mut h_phi) = (0.5, PI / directions as f64 / 2.0);
+    while h >= params.step_edges {
         let (centre, centre_phi) = best.0;
         let turns: &[f64] = if centre_phi.is_some() { &[-1.0, 0.0, 1.0] } else { &[0.0] };
         let neighbours = [-1.0, 0.0, 1.0]
@@ -456,7 +429,10 @@ fn refine_points(
             .map(|(d1, d2, dp)| {
                 ([centre[0] + d1 * h, centre[1] + d2 * h], centre_phi.map(|p| p + dp * h_phi))
             })
-            .filter(|(t, _)| (t[0] - s[0]).abs() <= REACH && (t[1] - s[1]).abs() <= REACH)
+            .filter(|(t, _)| {
+                (t[0] - s[0]).abs() <= params.reach_edges
+                    && (t[1] - s[1]).abs() <= params.reach_edges
+            })
             .collect();
         match search.least(neighbours) {
             Some(better) if better.1 < best.1 => best = better,
@@ -489,12 +465,19 @@ pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
 /// no longer give the line, so the line itself is searched, by a pattern search over its
 /// direction and offset from `line`, and the arcs follow it. The result spans the arcs:
 /// `s` runs from the first point of the first arc to the last point of the last.
-fn refine_line(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synthesis {
+fn refine_line(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    line: &Line,
+    params: &SynthesisParams,
+) -> Synthesis {
     let phi0 = line.angle();
     let rho0 = line.direction.x * line.point.y - line.direction.y * line.point.x;
     let flat = super::is_flat(before);
-    let probe = Probe::around(start, end, &arcs_left_of(before, line), flat, scale_of(flat));
-    let axis = flap_axis(before, LIFT);
+    let arcs = arcs_left_of(before, line);
+    let probe = Probe::around(start, end, &arcs, flat, params.scale(flat), params);
+    let axis = flap_axis(before, params.lift);
     let folded = |phi: f64, rho: f64| {
         let line = line_at(phi, rho);
         let arcs = arcs_left_of(before, &line);
@@ -511,8 +494,8 @@ fn refine_line(before: &[Point], start: &Disk, end: &Disk, line: &Line) -> Synth
     let edge = mean_edge(before);
     let mut best =
         search.least(vec![([phi0, rho0], None)]).unwrap_or((([phi0, rho0], None), f64::INFINITY));
-    let (mut h_rho, mut h_phi) = (edge, PI / DIRECTIONS as f64);
-    while h_rho >= STEP * edge {
+    let (mut h_rho, mut h_phi) = (edge, PI / params.directions as f64);
+    while h_rho >= params.step_edges * edge {
         let [phi, rho] = best.0 .0;
         let neighbours = [-1.0, 0.0, 1.0]
             .iter()
@@ -578,31 +561,37 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 ///
 /// When an earlier fold has stacked layers, a pair of edges on the same side of the new fold
 /// can change a lot (the layers slide, and the dGLI of stacked edges grows like 1/height),
-/// so the cut ([`super::cut`]) loses its footing. We try lines instead: 2·`DIRECTIONS`
+/// so the cut ([`super::cut`]) loses its footing. We try lines instead: 2·[`SynthesisParams::directions`]
 /// directions and offsets one mean edge apart across the state; each turns over one arc of
 /// the border that lies to its left (a fold may turn the top layer only). The line whose
 /// synthesised disks match the measured `end` disk best (on a strided sample of all pairs)
-/// give the candidates, best first: `CANDIDATES` distinct arcs, each with the points
+/// give the candidates, best first: [`SynthesisParams::line_candidates`] distinct arcs, each with the points
 /// where the border crosses its line, and the line's direction. None of them when no line
-/// beats leaving the state as it was by [`MAX_MISMATCH_RATIO`]. The exact optimum is
+/// beats leaving the state as it was by [`SynthesisParams::max_mismatch_share`]. The exact optimum is
 /// needle sharp on stacked layers, so the caller refines each ([`refine`]).
-pub(crate) fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Synthesis> {
+pub(crate) fn search_line(
+    before: &[Point],
+    start: &Disk,
+    end: &Disk,
+    params: &SynthesisParams,
+) -> Vec<Synthesis> {
     let n = before.len();
-    let sampled = sampled_edges(n, SCREEN_SAMPLES);
+    let sampled = sampled_edges(n, params.screen_samples);
     let pairs = sampled
         .iter()
         .flat_map(|&i| sampled.iter().filter(move |&&j| j > i).map(move |&j| (i, j)))
         .collect();
-    let probe = Probe::of(pairs, start, end, true, STACKED_SCALE);
+    let probe = Probe::of(pairs, start, end, true, params.stacked_scale);
     let unfolded = probe.unfolded();
-    let axis = flap_axis(before, LIFT);
+    let axis = flap_axis(before, params.lift);
+    let directions = params.directions;
     let reach = before.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
     let step = mean_edge(before).max(reach / 200.0);
     let offsets = (2.0 * reach / step).ceil() as usize;
-    let mut found: Vec<(Vec<[f64; 2]>, f64, f64, Turn)> = (0..2 * DIRECTIONS)
+    let mut found: Vec<(Vec<[f64; 2]>, f64, f64, Turn)> = (0..2 * directions)
         .into_par_iter()
         .flat_map_iter(|k| {
-            (0..offsets).map(move |m| (PI * k as f64 / DIRECTIONS as f64, -reach + m as f64 * step))
+            (0..offsets).map(move |m| (PI * k as f64 / directions as f64, -reach + m as f64 * step))
         })
         .flat_map_iter(|(phi, rho)| {
             let line = line_at(phi, rho);
@@ -621,7 +610,8 @@ pub(crate) fn search_line(before: &[Point], start: &Disk, end: &Disk) -> Vec<Syn
     for kind in [Turn::Whole, Turn::Arcs, Turn::Partial] {
         let mut taken = 0;
         for (arcs, phi, mismatch, _) in found.iter().filter(|f| f.3 == kind) {
-            if taken == CANDIDATES || *mismatch >= MAX_MISMATCH_RATIO * unfolded {
+            if taken == params.line_candidates || *mismatch >= params.max_mismatch_share * unfolded
+            {
                 break;
             }
             let key =
@@ -756,15 +746,17 @@ mod tests {
 
     #[test]
     fn the_cost_shortcuts_equal_a_full_dgli_of_the_folded_border() {
+        let params = SynthesisParams::default();
         // A flat start (flap pairs negated) and a wavy one (every moved pair computed).
         let flat = square(10, 0.7, |_| 0.0);
         let wavy = square(10, 0.7, |k| 0.03 * (k as f64 * 0.7).sin());
         for (before, flap_negates) in [(flat, true), (wavy, false)] {
             let s = [3.4, 17.7];
-            let axis = flap_axis(&before, LIFT);
+            let axis = flap_axis(&before, params.lift);
             let folded = fold_by_hand(&before, s, axis);
             let (start, end) = (Disk::of_border(&before), Disk::of_border(&folded));
-            let probe = Probe::around(&start, &end, &[s], flap_negates, scale_of(flap_negates));
+            let scale = params.scale(flap_negates);
+            let probe = Probe::around(&start, &end, &[s], flap_negates, scale, &params);
             let line = line_of(&before, s, None).expect("two distinct fold points");
             let turned = Turned::new(&before, axis, &[s], &line);
             // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
@@ -791,9 +783,10 @@ mod tests {
 
     #[test]
     fn a_capped_probe_is_not_pulled_by_a_few_wild_pairs() {
+        let params = SynthesisParams::default();
         let before = square(10, 0.7, |_| 0.0);
         let (s, other) = ([3.4, 17.7], [5.0, 15.0]);
-        let axis = flap_axis(&before, LIFT);
+        let axis = flap_axis(&before, params.lift);
         let start = Disk::of_border(&before);
         // The folded border's disk with one value in a hundred made wild, as noise makes the
         // dGLI of nearly collinear edges.
@@ -809,15 +802,16 @@ mod tests {
             Turned::new(&before, axis, &[fold], &line_of(&before, fold, None).unwrap())
         };
         let (right, wrong) = (turn(s), turn(other));
-        let plain = Probe::around(&start, &end, &[s], true, SCALE);
-        let capped = Probe::around(&start, &end, &[s], true, SCALE).capped(1.5);
+        let plain = Probe::around(&start, &end, &[s], true, params.flat_scale, &params);
+        let capped =
+            Probe::around(&start, &end, &[s], true, params.flat_scale, &params).capped(1.5);
         // Each pair counts at most the cap: the wild pairs no longer outweigh the fold, and
         // the right fold stands out from the wrong one by far more.
         let ratio = |probe: &Probe| probe.cost(&wrong) / probe.cost(&right);
         assert!(capped.cost(&right) < 0.15 * plain.cost(&right));
         assert!(ratio(&capped) > 4.0 * ratio(&plain), "{} {}", ratio(&capped), ratio(&plain));
         // A cap above every mismatch changes nothing.
-        let loose = Probe::around(&start, &end, &[s], true, SCALE).capped(1e9);
+        let loose = Probe::around(&start, &end, &[s], true, params.flat_scale, &params).capped(1e9);
         assert_eq!(loose.cost(&wrong), plain.cost(&wrong));
     }
 
@@ -905,10 +899,11 @@ mod tests {
                 rng.below(6) as f64 + 2.0 + rng.range(0.1, 0.9),
                 rng.below(6) as f64 + 21.0 + rng.range(0.1, 0.9),
             ];
-            // Laid at a height of its own, not the synthesis's LIFT.
+            // Laid at a height of its own, not the synthesis's lift.
             let end = Disk::of_border(&fold_by_hand(&before, truth, 0.006));
             let guess = truth.map(|s| (2.0 * s).round() / 2.0);
-            let found = refine(&before, &start, &end, &Synthesis::guess(guess));
+            let params = SynthesisParams::default();
+            let found = refine(&before, &start, &end, &Synthesis::guess(guess), &params);
             let error = [0, 1].map(|k| (found.s[k] - truth[k]).abs());
             assert!(
                 error.iter().all(|&e| e <= 0.1),
