@@ -50,7 +50,7 @@ use crate::angle::{angle_to_param, distance, edge, param_to_angle, ON_LINE_EDGES
 use crate::border::{point_at, to_xyz, Point};
 use crate::error::{Error, Result};
 use crate::fold::apply;
-use crate::fold::synth::mean_edge;
+use crate::fold::state::mean_edge;
 use crate::geometry::{Arc, Fold, Folding, Line};
 
 /// One grasp: take border vertex `vertex` at `from` and place it at `to`.

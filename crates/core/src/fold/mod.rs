@@ -21,6 +21,7 @@ pub mod orientation;
 pub mod params;
 pub mod reflect;
 pub mod sequence;
+pub mod state;
 pub mod synth;
 
 use serde::{Deserialize, Serialize};

@@ -58,34 +58,25 @@ use std::sync;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::angle::{angle_to_param, distance, param_to_angle, wrap_tau, ArcVertices};
+use crate::angle::{angle_to_param, distance, ArcVertices};
 use crate::border::{point_at, Point};
 use crate::budget::Deadline;
 use crate::disk::Disk;
 use crate::error::Result;
-use crate::geometry::{Arc, Fold, Folding, Line, Point2};
+use crate::geometry::{Folding, Line, Point2};
 use crate::metrics::aligned_rmse_xy;
 
 use super::cut::find_cuts;
 #[cfg(doc)]
 use super::params::{CutParams, LayerOrderParams, SelectionParams};
 use super::params::{Params, SequenceParams};
-use super::synth::{arcs_left_of, mean_edge, sampled_edges, Probe, Turned};
+use super::state::{arcs_left_of, mean_edge, Made, Stack, Turn};
+use super::synth::{sampled_edges, Probe};
 use super::FoldDetection;
 
 /// Most folds one step may hold: a capacity, not a knob (a synthesised state keeps one bit
 /// per fold made, and a sequence's cut points four bits each).
 pub const MAX_FOLDS: usize = 4;
-
-/// Which of the arcs left of a fold's line turn over.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Turn {
-    /// All of them (one arc for a line crossing the border twice; several for a
-    /// multi-arc fold).
-    All,
-    /// The one holding this vertex: a fold of one layer of a stack.
-    Holding(usize),
-}
 
 /// Where a fold's line lies on the state it is made on.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -155,46 +146,19 @@ impl Move {
     }
 }
 
-/// A fold as made on a synthesised state: its line and the arcs it turned (border
-/// parameters, each anticlockwise from its first point, in walking order).
-#[derive(Debug, Clone, PartialEq)]
-struct Made {
-    line: Line,
-    arcs: Vec<[f64; 2]>,
-}
-
-impl Made {
-    /// As a [`Folding`] (angles) of a border of `n` vertices.
-    fn folding(&self, n: usize) -> Folding {
-        let angle = |s: f64| wrap_tau(param_to_angle(s, n));
-        let arcs: Vec<Arc> = self.arcs.iter().map(|&[a, b]| Arc::new(angle(a), angle(b))).collect();
-        let fold = Fold::span(&arcs).unwrap_or_default();
-        Folding { fold, arcs, line: Some(self.line) }
-    }
-}
-
-/// The state after `made` turned in turn on `before`, each flap laid `lift` above the stack.
-fn turned(before: &[Point], made: &[Made], lift: f64) -> Turned {
-    let mut turned = Turned::unfolded(before);
-    for m in made {
-        turned.fold(&m.arcs, &m.line, lift);
-    }
-    turned
-}
-
 /// The folds of `moves` made in turn on `before`; `None` when one of them cannot be made.
-fn make(before: &[Point], moves: &[Move], params: &Params) -> Option<(Turned, Vec<Made>)> {
-    let mut turned = Turned::unfolded(before);
+fn make(before: &[Point], moves: &[Move], params: &Params) -> Option<(Stack, Vec<Made>)> {
+    let mut turned = Stack::flat(before);
     let made = moves.iter().map(|m| make_next(&mut turned, m, params)).collect::<Option<_>>()?;
     Some((turned, made))
 }
 
 /// The fold `m` made on `turned`; `None` when it cannot be made (`turned` is then left
 /// as it was).
-fn make_next(turned: &mut Turned, m: &Move, params: &Params) -> Option<Made> {
+fn make_next(turned: &mut Stack, m: &Move, params: &Params) -> Option<Made> {
     let line = m.line(&turned.state)?;
     let arcs = m.arcs(&turned.state, &line, params.sequence.on_line_edges)?;
-    turned.fold(&arcs, &line, params.synthesis.lift);
+    turned.turn(&arcs, &line, params.synthesis.lift);
     Some(Made { line, arcs })
 }
 
@@ -212,7 +176,7 @@ fn merged(before: &[Point], made: &[Made], j: usize, params: &Params) -> Option<
     if u.dot(&v) < params.sequence.parallel_cos || apart > near {
         return None;
     }
-    let state = turned(before, &made[..j], params.synthesis.lift).state;
+    let state = Stack::of(before, &made[..j], params.synthesis.lift).state;
     let mut joined = made[..j].to_vec();
     joined.push(Made { line: *a, arcs: arcs_left_of(&state, a) });
     joined.extend_from_slice(&made[j + 2..]);
@@ -414,7 +378,7 @@ struct Candidate {
 struct Scored {
     cost: f64,
     candidate: Candidate,
-    /// What its folds moved ([`Turned::groups`]), shared by the equal sequences.
+    /// What its folds moved ([`Stack::groups`]), shared by the equal sequences.
     groups: sync::Arc<[u8]>,
 }
 
@@ -433,7 +397,7 @@ impl Scored {
 /// or come after `deadline`, are left out.
 fn screen(
     beam: &[Partial],
-    parents: &[Option<(Turned, Vec<Made>)>],
+    parents: &[Option<(Stack, Vec<Made>)>],
     probes: &Probes,
     candidates: Vec<Candidate>,
     deadline: &Deadline,
@@ -457,7 +421,7 @@ fn screen(
         })
         .collect();
     // Candidate k's state: its fold made on a copy of its parent's.
-    let made = |k: usize| -> Option<Turned> {
+    let made = |k: usize| -> Option<Stack> {
         let c = &candidates[k];
         let mut turned = parents[c.parent].as_ref()?.0.clone();
         make_next(&mut turned, &c.next, params)?;
@@ -525,7 +489,7 @@ fn judge_made(judge: &Probe, before: &[Point], made: Vec<Made>, lifts: &[f64]) -
     let (cost, lift, state) = lifts
         .iter()
         .map(|&lift| {
-            let t = turned(before, &made, lift);
+            let t = Stack::of(before, &made, lift);
             (judge.cost(&t), lift, t.state)
         })
         .min_by(|a, b| a.0.total_cmp(&b.0))
@@ -603,7 +567,7 @@ fn search(
         deadline.check()?;
         // Every fold through the free cut points on each state of the beam, made once: each
         // candidate makes only its last fold on a copy.
-        let parents: Vec<Option<(Turned, Vec<Made>)>> =
+        let parents: Vec<Option<(Stack, Vec<Made>)>> =
             beam.par_iter().map(|partial| make(before, &partial.moves, params)).collect();
         let (squares, cut_sets) = (&squares, &cut_sets);
         let candidates: Vec<Candidate> = beam
@@ -707,7 +671,7 @@ fn search(
         // the layer order can decide between them.
         if let Some(first) = judged.first() {
             let seen: Vec<Vec<u8>> =
-                judged.iter().map(|j| turned(before, &j.made, lift).groups().to_vec()).collect();
+                judged.iter().map(|j| Stack::of(before, &j.made, lift).groups().to_vec()).collect();
             let mut twins: Vec<(Vec<Move>, sync::Arc<[u8]>)> = Vec::new();
             for s in scored.iter().filter(|s| !seen.iter().any(|g| **g == *s.groups)) {
                 if twins.len() == q.twins {
@@ -730,7 +694,7 @@ fn search(
             // Refined from different starts, two may have become one.
             let mut groups: Vec<Vec<u8>> = Vec::new();
             judged.retain(|j| {
-                let g = turned(before, &j.made, lift).groups().to_vec();
+                let g = Stack::of(before, &j.made, lift).groups().to_vec();
                 let new = !groups.contains(&g);
                 groups.push(g);
                 new
@@ -885,7 +849,7 @@ impl Judged {
         let mut previous = unfolded;
         (1..=self.made.len())
             .map(|k| {
-                let now = judge.cost(&turned(before, &self.made[..k], self.lift));
+                let now = judge.cost(&Stack::of(before, &self.made[..k], self.lift));
                 let share = (previous - now) / unfolded;
                 previous = now;
                 ExplainedFold { folding: self.made[k - 1].folding(n), explained: Some(share) }
@@ -1050,7 +1014,7 @@ mod tests {
     }
 
     /// Every vertex left of the line through `a` at `angle`, whatever its layer, reflected
-    /// across it and laid on top (independent of [`Turned`]).
+    /// across it and laid on top (independent of [`Stack`]).
     fn fold_all(state: &[Point], a: [f64; 2], angle: f64) -> Vec<Point> {
         let u = [angle.cos(), angle.sin()];
         let top = state.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
@@ -1092,7 +1056,7 @@ mod tests {
         assert_eq!(arcs(ray(0.0)), None);
         let sliver = arcs(ray(1f64.to_radians())).expect("a fold");
         assert_eq!(sliver.len(), 1);
-        // Turned the other way round, the line leaves the whole square right of it: no arc.
+        // Stack the other way round, the line leaves the whole square right of it: no arc.
         assert_eq!(arcs(Move { reversed: true, ..ray(0.0) }), None);
     }
 

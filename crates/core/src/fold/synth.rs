@@ -33,84 +33,12 @@ use crate::geometry::{Line, Point2, Vector2};
 use crate::gli::dgli_each;
 
 use super::params::SynthesisParams;
+use super::state::{arcs_left_of, flap_axis, mean_edge, Stack, Turn};
 
 thread_local! {
     /// [`Probe::cost`]'s buffers (each pair's value, the pairs that need a dGLI), kept per
     /// thread: it runs thousands of times per step, and allocating them was a tenth of it.
     static COST_BUFFERS: std::cell::RefCell<(Vec<Option<f64>>, Vec<usize>)> = const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
-}
-
-/// A synthesised state and which folds moved each of its vertices.
-#[derive(Clone)]
-pub(crate) struct Turned {
-    pub(crate) state: Vec<Point>,
-    /// Per vertex: the folds that moved it, one bit per fold in the order they were made
-    /// (bit 0 the first), 0 for a vertex no fold moved.
-    group: Vec<u8>,
-    /// Folds made so far.
-    folds: u32,
-}
-
-impl Turned {
-    /// The state after turning the `arcs` (border parameters, each anticlockwise from its
-    /// first point) of `before` over `line`: a rotation by π about the horizontal line at
-    /// height `axis` ([`flap_axis`]), so the flap's layers reverse their order and lie above
-    /// everything else.
-    pub(crate) fn new(before: &[Point], axis: f64, arcs: &[[f64; 2]], line: &Line) -> Turned {
-        let mut turned = Turned::unfolded(before);
-        turned.fold_about(axis, arcs, line);
-        turned
-    }
-
-    /// `before` with no fold made.
-    pub(crate) fn unfolded(before: &[Point]) -> Turned {
-        Turned { state: before.to_vec(), group: vec![0; before.len()], folds: 0 }
-    }
-
-    /// Turn the `arcs` of the state over `line` as [`Turned::new`] does, on top of the folds
-    /// already made, the flap laid `lift` above the stack: the next fold of a sequence.
-    pub(crate) fn fold(&mut self, arcs: &[[f64; 2]], line: &Line, lift: f64) {
-        let axis = flap_axis(&self.state, lift);
-        self.fold_about(axis, arcs, line);
-    }
-
-    fn fold_about(&mut self, axis: f64, arcs: &[[f64; 2]], line: &Line) {
-        // A sequence holds at most `sequence::MAX_FOLDS` folds, well within the bits.
-        debug_assert!(self.folds < 8);
-        let bit = 1u8 << self.folds.min(7);
-        let n = self.state.len();
-        for arc in arcs {
-            for v in ArcVertices::of(n, arc[0], arc[1]).vertices() {
-                let p = self.state[v];
-                let r = line.reflect(&p);
-                self.state[v] = Point::new(r.x, r.y, 2.0 * axis - p.z);
-                self.group[v] |= bit;
-            }
-        }
-        self.folds += 1;
-    }
-
-    /// Per vertex: the folds that moved it, one bit per fold in the order made.
-    pub(crate) fn groups(&self) -> &[u8] {
-        &self.group
-    }
-
-    /// The vertex after `e`, without a remainder (this runs for every probe pair).
-    #[inline]
-    fn next(&self, e: usize) -> usize {
-        if e + 1 == self.state.len() {
-            0
-        } else {
-            e + 1
-        }
-    }
-
-    /// The folds that moved edge `e`: `Some(group)` when they moved both of its ends alike.
-    #[inline]
-    fn edge_group(&self, e: usize) -> Option<u8> {
-        let g = self.group[e];
-        (g == self.group[self.next(e)]).then_some(g)
-    }
 }
 
 /// Per vertex of a border of `n`: whether it lies strictly inside one of `arcs`.
@@ -122,12 +50,6 @@ fn moved_mask(n: usize, arcs: &[[f64; 2]]) -> Vec<bool> {
         }
     }
     moved
-}
-
-/// Height of the axis a flap of `before` is turned about: `lift`/2 above its highest vertex,
-/// so the flap lies `lift` above the stack (the synthesis uses [`SynthesisParams::lift`]).
-pub(crate) fn flap_axis(before: &[Point], lift: f64) -> f64 {
-    before.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max) + lift / 2.0
 }
 
 /// The probe pairs, their measured end values and their values in the step's start state.
@@ -218,7 +140,7 @@ impl Probe {
     /// Only pairs with an edge the fold moved and one it did not need a dGLI: a pair of
     /// unmoved edges keeps its start value, and a pair on the flap may take the negated one
     /// (see [`Probe::flap_negates`]).
-    pub(crate) fn cost(&self, turned: &Turned) -> f64 {
+    pub(crate) fn cost(&self, turned: &Stack) -> f64 {
         let (state, next) = (&turned.state, |e: usize| turned.next(e));
         COST_BUFFERS.with_borrow_mut(|(values, across)| {
             values.clear();
@@ -260,10 +182,7 @@ impl Probe {
     /// dGLI computed (the probe is made without `flap_negates`).
     pub(crate) fn cost_of_state(&self, state: &[Point]) -> f64 {
         debug_assert!(!self.flap_negates);
-        let mut turned = Turned::unfolded(state);
-        // Every vertex moved: no pair keeps its start value.
-        turned.group.fill(1);
-        self.cost(&turned)
+        self.cost(&Stack::flat(state).all_moved())
     }
 
     /// Mean mismatch of the start state left as it was.
@@ -364,12 +283,6 @@ pub(crate) fn refine(
     }
 }
 
-/// Mean XY length of the edges of `points`.
-pub(crate) fn mean_edge(points: &[Point]) -> f64 {
-    let n = points.len();
-    (0..n).map(|k| (points[(k + 1) % n].xy() - points[k].xy()).norm()).sum::<f64>() / n as f64
-}
-
 /// Refine the fold points `s` (border parameters, the folded side anticlockwise from s[0])
 /// on the step's start border `before` (normalised) against the measured `end` disk, by a
 /// pattern search (all eight neighbours in (s1, s2), so a line sliding along both sides
@@ -394,7 +307,7 @@ fn refine_points(
     let mut search = Search::new(|&(s, phi): &Candidate| {
         let s = s.map(|x| x.rem_euclid(nf));
         line_of(before, s, phi)
-            .map_or(f64::INFINITY, |line| probe.cost(&Turned::new(before, axis, &[s], &line)))
+            .map_or(f64::INFINITY, |line| probe.cost(&Stack::new(before, axis, &[s], &line)))
     });
     let half_turn = |search: &mut Search<_>, s: [f64; 2]| {
         search
@@ -488,7 +401,7 @@ fn refine_line(
         if arcs.is_empty() {
             f64::INFINITY
         } else {
-            probe.cost(&Turned::new(before, axis, &arcs, &line))
+            probe.cost(&Stack::new(before, axis, &arcs, &line))
         }
     });
     let edge = mean_edge(before);
@@ -598,18 +511,25 @@ pub(crate) fn search_line(
             turns_of(before, &line).into_iter().map(move |(arcs, turn)| (arcs, phi, line, turn))
         })
         .map(|(arcs, phi, line, turn)| {
-            let mismatch = probe.cost(&Turned::new(before, axis, &arcs, &line));
+            let mismatch = probe.cost(&Stack::new(before, axis, &arcs, &line));
             (arcs, phi, mismatch, turn)
         })
         .collect();
     found.sort_by(|a, b| a.2.total_cmp(&b.2));
-    // The best few distinct turns (by their arcs' ends, to the vertex) of each kind: on
-    // exactly stacked layers the grid misses the needle of the true line, and the partial
-    // turns of other lines would crowd it out.
+    // The best few distinct turns (by their arcs' ends, to the vertex) of each kind (the
+    // one arc of a line crossing the border twice, every arc of one crossing it 2k times,
+    // one arc of several: a fold may turn one layer's flap only): on exactly stacked layers
+    // the grid misses the needle of the true line, and the partial turns of other lines
+    // would crowd it out.
+    let kind = |(arcs, turn): (&[[f64; 2]], Turn)| match turn {
+        Turn::All if arcs.len() == 1 => 0,
+        Turn::All => 1,
+        Turn::Holding(_) => 2,
+    };
     let mut kept: Vec<Synthesis> = Vec::new();
-    for kind in [Turn::Whole, Turn::Arcs, Turn::Partial] {
+    for wanted in 0..3 {
         let mut taken = 0;
-        for (arcs, phi, mismatch, _) in found.iter().filter(|f| f.3 == kind) {
+        for (arcs, phi, mismatch, _) in found.iter().filter(|f| kind((&f.0, f.3)) == wanted) {
             if taken == params.line_candidates || *mismatch >= params.max_mismatch_share * unfolded
             {
                 break;
@@ -632,19 +552,10 @@ pub(crate) fn search_line(
     kept
 }
 
-/// What a line of the line search turns over.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Turn {
-    /// The one arc left of a line that crosses the border twice.
-    Whole,
-    /// Every arc left of a line that crosses the border 2k times, k ≥ 2.
-    Arcs,
-    /// One of several arcs left of a line: a fold may turn one layer's flap only.
-    Partial,
-}
-
-/// The turns a line offers ([`Turn`]): each as its arcs, in walking order from the first.
-/// A turn of fewer than two vertices, or one that leaves fewer than two behind, is left out.
+/// The turns a line offers ([`Turn`]): all the arcs left of it, and when it crosses the
+/// border more than twice each of them alone (held by its first vertex), each as its arcs
+/// in walking order from the first. A turn of fewer than two vertices, or one that leaves
+/// fewer than two behind, is left out.
 fn turns_of(before: &[Point], line: &Line) -> Vec<(Vec<[f64; 2]>, Turn)> {
     let n = before.len();
     let arcs = arcs_left_of(before, line);
@@ -652,48 +563,21 @@ fn turns_of(before: &[Point], line: &Line) -> Vec<(Vec<[f64; 2]>, Turn)> {
     let sizes: Vec<usize> = arcs.iter().map(size).collect();
     let fits = |moved: usize| moved >= 2 && moved + 2 <= n;
     if let [arc] = arcs[..] {
-        return if fits(sizes[0]) { vec![(vec![arc], Turn::Whole)] } else { Vec::new() };
+        return if fits(sizes[0]) { vec![(vec![arc], Turn::All)] } else { Vec::new() };
     }
     let mut turns: Vec<(Vec<[f64; 2]>, Turn)> = arcs
         .iter()
         .zip(&sizes)
         .filter(|(_, &m)| fits(m))
-        .map(|(&arc, _)| (vec![arc], Turn::Partial))
-        .collect();
-    if arcs.len() > 1 && fits(sizes.iter().sum()) {
-        turns.push((arcs, Turn::Arcs));
-    }
-    turns
-}
-
-/// The arcs of the border left of `line`, each as the border parameters where it enters and
-/// leaves that side (anticlockwise from the first), in walking order starting after the
-/// widest gap between them, so that the first point of the first arc and the last point of
-/// the last span them all as tightly as they can.
-pub(crate) fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
-    let n = before.len();
-    let (ux, uy) = (line.direction.x, line.direction.y);
-    let d: Vec<f64> =
-        before.iter().map(|p| ux * (p.y - line.point.y) - uy * (p.x - line.point.x)).collect();
-    // The vertex after k, without a remainder: this runs for every vertex of every line tried.
-    let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
-    let crossing = |k: usize| k as f64 + d[k] / (d[k] - d[next(k)]);
-    let enters = (0..n).filter(|&k| d[k] <= 0.0 && d[next(k)] > 0.0);
-    let mut arcs: Vec<[f64; 2]> = enters
-        .filter_map(|k| {
-            // The arc runs until the first edge that leaves the side.
-            let leave = (k + 1..n).chain(0..k + 1).find(|&j| d[j] > 0.0 && d[next(j)] <= 0.0)?;
-            Some([crossing(k), crossing(leave)])
+        .map(|(&arc, _)| {
+            let first = ArcVertices::of(n, arc[0], arc[1]).first;
+            (vec![arc], Turn::Holding(first))
         })
         .collect();
-    if arcs.len() > 1 {
-        let nf = n as f64;
-        let gap =
-            |k: usize| (arcs[k][0] - arcs[(k + arcs.len() - 1) % arcs.len()][1]).rem_euclid(nf);
-        let widest = (0..arcs.len()).max_by(|&a, &b| gap(a).total_cmp(&gap(b))).unwrap_or(0);
-        arcs.rotate_left(widest);
+    if arcs.len() > 1 && fits(sizes.iter().sum()) {
+        turns.push((arcs, Turn::All));
     }
-    arcs
+    turns
 }
 
 #[cfg(test)]
@@ -758,7 +642,7 @@ mod tests {
             let scale = params.scale(flap_negates);
             let probe = Probe::around(&start, &end, &[s], flap_negates, scale, &params);
             let line = line_of(&before, s, None).expect("two distinct fold points");
-            let turned = Turned::new(&before, axis, &[s], &line);
+            let turned = Stack::new(&before, axis, &[s], &line);
             // The probe holds all three kinds of pair: unmoved, on the flap, across the fold.
             let (flap, unmoved) = (
                 |e: usize| turned.edge_group(e) == Some(1),
@@ -776,7 +660,7 @@ mod tests {
             // The same probe tells another fold apart.
             let other = [5.0, 15.0];
             let wrong =
-                Turned::new(&before, axis, &[other], &line_of(&before, other, None).unwrap());
+                Stack::new(&before, axis, &[other], &line_of(&before, other, None).unwrap());
             assert!(probe.cost(&wrong) > 1e-2, "{}", probe.cost(&wrong));
         }
     }
@@ -799,7 +683,7 @@ mod tests {
             .collect();
         let end = Disk::from_values(before.len(), wild).expect("a disk's own values");
         let turn = |fold: [f64; 2]| {
-            Turned::new(&before, axis, &[fold], &line_of(&before, fold, None).unwrap())
+            Stack::new(&before, axis, &[fold], &line_of(&before, fold, None).unwrap())
         };
         let (right, wrong) = (turn(s), turn(other));
         let plain = Probe::around(&start, &end, &[s], true, params.flat_scale, &params);
