@@ -143,7 +143,7 @@ pub fn fit_curves(g: &Disk, tables: &RingTables, params: &Params) -> Vec<Curve> 
             let rim = wrap_tau(a0 + a1);
             // A refinement that runs to the edge of its range found no minimum near the line.
             let window = (rim - reach, rim + reach);
-            let refined = refine_rim(&rim_cells, n, rim, window, params)
+            let refined = rim_minimum(&rim_cells, n, rim, window, params)
                 .filter(|r| (wrap_pi(r - rim).abs() - reach).abs() > 1e-3 * reach)
                 .unwrap_or(rim);
             Curve { a0, a1, loss, rim: refined }
@@ -247,7 +247,7 @@ pub(crate) fn rim_cells(g: &Disk, params: &CurveParams) -> Vec<Cell> {
 
 /// Refine a rim coordinate on the rim rings near it, with the curve held radial, searching
 /// angles in [lo, hi]. `None` when the rim holds no change there or the solver fails.
-pub(crate) fn refine_rim(
+pub(crate) fn rim_minimum(
     rim_cells: &[Cell],
     n: usize,
     rim: f64,

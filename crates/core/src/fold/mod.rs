@@ -19,6 +19,7 @@ pub mod fit;
 pub mod loss;
 pub mod orientation;
 pub mod params;
+mod refine;
 pub mod reflect;
 pub mod sequence;
 pub mod state;
@@ -195,12 +196,12 @@ fn fold_by_cut(
         let (p, q) = (param_to_angle(cut.p1, n), param_to_angle(cut.p2, n));
         let (fold, orientation) = orientation::orient(start, end, p, q, &params.detect);
         let s = [fold.f1, fold.f2].map(|f| angle_to_param(f, n));
-        let refined = synth::refine(before, start, end, &Synthesis::guess(s), synthesis);
+        let refined = synth::place(before, start, end, &Synthesis::guess(s), synthesis);
         (Some(refined), Some(orientation))
     } else {
         let refined = synth::search_line(before, start, end, synthesis)
             .iter()
-            .map(|found| synth::refine(before, start, end, found, synthesis))
+            .map(|found| synth::place(before, start, end, found, synthesis))
             .filter(|r| r.mismatch < synthesis.max_mismatch_share * r.unfolded_mismatch)
             .min_by(|a, b| a.mismatch.total_cmp(&b.mismatch));
         (refined, None)

@@ -70,6 +70,7 @@ use super::cut::find_cuts;
 #[cfg(doc)]
 use super::params::{CutParams, LayerOrderParams, SelectionParams};
 use super::params::{Params, SequenceParams};
+use super::refine::{refine, Costs};
 use super::state::{arcs_left_of, mean_edge, Made, Stack, Turn};
 use super::synth::{sampled_edges, Probe};
 use super::FoldDetection;
@@ -556,7 +557,7 @@ fn search(
                 if deadline.expired() {
                     return None;
                 }
-                let moves = refine(seen, moves, params);
+                let moves = settle(seen, moves, params);
                 let (_, made) = make(before, &moves, params)?;
                 Some(judge_made(&probes.judge, before, made, &q.lifts))
             })
@@ -751,10 +752,9 @@ fn layer_order(
     (!judged.is_empty()).then(|| judged.remove(best))
 }
 
-/// Refine every fold of `moves` together: a pattern search over each fold's two parameters
-/// (all eight neighbours of one fold at a time), the step halving when none is better. A
-/// neighbour already costed (a step's neighbourhood overlaps the last one's) is not again.
-fn refine(seen: &Seen, moves: Vec<Move>, params: &Params) -> Vec<Move> {
+/// Settle every fold of `moves` together, by the refinement ([`refine`]) over each fold's
+/// two parameters (all eight neighbours of one fold at a time).
+fn settle(seen: &Seen, moves: Vec<Move>, params: &Params) -> Vec<Move> {
     let Seen { before, start, end } = *seen;
     let arcs: Vec<[f64; 2]> = make(before, &moves, params)
         .map(|(_, made)| made.into_iter().flat_map(|m| m.arcs).collect())
@@ -763,12 +763,13 @@ fn refine(seen: &Seen, moves: Vec<Move>, params: &Params) -> Vec<Move> {
     let probe = Probe::around(start, end, &arcs, true, synthesis.stacked_scale, synthesis)
         .capped(params.layer_order.capped_mismatch);
     let angle_step = PI / synthesis.directions as f64;
-    let mut best = (cost(&probe, before, &moves, params), moves);
-    let mut costed: HashMap<Vec<u64>, f64> = HashMap::from([(key(&best.1), best.0)]);
-    let mut h = 0.5;
-    while h >= synthesis.step_edges {
-        let centre = &best.1;
-        let neighbours: Vec<Vec<Move>> = (0..centre.len())
+    let mut costs = Costs::new(
+        |moves: &Vec<Move>| cost(&probe, before, moves, params),
+        |moves: &Vec<Move>| key(moves),
+    );
+    let Some(best) = costs.least(vec![moves]) else { unreachable!("one candidate given") };
+    let neighbours = |centre: &Vec<Move>, h: f64| -> Vec<Vec<Move>> {
+        (0..centre.len())
             .flat_map(|k| {
                 [-1.0, 0.0, 1.0].into_iter().flat_map(move |d1| {
                     [-1.0, 0.0, 1.0].into_iter().filter(move |&d2| (d1, d2) != (0.0, 0.0)).map(
@@ -780,26 +781,9 @@ fn refine(seen: &Seen, moves: Vec<Move>, params: &Params) -> Vec<Move> {
                     )
                 })
             })
-            .collect();
-        let keys: Vec<Vec<u64>> = neighbours.iter().map(|m| key(m)).collect();
-        let fresh: Vec<(Vec<u64>, f64)> = neighbours
-            .par_iter()
-            .zip(&keys)
-            .filter(|(_, k)| !costed.contains_key(*k))
-            .map(|(m, k)| (k.clone(), cost(&probe, before, m, params)))
-            .collect();
-        costed.extend(fresh);
-        let better = neighbours
-            .into_iter()
-            .zip(&keys)
-            .map(|(m, k)| (costed[k], m))
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        match better {
-            Some(b) if b.0 < best.0 => best = b,
-            _ => h /= 2.0,
-        }
-    }
-    best.1
+            .collect()
+    };
+    refine(&mut costs, best, (0.5, synthesis.step_edges), neighbours).0
 }
 
 /// One fold of a step's sequence and the share of the step's end-disk mismatch it explained.

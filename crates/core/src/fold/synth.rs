@@ -20,7 +20,6 @@
 //! in the step's start frame (a second fold through two stacked layers), they do not give a
 //! direction, so the line is the midpoint of the two points and a searched direction.
 
-use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
@@ -33,6 +32,7 @@ use crate::geometry::{Line, Point2, Vector2};
 use crate::gli::dgli_each;
 
 use super::params::SynthesisParams;
+use super::refine::{refine, Costs};
 use super::state::{arcs_left_of, flap_axis, mean_edge, Stack, Turn};
 
 thread_local! {
@@ -215,7 +215,7 @@ pub struct Synthesis {
     pub s: [f64; 2],
     /// The folded arcs (border parameters, each anticlockwise from its first point), in
     /// walking order from `s[0]`: one arc, `s` itself, unless the fold line crosses the
-    /// border more than twice and turns several arcs over (`refine`).
+    /// border more than twice and turns several arcs over (`synth::place`).
     pub arcs: Vec<[f64; 2]>,
     /// The direction found on the disks when the fold points coincide (a unit vector);
     /// `None` when the line runs through the two fold points.
@@ -229,7 +229,7 @@ pub struct Synthesis {
 
 impl Synthesis {
     /// A fold at border parameters `s`, one arc along the line through its points, not yet
-    /// measured: what `refine` starts from when the cut gives the points.
+    /// measured: what `synth::place` starts from when the cut gives the points.
     pub fn guess(s: [f64; 2]) -> Synthesis {
         Synthesis {
             s,
@@ -256,14 +256,14 @@ fn crossing_line(points: &[Point], s: f64, phi: f64) -> Line {
     Line::at_angle(Point2::new(p.x, p.y), phi)
 }
 
-/// Refine a candidate fold (`guess`: the cut's points, [`Synthesis::guess`], or a
+/// Place a candidate fold (`guess`: the cut's points, [`Synthesis::guess`], or a
 /// candidate of [`search_line`]) on the step's start border `before` (normalised) against
-/// the measured `end` disk. A fold of one arc is refined by its two points (and the
-/// direction of its line when they coincide, from the guess's direction when it has one), by
-/// a pattern search over them. A fold of several arcs is refined by its line (direction and
+/// the measured `end` disk, by the refinement ([`refine`]). A fold of one arc is placed by
+/// its two points (and the direction of its line when they coincide, from the guess's
+/// direction when it has one). A fold of several arcs is placed by its line (direction and
 /// offset), the arcs following it. The result's `mismatch` is infinite when the guess holds
 /// several arcs and gives no line.
-pub(crate) fn refine(
+pub(crate) fn place(
     before: &[Point],
     start: &Disk,
     end: &Disk,
@@ -272,25 +272,33 @@ pub(crate) fn refine(
 ) -> Synthesis {
     let heading = guess.direction.map(|d| d.y.atan2(d.x));
     match (guess.arcs.len(), heading) {
-        (0 | 1, heading) => refine_points(before, start, end, guess.s, heading, params),
+        (0 | 1, heading) => place_points(before, start, end, guess.s, heading, params),
         (_, Some(phi)) => {
-            refine_line(before, start, end, &crossing_line(before, guess.s[0], phi), params)
+            place_line(before, start, end, &crossing_line(before, guess.s[0], phi), params)
         }
         (_, None) => match line_of(before, guess.s, None) {
-            Some(line) => refine_line(before, start, end, &line, params),
+            Some(line) => place_line(before, start, end, &line, params),
             None => Synthesis { mismatch: f64::INFINITY, ..guess.clone() },
         },
     }
 }
 
-/// Refine the fold points `s` (border parameters, the folded side anticlockwise from s[0])
-/// on the step's start border `before` (normalised) against the measured `end` disk, by a
-/// pattern search (all eight neighbours in (s1, s2), so a line sliding along both sides
-/// at once is followed; the step halves when none is better). When the two points
+/// Fold points (border parameters) and, when searched, the line's direction.
+type Points = ([f64; 2], Option<f64>);
+
+/// The bits of fold points, to tell equal ones apart.
+fn points_key(&(s, phi): &Points) -> [u64; 3] {
+    [s[0].to_bits(), s[1].to_bits(), phi.map_or(u64::MAX, f64::to_bits)]
+}
+
+/// Place the fold points `s` (border parameters, the folded side anticlockwise from s[0])
+/// on the step's start border `before` (normalised) against the measured `end` disk: the
+/// refinement over all eight neighbours in (s1, s2), so a line sliding along both sides at
+/// once is followed, within [`SynthesisParams::reach_edges`] of `s`. When the two points
 /// coincide the direction is searched too: from `heading` (the direction of a line that
-/// gave `s`, radians) or else the best of [`SynthesisParams::directions`] per half turn, again over a half
-/// turn from the best start, then with the points.
-fn refine_points(
+/// gave `s`, radians) or else the best of [`SynthesisParams::directions`] per half turn,
+/// again over a half turn from the best start, then with the points.
+fn place_points(
     before: &[Point],
     start: &Disk,
     end: &Disk,
@@ -304,19 +312,20 @@ fn refine_points(
     let probe = Probe::around(start, end, &[s], flat, params.scale(flat), params);
     let axis = flap_axis(before, params.lift);
     let directions = params.directions;
-    let mut search = Search::new(|&(s, phi): &Candidate| {
+    let cost = |&(s, phi): &Points| {
         let s = s.map(|x| x.rem_euclid(nf));
         line_of(before, s, phi)
             .map_or(f64::INFINITY, |line| probe.cost(&Stack::new(before, axis, &[s], &line)))
-    });
-    let half_turn = |search: &mut Search<_>, s: [f64; 2]| {
-        search
+    };
+    let mut costs = Costs::new(cost, points_key);
+    let half_turn = |costs: &mut Costs<_, _, _>, s: [f64; 2]| {
+        costs
             .least((0..directions).map(|k| (s, Some(PI * k as f64 / directions as f64))).collect())
             .and_then(|((_, phi), _)| phi)
     };
     let (a, b) = (point_at(before, s[0]), point_at(before, s[1]));
     let coincide = (a.xy() - b.xy()).norm() < params.coincide_edges * mean_edge(before);
-    let phi = if coincide { heading.or_else(|| half_turn(&mut search, s)) } else { None };
+    let phi = if coincide { heading.or_else(|| half_turn(&mut costs, s)) } else { None };
     // Start from the best of the given points and their snaps to the vertices either side and
     // the nearest half edge: exact data folds through those, and its optimum is needle sharp.
     let snaps = |x: f64| [x, x.floor(), x.ceil(), (2.0 * x).round() / 2.0];
@@ -324,14 +333,14 @@ fn refine_points(
         .into_iter()
         .flat_map(|a| snaps(s[1]).into_iter().map(move |b| ([a, b], phi)))
         .collect();
-    let start = search.least(starts).map_or(s, |((t, _), _)| t);
-    let phi = if coincide { half_turn(&mut search, start) } else { None };
-    let mut best = search.least(vec![(start, phi)]).unwrap_or(((start, phi), f64::INFINITY));
-    let (mut h, mut h_phi) = (0.5, PI / directions as f64 / 2.0);
-    while h >= params.step_edges {
-        let (centre, centre_phi) = best.0;
+    let start = costs.least(starts).map_or(s, |((t, _), _)| t);
+    let phi = if coincide { half_turn(&mut costs, start) } else { None };
+    let best = costs.least(vec![(start, phi)]).unwrap_or(((start, phi), f64::INFINITY));
+    // Steps of h edges along the border and h times π / `directions` in angle.
+    let angle_step = PI / directions as f64;
+    let neighbours = |&(centre, centre_phi): &Points, h: f64| -> Vec<Points> {
         let turns: &[f64] = if centre_phi.is_some() { &[-1.0, 0.0, 1.0] } else { &[0.0] };
-        let neighbours = [-1.0, 0.0, 1.0]
+        [-1.0, 0.0, 1.0]
             .iter()
             .flat_map(|&d1| {
                 [-1.0, 0.0, 1.0]
@@ -340,19 +349,16 @@ fn refine_points(
             })
             .filter(|&step| step != (0.0, 0.0, 0.0))
             .map(|(d1, d2, dp)| {
-                ([centre[0] + d1 * h, centre[1] + d2 * h], centre_phi.map(|p| p + dp * h_phi))
+                let phi = centre_phi.map(|p| p + dp * (h * angle_step));
+                ([centre[0] + d1 * h, centre[1] + d2 * h], phi)
             })
             .filter(|(t, _)| {
                 (t[0] - s[0]).abs() <= params.reach_edges
                     && (t[1] - s[1]).abs() <= params.reach_edges
             })
-            .collect();
-        match search.least(neighbours) {
-            Some(better) if better.1 < best.1 => best = better,
-            _ => (h, h_phi) = (h / 2.0, h_phi / 2.0),
-        }
-    }
-    let ((s, phi), mismatch) = best;
+            .collect()
+    };
+    let ((s, phi), mismatch) = refine(&mut costs, best, (0.5, params.step_edges), neighbours);
     let s = s.map(|x| x.rem_euclid(nf));
     Synthesis {
         s,
@@ -372,13 +378,13 @@ pub(crate) fn line_at(phi: f64, rho: f64) -> Line {
     }
 }
 
-/// Refine a fold that turns every arc of the border left of `line` over it: a line that
+/// Place a fold that turns every arc of the border left of `line` over it: a line that
 /// crosses a stacked border 2k times (k ≥ 2) folds k arcs at once (the stacked legs of
 /// trousers folded in half; a shirt's hem with a sleeve lying across it). The fold points
-/// no longer give the line, so the line itself is searched, by a pattern search over its
-/// direction and offset from `line`, and the arcs follow it. The result spans the arcs:
-/// `s` runs from the first point of the first arc to the last point of the last.
-fn refine_line(
+/// no longer give the line, so the line itself is refined ([`refine`]), over its direction
+/// and offset from `line`, and the arcs follow it. The result spans the arcs: `s` runs from
+/// the first point of the first arc to the last point of the last.
+fn place_line(
     before: &[Point],
     start: &Disk,
     end: &Disk,
@@ -396,32 +402,27 @@ fn refine_line(
         let arcs = arcs_left_of(before, &line);
         (line, arcs)
     };
-    let mut search = Search::new(|&([phi, rho], _): &Candidate| {
+    let cost = |&[phi, rho]: &[f64; 2]| {
         let (line, arcs) = folded(phi, rho);
         if arcs.is_empty() {
             f64::INFINITY
         } else {
             probe.cost(&Stack::new(before, axis, &arcs, &line))
         }
-    });
-    let edge = mean_edge(before);
-    let mut best =
-        search.least(vec![([phi0, rho0], None)]).unwrap_or((([phi0, rho0], None), f64::INFINITY));
-    let (mut h_rho, mut h_phi) = (edge, PI / params.directions as f64);
-    while h_rho >= params.step_edges * edge {
-        let [phi, rho] = best.0 .0;
-        let neighbours = [-1.0, 0.0, 1.0]
+    };
+    let mut costs = Costs::new(cost, |&[phi, rho]: &[f64; 2]| [phi.to_bits(), rho.to_bits()]);
+    let best = costs.least(vec![[phi0, rho0]]).unwrap_or(([phi0, rho0], f64::INFINITY));
+    // Steps of h mean edges in offset and h times π / `directions` in angle.
+    let (edge, angle_step) = (mean_edge(before), PI / params.directions as f64);
+    let neighbours = |&[phi, rho]: &[f64; 2], h: f64| -> Vec<[f64; 2]> {
+        [-1.0, 0.0, 1.0]
             .iter()
             .flat_map(|&dp| [-1.0, 0.0, 1.0].iter().map(move |&dr| (dp, dr)))
             .filter(|&step| step != (0.0, 0.0))
-            .map(|(dp, dr)| ([phi + dp * h_phi, rho + dr * h_rho], None))
-            .collect();
-        match search.least(neighbours) {
-            Some(better) if better.1 < best.1 => best = better,
-            _ => (h_rho, h_phi) = (h_rho / 2.0, h_phi / 2.0),
-        }
-    }
-    let (([phi, rho], _), mismatch) = best;
+            .map(|(dp, dr)| [phi + dp * (h * angle_step), rho + dr * (h * edge)])
+            .collect()
+    };
+    let ([phi, rho], mismatch) = refine(&mut costs, best, (1.0, params.step_edges), neighbours);
     let (line, arcs) = folded(phi, rho);
     let s = match (arcs.first(), arcs.last()) {
         (Some(first), Some(last)) => [first[0], last[1]],
@@ -436,40 +437,6 @@ fn refine_line(
     }
 }
 
-/// Fold points (border parameters) and, when searched, the line's direction.
-type Candidate = ([f64; 2], Option<f64>);
-
-/// The costs of candidates, each computed once (a pattern search revisits its neighbours),
-/// in parallel.
-struct Search<F> {
-    cost: F,
-    known: HashMap<[u64; 3], f64>,
-}
-
-impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
-    fn new(cost: F) -> Self {
-        Search { cost, known: HashMap::new() }
-    }
-
-    fn key(&(s, phi): &Candidate) -> [u64; 3] {
-        [s[0].to_bits(), s[1].to_bits(), phi.map_or(u64::MAX, f64::to_bits)]
-    }
-
-    /// The candidate of least cost, the first on a tie.
-    fn least(&mut self, candidates: Vec<Candidate>) -> Option<(Candidate, f64)> {
-        let mut fresh: Vec<&Candidate> =
-            candidates.iter().filter(|c| !self.known.contains_key(&Self::key(c))).collect();
-        fresh.sort_by_key(|c| Self::key(c));
-        fresh.dedup_by_key(|c| Self::key(c));
-        let costs: Vec<f64> = fresh.par_iter().map(|c| (self.cost)(c)).collect();
-        self.known.extend(fresh.iter().map(|c| Self::key(c)).zip(costs));
-        candidates
-            .into_iter()
-            .map(|c| (c, self.known[&Self::key(&c)]))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-    }
-}
-
 /// A fold of a stacked start state, found by turning it over every line in turn.
 ///
 /// When an earlier fold has stacked layers, a pair of edges on the same side of the new fold
@@ -481,7 +448,7 @@ impl<F: Fn(&Candidate) -> f64 + Sync> Search<F> {
 /// give the candidates, best first: [`SynthesisParams::line_candidates`] distinct arcs, each with the points
 /// where the border crosses its line, and the line's direction. None of them when no line
 /// beats leaving the state as it was by [`SynthesisParams::max_mismatch_share`]. The exact optimum is
-/// needle sharp on stacked layers, so the caller refines each ([`refine`]).
+/// needle sharp on stacked layers, so the caller places each ([`place`]).
 pub(crate) fn search_line(
     before: &[Point],
     start: &Disk,
@@ -772,7 +739,7 @@ mod tests {
     }
 
     #[test]
-    fn refine_finds_an_off_grid_fold() {
+    fn an_off_grid_fold_is_placed_within_a_tenth_of_an_edge() {
         // Folds through seeded random points along two edges, not at vertices or half edges;
         // refine starts from the nearest half edges, as the cut gives them.
         let before = square(10, 0.7, |_| 0.0);
@@ -787,7 +754,7 @@ mod tests {
             let end = Disk::of_border(&fold_by_hand(&before, truth, 0.006));
             let guess = truth.map(|s| (2.0 * s).round() / 2.0);
             let params = SynthesisParams::default();
-            let found = refine(&before, &start, &end, &Synthesis::guess(guess), &params);
+            let found = place(&before, &start, &end, &Synthesis::guess(guess), &params);
             let error = [0, 1].map(|k| (found.s[k] - truth[k]).abs());
             assert!(
                 error.iter().all(|&e| e <= 0.1),
