@@ -11,6 +11,7 @@ mod abuse;
 mod browser;
 mod cli;
 mod cli_plan;
+mod corpus;
 mod dataset;
 mod dataset_hostile;
 mod formats;

@@ -8,6 +8,7 @@
 //!   skirt), anticlockwise and normalised;
 //! - [`spec`]: the folds, as points along the outline's sides, made at seeded random
 //!   points a fraction of an edge from them (never on a vertex or half-edge);
+//! - [`corpus`]: a seeded random corpus of fold sequences, for rates on unseen cloths;
 //! - [`exact_fold`]: the exact fold that makes the end frames, independent of [`close_core::fold`];
 //! - [`variants`]: noise, rigid motion, start jitter and relabelling of a clean fold;
 //! - [`grid`]: the napkin and towel as grid meshes (category `mesh`);
@@ -29,6 +30,7 @@
 //! assert!(data.get("no such sample").is_none());
 //! ```
 
+pub mod corpus;
 pub mod exact_fold;
 pub mod grid;
 pub mod physics;
