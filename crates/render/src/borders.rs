@@ -61,7 +61,7 @@ fn fold_marks(analysis: &Analysis, truth: &Truth, shown: &Range<usize>) -> Vec<F
     let found: Vec<Option<[[f64; 2]; 2]>> =
         match make(analysis.start_border(), &analysis.foldings()) {
             Ok((_, made)) => {
-                layers(analysis.start_border(), &made).lines.into_iter().map(Some).collect()
+                layers(analysis.start_border(), &made, 1.0).lines.into_iter().map(Some).collect()
             }
             Err(_) => Vec::new(),
         };

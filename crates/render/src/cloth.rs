@@ -2,9 +2,11 @@
 //! each border vertex, and each fold's line across the cloth it folds.
 //!
 //! A fold is known by the line it was made along and the arcs of the border it turned over
-//! ([`Made`]; `turn` < 1 is a fold still turning, drawn from above: each point at
-//! [`turn_about`]). The border itself follows from the arcs alone: each vertex inside an arc
-//! moves. The cloth between the border's vertices is a set of layers, each a piece of the
+//! (core's [`Made`]; the last fold may still be turning, `turn` < 1, drawn from above: each
+//! point at [`turn_about`]). The border itself is core's synthesised state ([`Stack`]): each
+//! vertex inside an arc moves, and lies a layer above the stack it lands on, as the fold
+//! search synthesises a fold ([`SynthesisParams::lift`] of the flat cloth's radius: one
+//! lift for the search and the drawing). The cloth between the border's vertices is a set of layers, each a piece of the
 //! flat cloth (a simple polygon) moved by the folds that turned it over:
 //! - a fold cuts every layer along its line into pieces, one polygon per connected piece on
 //!   each side: the line's crossings of a layer's outline, ordered along the line, pair up
@@ -16,21 +18,20 @@
 //!   earlier folds), when it lies on the side the moved vertices lie on;
 //! - the pieces that turn over land on top, their order reversed, as a folded stack lands.
 //!
-//! A layer's `flips` counts how often it was turned over: odd, its underside shows. Each
-//! turned vertex is lifted a cloth's thickness (1 % of the flat cloth's radius) above what
-//! it lies on, as the built-in dataset folds: the state's disk sees layers apart, not two
-//! sheets at one height ([`Layers::heights`]).
+//! A layer's `flips` counts how often it was turned over: odd, its underside shows. The
+//! heights keep the layers apart ([`Layers::heights`]): the state's disk sees layers apart,
+//! not two sheets at one height.
 //!
 //! ```
 //! use close_core::border::Point;
-//! use close_core::geometry::{Arc, Line, Point2, Vector2};
-//! use close_render::cloth::{layers, Made};
+//! use close_core::fold::state::Made;
+//! use close_core::geometry::{Line, Point2, Vector2};
+//! use close_render::cloth::layers;
 //! // A square folded in half along x = 0.5: vertices 1 and 2 (x = 1) turn over.
 //! let square: Vec<Point> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
 //!     .iter().map(|p| Point::new(p[0], p[1], 0.0)).collect();
 //! let line = Line { point: Point2::new(0.5, 0.0), direction: Vector2::new(0.0, 1.0) };
-//! let arcs = vec![Arc::new(0.5 * std::f64::consts::FRAC_PI_2, 2.5 * std::f64::consts::FRAC_PI_2)];
-//! let folded = layers(&square, &[Made { line, arcs, turn: 1.0 }]);
+//! let folded = layers(&square, &[Made { line, arcs: vec![[0.5, 2.5]] }], 1.0);
 //! assert_eq!(folded.layers.iter().map(|l| l.flips).collect::<Vec<_>>(), [0, 1]);
 //! assert!(folded.heights[1] > 0.0 && folded.heights[0] == 0.0);
 //! ```
@@ -38,30 +39,32 @@
 use serde::Serialize;
 
 use close_core::analysis::Analysis;
-use close_core::border::{to_xyz, Point};
+use close_core::angle::ArcVertices;
+use close_core::border::{to_xyz, Normalisation, Point};
 use close_core::error::Result;
-use close_core::geometry::{Arc, Folding, Line};
+#[cfg(doc)]
+use close_core::fold::params::SynthesisParams;
+use close_core::fold::state::{Made, Stack};
+use close_core::fold::Params;
+use close_core::geometry::{Folding, Line};
 use close_core::interpolate::{turn_about, Interpolation, Motion};
 use close_core::plan::{Action, Case, PlanStep};
 
-/// A fold as it was made on the state before it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Made {
-    /// The line it folds along (XY, unit direction).
-    pub line: Line,
-    /// The arcs it turns over (each folded anticlockwise from its first angle to its second).
-    pub arcs: Vec<Arc>,
-    /// How far it has turned: 0 not at all, 1 folded over (the reflection across the line).
-    pub turn: f64,
+/// One fold as drawn: as made, and how far it has turned (0 not at all, 1 folded over, the
+/// reflection across its line).
+#[derive(Clone, Copy)]
+struct Drawing<'a> {
+    made: &'a Made,
+    turn: f64,
 }
 
-impl Made {
+impl Drawing<'_> {
     /// Where the fold takes `p`.
     fn moves(&self, p: &Point) -> Point {
         if self.turn >= 1.0 {
-            self.line.reflect(p)
+            self.made.line.reflect(p)
         } else {
-            turn_about(p, &self.line, self.turn)
+            turn_about(p, &self.made.line, self.turn)
         }
     }
 
@@ -69,8 +72,8 @@ impl Made {
     fn moved(&self, n: usize) -> Vec<bool> {
         let mut moved = vec![false; n];
         if self.turn > 0.0 {
-            for arc in &self.arcs {
-                for v in arc.folded_vertices(n) {
+            for arc in &self.made.arcs {
+                for v in ArcVertices::of(n, arc[0], arc[1]).vertices() {
                     moved[v] = true;
                 }
             }
@@ -112,27 +115,28 @@ struct Corner {
 
 type Piece = Vec<Corner>;
 
-/// The cloth of `flat` (a border, anticlockwise) after `folds`, made in order.
-pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
+/// The cloth of `flat` (a border, anticlockwise) after `folds`, made in order, the last of
+/// them turned `turn` of the way over (1: all folded).
+pub fn layers(flat: &[Point], folds: &[Made], turn: f64) -> Layers {
     let n = flat.len();
-    let (cx, cy) = flat.iter().fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
-    let (cx, cy) = (cx / n.max(1) as f64, cy / n.max(1) as f64);
-    let radius = flat.iter().map(|p| (p.x - cx).hypot(p.y - cy)).fold(0.0, f64::max);
-    let mut border = flat.to_vec();
-    let mut heights: Vec<f64> = flat.iter().map(|p| p.z).collect();
+    let radius = Normalisation::of(flat).map_or(1.0, |m| m.radius);
+    let lift = Params::default().synthesis.lift * radius;
+    let mut state = Stack::flat(flat);
     let mut stack: Vec<(Piece, usize)> =
         vec![(flat.iter().enumerate().map(|(k, &at)| Corner { at, vertex: Some(k) }).collect(), 0)];
     let mut lines = Vec::with_capacity(folds.len());
-    for fold in folds {
-        lines.push(across(&border, &fold.line));
+    for (k, made) in folds.iter().enumerate() {
+        let fold = Drawing { made, turn: if k + 1 == folds.len() { turn } else { 1.0 } };
+        let border = state.points().to_vec();
+        lines.push(across(&border, &made.line));
         let moved = fold.moved(n);
         if !moved.contains(&true) {
             continue;
         }
-        let side = fold_side(&border, &moved, &fold.line);
+        let side = fold_side(&border, &moved, &made.line);
         let (mut kept, mut turned) = (Vec::new(), Vec::new());
         for (piece, flips) in &stack {
-            for (piece, positive) in split(piece, &fold.line) {
+            for (piece, positive) in split(piece, &made.line) {
                 if turns(&piece, positive, side, &moved) {
                     let piece = piece.iter().map(|c| Corner { at: fold.moves(&c.at), ..*c });
                     turned.push((piece.collect(), flips + 1));
@@ -144,10 +148,15 @@ pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
         turned.reverse();
         kept.extend(turned);
         stack = kept;
-        let top = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        for v in (0..n).filter(|&v| moved[v]) {
-            border[v] = fold.moves(&border[v]);
-            heights[v] = 2.0 * top + 0.01 * radius - heights[v];
+        state.fold(made, lift);
+        if fold.turn < 1.0 {
+            // Still turning: the flap drawn where the turn has taken it so far.
+            let mut drawn = state.points().to_vec();
+            for v in (0..n).filter(|&v| moved[v]) {
+                let at = fold.moves(&border[v]);
+                drawn[v] = Point::new(at.x, at.y, drawn[v].z);
+            }
+            state = Stack::flat(&drawn);
         }
     }
     let layers = stack
@@ -157,7 +166,8 @@ pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
             flips,
         })
         .collect();
-    Layers { layers, heights, lines, border }
+    let border = state.points().to_vec();
+    Layers { layers, heights: border.iter().map(|p| p.z).collect(), lines, border }
 }
 
 /// `flat` with the `prior` folds made on it in order, each as an analysis step reports it
@@ -165,10 +175,11 @@ pub fn layers(flat: &[Point], folds: &[Made]) -> Layers {
 /// it folds): the state they leave, and each as made.
 pub fn make(flat: &[Point], prior: &[Folding]) -> Result<(Vec<Point>, Vec<Made>)> {
     let (state, lines) = close_core::interpolate::fold_in_turn(flat, prior)?;
+    let n = flat.len();
     let made = prior
         .iter()
         .zip(lines)
-        .map(|(fold, line)| Made { line, arcs: fold.arcs.clone(), turn: 1.0 })
+        .map(|(fold, line)| Made::from_angles(line, &fold.arcs, n))
         .collect();
     Ok((state, made))
 }
@@ -191,27 +202,26 @@ pub fn motion_states(
     motion: &Motion,
     interpolation: &Interpolation,
 ) -> Vec<Drawn> {
+    let n = flat.len();
     (0..interpolation.borders.len())
         .map(|k| {
             let moving = match motion {
                 Motion::Between { .. } => {
                     let fold = interpolation.folds[k];
-                    fold.line_on(base, None).map(|line| Made {
-                        line,
-                        arcs: vec![fold.arc()],
-                        turn: 1.0,
-                    })
+                    let line = fold.line_on(base, None);
+                    line.map(|line| (Made::from_angles(line, &[fold.arc()], n), 1.0))
                 }
-                Motion::Turn { arcs, .. } => interpolation.line.map(|line| Made {
-                    line,
-                    arcs: arcs.clone(),
-                    turn: interpolation.turns.as_ref().map_or(1.0, |t| t[k]),
+                Motion::Turn { arcs, .. } => interpolation.line.map(|line| {
+                    let turn = interpolation.turns.as_ref().map_or(1.0, |t| t[k]);
+                    (Made::from_angles(line, arcs, n), turn)
                 }),
             };
-            let folds: Vec<Made> = prior.iter().cloned().chain(moving.clone()).collect();
-            let cloth = layers(flat, &folds);
+            let turn = moving.as_ref().map_or(1.0, |m| m.1);
+            let folds: Vec<Made> =
+                prior.iter().cloned().chain(moving.as_ref().map(|m| m.0.clone())).collect();
+            let cloth = layers(flat, &folds, turn);
             Drawn {
-                segment: moving.map(|m| across(base, &m.line)),
+                segment: moving.map(|m| across(base, &m.0.line)),
                 layers: cloth.layers,
                 heights: cloth.heights,
             }
@@ -236,8 +246,9 @@ pub struct Pictured {
 pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Result<Vec<Pictured>> {
     let flat = analysis.start_border();
     let (_, mut made) = make(flat, &analysis.foldings())?;
+    let n = flat.len();
     let pictured = |made: &[Made], segment: Option<&Line>| {
-        let cloth = layers(flat, made);
+        let cloth = layers(flat, made, 1.0);
         Pictured {
             segment: segment.map(|line| across(&cloth.border, line)),
             border: cloth.border.iter().map(to_xyz).collect(),
@@ -258,7 +269,7 @@ pub fn plan_states(analysis: &Analysis, case: Case, steps: &[PlanStep]) -> Resul
                 // Along the line the plan made it along, on the state before it.
                 let line = step.line;
                 if let Some(line) = line {
-                    made.push(Made { line, arcs: vec![step.fold.arc()], turn: 1.0 });
+                    made.push(Made::from_angles(line, &[step.fold.arc()], n));
                 }
                 let mut state = pictured(&made, None);
                 state.segment = line.map(|line| across(flat, &line));
@@ -438,7 +449,6 @@ fn halves(piece: &[Corner], line: &Line) -> Vec<(Piece, bool)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use close_core::angle::TAU;
     use close_core::fold::apply;
 
     #[test]
@@ -461,7 +471,7 @@ mod tests {
         let [a, b] = across(&l, &off);
         assert!(a[1].abs() < 1e-12 && (b[1] - 3.0).abs() < 1e-12, "{a:?} {b:?}");
     }
-    use close_core::geometry::{Fold, Point2, Vector2};
+    use close_core::geometry::{Point2, Vector2};
 
     /// The line through `point` along `direction`.
     fn line_at(point: [f64; 2], direction: [f64; 2]) -> Line {
@@ -509,18 +519,13 @@ mod tests {
             == 1
     }
 
-    /// The arc (angles) of border parameters s1 → s2 on a border of n vertices.
-    fn arc(n: usize, s: [f64; 2]) -> Arc {
-        Arc::new(s[0] * TAU / n as f64, s[1] * TAU / n as f64)
-    }
-
     #[test]
     fn a_half_fold_gives_a_base_and_a_flap_of_half_the_area() {
         let square = outline(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]], 4);
         // Vertical line x = 1: the right side (parameters 2 → 10) turns over.
         let line = line_at([1.0, 0.0], [0.0, 1.0]);
-        let made = Made { line, arcs: vec![arc(16, [2.0, 10.0])], turn: 1.0 };
-        let out = layers(&square, std::slice::from_ref(&made));
+        let made = Made { line, arcs: vec![[2.0, 10.0]] };
+        let out = layers(&square, std::slice::from_ref(&made), 1.0);
         assert_eq!(out.layers.len(), 2);
         assert_eq!((out.layers[0].flips, out.layers[1].flips), (0, 1));
         for layer in &out.layers {
@@ -528,15 +533,15 @@ mod tests {
             // Both lie on the left half.
             assert!(layer.points.iter().all(|p| p[0] <= 1.0 + 1e-12), "{:?}", layer.points);
         }
-        // The heights: the flap a hundredth of the radius up.
-        let radius = 2f64.sqrt();
+        // The heights: the flap the fold search's lift up (a share of the radius, √2 here).
+        let lift = Params::default().synthesis.lift * 2f64.sqrt();
         for (v, h) in out.heights.iter().enumerate() {
-            let want = if (3..=9).contains(&v) { 0.01 * radius } else { 0.0 };
+            let want = if (3..=9).contains(&v) { lift } else { 0.0 };
             assert!((h - want).abs() < 1e-12, "vertex {v}: {h}");
         }
         assert_eq!(out.lines, vec![[[1.0, 0.0], [1.0, 2.0]]]);
         // Half turned: the flap drawn from above, squeezed onto the line's side it comes from.
-        let half = layers(&square, &[Made { turn: 0.5, ..made }]);
+        let half = layers(&square, &[made], 0.5);
         assert!(area(&half.layers[1].points).abs() < 1e-9, "seen edge-on, the flap has no area");
     }
 
@@ -560,9 +565,9 @@ mod tests {
         let n = u.len();
         let line = line_at([0.0, 1.5], [1.0, 0.0]);
         // The right leg's outline above the line: parameters 6, at (3, 1.5), to 15, at (2, 1.5).
-        let arcs = vec![arc(n, [6.0, 15.0])];
-        let made = Made { line, arcs: arcs.clone(), turn: 1.0 };
-        let out = layers(&u, std::slice::from_ref(&made));
+        let arcs = vec![[6.0, 15.0]];
+        let made = Made { line, arcs: arcs.clone() };
+        let out = layers(&u, std::slice::from_ref(&made), 1.0);
         let flipped: Vec<&Layer> = out.layers.iter().filter(|l| l.flips == 1).collect();
         let kept: Vec<&Layer> = out.layers.iter().filter(|l| l.flips == 0).collect();
         assert_eq!((kept.len(), flipped.len()), (2, 1), "{:?}", out.layers);
@@ -577,9 +582,7 @@ mod tests {
         assert!(kept.iter().any(|l| inside([0.5, 2.5], &l.points)), "the left leg's top stays");
         // The outline agrees: the analysis's own border after the fold has the left leg's
         // top corner (0, 3) where it was, and the right leg's (3, 3) at (3, 0).
-        let folding =
-            Folding { fold: Fold::span(&arcs).unwrap(), arcs: arcs.clone(), line: Some(line) };
-        let border = apply(&u, &folding);
+        let border = apply(&u, &made.folding(n));
         assert!(border.iter().any(|p| (p.x, p.y) == (0.0, 3.0)));
         assert!(border.iter().any(|p| (p.x - 3.0).abs() < 1e-12 && p.y.abs() < 1e-12));
         // Every piece lies inside the drawing's bounds: nothing spills off.
@@ -595,19 +598,11 @@ mod tests {
     #[test]
     fn a_second_fold_cuts_every_layer_and_lands_on_top() {
         let square = outline(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]], 4);
-        let first = Made {
-            line: line_at([1.0, 0.0], [0.0, 1.0]),
-            arcs: vec![arc(16, [2.0, 10.0])],
-            turn: 1.0,
-        };
+        let first = Made { line: line_at([1.0, 0.0], [0.0, 1.0]), arcs: vec![[2.0, 10.0]] };
         // Then the left half (now two layers) folded along y = 1, the top onto the bottom.
         // On the folded border, the upper half is parameters 6 → 14 (the two top sides).
-        let second = Made {
-            line: line_at([0.0, 1.0], [1.0, 0.0]),
-            arcs: vec![arc(16, [6.0, 14.0])],
-            turn: 1.0,
-        };
-        let out = layers(&square, &[first, second]);
+        let second = Made { line: line_at([0.0, 1.0], [1.0, 0.0]), arcs: vec![[6.0, 14.0]] };
+        let out = layers(&square, &[first, second], 1.0);
         let flips: Vec<usize> = out.layers.iter().map(|l| l.flips).collect();
         // Bottom half of each layer kept (base, flap), the top halves turned over, the flap's
         // first: [base, flap, flap's top (2 flips), base's top (1 flip)].
@@ -623,7 +618,7 @@ mod tests {
     fn a_fold_that_moves_nothing_leaves_the_cloth_and_a_crossed_outline_still_draws() {
         let square = outline(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], 2);
         let line = line_at([0.5, 0.0], [0.0, 1.0]);
-        let still = layers(&square, &[Made { line, arcs: vec![arc(8, [1.0, 5.0])], turn: 0.0 }]);
+        let still = layers(&square, &[Made { line, arcs: vec![[1.0, 5.0]] }], 0.0);
         assert_eq!(still.layers.len(), 1);
         assert!(still.heights.iter().all(|&h| h == 0.0));
         // A bow tie (not simple): cut into its two half-planes, never a panic or a hang.
@@ -631,7 +626,7 @@ mod tests {
             .iter()
             .map(|p| Point::new(p[0], p[1], 0.0))
             .collect();
-        let out = layers(&tie, &[Made { line, arcs: vec![arc(4, [0.5, 2.5])], turn: 1.0 }]);
+        let out = layers(&tie, &[Made { line, arcs: vec![[0.5, 2.5]] }], 1.0);
         assert!(!out.layers.is_empty());
     }
 }

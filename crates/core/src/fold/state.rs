@@ -23,7 +23,7 @@
 //! assert_eq!(folded[0], square[0]);
 //! ```
 
-use crate::angle::{param_to_angle, wrap_tau, ArcVertices};
+use crate::angle::{angle_to_param, param_to_angle, wrap_tau, ArcVertices};
 use crate::border::Point;
 use crate::geometry::{Arc, Fold, Folding, Line};
 
@@ -37,6 +37,12 @@ pub struct Made {
 }
 
 impl Made {
+    /// The fold turning `arcs` (angles, as a step reports them) over `line` on a border of
+    /// `n` vertices: the angles back in the border parameters a fold is made in.
+    pub fn from_angles(line: Line, arcs: &[Arc], n: usize) -> Made {
+        Made { line, arcs: arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect() }
+    }
+
     /// As a [`Folding`] (angles) of a border of `n` vertices: where the border parameters
     /// of the search become the angles a step reports.
     pub fn folding(&self, n: usize) -> Folding {
