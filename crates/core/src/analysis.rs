@@ -16,8 +16,8 @@ use crate::close::{corners, Close};
 use crate::confidence::{judge, Confidence};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
-use crate::fold::sequence::{explain, Alternative, ExplainedFold, StepFolds, MAX_FOLDS};
-use crate::fold::{apply, detect, FoldDetection, FoldMethod, Params};
+use crate::fold::sequence::{Alternative, ExplainedFold, StepFolds, MAX_FOLDS};
+use crate::fold::{apply, read, FoldDetection, FoldMethod, Params, Reading};
 use crate::geometry::{Fold, Folding, Line};
 use crate::label::{label, Label, CHANGED_RMSE};
 use crate::metrics::{Metrics, RigidMotion};
@@ -349,37 +349,21 @@ fn analyse_steps(
         let after = Disk::of_border_until(&after_border, &options.deadline)?;
         let (before_border, before) =
             previous.as_ref().map_or(start, |(border, disk)| (border.as_slice(), disk));
-        let mut detection = detect(before_border, before, &after, options.method, &options.fold);
-        let found = if options.method == FoldMethod::Cut {
-            explain(
-                before_border,
-                before,
-                &after,
-                &detection,
-                options.max_folds,
-                &options.fold,
-                &options.deadline,
-            )?
-        } else {
-            StepFolds::default()
-        };
+        let Reading { evidence, folds: found } = read(
+            before_border,
+            before,
+            &after,
+            options.method,
+            options.max_folds,
+            &options.fold,
+            &options.deadline,
+        )?;
         options.deadline.check()?;
-        let StepFolds { folds: mut explained_folds, alternatives, explained, unexplained } = found;
-        if options.method != FoldMethod::Cut {
-            // The paper's curves: the one fold as detected.
-            explained_folds = detection
-                .fold
-                .map(|fold| ExplainedFold {
-                    folding: Folding { fold, arcs: detection.arcs.clone(), line: None },
-                    explained: None,
-                })
-                .into_iter()
-                .collect();
-        }
+        let StepFolds { folds: explained_folds, alternatives, explained, unexplained } = found;
         // A sequence's folds all carry their direction; one fold, only when its points
         // coincide (its line otherwise runs through them, on the predicted state as on the
         // observed one).
-        let single_direction = detection.synthesis.as_ref().and_then(|s| s.direction);
+        let single_direction = evidence.synthesis.as_ref().and_then(|s| s.direction);
         let sequence = explained_folds.len() > 1;
         let turn = placement(before_border, &norm.apply_all(&predicted), &unmoved);
         let mut folds = Vec::with_capacity(explained_folds.len());
@@ -400,9 +384,7 @@ fn analyse_steps(
             }
             folds.push(ExplainedFold { folding, explained: step_fold.explained });
         }
-        // The detection names the step's first fold.
-        detection.fold = folds.first().map(|f| f.folding.fold);
-        detection.arcs = folds.first().map(|f| f.folding.arcs.clone()).unwrap_or_default();
+        let detection = FoldDetection::of(evidence, folds.first().map(|f| &f.folding));
         let line = folds.first().and_then(|f| f.folding.line);
         let metrics = Metrics::measure(norm, &predicted, frame);
         let confidence = judge(&detection, &metrics);

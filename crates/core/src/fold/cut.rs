@@ -17,7 +17,7 @@
 //! Several neighbouring cuts can tie; each cut point is then the middle of its tie range.
 //! The lifted layer tilts the edge that leaves the fold point, so even a fold through a
 //! vertex shows as a cut through an edge: the cut locates each fold point within half an
-//! edge, and [`super::detect`] refines it inside that edge.
+//! edge, and the synthesis ([`super::synth`]) places it inside that edge.
 
 use rayon::prelude::*;
 

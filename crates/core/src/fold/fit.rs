@@ -34,11 +34,13 @@ const A1_BOUND: f64 = PI;
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Curve {
+    /// The curve's angle at the disk's centre, r = 0 (radians).
     pub a0: f64,
+    /// Its change of angle from the centre to the rim, r = 1 (radians per disk radius).
     pub a1: f64,
     /// The paper's loss at the minimum (negative for a fold curve).
     pub loss: f64,
-    /// Where the curve meets the rim, refined: the fold coordinate, in [0, 2π).
+    /// Where the curve meets the rim, refined: the fold coordinate, in [0, 2π) (radians).
     pub rim: f64,
 }
 

@@ -127,7 +127,7 @@ impl Params {
     }
 }
 
-/// Whether a step has a fold, and which side of it turned ([`super::detect`],
+/// Whether a step has a fold, and which side of it turned (the seed of [`super::read`],
 /// [`super::orientation`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DetectParams {

@@ -58,7 +58,7 @@ use std::sync;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::angle::{angle_to_param, distance, ArcVertices};
+use crate::angle::{distance, ArcVertices};
 use crate::border::{point_at, Point};
 use crate::budget::Deadline;
 use crate::disk::Disk;
@@ -70,10 +70,11 @@ use super::cut::find_cuts;
 #[cfg(doc)]
 use super::params::{CutParams, LayerOrderParams, SelectionParams};
 use super::params::{Params, SequenceParams};
+use super::read::Seen;
 use super::refine::{refine, Costs};
+use super::seed::{is_flat, Seed};
 use super::state::{arcs_left_of, mean_edge, Made, Stack, Turn};
-use super::synth::{sampled_edges, Probe};
-use super::FoldDetection;
+use super::synth::{sampled_edges, Probe, Synthesis};
 
 /// Most folds one step may hold: a capacity, not a knob (a synthesised state keeps one bit
 /// per fold made, and a sequence's cut points four bits each).
@@ -508,15 +509,6 @@ struct Probes {
     order: Probe,
 }
 
-/// One step as the search sees it: its start border (normalised as the disks were), its
-/// start disk and the measured end disk.
-#[derive(Clone, Copy)]
-struct Seen<'a> {
-    before: &'a [Point],
-    start: &'a Disk,
-    end: &'a Disk,
-}
-
 /// The best sequence of each length from one fold up to `max_folds`, judged on `probes`,
 /// with the sequences of its length judged about as well (its twins and alternatives; none
 /// for one fold); a length of two or more whose best one `deeper` rejects is the last
@@ -842,31 +834,28 @@ impl Judged {
     }
 }
 
-/// The folds of one step: its own one fold (`single`, from [`super::detect`]), or, when that
-/// leaves its end disk unexplained and the step starts flat, the sequence of up to
+/// The folds of one step seen as `seen`: its seed (`single`, placed as `placed` says), or,
+/// when that leaves its end disk unexplained and the step starts flat, the sequence of up to
 /// `max_folds` folds ([`MAX_FOLDS`] at most) that explains it markedly better, by the
 /// model selection of the module's documentation.
-///
-/// `before` is the step's start border (normalised as the disks were), `start` its disk,
-/// `end` the measured end disk. [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires.
-pub fn explain(
-    before: &[Point],
-    start: &Disk,
-    end: &Disk,
-    single: &FoldDetection,
+/// [`Cancelled`](crate::error::Error::Cancelled) once `deadline` expires.
+pub(crate) fn explain(
+    seen: &Seen,
+    single: &Seed,
+    placed: Option<&Synthesis>,
     max_folds: usize,
     params: &Params,
     deadline: &Deadline,
 ) -> Result<StepFolds> {
-    params.check()?;
+    let Seen { before, start, end } = *seen;
     let n = before.len();
-    let Some(fold) = single.fold else { return Ok(StepFolds::default()) };
-    let direction = single.synthesis.as_ref().and_then(|s| s.direction);
+    let fold = single.fold;
+    let direction = placed.and_then(|s| s.direction);
     let single_folding =
         || Folding { fold, arcs: single.arcs.clone(), line: fold.line_on(before, direction) };
-    if !super::is_flat(before) {
-        // A stacked start keeps its one fold, judged by its own refinement.
-        let explained = single.synthesis.as_ref().map_or(1.0, |s| {
+    if !is_flat(before) {
+        // A stacked start keeps its one fold, judged by its own placement.
+        let explained = placed.map_or(1.0, |s| {
             if s.unfolded_mismatch > 0.0 {
                 1.0 - s.mismatch / s.unfolded_mismatch
             } else {
@@ -896,8 +885,8 @@ pub fn explain(
     let unfolded = probes.judge.unfolded();
     let share = |cost: f64| if unfolded > 0.0 { cost / unfolded } else { 0.0 };
     let Some(line) = single_folding().line else { return Ok(StepFolds::default()) };
-    let arcs = single.arcs.iter().map(|a| a.ends().map(|x| angle_to_param(x, n))).collect();
-    let one = judge_made(&probes.judge, before, vec![Made { line, arcs }], lifts);
+    let made = Made::from_angles(line, &single.arcs, n);
+    let one = judge_made(&probes.judge, before, vec![made], lifts);
     let mut left = share(one.cost);
     // The answer so far, its alternatives, and whether it is the step's own detected fold.
     let mut chosen = (one, Vec::new(), true);
@@ -905,9 +894,8 @@ pub fn explain(
         // A sequence leaving less than `min_gain_share` unexplained cannot be beaten markedly:
         // no longer one is searched.
         let deeper = |best: &Judged| share(best.cost) >= select.min_gain_share;
-        let seen = Seen { before, start, end };
         let max_folds = max_folds.min(MAX_FOLDS);
-        for (best, others) in search(&seen, &probes, params, max_folds, deeper, deadline)? {
+        for (best, others) in search(seen, &probes, params, max_folds, deeper, deadline)? {
             let now = share(best.cost);
             if now > select.markedly_share * left || left - now < select.min_gain_share {
                 // Not markedly better than the answer so far; a longer one still may be
@@ -983,7 +971,7 @@ pub fn explain(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fold::{detect, FoldMethod};
+    use crate::fold::{read, FoldMethod};
 
     /// A square of side 1 centred on the origin, `per_side` vertices a side.
     fn square(per_side: usize) -> Vec<Point> {
@@ -1021,10 +1009,16 @@ mod tests {
 
     fn explained(before: &[Point], after: &[Point], max_folds: usize) -> StepFolds {
         let (start, end) = (Disk::of_border(before), Disk::of_border(after));
-        let params = Params::default();
-        let single = detect(before, &start, &end, FoldMethod::Cut, &params);
-        explain(before, &start, &end, &single, max_folds, &params, &Deadline::default())
-            .expect("no deadline")
+        let reading = read(
+            before,
+            &start,
+            &end,
+            FoldMethod::Cut,
+            max_folds,
+            &Params::default(),
+            &Deadline::default(),
+        );
+        reading.expect("no deadline").folds
     }
 
     #[test]
@@ -1121,11 +1115,9 @@ mod tests {
         let flat = square(24);
         let quarters = fold_all(&fold_all(&flat, [0.013, 0.0], PI / 2.0), [0.0, 0.013], 0.0);
         let (start, end) = (Disk::of_border(&flat), Disk::of_border(&quarters));
-        let params = Params::default();
-        let single = detect(&flat, &start, &end, FoldMethod::Cut, &params);
         let deadline = Deadline::default();
         deadline.cancel();
-        let stopped = explain(&flat, &start, &end, &single, 3, &params, &deadline);
+        let stopped = read(&flat, &start, &end, FoldMethod::Cut, 3, &Params::default(), &deadline);
         assert!(matches!(stopped, Err(crate::error::Error::Cancelled)), "{stopped:?}");
     }
 }

@@ -6,7 +6,7 @@
 //! [`Stack`] rotates each vertex of its arcs by π about the line, laid `lift` above the
 //! highest vertex: the flap's layers reverse their order and lie above everything else, as
 //! a folded cloth lands. The stack remembers which folds moved each vertex, which the probe
-//! reads ([`super::synth::Probe::cost`]) and the sequence search tells candidates apart by.
+//! reads (the probe of [`super::synth`]) and the sequence search tells candidates apart by.
 //!
 //! ```
 //! use close_core::border::Point;

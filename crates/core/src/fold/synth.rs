@@ -308,7 +308,7 @@ fn place_points(
 ) -> Synthesis {
     let n = before.len();
     let nf = n as f64;
-    let flat = super::is_flat(before);
+    let flat = super::seed::is_flat(before);
     let probe = Probe::around(start, end, &[s], flat, params.scale(flat), params);
     let axis = flap_axis(before, params.lift);
     let directions = params.directions;
@@ -393,7 +393,7 @@ fn place_line(
 ) -> Synthesis {
     let phi0 = line.angle();
     let rho0 = line.direction.x * line.point.y - line.direction.y * line.point.x;
-    let flat = super::is_flat(before);
+    let flat = super::seed::is_flat(before);
     let arcs = arcs_left_of(before, line);
     let probe = Probe::around(start, end, &arcs, flat, params.scale(flat), params);
     let axis = flap_axis(before, params.lift);
