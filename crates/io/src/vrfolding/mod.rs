@@ -7,7 +7,7 @@
 //! world positions), `mesh/cloth_faces_tri` (int [F, 3], the same in every frame of a
 //! video), `mesh/cloth_nocs_verts` (float [V, 3], canonical positions) and
 //! `grip_vertex_id/{left,right}_grip_vertex_id` (int `[k]`, `[-1]` while a hand holds nothing).
-//! Chunks are Blosc-compressed; `zarrs` reads them.
+//! Chunks are Blosc-compressed: [`blosc`] decodes them and `zarrs` reads the arrays.
 //!
 //! A video's frames (sorted by `sample_id`) are cut into fold actions by BiFold's rule
 //! ([`Store::cut`], [`bifold`]); an action whose start or end mesh fails BiFold's broken-mesh test
@@ -48,6 +48,7 @@
 //! ```
 
 pub mod bifold;
+pub mod blosc;
 pub mod broken;
 pub mod files;
 
@@ -56,7 +57,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use serde_json::Value;
-use zarrs::array::Array;
+use zarrs::array::{Array, ArrayMetadata, ArrayMetadataV2};
 use zarrs::config::MetadataRetrieveVersion;
 use zarrs::group::Group;
 use zarrs::plugin::{ExtensionName, ZarrVersion};
@@ -68,7 +69,7 @@ use crate::formats::Sample;
 use crate::mesh::silhouette::{Silhouette, EPSILON};
 use crate::mesh::{MAX_MESH_FACES, MAX_MESH_VERTICES};
 use bifold::Action;
-use files::StoreFiles;
+use files::{StoreFiles, MAX_METADATA_BYTES};
 
 /// Folds scored per video: the paper's Table I has first and second folds.
 pub const FOLDS: usize = 2;
@@ -316,11 +317,36 @@ impl Store {
 
     /// Open array `path` and check its shape: 1-D (`width` None) or [rows, width], with at
     /// most `max_rows` rows, chunks of at most as many elements and at most
-    /// [`MAX_ARRAY_CHUNKS`] of them. Only its metadata is read. Returns the array, its row
-    /// count and its data type's name ("float32", "int64", …).
+    /// [`MAX_ARRAY_CHUNKS`] of them. Only its metadata is read; its compressor must be Blosc
+    /// or none, and is taken out of what zarrs is given ([`blosc`] decodes the chunks).
     fn open_array(&self, path: &str, width: Option<u64>, max_rows: usize) -> Result<Opened> {
-        let array = Array::open_opt(self.fs.clone(), path, &MetadataRetrieveVersion::V2)
-            .map_err(|e| self.error(path, format!("missing or unreadable array: {e}")))?;
+        let unreadable = |e: &dyn std::fmt::Display| {
+            self.error(path, format!("missing or unreadable array: {e}"))
+        };
+        let key = format!("{}/.zarray", path.trim_matches('/'));
+        let metadata = self
+            .fs
+            .read(&key, MAX_METADATA_BYTES)
+            .map_err(|e| unreadable(&e))?
+            .ok_or_else(|| unreadable(&"no .zarray"))?;
+        let mut metadata: ArrayMetadataV2 =
+            serde_json::from_slice(&metadata).map_err(|e| unreadable(&e))?;
+        let blosc = match metadata.compressor.take() {
+            None => false,
+            Some(c) if c.id() == "blosc" => true,
+            Some(c) => {
+                // The store's own text is named only when it is a plain name.
+                let plain = c.id().len() <= 40
+                    && c.id().chars().all(|ch| ch.is_ascii_alphanumeric() || "_-.".contains(ch));
+                let named = if plain { c.id() } else { "(not a codec's name)" };
+                return Err(self.error(
+                    path,
+                    format!("compressor {named}: a VR-Folding store's chunks are Blosc-compressed or not compressed"),
+                ));
+            }
+        };
+        let array = Array::new_with_metadata(self.fs.clone(), path, ArrayMetadata::V2(metadata))
+            .map_err(|e| unreadable(&e))?;
         let rows = match (array.shape(), width) {
             (&[rows], None) => rows,
             (&[rows, w], Some(width)) if w == width => rows,
@@ -361,18 +387,20 @@ impl Store {
             .data_type()
             .name(ZarrVersion::V3)
             .map_or_else(|| array.data_type().to_string(), |n| n.to_string());
-        Ok((array, rows, kind))
+        Ok(Opened { array, blosc, rows, kind })
     }
 
-    /// Read the whole of `array` (at `path`). Each stored chunk is read once, through
+    /// Read the whole of an opened array (at `path`). Each stored chunk is read once, through
     /// [`StoreFiles::read`] with its own cap (refused unread when its file is larger than the
-    /// chunk can be encoded in), checked ([`Store::check_chunk`]), and then decoded: the
-    /// very bytes checked, from memory, so a file swapped after the check is never decoded.
+    /// chunk can be encoded in), checked ([`Store::check_chunk`]), decoded from Blosc
+    /// ([`blosc::decode`]) and handed to zarrs: the very bytes checked, from memory, so a
+    /// file swapped after the check is never decoded.
     fn retrieve<T: zarrs::array::ElementOwned>(
         &self,
-        array: &Array<StoreFiles>,
+        opened: &Opened,
         path: &str,
     ) -> Result<Vec<T>> {
+        let array = &opened.array;
         let element = array
             .data_type()
             .fixed_size()
@@ -385,7 +413,7 @@ impl Store {
         for indices in chunks.iter().flat_map(|c| c.indices().into_iter()) {
             let shape = array.chunk_shape(&indices).map_err(|e| self.error(path, e))?;
             let size = shape.iter().map(|d| d.get()).fold(element as u64, u64::saturating_mul);
-            // Blosc adds a 16-byte header and never more than that; room for other codecs.
+            // Blosc adds a 16-byte header and never more than that.
             let most = size.saturating_add(size / 16).saturating_add(64);
             let key = array.chunk_key(&indices);
             let Some(encoded) =
@@ -393,39 +421,35 @@ impl Store {
             else {
                 continue;
             };
-            self.check_chunk(array, path, &indices, &shape, size, &encoded)?;
-            checked.set(&key, encoded.into()).map_err(|e| self.error(path, e))?;
+            self.check_chunk(opened.blosc, path, &indices, &shape, size, &encoded)?;
+            let decoded = if opened.blosc {
+                blosc::decode(&encoded).map_err(|e| {
+                    self.error(path, format!("cannot decode chunk {indices:?}: {e}"))
+                })?
+            } else {
+                encoded
+            };
+            checked.set(&key, decoded.into()).map_err(|e| self.error(path, e))?;
         }
         view.retrieve_array_subset(&view.subset_all())
             .map_err(|e| self.error(path, format!("cannot decode its chunks: {e}")))
     }
 
-    /// Check a stored chunk before it is decoded: a Blosc chunk's header (bytes 4..8, little
-    /// endian: the decoded size, which the decoder allocates at once) and an uncompressed
-    /// chunk's length must not exceed the chunk's own `size`, its shape × its element size.
-    /// A forged header could otherwise ask for gigabytes from a few bytes.
+    /// Check a stored chunk before it is decoded: a Blosc chunk's declared decoded size (which
+    /// the decoder allocates at once) and an uncompressed chunk's length must not exceed the
+    /// chunk's own `size`, its shape × its element size. A forged header could otherwise ask
+    /// for gigabytes from a few bytes.
     fn check_chunk(
         &self,
-        array: &Array<StoreFiles>,
+        blosc: bool,
         path: &str,
         indices: &[u64],
         shape: &[std::num::NonZeroU64],
         size: u64,
         encoded: &[u8],
     ) -> Result<()> {
-        let outer = array
-            .codecs()
-            .bytes_to_bytes_codecs()
-            .last()
-            .and_then(|c| c.name(ZarrVersion::V2))
-            .map(|n| n.to_string());
-        let declared = match outer.as_deref() {
-            Some("blosc") => encoded
-                .get(4..8)
-                .map_or(0, |b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
-            Some(_) => 0,
-            None => encoded.len() as u64,
-        };
+        let declared =
+            if blosc { blosc::declared_size(encoded).unwrap_or(0) } else { encoded.len() as u64 };
         if declared > size {
             return Err(self.error(path, format!("chunk {indices:?} decodes to {declared} bytes, but a chunk of shape {shape:?} holds {size}")));
         }
@@ -437,10 +461,10 @@ impl Store {
         fn widen<T: Into<f64>>(v: Vec<T>) -> Vec<f64> {
             v.into_iter().map(Into::into).collect()
         }
-        let (array, _, kind) = self.open_array(path, Some(3), MAX_MESH_VERTICES)?;
-        let values = match kind.as_str() {
-            "float32" => widen(self.retrieve::<f32>(&array, path)?),
-            "float64" => self.retrieve::<f64>(&array, path)?,
+        let opened = self.open_array(path, Some(3), MAX_MESH_VERTICES)?;
+        let values = match opened.kind.as_str() {
+            "float32" => widen(self.retrieve::<f32>(&opened, path)?),
+            "float64" => self.retrieve::<f64>(&opened, path)?,
             other => {
                 return Err(
                     self.error(path, format!("data type {other}, expected float32 or float64"))
@@ -454,8 +478,8 @@ impl Store {
     }
 
     /// The integers of an open array (any width, signed or not) as i64.
-    fn ints(&self, (array, _, kind): &Opened, path: &str) -> Result<Vec<i64>> {
-        Ok(match kind.as_str() {
+    fn ints(&self, array: &Opened, path: &str) -> Result<Vec<i64>> {
+        Ok(match array.kind.as_str() {
             "int8" => self.widen::<i8>(array, path)?,
             "int16" => self.widen::<i16>(array, path)?,
             "int32" => self.widen::<i32>(array, path)?,
@@ -474,7 +498,7 @@ impl Store {
 
     fn widen<T: zarrs::array::ElementOwned + Into<i64>>(
         &self,
-        array: &Array<StoreFiles>,
+        array: &Opened,
         path: &str,
     ) -> Result<Vec<i64>> {
         Ok(self.retrieve::<T>(array, path)?.into_iter().map(Into::into).collect())
@@ -487,8 +511,8 @@ impl Store {
         let Some(first) = video.frames.first() else {
             return Err(self.error(&video.id, "the video has no frame"));
         };
-        let (_, vertices, _) =
-            self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3), MAX_MESH_VERTICES)?;
+        let vertices =
+            self.open_array(&format!("{first}/mesh/cloth_verts"), Some(3), MAX_MESH_VERTICES)?.rows;
         let mut work = CutWork::default();
         let grips = video
             .frames
@@ -498,10 +522,13 @@ impl Store {
                     .map(|hand| self.open_array(&grip_path(f, hand), None, vertices.max(1)));
                 let [left, right] = hands;
                 let hands = [left?, right?];
-                for (array, rows, _) in &hands {
-                    let chunks =
-                        array.chunk_grid_shape().iter().fold(1u64, |a, &b| a.saturating_mul(b));
-                    work = work.plus(CutWork { ids: *rows as u64, chunks });
+                for hand in &hands {
+                    let chunks = hand
+                        .array
+                        .chunk_grid_shape()
+                        .iter()
+                        .fold(1u64, |a, &b| a.saturating_mul(b));
+                    work = work.plus(CutWork { ids: hand.rows as u64, chunks });
                 }
                 Ok(hands)
             })
@@ -692,10 +719,64 @@ impl Store {
     }
 }
 
-/// An array opened ([`Store::open_array`]): the array, its row count, its data type's name.
-type Opened = (Array<StoreFiles>, usize, String);
+/// An array opened ([`Store::open_array`]).
+struct Opened {
+    /// The array as zarrs reads it: without its compressor.
+    array: Array<StoreFiles>,
+    /// Whether its chunks are Blosc-compressed ([`blosc::decode`]); else stored as they are.
+    blosc: bool,
+    rows: usize,
+    /// Its data type's name ("float32", "int64", …).
+    kind: String,
+}
 
 /// The grip array of `hand` ("left" or "right") in frame group `frame`.
 fn grip_path(frame: &str, hand: &str) -> String {
     format!("{frame}/grip_vertex_id/{hand}_grip_vertex_id")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn copy(from: &Path, to: &Path) {
+        std::fs::create_dir_all(to).unwrap();
+        for entry in std::fs::read_dir(from).unwrap() {
+            let entry = entry.unwrap();
+            let path = entry.path();
+            if path.is_dir() {
+                copy(&path, &to.join(entry.file_name()));
+            } else {
+                std::fs::copy(&path, to.join(entry.file_name())).unwrap();
+            }
+        }
+    }
+
+    /// The fixture store's chunks are Blosc lz4; one of them set to name Snappy (the flags'
+    /// top three bits), as a store written with `numcodecs.Blosc(cname="snappy")` does: the
+    /// video's folds are an error naming the array, the chunk and the codec.
+    #[test]
+    fn a_chunk_naming_snappy_is_refused_by_name() {
+        let fixture = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr/Top");
+        let dir = std::env::temp_dir().join(format!("close-snappy-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        copy(&fixture, &dir);
+        let store = Store::open(&dir).unwrap();
+        let (videos, unreadable) = store.videos().unwrap();
+        assert!(unreadable.is_empty());
+        assert_eq!(store.folds(&videos[0]).unwrap().usable(), FOLDS, "the fixture decodes");
+        let chunk =
+            dir.join(videos[0].frames[0].trim_start_matches('/')).join("mesh/cloth_verts/0.0");
+        let mut bytes = std::fs::read(&chunk).unwrap();
+        assert_eq!(blosc::Codec::of_flags(bytes[2]), Some(blosc::Codec::Lz4));
+        bytes[2] = (bytes[2] & 0x1f) | (2 << 5);
+        std::fs::write(&chunk, bytes).unwrap();
+        let e = store.folds(&videos[0]).unwrap_err().to_string();
+        assert!(
+            e.contains("mesh/cloth_verts") && e.contains("chunk [0, 0]") && e.contains("snappy"),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
