@@ -232,9 +232,7 @@ pub(crate) fn judge_with(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fold::cut::Cut;
-    use crate::fold::orientation::Orientation;
-    use crate::fold::synth::Synthesis;
+    use crate::fold::{Cut, Orientation, Synthesis};
 
     fn found(cut: Cut, orientation: Option<Orientation>) -> FoldDetection {
         FoldDetection {

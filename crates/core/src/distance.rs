@@ -64,7 +64,7 @@ use crate::analysis::Analysis;
 use crate::angle::{angle_to_param, distance as circular, wrap_tau, TAU};
 use crate::border::{point_at, Normalisation, Point};
 use crate::error::{Error, Result};
-use crate::fold::reflect::apply;
+use crate::fold::apply;
 use crate::geometry::{Fold, Folding, Line, Point2, Vector2};
 use crate::metrics::aligned_rmse_xy;
 

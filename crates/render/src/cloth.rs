@@ -1,13 +1,13 @@
 //! The folded cloth seen from above, as the web app draws it: its layers, the height of
 //! each border vertex, and each fold's line across the cloth it folds.
 //!
-//! A fold is known by the line it was made along and the arcs of the border it turned over
-//! (core's [`Made`]; the last fold may still be turning, `turn` < 1, drawn from above: each
-//! point at [`turn_about`]). The border itself is core's synthesised state ([`Stack`]): each
-//! vertex inside an arc moves, and lies a layer above the stack it lands on, as the fold
-//! search synthesises a fold ([`SynthesisParams::lift`] of the flat cloth's radius: one
-//! lift for the search and the drawing). The cloth between the border's vertices is a set of layers, each a piece of the
-//! flat cloth (a simple polygon) moved by the folds that turned it over:
+//! A fold is known by the line it was made along and the arcs of the border it turned over (core's
+//! [`Made`]; the last fold may still be turning, `turn` < 1, drawn from above: each point at
+//! [`turn_about`]). The border itself is core's synthesised state ([`Stack`]): each vertex inside
+//! an arc moves, and lies a layer above the stack it lands on, as the fold search synthesises a
+//! fold ([`SynthesisParams::lift`] of the flat cloth's radius: one lift for the search and the
+//! drawing). The cloth between the border's vertices is a set of layers, each a piece of the flat
+//! cloth (a simple polygon) moved by the folds that turned it over:
 //! - a fold cuts every layer along its line into pieces, one polygon per connected piece on
 //!   each side: the line's crossings of a layer's outline, ordered along the line, pair up
 //!   into the chords that lie inside it (a simple polygon is entered and left in turn), and

@@ -14,7 +14,7 @@
 //! Over a diff disk the fold curves θ̂(r) = a0 + a1·r, r ∈ [1/L, 1], are drawn in polar
 //! coordinates, with the fold points marked on the rim: the curves of the fold the step
 //! reports, fitted with the paper's loss through its fold points
-//! ([`close_core::fold::fit::curves_through`]), and
+//! ([`close_core::fold::Evidence::curves`]), and
 //! only on the disk of the two frames of that step. Layout and curves follow the disk figures of Kamat, Borràs, Torras, "CloSE: A
 //! Geometric Shape-Agnostic Cloth State Representation" (the dGLI disk and the fold-curve
 //! fit on the diff disk). A ruler under the disk names the rings by pair distance d; the

@@ -108,21 +108,6 @@ fn arc_edges(n: usize, h1: usize, h2: usize) -> (usize, usize) {
 }
 
 /// The cut of least same-side mass of the diff disk `g`; `None` when g holds no change.
-///
-/// ```
-/// use close_core::disk::Disk;
-/// use close_core::fold::cut::find_cut;
-/// // Six edges; only the pairs across a cut between edges {0, 1, 2} and {3, 4, 5} changed.
-/// let n = 6;
-/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-///     .map(|(i, j)| if (i < 3) != (j < 3) { 1.0 } else { 0.0 })
-///     .collect();
-/// let cut = find_cut(&Disk::from_values(n, values).unwrap()).unwrap();
-/// assert_eq!(cut.residual, 0.0);
-/// let mut points = [cut.p1, cut.p2];
-/// points.sort_by(f64::total_cmp);
-/// assert_eq!(points, [0.0, 3.0]);
-/// ```
 pub fn find_cut(g: &Disk) -> Option<Cut> {
     let n = g.n();
     let sums = RunSums::new(g);
@@ -221,37 +206,22 @@ pub struct Cuts {
     pub residual: f64,
 }
 
-/// The `arcs` cut points (`arcs` ≥ 2) that split the border into arcs holding the least
-/// change within themselves: Σ over the arcs of the change g of the pairs of edges both on
-/// the arc. A sequence of folds of a flat cloth moves each piece between its creases
-/// rigidly, so every pair inside a piece keeps |dGLI| and a border arc inside one piece
-/// holds no change; the cut points are where the creases meet the border ([`find_cut`] is
-/// the case of two arcs). The search is a dynamic programme over a grid of at most
-/// [`CutParams::coarse_grid`] positions (O(arcs · grid³)), each point then moved along the half-edge
-/// grid while that lowers the change. `None` when g holds no change or the border has too
-/// few edges.
+/// The `arcs` cut points (`arcs` ≥ 2) that split the border into arcs holding the least change
+/// within themselves: Σ over the arcs of the change g of the pairs of edges both on the arc. A
+/// sequence of folds of a flat cloth moves each piece between its creases rigidly, so every pair
+/// inside a piece keeps |dGLI| and a border arc inside one piece holds no change; the cut points
+/// are where the creases meet the border ([`find_cut`] is the case of two arcs). The search is a
+/// dynamic programme over a grid of at most [`CutParams::coarse_grid`] positions (O(arcs · grid³)),
+/// each point then moved along the half-edge grid while that lowers the change. `None` when g holds
+/// no change or the border has too few edges.
 ///
-/// Ties: a crease meeting a straight side square to it changes no pair of that side (its
-/// edges stay on one line), so the side splits anywhere at the same change. Of splits that
-/// tie, the one whose points lie where the rows of g jump most is taken: at a point between
-/// edges a and b, Σ_e |asinh g(a, e) − asinh g(b, e)| over the edges e away from both, the
-/// largest within [`CutParams::jump_reach_half_edges`] only. Each point's change is lowered by at most a tenth of
-/// the tie tolerance over the number of arcs, so a split of more change wins only within a
-/// tenth of the tolerance.
-///
-/// ```
-/// use close_core::disk::Disk;
-/// use close_core::fold::{cut::find_cuts, params::CutParams};
-/// // Twelve edges in four runs of three whose own pairs did not change.
-/// let n = 12;
-/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-///     .map(|(i, j)| if i / 3 == j / 3 { 0.0 } else { 1.0 })
-///     .collect();
-/// let cuts = find_cuts(&Disk::from_values(n, values).unwrap(), 4, &CutParams::default()).unwrap();
-/// assert_eq!(cuts.residual, 0.0);
-/// // Each cut between two runs, within the half edge that holds no pair of its own.
-/// assert!(cuts.points.iter().zip([0.0, 3.0, 6.0, 9.0]).all(|(p, q)| (p - q).abs() <= 0.5));
-/// ```
+/// Ties: a crease meeting a straight side square to it changes no pair of that side (its edges stay
+/// on one line), so the side splits anywhere at the same change. Of splits that tie, the one whose
+/// points lie where the rows of g jump most is taken: at a point between edges a and b, Σ_e |asinh
+/// g(a, e) − asinh g(b, e)| over the edges e away from both, the largest within
+/// [`CutParams::jump_reach_half_edges`] only. Each point's change is lowered by at most a tenth of
+/// the tie tolerance over the number of arcs, so a split of more change wins only within a tenth of
+/// the tolerance.
 pub fn find_cuts(g: &Disk, arcs: usize, params: &CutParams) -> Option<Cuts> {
     let n = g.n();
     let grid = 2 * n;
@@ -484,5 +454,35 @@ mod tests {
     fn no_change_has_no_cut() {
         let g = Disk::from_values(6, vec![0.0; 15]).unwrap();
         assert!(find_cut(&g).is_none());
+    }
+
+    #[test]
+    fn a_cut_between_two_runs_of_unchanged_pairs_is_found_there() {
+        // Six edges; only the pairs across a cut between edges {0, 1, 2} and {3, 4, 5} changed.
+        let n = 6;
+        let values = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .map(|(i, j)| if (i < 3) != (j < 3) { 1.0 } else { 0.0 })
+            .collect();
+        let cut = find_cut(&Disk::from_values(n, values).unwrap()).unwrap();
+        assert_eq!(cut.residual, 0.0);
+        let mut points = [cut.p1, cut.p2];
+        points.sort_by(f64::total_cmp);
+        assert_eq!(points, [0.0, 3.0]);
+    }
+
+    #[test]
+    fn four_runs_of_unchanged_pairs_are_cut_between_them() {
+        // Twelve edges in four runs of three whose own pairs did not change.
+        let n = 12;
+        let values = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .map(|(i, j)| if i / 3 == j / 3 { 0.0 } else { 1.0 })
+            .collect();
+        let cuts =
+            find_cuts(&Disk::from_values(n, values).unwrap(), 4, &CutParams::default()).unwrap();
+        assert_eq!(cuts.residual, 0.0);
+        // Each cut between two runs, within the half edge that holds no pair of its own.
+        assert!(cuts.points.iter().zip([0.0, 3.0, 6.0, 9.0]).all(|(p, q)| (p - q).abs() <= 0.5));
     }
 }

@@ -3,8 +3,8 @@
 //!
 //! 1. The loss repeats in a1 with period 2πL, so a1 is bounded to [−π, π] (through
 //!    a1 = π·sin u, which keeps L-BFGS unconstrained) and minima on the bound are dropped.
-//! 2. Minima whose rim coordinates f = a0 + a1 lie within [`CurveParams::merge_edges`] edges of each other
-//!    are one curve; the lower loss is kept.
+//! 2. Minima whose rim coordinates f = a0 + a1 lie within [`CurveParams::merge_edges`] edges of
+//!    each other are one curve; the lower loss is kept.
 //! 3. The rim coordinate of each kept curve is refined on the rim rings alone (rings
 //!    d ≤ [`CurveParams::rim_rings`] near f, a1 = 0) with Brent's method, since the straight line
 //!    extrapolated to the rim is biased.
@@ -107,20 +107,6 @@ fn minimise(tables: &RingTables, a0: f64) -> Option<(f64, f64, f64)> {
 /// `tables`), lowest loss first, rim coordinates refined: the paper's free fit, with the
 /// knobs of `params` ([`Params::curves`], and [`super::params::DetectParams::flat_diff`]
 /// for a rim cell that changed).
-///
-/// ```
-/// use close_core::disk::{position, Disk};
-/// use close_core::fold::fit::fit_curves;
-/// // A diff disk whose change runs along the radial line at 1 rad.
-/// let n = 40;
-/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-///     .map(|(i, j)| (-(close_core::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp())
-///     .collect();
-/// let g = Disk::from_values(n, values).unwrap();
-/// let params = close_core::fold::Params::default();
-/// let curves = fit_curves(&g, &close_core::fold::loss::RingTables::new(&g, &params.curves), &params);
-/// assert!(close_core::angle::distance(curves[0].rim, 1.0) < close_core::angle::edge(n));
-/// ```
 pub fn fit_curves(g: &Disk, tables: &RingTables, params: &Params) -> Vec<Curve> {
     let curves = &params.curves;
     let n = g.n();
@@ -167,23 +153,6 @@ fn slopes(n: usize) -> usize {
 /// the curves of the fold are fitted through its points: each ends where the fold is
 /// reported. A fold point whose best curve has no negative loss (no change along any line
 /// through it) gets none.
-///
-/// ```
-/// use close_core::disk::{position, Disk};
-/// use close_core::fold::{fit::curves_through, loss::RingTables};
-/// // A diff disk whose change runs along the radial lines at 1 rad and 4 rad.
-/// let n = 40;
-/// let ridge = |angle: f64, at: f64| (-(close_core::angle::wrap_pi(angle - at) * 8.0).powi(2)).exp();
-/// let values = (0..n).flat_map(|i| (i + 1..n).map(move |j| position(n, i, j).angle))
-///     .map(|angle| ridge(angle, 1.0) + ridge(angle, 4.0))
-///     .collect();
-/// let g = Disk::from_values(n, values).unwrap();
-/// let tables = RingTables::new(&g, &close_core::fold::params::CurveParams::default());
-/// let curves = curves_through(&tables, n, close_core::geometry::Fold::new(1.0, 4.0));
-/// // Each fold point gets the radial curve ending there.
-/// assert_eq!(curves.iter().map(|c| c.rim).collect::<Vec<_>>(), vec![1.0, 4.0]);
-/// assert!(curves.iter().all(|c| c.a1.abs() < 0.1 && c.loss < 0.0));
-/// ```
 pub fn curves_through(tables: &RingTables, n: usize, fold: Fold) -> Vec<Curve> {
     let slopes = slopes(n);
     let step = 2.0 * A1_BOUND / (slopes - 1) as f64;
@@ -354,5 +323,40 @@ mod tests {
     #[test]
     fn no_change_gives_no_curve() {
         assert!(fit(&Disk::from_values(20, vec![0.0; 190]).unwrap()).is_empty());
+    }
+
+    #[test]
+    fn the_free_fit_finds_a_radial_ridge() {
+        // A diff disk whose change runs along the radial line at 1 rad.
+        let n = 40;
+        let values = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                (-(crate::angle::wrap_pi(position(n, i, j).angle - 1.0) * 8.0).powi(2)).exp()
+            })
+            .collect();
+        let g = Disk::from_values(n, values).unwrap();
+        let params = crate::fold::Params::default();
+        let curves =
+            fit_curves(&g, &crate::fold::loss::RingTables::new(&g, &params.curves), &params);
+        assert!(crate::angle::distance(curves[0].rim, 1.0) < crate::angle::edge(n));
+    }
+
+    #[test]
+    fn each_fold_point_gets_the_radial_curve_ending_there() {
+        // A diff disk whose change runs along the radial lines at 1 rad and 4 rad.
+        let n = 40;
+        let ridge =
+            |angle: f64, at: f64| (-(crate::angle::wrap_pi(angle - at) * 8.0).powi(2)).exp();
+        let values = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| position(n, i, j).angle))
+            .map(|angle| ridge(angle, 1.0) + ridge(angle, 4.0))
+            .collect();
+        let g = Disk::from_values(n, values).unwrap();
+        let tables = RingTables::new(&g, &crate::fold::params::CurveParams::default());
+        let curves = curves_through(&tables, n, crate::geometry::Fold::new(1.0, 4.0));
+        // Each fold point gets the radial curve ending there.
+        assert_eq!(curves.iter().map(|c| c.rim).collect::<Vec<_>>(), vec![1.0, 4.0]);
+        assert!(curves.iter().all(|c| c.a1.abs() < 0.1 && c.loss < 0.0));
     }
 }

@@ -10,9 +10,9 @@
 //! folded side, near 0 on the other. Straight sides carry signal through every pair across
 //! them, not only through corners.
 //!
-//! Tie-break, when the two arcs flip alike (within [`DetectParams::tie_share`]) or carry no signal: the
-//! arc with fewer vertices is the folded one (a cloth is folded smaller part over larger),
-//! and for equal arcs the one that starts at the smaller angle.
+//! Tie-break, when the two arcs flip alike (within [`DetectParams::tie_share`]) or carry no signal:
+//! the arc with fewer vertices is the folded one (a cloth is folded smaller part over larger), and
+//! for equal arcs the one that starts at the smaller angle.
 
 use super::params::DetectParams;
 use crate::angle::wrap_tau;
@@ -56,25 +56,6 @@ fn flip_score(start: &Disk, end: &Disk, edges: &[usize]) -> f64 {
 }
 
 /// Order the fold points `(p, q)` so that the folded side runs anticlockwise from the first.
-///
-/// ```
-/// use close_core::border::Point;
-/// use close_core::disk::Disk;
-/// use close_core::fold::orientation::orient;
-/// // A square of 16 vertices; the arc from vertex 2 to vertex 10 (its right half) folded.
-/// let square: Vec<Point> = (0..16).map(|k| {
-///     let t = (k % 4) as f64 / 4.0;
-///     let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / 4];
-///     Point::new(x, y, 0.0)
-/// }).collect();
-/// let end: Vec<Point> = square.iter().map(|p| if p.x > 0.5 { Point::new(1.0 - p.x, p.y, 0.02) } else { *p }).collect();
-/// let (p, q) = (close_core::angle::param_to_angle(10.0, 16), close_core::angle::param_to_angle(2.0, 16));
-/// // Given the wrong way round, the points are swapped.
-/// let params = close_core::fold::params::DetectParams::default();
-/// let (fold, how) = orient(&Disk::of_border(&square), &Disk::of_border(&end), p, q, &params);
-/// assert_eq!(fold, close_core::geometry::Fold::new(q, p));
-/// assert!(how.swapped && !how.tie_break);
-/// ```
 pub fn orient(
     start: &Disk,
     end: &Disk,
@@ -153,5 +134,28 @@ mod tests {
     #[test]
     fn edges_inside_an_arc_through_zero() {
         assert_eq!(edges_inside(8, param_to_angle(6.5, 8), param_to_angle(1.5, 8)), vec![0, 7]);
+    }
+
+    #[test]
+    fn points_given_the_wrong_way_round_are_swapped() {
+        // A square of 16 vertices; the arc from vertex 2 to vertex 10 (its right half) folded.
+        let square: Vec<Point> = (0..16)
+            .map(|k| {
+                let t = (k % 4) as f64 / 4.0;
+                let (x, y) = [(t, 0.0), (1.0, t), (1.0 - t, 1.0), (0.0, 1.0 - t)][k / 4];
+                Point::new(x, y, 0.0)
+            })
+            .collect();
+        let end: Vec<Point> = square
+            .iter()
+            .map(|p| if p.x > 0.5 { Point::new(1.0 - p.x, p.y, 0.02) } else { *p })
+            .collect();
+        let (p, q) =
+            (crate::angle::param_to_angle(10.0, 16), crate::angle::param_to_angle(2.0, 16));
+        // Given the wrong way round, the points are swapped.
+        let params = crate::fold::params::DetectParams::default();
+        let (fold, how) = orient(&Disk::of_border(&square), &Disk::of_border(&end), p, q, &params);
+        assert_eq!(fold, crate::geometry::Fold::new(q, p));
+        assert!(how.swapped && !how.tie_break);
     }
 }

@@ -13,8 +13,8 @@
 //! Each value says where it was measured: a test that fails or a script whose numbers move
 //! when it moves (`tests/it/…` in this repository; `foldeval.py` and `endscheck.py` are the
 //! shared evaluation scripts, whose numbers the CHANGELOG records), or "chosen, not measured".
-//! The paper's own constants (its loss's k1, k2, k3 and τ, [`super::loss`]; its 20 starting
-//! lines, [`super::fit`]) and the dGLI's ε are no knobs: they stay constants of their modules.
+//! The paper's own constants (its loss's k1, k2, k3 and τ, `super::loss`; its 20 starting
+//! lines, `super::fit`) and the dGLI's ε are no knobs: they stay constants of their modules.
 //!
 //! ```
 //! use close_core::fold::Params;
@@ -36,12 +36,12 @@ use crate::error::{Error, Result};
 pub struct Params {
     /// Whether a step has a fold at all, and which side of it turned.
     pub detect: DetectParams,
-    /// The cut points of a sequence ([`super::cut::find_cuts`]).
+    /// The cut points of a sequence (`super::cut::find_cuts`).
     pub cut: CutParams,
-    /// The paper's fold curves ([`super::fit`], [`super::loss`]).
+    /// The paper's fold curves (`super::fit`, `super::loss`).
     pub curves: CurveParams,
     /// The probe, the refinement of one fold and the line search of a stacked start
-    /// ([`super::synth`]).
+    /// (`super::synth`).
     pub synthesis: SynthesisParams,
     /// The beam search of fold sequences ([`super::sequence`]).
     pub sequence: SequenceParams,
@@ -128,7 +128,7 @@ impl Params {
 }
 
 /// Whether a step has a fold, and which side of it turned (the seed of [`super::read`],
-/// [`super::orientation`]).
+/// `super::orientation`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DetectParams {
     /// A diff disk whose largest cell is at most this (dGLI units) has no fold. Default
@@ -140,7 +140,7 @@ pub struct DetectParams {
     /// `tests/it/unseen.rs` (`the_no_fold_threshold_separates_noise_from_noisy_folds`).
     pub max_same_to_cross: f64,
     /// Two arcs' flip scores (shares of their pairs' change of sign) closer than this are a
-    /// tie, which the smaller arc wins ([`super::orientation`]). Default 0.1; chosen, not
+    /// tie, which the smaller arc wins (`super::orientation`). Default 0.1; chosen, not
     /// measured (the built-in set's flip margins are 0.75 and more, `crate::confidence`).
     pub tie_share: f64,
 }
@@ -152,7 +152,7 @@ impl Default for DetectParams {
 }
 
 /// The cut points of a fold sequence: the border split into arcs of least change
-/// ([`super::cut::find_cuts`]).
+/// (`super::cut::find_cuts`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CutParams {
     /// Most grid positions the partition search tries per cut point at first, before each
@@ -177,7 +177,7 @@ impl Default for CutParams {
     }
 }
 
-/// The paper's fold curves ([`super::fit`]) and the tables of its loss ([`super::loss`]).
+/// The paper's fold curves (`super::fit`) and the tables of its loss (`super::loss`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurveParams {
     /// Minima whose rim coordinates lie within this many edges are one curve. Default 4;
@@ -213,7 +213,7 @@ impl Default for CurveParams {
     }
 }
 
-/// Analysis by synthesis of one fold ([`super::synth`]): the probe a synthesised state is
+/// Analysis by synthesis of one fold (`super::synth`): the probe a synthesised state is
 /// compared by, the refinement of a fold's points, the line search of a stacked start.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SynthesisParams {

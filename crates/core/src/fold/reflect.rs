@@ -10,7 +10,7 @@
 //!
 //! ```
 //! use close_core::border::Point;
-//! use close_core::fold::reflect::apply;
+//! use close_core::fold::apply;
 //! use close_core::geometry::{Fold, Folding};
 //! use std::f64::consts::PI;
 //! let square = [Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(0.0, 1.0, 0.0)];

@@ -1,21 +1,21 @@
 //! The one fold a step's disks point to (Kamat, Borràs, Torras, "CloSE", Sec. III-C), which
 //! seeds the search ([`super::read`]).
 //!
-//! One step (start state → end state) is read from the abs diff disk
-//! g = | |end| − |start| |. The paper fits fold curves with its loss ([`super::loss`],
-//! [`fit`]); its free fit is kept as [`FoldMethod::Paper`], and the curves of every fold
-//! found are fitted through its points, for drawing. By default, on a flat start the cut of
-//! least same-side change ([`cut`]) says which edges turned over, to half an edge, the
-//! signed diff Δ = end − start orders its points ([`orientation`]), and analysis by
-//! synthesis on the disks ([`synth`]) places each fold point within its edge. On a stacked
-//! start (an earlier fold) the cut loses its footing and `synth::search_line` tries lines
-//! instead. A step whose diff disk is flat, or whose change has no side to it, has no seed.
+//! One step (start state → end state) is read from the abs diff disk g = | |end| − |start| |. The
+//! paper fits fold curves with its loss ([`super::loss`], [`fit`]); its free fit is kept as
+//! [`FoldMethod::Paper`], and the curves of every fold found are fitted through its points, for
+//! drawing. By default, on a flat start the cut of least same-side change ([`cut`]) says which
+//! edges turned over, to half an edge, the signed diff Δ = end − start orders its points
+//! ([`orientation`]), and analysis by synthesis on the disks ([`synth`]) places each fold point
+//! within its edge. On a stacked start (an earlier fold) the cut loses its footing and the line
+//! search ([`super::line_search`]) tries lines instead. A step whose diff disk is flat, or whose
+//! change has no side to it, has no seed.
 
 use serde::{Deserialize, Serialize};
 
 use super::loss::RingTables;
 use super::params::Params;
-use super::{cut, fit, orientation, synth};
+use super::{cut, fit, line_search, orientation, synth};
 use super::{Curve, Cut, Orientation, Synthesis};
 use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
 use crate::border::Point;
@@ -31,11 +31,11 @@ const FLAT_HEIGHT: f64 = 1e-9;
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum FoldMethod {
-    /// The cut of least same-side change ([`cut`]), placed within its edges by synthesis
-    /// ([`synth`]); a line search on a stacked start.
+    /// The cut of least same-side change (`cut`), placed within its edges by synthesis
+    /// (`synth`); a line search on a stacked start.
     #[default]
     Cut,
-    /// The paper's curves alone: the rims of the two lowest-loss curves ([`fit`]).
+    /// The paper's curves alone: the rims of the two lowest-loss curves (`fit`).
     Paper,
 }
 
@@ -46,15 +46,15 @@ pub enum FoldMethod {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Evidence {
     /// The fold's curves on the diff disk. With [`FoldMethod::Cut`], the paper's curve through
-    /// each fold point ([`fit::curves_through`]); with [`FoldMethod::Paper`], every distinct
-    /// curve of the free fit, lowest loss first ([`fit::fit_curves`]), the first two giving the
+    /// each fold point (`fit::curves_through`); with [`FoldMethod::Paper`], every distinct
+    /// curve of the free fit, lowest loss first (`fit::fit_curves`), the first two giving the
     /// fold.
     pub curves: Vec<Curve>,
     pub cut: Option<Cut>,
     /// How the side was chosen; `None` when the start was stacked (the line search turns a
-    /// known side over, `synth::search_line`) or there is no fold.
+    /// known side over, the line search) or there is no fold.
     pub orientation: Option<Orientation>,
-    /// The placement by synthesis ([`synth`]); its `direction` is set when the fold points
+    /// The placement by synthesis (`synth`); its `direction` is set when the fold points
     /// coincide in the step's start frame and the line's direction came from the disks.
     pub synthesis: Option<Synthesis>,
 }
@@ -195,7 +195,7 @@ fn fold_by_cut(
         let refined = synth::place(before, start, end, &Synthesis::guess(s), synthesis);
         (Some(refined), Some(orientation))
     } else {
-        let refined = synth::search_line(before, start, end, synthesis)
+        let refined = line_search::search_line(before, start, end, synthesis)
             .iter()
             .map(|found| synth::place(before, start, end, found, synthesis))
             .filter(|r| r.mismatch < synthesis.max_mismatch_share * r.unfolded_mismatch)

@@ -6,7 +6,7 @@
 //! [`Stack`] rotates each vertex of its arcs by π about the line, laid `lift` above the
 //! highest vertex: the flap's layers reverse their order and lie above everything else, as
 //! a folded cloth lands. The stack remembers which folds moved each vertex, which the probe
-//! reads (the probe of [`super::synth`]) and the sequence search tells candidates apart by.
+//! reads (the probe of `super::synth`) and the sequence search tells candidates apart by.
 //!
 //! ```
 //! use close_core::border::Point;
@@ -153,7 +153,7 @@ impl Stack {
     }
 
     /// Every vertex counted as moved, so that no pair of edges keeps its start value: a
-    /// state to be probed in full ([`super::synth::Probe::cost_of_state`]).
+    /// state to be probed in full (the probe's `cost_of_state`, [`super::probe`]).
     pub(crate) fn all_moved(mut self) -> Stack {
         self.group.fill(1);
         self
@@ -200,4 +200,83 @@ pub(crate) fn arcs_left_of(before: &[Point], line: &Line) -> Vec<[f64; 2]> {
         arcs.rotate_left(widest);
     }
     arcs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fold::fixtures::{at, square};
+    use crate::geometry::{Point2, Vector2};
+
+    #[test]
+    fn arcs_left_of_a_line_are_where_the_border_crosses_it() {
+        // y = 0.6 rightwards across a unit square of 16 vertices: its left is above; the border
+        // crosses on edge 6 (y 0.5 → 0.75) and edge 13 (0.75 → 0.5).
+        let unit = square(4, 0.5, |_| 0.0)
+            .iter()
+            .map(|p| Point::new(p.x + 0.5, p.y + 0.5, 0.0))
+            .collect::<Vec<_>>();
+        let across = Line { point: Point2::new(0.0, 0.6), direction: Vector2::new(1.0, 0.0) };
+        let arcs = arcs_left_of(&unit, &across);
+        assert_eq!(arcs.len(), 1);
+        assert!((arcs[0][0] - 6.4).abs() < 1e-12 && (arcs[0][1] - 13.6).abs() < 1e-12, "{arcs:?}");
+        // Turned round, the line's left is below: the arc from 13.6 round to 6.4.
+        let below = arcs_left_of(
+            &unit,
+            &Line { point: Point2::new(0.0, 0.6), direction: Vector2::new(-1.0, 0.0) },
+        );
+        assert!(
+            below.len() == 1
+                && (below[0][0] - 13.6).abs() < 1e-12
+                && (below[0][1] - 6.4).abs() < 1e-12,
+            "{below:?}"
+        );
+        // A line that misses the border gives no arc; one that cuts off a single vertex, an arc
+        // of that vertex alone (too small to fold, the candidates' size check leaves it out).
+        assert!(arcs_left_of(
+            &unit,
+            &Line { point: Point2::new(0.0, 2.0), direction: Vector2::new(-1.0, 0.0) }
+        )
+        .is_empty());
+        let h = 0.5f64.sqrt();
+        let corner = arcs_left_of(
+            &unit,
+            &Line { point: Point2::new(0.05, 0.05), direction: Vector2::new(-h, h) },
+        );
+        assert!(
+            corner.len() == 1 && ArcVertices::of(16, corner[0][0], corner[0][1]).vertices().eq([0]),
+            "{corner:?}"
+        );
+
+        // A U (open upwards) crossed by y = 1.5: both prongs, each its own arc.
+        let corners = [
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 2.0],
+            [2.0, 2.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
+        let u: Vec<Point> = (0..corners.len() * 4)
+            .map(|k| {
+                let (a, b, t) =
+                    (corners[k / 4], corners[(k / 4 + 1) % corners.len()], (k % 4) as f64 / 4.0);
+                Point::new(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0)
+            })
+            .collect();
+        let line = Line { point: Point2::new(0.0, 1.5), direction: Vector2::new(1.0, 0.0) };
+        let arcs = arcs_left_of(&u, &line);
+        assert_eq!(arcs.len(), 2, "{arcs:?}");
+        for s in &arcs {
+            // Each end lies on the line, and the arc's vertices above it, the rest below.
+            assert!(s.iter().all(|&e| (at(&u, e).y - 1.5).abs() < 1e-12), "{s:?}");
+            let inside = ArcVertices::of(u.len(), s[0], s[1]);
+            assert!(inside.vertices().all(|v| u[v].y > 1.5));
+            assert!(inside.len >= 2);
+        }
+        let above: usize = arcs.iter().map(|s| ArcVertices::of(u.len(), s[0], s[1]).len).sum();
+        assert_eq!(above, u.iter().filter(|p| p.y > 1.5).count());
+    }
 }
