@@ -123,7 +123,7 @@ pub struct Analysis {
     pub corners: Vec<f64>,
     pub corner_vertices: Vec<usize>,
     pub corner_threshold: f64,
-    /// One [f1, f2] per detected fold, in order.
+    /// One [f1, f2] per detected fold, in order, in [0, 2π) (radians).
     pub folds: Vec<Fold>,
     /// The CloSE value of the end state: the corners and the folds that led to it.
     pub close: Close,

@@ -180,7 +180,9 @@ fn turn(border: &[Point], v: usize, reach: &[(usize, usize)]) -> f64 {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Close {
+    /// Corner angles on the border circle, 2πv/N for corner vertex v (radians, increasing).
     pub corners: Vec<f64>,
+    /// One [f1, f2] per fold, in order, in [0, 2π) (radians).
     pub folds: Vec<Fold>,
 }
 

@@ -182,8 +182,10 @@ impl From<Arc> for [f64; 2] {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct Line {
+    /// A point of the line, [x, y] (in the coordinates of the border it lies on).
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 2]"))]
     pub point: Point2,
+    /// Its direction, [dx, dy]: a unit vector (no angle).
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 2]"))]
     pub direction: Vector2,
 }
@@ -223,9 +225,10 @@ impl Line {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Folding {
-    /// The fold; for several arcs, the pair that spans them.
+    /// The fold (f1, f2) in [0, 2π) (radians); for several arcs, the pair that spans them.
     pub fold: Fold,
-    /// The arcs turned over, in walking order from f1: `[fold.arc()]` for an ordinary fold.
+    /// The arcs turned over, each [a, b] in [0, 2π) (radians), in walking order from f1:
+    /// `[fold.arc()]` for an ordinary fold.
     pub arcs: Vec<Arc>,
     /// The line the arcs turn over; `None`: through the border points at f1 and f2 of the
     /// state the fold is applied to ([`Fold::line_on`]).

@@ -96,11 +96,12 @@ impl Motion {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Interpolation {
-    /// Each state's fold: the fold on the circle, or for a turned fold the pair that spans
-    /// its arcs (the first arc's start, the last arc's end), the same in every state.
+    /// Each state's fold (f1, f2) in [0, 2π) (radians): the fold on the circle, or for a
+    /// turned fold the pair that spans its arcs (the first arc's start, the last arc's end),
+    /// the same in every state.
     pub folds: Vec<Fold>,
     /// For a turned fold, how far each state is turned (0 as given, 1 folded over), as a
-    /// fraction of a half turn.
+    /// fraction of a half turn (of π radians).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub turns: Option<Vec<f64>>,
     /// For a turned fold, the line its arcs turn about (XY: a point and a unit direction).

@@ -60,7 +60,8 @@ pub struct Pick {
     /// Border vertex index ([`plan_for`] maps it to the input's index through
     /// `border_indices`).
     pub vertex: usize,
-    /// Where the grasped point sits on the border, as an angle (2πv/N, border order).
+    /// Where the grasped point sits on the border, as an angle: 2πv/N, border order
+    /// (radians).
     pub angle: f64,
     pub from: [f64; 3],
     pub to: [f64; 3],
@@ -120,7 +121,7 @@ impl Case {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct PlanStep {
     pub action: Action,
-    /// The fold (f1, f2) in angles.
+    /// The fold (f1, f2) in [0, 2π) (radians).
     pub fold: Fold,
     /// 1-based numbers of every corner the step moves (corner k is the k-th corner in
     /// border order, `corners[k - 1]` of the analysis).
@@ -491,11 +492,13 @@ pub fn plan_for(analysis: &Analysis, goal: &[Fold]) -> Result<Plan> {
 pub struct Answer {
     pub case: Case,
     pub steps: Vec<PlanStep>,
-    /// The goal folds in order, in [0, 2π), as the plan's steps.
+    /// The goal folds in order, in [0, 2π) (radians), as the plan's steps.
     pub goal: Vec<Fold>,
+    /// The start state's folds, in order, in [0, 2π) (radians).
     pub folds: Vec<Fold>,
     /// The line each current fold was made along (as the analysis's `steps[k].line`).
     pub lines: Vec<Option<Line>>,
+    /// The start state's corner angles, 2πv/N for corner vertex v (radians, increasing).
     pub corners: Vec<f64>,
     pub start_border: Vec<[f64; 3]>,
     pub border_indices: Vec<usize>,

@@ -112,11 +112,11 @@ pub enum Status {
 /// One goal fold against the observed state.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GoalFold {
-    /// The goal fold, in [0, 2π).
+    /// The goal fold, in [0, 2π) (radians).
     pub goal: [f64; 2],
     pub status: Status,
     /// The observed fold matched to it: its 0-based index among the observed folds, and
-    /// the fold; `None` when missing.
+    /// the fold, in [0, 2π) (radians); `None` when missing.
     pub observed: Option<usize>,
     pub fold: Option<[f64; 2]>,
     /// Observed − goal at each point, in edges (anticlockwise positive).
@@ -135,6 +135,7 @@ pub struct GoalFold {
 pub struct ExtraFold {
     /// 0-based index among the observed folds.
     pub observed: usize,
+    /// The fold, in [0, 2π) (radians).
     pub fold: [f64; 2],
     /// What it costs in the distance: the share of the border it folds over.
     pub share: f64,
@@ -155,7 +156,7 @@ pub struct Verification {
     pub plan: Option<Plan>,
     /// Border vertex count: an edge is 2π/N.
     pub n: usize,
-    /// The goal's folds and the observed ones, in [0, 2π).
+    /// The goal's folds and the observed ones, in [0, 2π) (radians).
     pub goal: Vec<[f64; 2]>,
     pub observed: Vec<[f64; 2]>,
     /// The goal's predicted state: the start border with the goal's folds made in turn

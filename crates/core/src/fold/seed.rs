@@ -67,12 +67,12 @@ pub struct Evidence {
 pub struct FoldDetection {
     /// (f1, f2) in [0, 2π), the folded side anticlockwise from f1: the step's first fold,
     /// `None` without a fold. For a fold of several arcs, the pair that spans them (the first
-    /// point of the first arc, the last point of the last).
+    /// point of the first arc, the last point of the last). In radians.
     pub fold: Option<Fold>,
     /// The arcs the first fold turned over, each [a, b] in [0, 2π) folded anticlockwise from
     /// a to b, in walking order from f1: `[fold]` when the fold line crosses the border
     /// twice, k arcs when it crosses 2k times (our extension of CloSE: a *multi-arc fold*).
-    /// Empty without a fold.
+    /// Empty without a fold. In radians.
     pub arcs: Vec<Arc>,
     /// [`Evidence::curves`].
     pub curves: Vec<Curve>,

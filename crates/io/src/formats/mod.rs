@@ -182,6 +182,7 @@ fn read_checked(path: &Path, listed: Option<Option<FileId>>) -> Result<Vec<u8>> 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Truth {
+    /// The known folds, each (f1, f2) in [0, 2π) (radians).
     #[serde(default, deserialize_with = "json::truth_folds")]
     pub folds: Vec<Fold>,
     #[serde(
