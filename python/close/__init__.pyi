@@ -315,9 +315,17 @@ class SampleResultDict(TypedDict):
     dropped: NotRequired[str]
     steps: List[StepResultDict]
 
+class UnitsDict(TypedDict):
+    """A report's units (schema/evaluation.json#/$defs/Units): angles "rad", lengths
+    "normalised" (the start border's)."""
+
+    angle: Literal["rad"]
+    length: Literal["normalised"]
+
 class EvaluationDict(TypedDict):
     """What `close eval --json` prints (schema/evaluation.json)."""
 
+    units: UnitsDict
     categories: List[SummaryDict]
     overall: SummaryDict
     samples: List[SampleResultDict]

@@ -86,6 +86,8 @@ def test_evaluate_states_its_units_and_keeps_them():
     folder = FIXTURES / "physics"
     report = close.evaluate(folder)
     overall = report["overall"]
+    # The report says its units: every angle in radians, every length normalised.
+    assert report["units"] == {"angle": "rad", "length": "normalised"}
     rows = [r for r in report["samples"] if r.get("angle_error")]
     assert rows, "the physics fixtures have truth"
     # f1_error is in radians in the JSON: its mean is the mean of the rows' radian errors.

@@ -271,6 +271,174 @@ fn the_clis_answers_fit_their_schemas() {
         "tests/fixtures/vrfolding/vr_simulation_folding2_dataset.zarr",
     ]);
     assert_fits("evaluation", &eval, "close eval --json");
+    // Its units said in it (issue 45): the field names stay `f1_error`, `rmse`.
+    assert_eq!(eval["units"], json!({"angle": "rad", "length": "normalised"}));
+    let table = Command::new(env!("CARGO_BIN_EXE_close"))
+        .current_dir(root())
+        .args(["eval", "tests/fixtures/physics"])
+        .output()
+        .expect("run close");
+    let table = String::from_utf8_lossy(&table.stdout);
+    let header = table.lines().next().unwrap_or_default();
+    assert!(header.contains("f1 err°") && header.contains("f2 err°"), "{table}");
+}
+
+/// Words of a field's name that make it an angle: the fold coordinates (f1, f2, a fold, its
+/// arcs, a goal), corners on the border circle, a curve's rim and coefficients, turns, and
+/// directions (which may be angles or vectors: they must say which).
+const ANGLE_NAMES: &[&str] = &[
+    "angle",
+    "angles",
+    "theta",
+    "fold",
+    "folds",
+    "f1",
+    "f2",
+    "arcs",
+    "corners",
+    "rim",
+    "goal",
+    "turns",
+    "a0",
+    "a1",
+    "direction",
+];
+/// Words of a description that make a field an angle, whatever its name.
+const ANGLE_WORDS: &[&str] = &["angle", "angular", "2π", "θ", "theta", "radian", "degree"];
+/// Endings of a name that say the field's unit (the contract's rule: another unit is named
+/// in the field's name).
+const UNIT_ENDINGS: &[&str] = &["_percent", "_edges", "_deg", "_degrees"];
+/// What a description says of a field with an angle's name that is no angle.
+const NOT_ANGLES: &[&str] = &["border parameters", "unit vector"];
+
+/// Whether `schema` holds floating-point numbers: a number, an array of them (at any depth),
+/// either of those or null, or a statistic of them (an object of numbers: `{mean, var}`).
+fn holds_floats(root: &Value, schema: &Value) -> bool {
+    let schema = resolve(root, schema);
+    let kinds: Vec<&str> = match schema.get("type") {
+        Some(Value::String(k)) => vec![k.as_str()],
+        Some(Value::Array(ks)) => ks.iter().filter_map(Value::as_str).collect(),
+        _ => Vec::new(),
+    };
+    let items = schema.get("prefixItems").and_then(Value::as_array).into_iter().flatten();
+    (kinds.contains(&"number"))
+        || (kinds.contains(&"array")
+            && items.chain(schema.get("items")).any(|i| holds_floats(root, i)))
+        || ["anyOf", "oneOf"].iter().any(|k| {
+            schema
+                .get(*k)
+                .and_then(Value::as_array)
+                .is_some_and(|bs| bs.iter().any(|b| holds_floats(root, b)))
+        })
+        || (kinds.contains(&"object")
+            && schema.get("properties").and_then(Value::as_object).is_some_and(|ps| {
+                !ps.is_empty() && ps.values().all(|p| p.get("type") == Some(&json!("number")))
+            }))
+}
+
+/// Whether a description says an angle's unit: radians (or `rad`), degrees or °.
+fn says_angle_unit(description: &str) -> bool {
+    let text = description.to_lowercase();
+    text.contains("radian")
+        || text.contains("degree")
+        || text.contains('°')
+        || text.split(|c: char| !c.is_alphanumeric()).any(|w| w == "rad")
+}
+
+/// The fields of schema `root` (named `file`) that hold angles: each as
+/// (`file Definition.field`, whether it says its unit).
+fn angle_fields(file: &str, root: &Value) -> Vec<(String, bool)> {
+    let definitions = root.get("$defs").and_then(Value::as_object).into_iter().flatten();
+    let mut found = Vec::new();
+    for (definition, node) in std::iter::once((&"root".to_string(), root)).chain(definitions) {
+        let properties = node.get("properties").and_then(Value::as_object).into_iter().flatten();
+        for (name, property) in properties {
+            if !holds_floats(root, property) {
+                continue;
+            }
+            let description = property.get("description").and_then(Value::as_str).unwrap_or("");
+            let lower = description.to_lowercase();
+            let by_name = name.split('_').any(|w| ANGLE_NAMES.contains(&w));
+            let by_words = ANGLE_WORDS.iter().any(|w| lower.contains(w));
+            if !(by_name || by_words) || UNIT_ENDINGS.iter().any(|e| name.ends_with(e)) {
+                continue;
+            }
+            let said = says_angle_unit(description) || NOT_ANGLES.iter().any(|w| lower.contains(w));
+            found.push((format!("{file} {definition}.{name}: {description:?}"), said));
+        }
+    }
+    found
+}
+
+/// Issue 45: every angle of every answer is in radians, and its schema says so in the field's
+/// description (or the field names another unit in its name, or says it is no angle).
+#[test]
+fn every_angle_field_says_its_unit() {
+    let mut fields = Vec::new();
+    for (name, _) in SCHEMAS {
+        fields.extend(angle_fields(name, &schema(name)));
+    }
+    let silent: Vec<&str> = fields.iter().filter(|f| !f.1).map(|f| f.0.as_str()).collect();
+    assert!(
+        silent.is_empty(),
+        "angle fields whose description says no unit (write '(radians)' in the field's doc comment):\n{}",
+        silent.join("\n")
+    );
+    // The check sees the angles it is for.
+    for known in [
+        "evaluation Summary.f1_error",
+        "evaluation FoldSummary.f2_error",
+        "evaluation SampleResult.angle_error",
+        "analysis root.corners",
+        "analysis root.folds",
+        "analysis Step.fold",
+        "analysis Curve.a0",
+        "plan root.goal",
+        "plan Pick.angle",
+        "interpolation root.folds",
+        "sample Truth.folds",
+    ] {
+        assert!(
+            fields.iter().any(|f| f.0.starts_with(&format!("{known}:"))),
+            "{known} is not seen as an angle: {fields:#?}"
+        );
+    }
+}
+
+#[test]
+fn the_angle_check_finds_an_angle_without_its_unit() {
+    let root = json!({
+        "type": "object",
+        "properties": {
+            "fold": {"type": "array", "prefixItems": [{"type": "number"}, {"type": "number"}]},
+            "corners": {"type": "array", "items": {"type": "number"}, "description": "Corner angles (radians)."},
+            "folded_percent": {"type": "number"},
+            "folded_corners": {"type": "array", "items": {"type": "integer"}},
+            "mean_error": {"$ref": "#/$defs/Stat", "description": "Its angular error."},
+            "explained": {"type": "number", "description": "Share of the mismatch its folds explain."},
+            "line": {"$ref": "#/$defs/Line"},
+        },
+        "$defs": {
+            "Stat": {"type": "object", "properties": {"mean": {"type": "number"}, "var": {"type": "number"}}},
+            "Line": {"type": "object", "properties": {
+                "point": {"type": "array", "items": {"type": "number"}},
+                "direction": {"type": ["array", "null"], "items": {"type": "number"}, "description": "A unit vector."},
+            }},
+        },
+    });
+    let found = angle_fields("t", &root);
+    let names: Vec<(&str, bool)> =
+        found.iter().map(|(f, said)| (f.split(':').next().unwrap(), *said)).collect();
+    assert_eq!(
+        names,
+        [
+            ("t root.fold", false),
+            ("t root.corners", true),
+            ("t root.mean_error", false),
+            ("t Line.direction", true)
+        ],
+        "{found:#?}"
+    );
 }
 
 async fn request(app: &axum::Router, method: &str, uri: &str, body: Option<&Value>) -> Value {

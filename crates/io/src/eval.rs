@@ -8,6 +8,10 @@
 //! VR-Folding rows of Table I), and a fold that could not be scored (a broken mesh) is
 //! counted as dropped ([`SampleResult::dropped`]), apart from the errors; [`evaluate_video`]
 //! gives those rows for a video of a VR-Folding store.
+//!
+//! Units ([`Units`], in every report): angles in radians (the text table prints degrees and
+//! says so, °), lengths in the START border's normalised units
+//! ([`close_core::metrics`]: centroid at the origin, farthest vertex at distance 1).
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -33,15 +37,17 @@ pub struct SampleResult {
     pub folds: usize,
     /// Folds the sample should have (truth, else one per step).
     pub expected_folds: usize,
+    /// XY RMSE of the predicted end border against the true one (normalised units).
     pub rmse: Option<f64>,
+    /// Discrete Fréchet distance of the same (normalised units).
     pub frechet: Option<f64>,
     /// The RMSE once the prediction is moved rigidly onto the truth
     /// ([`close_core::metrics::aligned_rmse_xy`]): what is left when the cloth's slide across
-    /// the table, which the disks cannot see, is taken out. Absent from rows scored before
-    /// it was measured.
+    /// the table, which the disks cannot see, is taken out (normalised units). Absent from
+    /// rows scored before it was measured.
     #[serde(default)]
     pub aligned_rmse: Option<f64>,
-    /// Angular error of f1 and f2 against the true first fold, radians.
+    /// Angular error of f1 and f2 against the true first fold (radians).
     pub angle_error: Option<[f64; 2]>,
     pub error: Option<String>,
     /// Why the sample was left out of the scores (e.g. a broken mesh), when it was.
@@ -56,12 +62,14 @@ pub struct SampleResult {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct StepResult {
     pub fold_found: bool,
+    /// As [`SampleResult::rmse`], for this step's end (normalised units).
     pub rmse: f64,
+    /// As [`SampleResult::frechet`] (normalised units).
     pub frechet: f64,
-    /// As [`SampleResult::aligned_rmse`].
+    /// As [`SampleResult::aligned_rmse`] (normalised units).
     #[serde(default)]
     pub aligned_rmse: Option<f64>,
-    /// Against the step's true fold, when known.
+    /// Angular error of f1 and f2 against the step's true fold, when known (radians).
     pub angle_error: Option<[f64; 2]>,
 }
 
@@ -93,7 +101,8 @@ impl SampleResult {
     }
 }
 
-/// Mean and population variance.
+/// Mean and population variance, in the unit of what they are of (the variance in its
+/// square).
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Stat {
@@ -118,9 +127,11 @@ impl Stat {
 pub struct Summary {
     pub category: String,
     pub count: usize,
+    /// Of [`SampleResult::rmse`] (normalised units).
     pub rmse: Option<Stat>,
+    /// Of [`SampleResult::frechet`] (normalised units).
     pub frechet: Option<Stat>,
-    /// As [`SampleResult::aligned_rmse`].
+    /// Of [`SampleResult::aligned_rmse`] (normalised units).
     #[serde(default)]
     pub aligned_rmse: Option<Stat>,
     /// Samples whose fold count differs from what they should have.
@@ -128,7 +139,10 @@ pub struct Summary {
     pub errors: usize,
     /// Samples left out of the scores (not in `count`), e.g. folds with a broken mesh.
     pub dropped: usize,
+    /// Of the error of f1 ([`SampleResult::angle_error`]): radians (its variance in
+    /// radians²).
     pub f1_error: Option<Stat>,
+    /// Of the error of f2: radians (its variance in radians²).
     pub f2_error: Option<Stat>,
     /// For categories with multi-step samples: fold 1, fold 2, … scored apart.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -142,12 +156,17 @@ pub struct FoldSummary {
     pub fold: usize,
     pub count: usize,
     pub found: usize,
+    /// Of [`StepResult::rmse`] (normalised units).
     pub rmse: Option<Stat>,
+    /// Of [`StepResult::frechet`] (normalised units).
     pub frechet: Option<Stat>,
-    /// As [`SampleResult::aligned_rmse`].
+    /// Of [`StepResult::aligned_rmse`] (normalised units).
     #[serde(default)]
     pub aligned_rmse: Option<Stat>,
+    /// Of the error of this fold's f1 ([`StepResult::angle_error`]): radians (its variance
+    /// in radians²).
     pub f1_error: Option<Stat>,
+    /// Of the error of its f2: radians (its variance in radians²).
     pub f2_error: Option<Stat>,
 }
 
@@ -155,9 +174,42 @@ pub struct FoldSummary {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Report {
+    /// The units of its numbers.
+    #[serde(default)]
+    pub units: Units,
     pub categories: Vec<Summary>,
     pub overall: Summary,
     pub samples: Vec<SampleResult>,
+}
+
+/// The units of a report's numbers, said in the report itself so that its field names need
+/// not (`f1_error` is read by people): the same in every report.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Units {
+    pub angle: AngleUnit,
+    pub length: LengthUnit,
+}
+
+/// The unit of every angle of a report.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub enum AngleUnit {
+    /// Radians.
+    #[default]
+    #[serde(rename = "rad")]
+    Radian,
+}
+
+/// The unit of every length of a report (RMSE, Fréchet distance).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub enum LengthUnit {
+    /// The START border's normalised units: centroid at the origin, farthest vertex at
+    /// distance 1 ([`close_core::metrics`]).
+    #[default]
+    #[serde(rename = "normalised")]
+    Normalised,
 }
 
 /// Evaluate one sample with the default fold method.
@@ -376,7 +428,7 @@ pub fn report(samples: Vec<SampleResult>) -> Report {
     }
     let categories = by_category.iter().map(|(c, rs)| summarise(c, rs)).collect();
     let overall = summarise("overall", &samples.iter().collect::<Vec<_>>());
-    Report { categories, overall, samples }
+    Report { units: Units::default(), categories, overall, samples }
 }
 
 impl Report {
@@ -481,6 +533,8 @@ mod tests {
         let b = row("b");
         assert_eq!((b.count, b.dropped), (1, 1));
         assert_eq!(row("unreadable").errors, 1);
-        assert!(r.table().contains("overall"));
+        assert!(r.table().contains("overall") && r.table().contains("f1 err°"));
+        let json = serde_json::to_value(&r).unwrap();
+        assert_eq!(json["units"], serde_json::json!({"angle": "rad", "length": "normalised"}));
     }
 }
