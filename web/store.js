@@ -1,7 +1,7 @@
 // The app's one store: a plain state object replaced (never mutated) on every change, and
 // the views that listen to it. Server answers are kept as they came and never edited.
 
-import { analysis } from "./api.js";
+import * as api from "./api.js";
 
 const listeners = new Set();
 
@@ -14,6 +14,8 @@ let state = Object.freeze({
   uploads: [],
   /** What the Interpolate and Plan views work on: {kind: "sample"|"upload", id, name}. */
   cloth: null,
+  /** Uploads the server said it no longer has (their keys): not asked for again. */
+  gone: [],
 });
 
 export const get = () => state;
@@ -37,15 +39,63 @@ export function addUpload(name, result) {
 }
 
 /**
+ * A cloth this server does not have: an upload it no longer keeps, or a sample it does not
+ * list. `detail` is the server's own account, when it gave one.
+ */
+export class Missing extends Error {
+  constructor(cloth, detail = "") {
+    super(cloth.kind === "upload" ? "That upload is no longer on this server: upload it again." : `There is no sample “${cloth.id}” on this server: pick one from the list.`);
+    this.cloth = cloth;
+    this.detail = detail;
+  }
+}
+
+/** Resolves once the sample list came, or failed to. */
+export function listed() {
+  if (state.samples || state.samplesError) return Promise.resolve();
+  return new Promise((resolve) => {
+    const stop = subscribe((now) => {
+      if (now.samples || now.samplesError) {
+        stop();
+        resolve();
+      }
+    });
+  });
+}
+
+/**
  * The analysis of upload `key`: the one this page holds, else the server's (it keeps
- * uploads: a link to one works after a reload).
+ * uploads: a link to one works after a reload). An upload the server said it no longer has
+ * is Missing, and not asked for again.
  */
 export async function upload(key) {
   const held = state.uploads.find((u) => u.key === key);
   if (held) return held.result;
-  const result = await analysis(key);
-  addUpload(result.name || key, result);
-  return result;
+  const cloth = { kind: "upload", id: key };
+  if (state.gone.includes(key)) throw new Missing(cloth);
+  try {
+    const result = await api.analysis(key);
+    addUpload(result.name || key, result);
+    return result;
+  } catch (e) {
+    if (e instanceof api.ApiError && e.status === 404) {
+      set({ gone: [...state.gone, key] });
+      throw new Missing(cloth, e.message);
+    }
+    throw e;
+  }
+}
+
+/**
+ * The answer for `cloth` ({kind, id}): an upload's analysis, or a sample's (on `channel`).
+ * A sample the list does not hold is Missing without a request (the list is waited for;
+ * when it failed, the server is asked).
+ */
+export async function answer(cloth, channel) {
+  if (cloth.kind === "upload") return upload(cloth.id);
+  await listed();
+  if (state.samples && !state.samples.some((s) => s.id === cloth.id)) throw new Missing(cloth);
+  return api.sample(cloth.id, channel);
 }
 
 /** The clothes Interpolate and Plan can use: every sample, then every upload. */

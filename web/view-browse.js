@@ -6,6 +6,7 @@ import * as store from "./store.js";
 import * as router from "./router.js";
 import { el } from "./format.js";
 import { renderResult } from "./result.js";
+import { notice } from "./view-upload.js";
 
 /** Cards drawn per category before a "show more" button. */
 const PAGE = 24;
@@ -164,7 +165,7 @@ export async function open(id, showError, step = null) {
   // On a phone the result sits above the list: bring it into view.
   if (window.matchMedia("(max-width: 900px)").matches) slot.scrollIntoView({ block: "start" });
   try {
-    const result = await api.sample(id);
+    const result = await store.answer({ kind: "sample", id }, "sample");
     if (openId !== id) return;
     const onStep = (k) => router.keep("samples", new URLSearchParams({ step: String(k) }));
     renderResult(slot, result, null, actions, { step, onStep });
@@ -175,6 +176,13 @@ export async function open(id, showError, step = null) {
     if (api.isAbort(e) || openId !== id) return;
     // The old result must not pass for the new one.
     shownId = null;
+    if (e instanceof store.Missing) {
+      // The upload of one's own sample is shown where uploads are.
+      slot.replaceChildren(notice(e, ({ result }) => router.go("upload", null, new URLSearchParams({ key: result.key }))));
+      document.title = router.title("samples");
+      showError("");
+      return;
+    }
     slot.replaceChildren(el("p", { className: "error-inline", textContent: `Sample ${id} could not be shown: ${e.message}` }));
     showError(e.message);
   } finally {

@@ -1,8 +1,9 @@
 // The Compare view: #/compare/{a}/{b}, two cloth states side by side. A state is a sample
 // (by id or by name: its last analysed frame) or `sample@k` (the state after step k; k = 0
 // is the start). Each side has its own title, disk and border; the two disks share one
-// colour scale, and the difference disk A − B (the server's) shows where they differ. A
-// sample folded more than once also gets a frame scrubber: frame k − 1, frame k and the
+// colour scale, and the difference disk A − B (the server's) shows where they differ (two
+// cloths of other vertex counts have none: the view says so, and asks nothing). A sample
+// folded more than once also gets a frame scrubber: frame k − 1, frame k and the
 // state the analysis predicts for frame k (its step k `predicted`), on one colour scale.
 
 import * as api from "./api.js";
@@ -11,6 +12,7 @@ import * as router from "./router.js";
 import { boundsOf, polygon, viewport } from "./draw.js";
 import { el } from "./format.js";
 import { enlarge } from "./result.js";
+import { notice } from "./view-upload.js";
 
 const $ = (sel) => document.querySelector(sel);
 
@@ -23,7 +25,7 @@ export function parseState(text) {
 
 /**
  * The sample a state names: an id, else a name (exactly, then ignoring case). Gives its id,
- * or the name as given when the list does not hold it (the server then says what is wrong).
+ * or the name as given when the list does not hold it (store.answer then says so).
  */
 function sampleId(name) {
   const samples = store.get().samples || [];
@@ -108,8 +110,17 @@ function bordersFigure(a, b) {
   return el("figure", {}, canvas, el("figcaption", { textContent: `Borders: A ${a.name} (blue), B ${b.name} (orange, dashed)` }));
 }
 
-/** The difference disk A − B, from the server: the two states must have one vertex count. */
+/**
+ * The difference disk A − B, from the server. It takes two states of one vertex count: for
+ * two others, what it needs is said in its place, and nothing is asked.
+ */
 async function differenceFigure(a, b, channel) {
+  if (a.border.length !== b.border.length) {
+    const why = `A − B needs two cloths with as many border vertices: ${a.border.length} and ${b.border.length}.`;
+    const figure = el("figure", {}, el("p", { className: "no-picture", textContent: why }));
+    figure.dataset.picture = "no-difference";
+    return figure;
+  }
   const request = { border: a.border, reference: a.reference, minus: { border: b.border, reference: b.reference }, size: 480, title: "A − B: the difference of the two disks" };
   try {
     const { url } = await api.disk(request, `${channel}-difference`);
@@ -172,16 +183,24 @@ export async function shown(ids, showError) {
   document.title = router.title("compare", `${a} vs ${b}`);
   slot.setAttribute("aria-busy", "true");
   try {
-    const [ra, rb] = await Promise.all([api.sample(sampleId(parseState(a).name), "compare-a"), api.sample(sampleId(parseState(b).name), "compare-b")]);
+    // Names are read against the list, and a name it does not hold is not asked for.
+    await store.listed();
+    const [ra, rb] = await Promise.all([a, b].map((text, k) => store.answer({ kind: "sample", id: sampleId(parseState(text).name) }, `compare-${"ab"[k]}`)));
     const [sa, sb] = [stateOf(a, ra, "A"), stateOf(b, rb, "B")];
     const pair = el("div", { className: "images compare-panels" });
-    const parts = [el("p", { className: "muted", textContent: "One colour scale for A and B: the larger of their own scales. The difference A − B has its own." }), pair];
+    const own = sa.border.length === sb.border.length ? " The difference A − B has its own." : "";
+    const parts = [el("p", { className: "muted", textContent: `One colour scale for A and B: the larger of their own scales.${own}` }), pair];
     slot.replaceChildren(...parts);
     await drawShared(pair, [sa, sb], "compare", [() => differenceFigure(sa, sb, "compare"), async () => bordersFigure(sa, sb)]);
     for (const r of [ra, rb].filter((r, k, all) => stepsOf(r) > 1 && all.findIndex((o) => o.id === r.id) === k)) slot.append(scrubber(r));
     showError("");
   } catch (e) {
     if (api.isAbort(e)) return;
+    if (e instanceof store.Missing) {
+      slot.replaceChildren(notice(e));
+      showError("");
+      return;
+    }
     slot.replaceChildren(el("p", { className: "error-inline", textContent: `Could not compare ${a} and ${b}: ${e.message}` }));
     showError(e.message);
   } finally {

@@ -19,6 +19,7 @@ import { boundsOf, drawCloth, labelCorners, line, textSize, viewport } from "./d
 import { fmtFold } from "./format.js";
 import { enlarge } from "./result.js";
 import { markEdges, readable } from "./readout.js";
+import { notice } from "./view-upload.js";
 
 const $ = (sel) => document.querySelector(sel);
 const SEQUENCE = "all";
@@ -144,6 +145,8 @@ class DiskFollower {
 
 const view = {
   cloth: null,
+  /** Why the cloth chosen is not on this server (a store.Missing), or null. */
+  missing: null,
   result: null,
   /** The flat border (the analysis's start border). */
   border: null,
@@ -221,8 +224,36 @@ function fillCloths() {
   const select = $("#interp-sample");
   const cloths = store.cloths();
   const value = view.cloth ? `${view.cloth.kind}:${view.cloth.id}` : select.value;
-  select.replaceChildren(...cloths.map((c) => new Option(c.name, `${c.kind}:${c.id}`)));
+  const options = cloths.map((c) => new Option(c.name, `${c.kind}:${c.id}`));
+  // A cloth the server does not have stays named in the box, as the notice says.
+  if (view.missing && !cloths.some((c) => `${c.kind}:${c.id}` === value)) {
+    options.unshift(Object.assign(new Option(`${view.cloth.kind} ${view.cloth.id} (not on this server)`, value), { disabled: true }));
+  }
+  select.replaceChildren(...options);
   if (value) select.value = value;
+}
+
+/**
+ * Say that the cloth chosen is not on this server (`missing`, a store.Missing), in place of
+ * its motion: nothing of another cloth stays drawn, and no request is made for it. Null:
+ * the notice goes.
+ */
+function setMissing(missing) {
+  view.missing = missing;
+  const stage = $("#view-interpolate .interp-stage");
+  stage.classList.toggle("gone", Boolean(missing));
+  const slot = $("#interp-missing");
+  slot.replaceChildren(...(missing ? [notice(missing, ({ result }) => {
+    store.set({ cloth: { kind: "upload", id: result.key } });
+    shown();
+  })] : []));
+  slot.hidden = !missing;
+  if (!missing) return;
+  Object.assign(view, { result: null, border: null, frame: null, outline: null, corners: [], cornerAngles: [] });
+  $("#interp-step").replaceChildren();
+  $("#interp-readout").textContent = "";
+  $("#interp-motion").textContent = "";
+  fillCloths();
 }
 
 function fillSteps() {
@@ -241,13 +272,9 @@ async function useCloth(cloth, params = null) {
   fillCloths();
   // The previous cloth's messages do not speak of this one.
   $("#fold-input-status").textContent = "";
+  setMissing(null);
   try {
-    let result;
-    if (cloth.kind === "upload") {
-      result = await store.upload(cloth.id);
-    } else {
-      result = await api.sample(cloth.id, "interp-cloth");
-    }
+    const result = await store.answer(cloth, "interp-cloth");
     if (view.cloth !== cloth) return;
     view.result = result;
     view.border = result.start_border;
@@ -260,7 +287,9 @@ async function useCloth(cloth, params = null) {
     // Only while the view is on screen: Back may have left it during the load.
     if (!$("#view-interpolate").hidden) document.title = router.title("interpolate", $("#interp-sample").selectedOptions[0]?.textContent || "");
   } catch (e) {
-    if (!api.isAbort(e)) showError(e.message);
+    if (view.cloth !== cloth) return;
+    if (e instanceof store.Missing) setMissing(e);
+    else if (!api.isAbort(e)) showError(e.message);
   }
 }
 

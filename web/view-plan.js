@@ -7,6 +7,7 @@ import * as router from "./router.js";
 import { AngleInputs, R, TAU, dragOnCircle, drawFoldCircle, wrap } from "./circle.js";
 import { boundsOf, bowedArrow, drawCloth, labelCorners, line, polygon, textSize, viewport } from "./draw.js";
 import { el, fmtDeg, fmtPoint } from "./format.js";
+import { notice } from "./view-upload.js";
 
 const $ = (sel) => document.querySelector(sel);
 const ACTIONS = { fold: "Fold", unfold: "Unfold" };
@@ -18,7 +19,7 @@ const CASES = {
 };
 let showError = () => {};
 
-const view = { cloth: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], cornerVertices: [], name: "", flat: null };
+const view = { cloth: null, missing: null, goal: [Math.PI / 4, (5 * Math.PI) / 4], folds: [], corners: [], cornerVertices: [], name: "", flat: null };
 let inputs = null;
 
 /** "a", "a and b", "a, b and c". */
@@ -70,9 +71,39 @@ function halfGoal(corners, n) {
 
 function fillCloths() {
   const select = $("#plan-sample");
+  const cloths = store.cloths();
   const value = view.cloth ? `${view.cloth.kind}:${view.cloth.id}` : select.value;
-  select.replaceChildren(...store.cloths().map((c) => new Option(c.name, `${c.kind}:${c.id}`)));
+  const options = cloths.map((c) => new Option(c.name, `${c.kind}:${c.id}`));
+  // A cloth the server does not have stays named in the box, as the notice says.
+  if (view.missing && !cloths.some((c) => `${c.kind}:${c.id}` === value)) {
+    options.unshift(Object.assign(new Option(`${view.cloth.kind} ${view.cloth.id} (not on this server)`, value), { disabled: true }));
+  }
+  select.replaceChildren(...options);
   if (value) select.value = value;
+}
+
+/**
+ * Say that the cloth chosen is not on this server (`missing`, a store.Missing) in place of
+ * its plan, and plan nothing for it; null: the notice goes.
+ */
+function setMissing(missing) {
+  view.missing = missing;
+  const slot = $("#plan-missing");
+  slot.replaceChildren(...(missing ? [notice(missing, ({ result }) => {
+    const cloth = { kind: "upload", id: result.key };
+    store.set({ cloth });
+    load(cloth, true);
+  })] : []));
+  slot.hidden = !missing;
+  $("#plan-run").disabled = Boolean(missing);
+  if (!missing) return;
+  Object.assign(view, { folds: [], corners: [], cornerVertices: [], flat: null, name: "" });
+  for (const id of ["#plan-now", "#plan-case", "#plan-preview-note"]) $(id).textContent = "";
+  $("#plan-list").replaceChildren();
+  $("#plan-json").hidden = true;
+  $("#plan-preview").getContext("2d").clearRect(0, 0, $("#plan-preview").width, $("#plan-preview").height);
+  fillCloths();
+  drawCircle();
 }
 
 /** The view's state as URL parameters: the cloth and the goal. */
@@ -84,9 +115,10 @@ function keepUrl() {
 /** Load the current state of `cloth`; `takeGoal` starts the goal on a diagonal. */
 async function load(cloth, takeGoal) {
   view.cloth = cloth;
+  setMissing(null);
   fillCloths();
   try {
-    const result = cloth.kind === "upload" ? await store.upload(cloth.id) : await api.sample(cloth.id, "plan-cloth");
+    const result = await store.answer(cloth, "plan-cloth");
     if (view.cloth !== cloth) return;
     view.folds = result.folds;
     view.corners = result.corners;
@@ -103,7 +135,9 @@ async function load(cloth, takeGoal) {
     // Only while the view is on screen: Back may have left it during the load.
     if (!$("#view-plan").hidden) document.title = router.title("plan", view.name);
   } catch (e) {
-    if (!api.isAbort(e)) showError(e.message);
+    if (view.cloth !== cloth) return;
+    if (e instanceof store.Missing) setMissing(e);
+    else if (!api.isAbort(e)) showError(e.message);
   }
 }
 
@@ -164,7 +198,7 @@ async function verdict() {
 
 /** Ask the server for the plan and draw every step. */
 async function plan() {
-  if (!view.cloth) return;
+  if (!view.cloth || view.missing) return;
   const list = $("#plan-list");
   list.setAttribute("aria-busy", "true");
   $("#plan-case").textContent = "Planning…";

@@ -1,8 +1,11 @@
-// The Upload view: files in, one analysis out, named by the files' names everywhere.
+// The Upload view: files in, one analysis out, named by the files' names everywhere. And
+// the notice the other views give of a cloth this server does not have, whose upload
+// control brings one as this view does.
 
 import * as api from "./api.js";
 import * as store from "./store.js";
 import * as router from "./router.js";
+import { el } from "./format.js";
 import { renderResult } from "./result.js";
 
 const $ = (sel) => document.querySelector(sel);
@@ -21,22 +24,69 @@ export function nameFrames(message, files) {
   return message.replace(/\bframe (\d+)\b/g, (text, k) => (files[Number(k)] ? `${text} (${files[Number(k)].name})` : text));
 }
 
-async function upload(fileList) {
-  const status = $("#upload-status");
-  const slot = $("#upload-result");
-  // Frames go in file-name order, numbers compared as numbers (frame2 before frame10).
-  const files = [...fileList].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
-  if (files.length === 0) return;
+/** Frames in file-name order, numbers compared as numbers (frame2 before frame10). */
+export const inOrder = (fileList) => [...fileList].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
+
+/**
+ * Analyse one sample made of `files` (in order) and keep it in the store: {result, name}.
+ * A failure's message names the files its frames came from.
+ */
+export async function analyse(files) {
   // The server reads every kind from "sample" files, by their names' extensions.
   const form = new FormData();
   for (const f of files) form.append("sample", f, f.name);
-  status.textContent = `Analysing ${files.map((f) => f.name).join(" → ")}…`;
-  slot.setAttribute("aria-busy", "true");
-  slot.classList.add("loading");
   try {
     const result = await api.analyze(form);
     const name = uploadName(files);
     store.addUpload(name, result);
+    return { result, name };
+  } catch (e) {
+    if (!api.isAbort(e)) e.message = nameFrames(e.message, files);
+    throw e;
+  }
+}
+
+/**
+ * The notice of `missing` (a store.Missing: an upload the server no longer keeps, a sample
+ * it does not list), to stay on screen where the cloth would be. With `onUpload`, it holds
+ * an upload control: the files chosen are analysed as this view does, and
+ * `onUpload({result, name})` goes on with them (a failure is said in the notice).
+ */
+export function notice(missing, onUpload = null) {
+  const box = el("div", { className: "missing card", role: "alert" });
+  box.dataset.cloth = `${missing.cloth.kind}:${missing.cloth.id}`;
+  box.append(el("p", { className: "missing-text", textContent: missing.message }));
+  if (missing.detail) box.append(el("p", { className: "muted small", textContent: missing.detail }));
+  if (!onUpload) return box;
+  const input = el("input", { type: "file", multiple: true, accept: $("#upload-input").accept });
+  const status = el("p", { className: "small", role: "status" });
+  input.addEventListener("change", async () => {
+    const files = inOrder(input.files);
+    if (!files.length) return;
+    status.textContent = `Analysing ${files.map((f) => f.name).join(" → ")}…`;
+    try {
+      const uploaded = await analyse(files);
+      status.textContent = "";
+      onUpload(uploaded);
+    } catch (e) {
+      if (!api.isAbort(e)) status.textContent = `Could not analyse it: ${e.message}`;
+    }
+  });
+  const ask = missing.cloth.kind === "upload" ? "Upload it again: " : "Or upload your own: ";
+  box.append(el("label", { className: "block-label" }, el("strong", { textContent: ask }), input), status);
+  return box;
+}
+
+async function upload(fileList) {
+  const status = $("#upload-status");
+  const slot = $("#upload-result");
+  const files = inOrder(fileList);
+  if (files.length === 0) return;
+  status.textContent = `Analysing ${files.map((f) => f.name).join(" → ")}…`;
+  slot.setAttribute("aria-busy", "true");
+  slot.classList.add("loading");
+  try {
+    const { result, name } = await analyse(files);
     renderResult(slot, result, name, actions, { files: files.map((f) => f.name) });
     shownKey = result.key;
     // The upload's own URL: a reload (or a link) shows it again while the server keeps it.
@@ -50,7 +100,7 @@ async function upload(fileList) {
     status.textContent = "";
     // The previous upload is no longer shown: the title must not name it.
     document.title = router.title("upload");
-    showError(nameFrames(e.message, files));
+    showError(e.message);
   } finally {
     slot.removeAttribute("aria-busy");
     slot.classList.remove("loading");
@@ -101,7 +151,8 @@ export async function shown(params) {
   } catch (e) {
     if (api.isAbort(e)) return;
     status.textContent = "";
-    slot.replaceChildren();
-    showError(e.message);
+    // A gone upload is said where it would be; the control to bring it again is above.
+    slot.replaceChildren(...(e instanceof store.Missing ? [notice(e)] : []));
+    showError(e instanceof store.Missing ? "" : e.message);
   }
 }
