@@ -1,10 +1,12 @@
-//! The README's result tables cannot drift from the code. Each is rendered from a checked-in
-//! `close eval --json` snapshot (`tests/snapshots/`), each snapshot must equal what the
-//! binary prints now, and every table in the README must be one of these renderings.
+//! The documentation cannot drift from the code. Each result table of the README and of
+//! the pages under `docs/` is rendered from a checked-in `close eval --json` snapshot
+//! (`tests/snapshots/`), each snapshot must equal what the binary prints now, and every
+//! table of a results page must be one of these renderings. Every relative link of the
+//! README, `docs/` and the guides at the root must lead to a file (and heading) that exists.
 //!
 //! A change that moves the results on purpose regenerates both, for review in its diff:
 //! `UPDATE_SNAPSHOTS=1 cargo test --test it readme::` writes the snapshots from the binary
-//! and the README's generated regions from the snapshots.
+//! and the pages' generated regions from the snapshots.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -297,7 +299,7 @@ fn fold_loop(name: &str) -> String {
 
 /// The rendering a region's header names: `table NAME`, `methods NAME NAME`, `folds NAME`,
 /// `steps NAME`, `fold_loop NAME`.
-fn render(header: &str) -> String {
+fn render(page: &str, header: &str) -> String {
     let words: Vec<&str> = header.split_whitespace().collect();
     match words.as_slice() {
         ["table", name] => table(name),
@@ -305,13 +307,20 @@ fn render(header: &str) -> String {
         ["folds", name] => folds(name),
         ["steps", name] => steps(name),
         ["fold_loop", name] => fold_loop(name),
-        _ => panic!("README: unknown generated region {header:?}"),
+        _ => panic!("{page}: unknown generated region {header:?}"),
     }
 }
 
-/// The README with every generated region rendered anew, and the regions' line ranges.
-fn regenerate(readme: &str) -> (String, Vec<std::ops::Range<usize>>) {
-    let (mut out, mut regions, mut lines) = (String::new(), Vec::new(), readme.lines().enumerate());
+/// A generated region of a page: its header (`table builtin`) and its lines, from the
+/// opening comment to the closing one.
+struct Region {
+    header: String,
+    lines: std::ops::Range<usize>,
+}
+
+/// The page with every generated region rendered anew, and its regions.
+fn regenerate(page: &str, text: &str) -> (String, Vec<Region>) {
+    let (mut out, mut regions, mut lines) = (String::new(), Vec::new(), text.lines().enumerate());
     while let Some((k, line)) = lines.next() {
         out += line;
         out.push('\n');
@@ -321,50 +330,84 @@ fn regenerate(readme: &str) -> (String, Vec<std::ops::Range<usize>>) {
         let end = lines
             .by_ref()
             .find(|(_, l)| *l == END)
-            .unwrap_or_else(|| panic!("README line {}: {header:?} has no {END}", k + 1))
+            .unwrap_or_else(|| panic!("{page} line {}: {header:?} has no {END}", k + 1))
             .0;
-        out += &render(header);
+        out += &render(page, header);
         out += "\n";
         out += END;
         out.push('\n');
-        regions.push(k..end);
+        regions.push(Region { header: header.to_string(), lines: k..end });
     }
     (out, regions)
 }
 
+/// The heading under which a results page keeps its dated measurements: tables there were
+/// written by hand as measured then, and stay as they were.
+const HISTORY: &str = "## History of measurements";
+
+/// The documentation's pages, relative to the repository: the README, the guides at the
+/// root and every page under `docs/`.
+fn pages() -> Vec<String> {
+    let mut docs: Vec<String> = std::fs::read_dir(root().join("docs"))
+        .expect("docs/")
+        .map(|e| e.expect("docs/ entry").file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".md"))
+        .map(|name| format!("docs/{name}"))
+        .collect();
+    docs.sort();
+    let guides = ["README.md", "ARCHITECTURE.md", "CONTRIBUTING.md", "CHANGELOG.md"];
+    guides.iter().map(|g| g.to_string()).chain(docs).collect()
+}
+
 #[test]
-fn readme_tables_are_rendered_from_the_snapshots() {
+fn results_tables_are_rendered_from_the_snapshots() {
     update_snapshots();
-    let path = root().join("README.md");
-    let mut readme = std::fs::read_to_string(&path).expect("README.md");
-    let (fresh, regions) = regenerate(&readme);
-    if updating() {
-        std::fs::write(&path, &fresh).expect("write README.md");
-        readme.clone_from(&fresh);
+    let mut shown = Vec::new();
+    for page in pages() {
+        let path = root().join(&page);
+        let mut text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{page}: {e}"));
+        let (fresh, regions) = regenerate(&page, &text);
+        // A page without generated regions holds no results (and a guide may hold other
+        // tables); the README is a results page whatever it holds.
+        if regions.is_empty() && page != "README.md" {
+            continue;
+        }
+        if updating() && fresh != text {
+            std::fs::write(&path, &fresh).unwrap_or_else(|e| panic!("write {page}: {e}"));
+            text.clone_from(&fresh);
+        }
+        let stale: Vec<String> = text
+            .lines()
+            .zip(fresh.lines())
+            .enumerate()
+            .filter(|(_, (a, b))| a != b)
+            .map(|(k, (a, b))| format!("{page} line {}: {a:?} should be {b:?}", k + 1))
+            .take(10)
+            .collect();
+        assert!(
+            stale.is_empty() && text == fresh,
+            "{page}: tables differ from the snapshots (UPDATE_SNAPSHOTS=1):\n{}",
+            stale.join("\n")
+        );
+        // Every table above the history is generated: markdown tables and `close eval`'s
+        // text tables alike.
+        let inside = |k: usize| regions.iter().any(|r| r.lines.contains(&k));
+        let loose: BTreeMap<usize, &str> = text
+            .lines()
+            .take_while(|l| *l != HISTORY)
+            .enumerate()
+            .filter(|(k, l)| (l.starts_with('|') || l.starts_with("category ")) && !inside(*k))
+            .map(|(k, l)| (k + 1, l))
+            .collect();
+        assert!(loose.is_empty(), "{page}: tables written by hand: {loose:#?}");
+        shown.extend(regions.into_iter().map(|r| r.header));
     }
-    assert!(regions.len() >= 5, "only {} generated regions", regions.len());
-    let stale: Vec<String> = readme
-        .lines()
-        .zip(fresh.lines())
-        .enumerate()
-        .filter(|(_, (a, b))| a != b)
-        .map(|(k, (a, b))| format!("line {}: {a:?} should be {b:?}", k + 1))
-        .take(10)
+    // Every snapshot is shown somewhere: one left out of the pages would drift unseen.
+    let names = SNAPSHOTS.iter().map(|(name, _)| *name).chain(["fold_loop"]);
+    let unshown: Vec<&str> = names
+        .filter(|name| !shown.iter().any(|h| h.split_whitespace().skip(1).any(|w| w == *name)))
         .collect();
-    assert!(
-        stale.is_empty() && readme == fresh,
-        "README tables differ from the snapshots (UPDATE_SNAPSHOTS=1):\n{}",
-        stale.join("\n")
-    );
-    // Every table is generated: markdown tables and `close eval`'s text tables alike.
-    let inside = |k: usize| regions.iter().any(|r| r.contains(&k));
-    let loose: BTreeMap<usize, &str> = readme
-        .lines()
-        .enumerate()
-        .filter(|(k, l)| (l.starts_with('|') || l.starts_with("category ")) && !inside(*k))
-        .map(|(k, l)| (k + 1, l))
-        .collect();
-    assert!(loose.is_empty(), "README tables written by hand: {loose:#?}");
+    assert!(unshown.is_empty(), "snapshots no page renders: {unshown:?} (regions: {shown:?})");
 }
 
 /// The README's Set-up says how many tests are `#[ignore]`d (they need programs beyond Rust):
@@ -418,4 +461,117 @@ fn upload_view_states_the_limits_applied() {
         thousands(close::border::MAX_FRAMES),
     );
     assert!(page.contains(&stated), "web/index.html should say \"{stated}\"");
+}
+
+/// The page without its code: fenced blocks dropped, inline code spans blanked, so that a
+/// path or a `[x](y)` shown as code is not taken for a link.
+fn prose(markdown: &str) -> String {
+    let mut out = String::new();
+    let mut fenced = false;
+    for line in markdown.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            out.push('\n');
+            continue;
+        }
+        if !fenced {
+            // Odd-numbered pieces between backticks are code.
+            for (k, piece) in line.split('`').enumerate() {
+                if k % 2 == 0 {
+                    out += piece;
+                }
+            }
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The targets of a page's relative links and images (`[text](target)`,
+/// `![alt](target)`): not those with a scheme (`https:`, `mailto:`).
+fn relative_links(markdown: &str) -> Vec<String> {
+    let text = prose(markdown);
+    text.match_indices("](")
+        .filter_map(|(k, _)| {
+            let rest = &text[k + 2..];
+            let target = &rest[..rest.find(')')?];
+            // `(a b)` after a bracket is prose; a target has no spaces (a title is not used).
+            let scheme = target.split_once(':').is_some_and(|(s, _)| !s.contains(['/', '#']));
+            (!target.is_empty() && !target.contains(char::is_whitespace) && !scheme)
+                .then(|| target.to_string())
+        })
+        .collect()
+}
+
+/// The anchors of a page's headings as GitHub makes them: the heading's text in lower case,
+/// without punctuation but `-` and `_`, spaces as `-`, and `-1`, `-2`… after repeats.
+fn anchors(markdown: &str) -> Vec<String> {
+    let mut seen: BTreeMap<String, usize> = BTreeMap::new();
+    let mut out = Vec::new();
+    let mut fenced = false;
+    for line in markdown.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        }
+        let Some(heading) = line.strip_prefix('#').filter(|_| !fenced) else { continue };
+        let heading = heading.trim_start_matches('#').trim();
+        let slug: String = heading
+            .to_lowercase()
+            .chars()
+            .filter(|c| c.is_alphanumeric() || matches!(c, ' ' | '-' | '_'))
+            .map(|c| if c == ' ' { '-' } else { c })
+            .collect();
+        let count = seen.entry(slug.clone()).or_default();
+        out.push(if *count == 0 { slug } else { format!("{slug}-{count}") });
+        *count += 1;
+    }
+    out
+}
+
+#[test]
+fn every_relative_link_of_the_docs_leads_somewhere() {
+    let mut broken = Vec::new();
+    let mut count = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(root().join(&page)).expect("a page");
+        let folder = Path::new(&page).parent().unwrap_or(Path::new(""));
+        for link in relative_links(&text) {
+            count += 1;
+            let (file, anchor) = link.split_once('#').unwrap_or((&link, ""));
+            let target = if file.is_empty() { PathBuf::from(&page) } else { folder.join(file) };
+            let path = root().join(&target);
+            if !path.exists() {
+                broken.push(format!("{page}: ({link}): no {}", target.display()));
+                continue;
+            }
+            if !anchor.is_empty() && path.extension().is_some_and(|e| e == "md") {
+                let heads = anchors(&std::fs::read_to_string(&path).expect("a linked page"));
+                if !heads.iter().any(|h| h == anchor) {
+                    broken.push(format!("{page}: ({link}): no heading #{anchor} in it"));
+                }
+            }
+        }
+    }
+    assert!(count > 50, "only {count} relative links found in {:?}", pages());
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+}
+
+#[test]
+fn the_link_checker_reads_links_outside_code_and_anchors_as_github_does() {
+    let page = "See [a](docs/a.md#units), ![p](x.png) and [web](https://example.org/x).\n\
+                Code: `[not](code.md)` and\n```\n[nor](this.md)\n```\n[mail](mailto:x@y), [b](b.md).";
+    assert_eq!(relative_links(page), ["docs/a.md#units", "x.png", "b.md"]);
+    let headings = "# Results and speed\n## VR-Folding (the paper's Table I)\n```\n# not\n```\n\
+                    ## History of measurements\n### 2026-12-07: a `corpus`, 30 % less\n## Units\n## Units";
+    assert_eq!(
+        anchors(headings),
+        [
+            "results-and-speed",
+            "vr-folding-the-papers-table-i",
+            "history-of-measurements",
+            "2026-12-07-a-corpus-30--less",
+            "units",
+            "units-1"
+        ]
+    );
 }
