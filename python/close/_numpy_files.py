@@ -1,20 +1,23 @@
-"""`.npy` and `.npz` files for `close.load`: numpy's own reader (no pickles), then the same
-`Sample` as from arrays."""
+"""`.npy` and `.npz` files for `close.load`: read by the native reader as every user file
+is, parsed by numpy (no pickles), then the same `Sample` as from arrays."""
 
+import io
 import os
 from typing import Any, List
 
 import numpy as np
 
-from ._close import CloseError, Sample, _check_file
+from ._close import CloseError, Sample, _read_file
 
 SUFFIXES = (".npy", ".npz")
 
 
 def _array(path: str) -> Any:
-    _check_file(path)  # missing: FileNotFoundError; over the readers' byte limit: CloseError
+    # Read as every user file is (a regular file, within the readers' byte cap): missing is
+    # FileNotFoundError, a FIFO or a file over the cap CloseError; numpy parses the bytes.
+    raw = io.BytesIO(_read_file(path))
     try:
-        data = np.load(path, allow_pickle=False)
+        data = np.load(raw, allow_pickle=False)
     except (ValueError, OSError, EOFError) as e:
         raise CloseError(f"{path}: not a readable numpy file: {e}") from None
     if isinstance(data, np.lib.npyio.NpzFile):

@@ -55,7 +55,7 @@ fn _close(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(eval::_builtin, m)?)?;
     m.add_function(wrap_pyfunction!(plan::_plan_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::to_arrays, m)?)?;
-    m.add_function(wrap_pyfunction!(files::_check_file, m)?)?;
+    m.add_function(wrap_pyfunction!(files::_read_file, m)?)?;
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

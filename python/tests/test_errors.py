@@ -1,7 +1,9 @@
 """Every error path: bad data is `close.CloseError` (a ValueError) with the CLI's message, a
-missing file `FileNotFoundError`, the server's limits hold, and a Rust panic is an exception."""
+missing file `FileNotFoundError` (a folder `IsADirectoryError`), a FIFO or a file over the
+readers' cap refused unread, the server's limits hold, and a Rust panic is an exception."""
 
 import json
+import os
 import subprocess
 import sys
 
@@ -69,6 +71,38 @@ def test_a_missing_file_is_file_not_found(tmp_path):
         close.evaluate(missing)
     with pytest.raises(FileNotFoundError):
         close.vrfolding.open(tmp_path / "no_store.zarr")
+
+
+def test_a_fifo_is_refused_at_once_as_the_cli_refuses_it(tmp_path):
+    # No writer ever opens these: a blocking open would never return. The reader opens
+    # non-blocking and refuses what is not a regular file, before reading a byte.
+    for name in ["pipe.json", "pipe.npy"]:
+        fifo = tmp_path / name
+        os.mkfifo(fifo)
+        with pytest.raises(close.CloseError) as err:
+            close.load(fifo)
+        assert str(err.value) == f"{fifo}: not a regular file (a FIFO, device or socket is never read)"
+    assert str(err.value) == cli_error("analyze", fifo)
+
+
+def test_a_file_over_the_readers_cap_is_refused_unread(tmp_path):
+    # Sparse: 64 MiB and one byte long, not one byte on disk.
+    for name in ["large.csv", "large.npy"]:
+        large = tmp_path / name
+        with open(large, "wb") as f:
+            f.truncate(64 * 1024 * 1024 + 1)
+        with pytest.raises(close.CloseError) as err:
+            close.load(large)
+        assert str(err.value).startswith(f"{name}: input too large: 67108865 bytes in one file"), err.value
+    assert str(err.value) == cli_error("analyze", large)
+
+
+def test_a_folder_is_is_a_directory_error(tmp_path):
+    for path in [tmp_path, tmp_path / "frames.npy"]:
+        path.mkdir(exist_ok=True)
+        with pytest.raises(IsADirectoryError) as err:
+            close.load(path)
+        assert err.value.filename == str(path)
 
 
 def test_a_store_is_not_a_sample():

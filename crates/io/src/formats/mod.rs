@@ -9,6 +9,8 @@
 //!   (border edges).
 //!
 //! A mesh sample's border is found by [`crate::mesh::border_of`] and followed by vertex index.
+//!
+//! A file's bytes are read bounded by [`read_file`] (a file a walk listed, [`read_listed`]).
 
 pub mod json;
 pub mod mat;
@@ -16,8 +18,8 @@ pub mod obj;
 pub mod ply;
 pub mod text;
 
-use std::io::Read;
-use std::path::Path;
+mod files;
+pub use files::{read_file, read_file_io, read_listed, FileId, ReadError};
 
 use serde::{Deserialize, Serialize};
 
@@ -84,98 +86,6 @@ pub fn redact(message: &str) -> String {
         Some((cut, _)) => format!("{}…", &out[..cut]),
         None => out,
     }
-}
-
-/// Which file a path named when a walk listed it: its device and inode. A file read later
-/// for that listing ([`read_listed`]) must be this one.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct FileId {
-    device: u64,
-    inode: u64,
-}
-
-impl FileId {
-    /// The identity of the file `meta` describes (`None` where the platform has none).
-    #[cfg(unix)]
-    pub fn of(meta: &std::fs::Metadata) -> Option<FileId> {
-        use std::os::unix::fs::MetadataExt;
-        Some(FileId { device: meta.dev(), inode: meta.ino() })
-    }
-
-    #[cfg(not(unix))]
-    pub fn of(_: &std::fs::Metadata) -> Option<FileId> {
-        None
-    }
-}
-
-/// Read a user's file: a regular file of at most [`MAX_FILE_BYTES`]. A FIFO, device or
-/// socket is refused before a byte is read (opened non-blocking, so a FIFO without a writer
-/// cannot stall the open, then checked on the open handle), and the read stops one byte
-/// past the cap, so a file that grows, or reports a false length, cannot make it read more.
-/// The user named the path, so a link is followed; a file a walk listed is read by
-/// [`read_listed`].
-pub fn read_file(path: &Path) -> Result<Vec<u8>> {
-    read_checked(path, None)
-}
-
-/// Read a file a walk listed (in a dataset folder) as [`read_file`] does, but as it was
-/// listed: the path is opened without following a link (`O_NOFOLLOW`), and the file opened
-/// must be the one listed (`listed`, its device and inode). A file swapped after the
-/// listing, for a link to `/etc/passwd` say, is refused unread.
-pub fn read_listed(path: &Path, listed: Option<FileId>) -> Result<Vec<u8>> {
-    read_checked(path, Some(listed))
-}
-
-/// [`read_file`] (`listed` None) or [`read_listed`].
-fn read_checked(path: &Path, listed: Option<Option<FileId>>) -> Result<Vec<u8>> {
-    let name = path.display();
-    let fail = |e: std::io::Error| Error::invalid(format!("{name}: {e}"));
-    let mut options = std::fs::OpenOptions::new();
-    options.read(true);
-    #[cfg(unix)]
-    std::os::unix::fs::OpenOptionsExt::custom_flags(
-        &mut options,
-        libc::O_NONBLOCK | if listed.is_some() { libc::O_NOFOLLOW } else { 0 },
-    );
-    let file = options.open(path).map_err(|e| {
-        #[cfg(unix)]
-        if listed.flatten().is_some() && e.raw_os_error() == Some(libc::ELOOP) {
-            return Error::invalid(format!(
-                "{name}: a symbolic link now, not the file listed: not followed"
-            ));
-        }
-        fail(e)
-    })?;
-    let meta = file.metadata().map_err(fail)?;
-    if let Some(listed) = listed.flatten() {
-        if FileId::of(&meta) != Some(listed) {
-            return Err(Error::invalid(format!(
-                "{name}: another file than the one listed is there now: not read (list the dataset again to read it)"
-            )));
-        }
-    }
-    if !meta.is_file() {
-        return Err(Error::invalid(format!(
-            "{name}: not a regular file (a FIFO, device or socket is never read)"
-        )));
-    }
-    let too_large = |got: u64| {
-        Error::from(CoreError::TooLarge {
-            what: "bytes in one file",
-            got: Some(got),
-            limit: MAX_FILE_BYTES as u64,
-        })
-        .in_file(&path.display().to_string())
-    };
-    if meta.len() > MAX_FILE_BYTES as u64 {
-        return Err(too_large(meta.len()));
-    }
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(MAX_FILE_BYTES as u64 + 1).read_to_end(&mut bytes).map_err(fail)?;
-    if bytes.len() > MAX_FILE_BYTES {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
 }
 
 /// Known fold of a sample (ground truth), angles in the border convention (vertex k at 2πk/N).
