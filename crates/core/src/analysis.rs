@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::angle::{angle_to_param, param_to_angle, wrap_tau};
 use crate::border::{to_xyz, BorderFrames, Normalisation, Point};
 use crate::budget::{Budget, Deadline};
-use crate::close::{corners, Close};
+use crate::close::{corners, Close, CornerParams};
 use crate::confidence::{judge, Confidence};
 use crate::disk::Disk;
 use crate::error::{Error, Result};
@@ -42,6 +42,8 @@ pub struct Options {
     pub max_folds: usize,
     /// The fold search's knobs; the default is as measured ([`crate::fold::params`]).
     pub fold: Params,
+    /// The corner tests' knobs; the default is as measured ([`CornerParams`]).
+    pub corners: CornerParams,
     /// Checked while the disks are computed and between steps: once expired, the analysis
     /// stops with [`Error::Cancelled`]. The default never expires.
     pub deadline: Deadline,
@@ -57,6 +59,7 @@ impl Default for Options {
             method: FoldMethod::default(),
             max_folds: DEFAULT_MAX_FOLDS,
             fold: Params::default(),
+            corners: CornerParams::default(),
             deadline: Deadline::default(),
             budget: Budget::default(),
         }
@@ -288,7 +291,7 @@ pub fn analyze_with(sample: &BorderFrames, options: Options) -> Result<Analysis>
     let start_disk = Disk::of_border_until(&start_border, &options.deadline)?;
     // The corners need only the start state: found while the steps are analysed.
     let (found, steps) = rayon::join(
-        || corners(&start_disk, &start_border),
+        || corners(&start_disk, &start_border, &options.corners),
         || analyse_steps(frames, start, &norm, (&start_border, &start_disk), &options),
     );
     let (steps, predicted) = steps?;

@@ -6,27 +6,29 @@
 //! deviation of the disk values after dropping those with a z-score of 7 or more. On a mesh
 //! outline every staircase step passes that test, and on a fine polygonal curve every vertex
 //! does, so the threshold stays as one input and two more decide at the scale of the cloth:
-//! - the border must turn by at least [`MIN_TURN`] between the chords that reach
-//!   [`WINDOW`] of the perimeter back and forward from the vertex (a staircase along a
-//!   straight or slanted side turns by nothing at that scale, a circle by 2π·2·WINDOW);
+//! - the border must turn by at least [`CornerParams::min_turn_rad`] between the chords that reach
+//! [`CornerParams::window_share`] of the perimeter back and forward from the vertex (a staircase
+//! along a straight or slanted side turns by nothing at that scale, a circle by
+//! 2π·2·`window_share`);
 //! - of the rim cells that pass both tests within one window, only the largest |value| is a
 //!   corner (one corner per bend, not one per staircase step);
-//! - and only when its bend turns by at least [`MIN_TURN`] at half that scale too
-//!   ([`CORE_WINDOW`], at a vertex within that reach): a corner concentrates its turn, so the
-//!   narrower chords still see all of it, while a smooth curve spreads it and they see about
-//!   half (a round neckline whose radius is a few windows turns past MIN_TURN at WINDOW, not
-//!   at CORE_WINDOW; two corners close together, a sleeve's end, keep each its own turn);
-//! - a polygon's own vertex is a corner too when it turns by at least [`MIN_VERTEX_TURN`]
-//!   between straight neighbours (the two vertices either side turn by less than
-//!   [`STRAIGHT_SHARE`] of it): a neckline of a few gentle polygon corners keeps them, a
-//!   curve (every vertex turns alike) or a staircase (every step turns back) does not.
+//! - and only when its bend turns by at least [`CornerParams::min_turn_rad`] at half that scale too
+//! ([`CornerParams::core_window_share`], at a vertex within that reach): a corner concentrates its
+//! turn, so the narrower chords still see all of it, while a smooth curve spreads it and they see
+//! about half (a round neckline whose radius is a few windows turns past the least turn at the
+//! window, not at the core window; two corners close together, a sleeve's end, keep each its own
+//! turn); - a polygon's own vertex is a corner too when it turns by at least
+//! [`CornerParams::min_vertex_turn_rad`] between straight neighbours (the two vertices either side
+//! turn by less than [`CornerParams::straight_share`] of it): a neckline of a few gentle polygon
+//! corners keeps them, a curve (every vertex turns alike) or a staircase (every step turns back)
+//! does not.
 //!
 //! Each corner is reported as the angle of its vertex, 2πv/N.
 //!
 //! **CloSE** = ((θ_1 … θ_n), (f1, f2) per fold), all angles in [0, 2π).
 //!
 //! ```
-//! use close_core::close::corners;
+//! use close_core::close::{corners, CornerParams};
 //! use close_core::disk::Disk;
 //! use close_core::border::Point;
 //! let square: Vec<Point> = (0..16)
@@ -36,14 +38,15 @@
 //!         Point::new(x, y, 0.0)
 //!     })
 //!     .collect();
-//! let found = corners(&Disk::of_border(&square), &square);
+//! let found = corners(&Disk::of_border(&square), &square, &CornerParams::default());
 //! assert_eq!(found.vertices, vec![0, 4, 8, 12]);
 //! // A circle of 64 vertices turns at every vertex, and has no corner.
 //! let circle: Vec<Point> = (0..64).map(|k| {
 //!     let t = close_core::angle::param_to_angle(k as f64, 64);
 //!     Point::new(t.cos(), t.sin(), 0.0)
 //! }).collect();
-//! assert!(corners(&Disk::of_border(&circle), &circle).vertices.is_empty());
+//! let round = corners(&Disk::of_border(&circle), &circle, &CornerParams::default());
+//! assert!(round.vertices.is_empty());
 //! ```
 
 use serde::{Deserialize, Serialize};
@@ -54,18 +57,47 @@ use crate::geometry::Fold;
 
 use crate::disk::Disk;
 
-/// z-scores at or beyond this are outliers for the corner threshold.
+/// z-scores at or beyond this are outliers for the corner threshold: the paper's 7, not a
+/// knob.
 pub const OUTLIER_Z: f64 = 7.0;
-/// Least turn of the border, at the scale of [`WINDOW`], at a corner (45°).
-pub const MIN_TURN: f64 = std::f64::consts::FRAC_PI_4;
-/// Share of the perimeter each chord of the turn test spans, on either side of a vertex.
-pub const WINDOW: f64 = 0.025;
-/// The narrower chords of the concentration test: half of [`WINDOW`].
-pub const CORE_WINDOW: f64 = WINDOW / 2.0;
-/// Least turn of an isolated polygon vertex, between straight neighbours, at a corner (20°).
-pub const MIN_VERTEX_TURN: f64 = std::f64::consts::PI / 9.0;
-/// The neighbours of an isolated polygon vertex turn, together, by less than this share of it.
-pub const STRAIGHT_SHARE: f64 = 0.25;
+
+/// The knobs of the corner tests at the scale of the cloth (see the module doc), passed in
+/// ([`crate::analysis::Options::corners`]). Measured on the reference polygons and the
+/// physics outlines (`tests/it/reference.rs`,
+/// `corners_match_the_reference_on_polygons_and_a_round_cloth_has_none`;
+/// `tests/it/physics.rs`, `physics_folds`, every sample's own corners) and on the T-shirt
+/// necklines of this module's tests (commit f6d8d45).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CornerParams {
+    /// Least turn of the border, at the scale of [`CornerParams::window_share`], at a
+    /// corner (radians). Default π/4 (45°): a scoop neckline turns by ~33° at that scale.
+    pub min_turn_rad: f64,
+    /// Share of the perimeter each chord of the turn test spans, on either side of a
+    /// vertex. Default 0.025.
+    pub window_share: f64,
+    /// The narrower chords of the concentration test, as a share of the perimeter.
+    /// Default half of 0.025: a tight round neckline turns by about half its turn there,
+    /// a corner by all of it.
+    pub core_window_share: f64,
+    /// Least turn of an isolated polygon vertex, between straight neighbours, at a corner
+    /// (radians). Default π/9 (20°); chosen, not measured.
+    pub min_vertex_turn_rad: f64,
+    /// The neighbours of an isolated polygon vertex turn, together, by less than this share
+    /// of it. Default 0.25; chosen, not measured.
+    pub straight_share: f64,
+}
+
+impl Default for CornerParams {
+    fn default() -> CornerParams {
+        CornerParams {
+            min_turn_rad: std::f64::consts::FRAC_PI_4,
+            window_share: 0.025,
+            core_window_share: 0.025 / 2.0,
+            min_vertex_turn_rad: std::f64::consts::PI / 9.0,
+            straight_share: 0.25,
+        }
+    }
+}
 
 /// Corners found on a disk's rim.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -98,30 +130,34 @@ pub(crate) fn corner_threshold(disk: &Disk) -> f64 {
     mean_std(values.iter().copied().filter(|v| ((v - mean) / std).abs() < OUTLIER_Z)).1
 }
 
-/// The corners of a start state: its disk and its border (the same, normalised, state).
-pub fn corners(disk: &Disk, border: &[Point]) -> Corners {
+/// The corners of a start state: its disk and its border (the same, normalised, state),
+/// with the knobs `params`.
+pub fn corners(disk: &Disk, border: &[Point], params: &CornerParams) -> Corners {
     let n = disk.n();
     let threshold = corner_threshold(disk);
     let rim = |v: usize| disk.get((v + n - 1) % n, v).abs();
-    let reach = window_reach(border, WINDOW);
-    let core = window_reach(border, CORE_WINDOW);
+    let reach = window_reach(border, params.window_share);
+    let core = window_reach(border, params.core_window_share);
     let passes = |v: usize| threshold > 0.0 && rim(v) > threshold;
+    let min_turn = params.min_turn_rad;
     let candidate: Vec<bool> =
-        (0..n).map(|v| passes(v) && turn(border, v, &reach).abs() >= MIN_TURN).collect();
-    // The bend at v is concentrated when a vertex within CORE_WINDOW of it turns by
-    // MIN_TURN at that scale too (the corner need not be the vertex of the largest rim cell).
+        (0..n).map(|v| passes(v) && turn(border, v, &reach).abs() >= min_turn).collect();
+    // The bend at v is concentrated when a vertex within the core window of it turns by
+    // the least turn at that scale too (the corner need not be the vertex of the largest
+    // rim cell).
     let concentrated = |v: usize| {
         let (back, forward) = core[v];
         (0..=back)
             .map(|k| (v + n - k % n) % n)
             .chain((1..=forward).map(|k| (v + k) % n))
-            .any(|u| turn(border, u, &core).abs() >= MIN_TURN)
+            .any(|u| turn(border, u, &core).abs() >= min_turn)
     };
     let single: Vec<(usize, usize)> = vec![(1, 1); n];
     let vertex_turn: Vec<f64> = (0..n).map(|v| turn(border, v, &single).abs()).collect();
     let isolated = |v: usize| {
         let around: f64 = [n - 2, n - 1, 1, 2].iter().map(|&k| vertex_turn[(v + k) % n]).sum();
-        vertex_turn[v] >= MIN_VERTEX_TURN && around < STRAIGHT_SHARE * vertex_turn[v]
+        vertex_turn[v] >= params.min_vertex_turn_rad
+            && around < params.straight_share * vertex_turn[v]
     };
     // One corner per bend: the largest rim cell among the candidates within its window
     // (the earlier one on a tie).
@@ -207,7 +243,7 @@ mod tests {
     }
 
     fn found(border: &[Point]) -> Vec<[f64; 2]> {
-        corners(&Disk::of_border(border), border)
+        corners(&Disk::of_border(border), border, &CornerParams::default())
             .vertices
             .iter()
             .map(|&v| [border[v].x, border[v].y])
@@ -298,7 +334,8 @@ mod tests {
     #[test]
     fn a_curved_neckline_has_no_corners_but_the_shirt_has_all_its_own() {
         // A scoop neckline (radius 0.6, 30 % of the body's width): at the scale of the turn
-        // test (WINDOW of the perimeter, about 0.34 here) it turns by ~33°, under MIN_TURN.
+        // test (the window, 2.5 % of the perimeter, about 0.34 here) it turns by ~33°, under
+        // the least turn of 45°.
         let (corners, truth, spurious) = shirt_corners(0.6);
         assert!(truth.iter().all(|&t| corners.iter().any(|&c| near(c, t, 0.075))), "{corners:?}");
         assert!(spurious.is_empty(), "corners in the neckline or along a side: {spurious:?}");
@@ -306,17 +343,19 @@ mod tests {
 
     #[test]
     fn a_tight_round_neckline_spreads_its_turn_and_has_no_corner() {
-        // Radius 0.4 (a fifth of the body's width): ~48° at WINDOW, past MIN_TURN, but only
-        // about half of it at CORE_WINDOW, where every corner of the shirt keeps all of its own.
+        // Radius 0.4 (a fifth of the body's width): ~48° at the window, past the least turn,
+        // but only about half of it at the core window, where every corner of the shirt keeps
+        // all of its own.
+        let params = CornerParams::default();
         let (border, _) = tshirt(0.4, 0.05);
-        let reach = window_reach(&border, WINDOW);
+        let reach = window_reach(&border, params.window_share);
         let widest = (0..border.len())
             .filter(|&v| border[v].x.abs() < 0.35 && (0.55..0.95).contains(&border[v].y))
             .map(|v| turn(&border, v, &reach).abs())
             .fold(0.0, f64::max);
         assert!(
-            widest >= MIN_TURN,
-            "the neckline must turn past MIN_TURN at WINDOW for this test to mean anything: {}",
+            widest >= params.min_turn_rad,
+            "the neckline must turn past the least turn at the window for this test to mean anything: {}",
             widest.to_degrees()
         );
         let (corners, truth, spurious) = shirt_corners(0.4);
