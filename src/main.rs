@@ -275,33 +275,17 @@ fn read(path: &Path) -> CliResult<(String, Vec<u8>)> {
     Ok((path.display().to_string(), close::formats::read_file(path)?))
 }
 
-/// Write `bytes` to `path` so that no fault loses data: into a new temporary file beside it
-/// (created exclusively, so never through a link), synced, then renamed over `path` — a full
-/// disk or a kill leaves the old file, or none, never a truncated one, and a link at `path`
-/// is replaced, not followed. An existing `path` is refused unless `force`.
+/// Write `bytes` to `path` whole or not at all ([`close::formats::write_atomic`]: a temporary
+/// file beside it, synced, renamed over it; a link at `path` is replaced, not followed). An
+/// existing `path` is refused unless `force`.
 fn write_file(path: &Path, bytes: &[u8], force: bool) -> CliResult {
-    static TEMPS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     if !force && std::fs::symlink_metadata(path).is_ok() {
         return Err(CliError::Usage(format!(
             "{} already exists: give --force to replace it",
             path.display()
         )));
     }
-    let name = path.file_name().map_or("out".into(), |n| n.to_string_lossy().to_string());
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let k = TEMPS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let temp = dir.join(format!(".{name}.{}-{k}.tmp", std::process::id()));
-    let written = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&temp)
-        .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
-        .and_then(|()| std::fs::rename(&temp, path));
-    if let Err(e) = written {
-        let _ = std::fs::remove_file(&temp);
-        return Err(CliError::File { path: path.to_path_buf(), source: e });
-    }
-    Ok(())
+    close::formats::write_atomic(path, bytes).map_err(CliError::Output)
 }
 
 fn load_sample(paths: &[PathBuf]) -> CliResult<Sample> {

@@ -7,7 +7,8 @@
 //! the same upload has the same key after a restart). The folder is bounded: at most
 //! [`crate::Config::kept_uploads`] files and [`crate::Config::kept_upload_bytes`] bytes;
 //! past either, the oldest (by the time it was written) go first. A file is written whole
-//! under a temporary name and then renamed, so a reader never sees half of one.
+//! under a temporary name, synced and then renamed ([`close_io::formats::write_atomic`]), so
+//! a reader never sees half of one, even after a power cut.
 //!
 //! The folder is the user's, and anything may be put in it behind the server's back, so it
 //! is treated as hostile: `uploads` must be a folder (not a link to one); a temporary file
@@ -16,9 +17,7 @@
 //! ([`close_io::formats::read_listed`]: no link followed, a regular file only, bounded in
 //! size), and what it holds is parsed as any upload is. A file refused says why.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
@@ -41,8 +40,6 @@ pub(crate) struct Uploads {
     bytes: u64,
     /// Writes (and the pruning after them) one at a time.
     writing: Mutex<()>,
-    /// Temporary files written so far, for their unique names.
-    written: AtomicU64,
 }
 
 /// Whether `key` is a content key (hex digits), the only names this folder holds.
@@ -53,13 +50,7 @@ fn is_key(key: &str) -> bool {
 impl Uploads {
     /// The uploads under `data_dir`, at most `files` of them and `bytes` in all.
     pub fn new(data_dir: &Path, files: usize, bytes: u64) -> Uploads {
-        Uploads {
-            dir: data_dir.join("uploads"),
-            files,
-            bytes,
-            writing: Mutex::new(()),
-            written: AtomicU64::new(0),
-        }
+        Uploads { dir: data_dir.join("uploads"), files, bytes, writing: Mutex::new(()) }
     }
 
     /// Where the folder is.
@@ -90,23 +81,9 @@ impl Uploads {
                 self.dir.display()
             )));
         }
-        // A name of our own, created new: an existing file or link there is never written
-        // through.
-        let partial = self.dir.join(format!(
-            "{key}.{}.{}.partial",
-            std::process::id(),
-            self.written.fetch_add(1, Ordering::Relaxed)
-        ));
-        let written = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&partial)
-            .and_then(|mut file| file.write_all(&bytes))
-            .and_then(|()| std::fs::rename(&partial, self.path(key)));
-        if let Err(e) = written {
-            let _ = std::fs::remove_file(&partial);
-            return Err(e);
-        }
+        // Through a temporary file of our own, created new: an existing file or link there
+        // is never written through.
+        close_io::formats::write_atomic(&self.path(key), &bytes)?;
         self.prune(key)
     }
 
@@ -240,15 +217,12 @@ mod tests {
         let target = dir.join("target.txt");
         std::fs::write(&target, b"keep me").unwrap();
         for k in 0..4 {
-            let name = format!("bb05.{}.{k}.partial", std::process::id());
+            let name = format!(".bb05.json.{}.{k}.tmp", std::process::id());
             symlink(&target, uploads.dir().join(name)).unwrap();
         }
-        symlink(&target, uploads.dir().join("bb05.json.partial")).unwrap();
-        let saved = uploads.save("bb05", &sample("bb05"));
+        uploads.save("bb05", &sample("bb05")).unwrap();
         assert_eq!(std::fs::read(&target).unwrap(), b"keep me");
-        if saved.is_ok() {
-            assert!(uploads.load("bb05").unwrap().is_some());
-        }
+        assert!(uploads.load("bb05").unwrap().is_some());
         // `uploads` a link to another folder: refused, not written through.
         let other =
             std::env::temp_dir().join(format!("close-uploads-other-{}", std::process::id()));

@@ -1,9 +1,10 @@
 //! A user's file as bytes: read bounded (a regular file only, never more than
-//! [`MAX_FILE_BYTES`]). The CLI, the server and the Python package read through these, so a
-//! FIFO, a device or a growing file is refused the same way everywhere.
+//! [`MAX_FILE_BYTES`]), and written whole or not at all ([`write_atomic`]). The CLI, the
+//! server and the Python package read and write through these, so a FIFO, a device or a
+//! growing file is refused the same way everywhere.
 
 use std::fmt;
-use std::io::Read;
+use std::io::{Read, Write};
 use std::path::Path;
 
 use super::MAX_FILE_BYTES;
@@ -149,6 +150,51 @@ fn read_checked(
     Ok(bytes)
 }
 
+/// Most temporary names [`write_atomic`] tries beside one file before it gives up.
+const TEMP_NAMES: usize = 100;
+
+/// Write `bytes` to `path` so that no fault loses data: into a new temporary file beside it
+/// (created exclusively, `O_EXCL`, so never through a link planted there; a name taken is
+/// passed over), synced, renamed over `path`, and the folder synced (on unix) so that the
+/// rename outlasts a power cut. A full disk or a kill leaves the old file, or none, never a
+/// truncated one, and a link at `path` is replaced, not followed. The error names `path`;
+/// the temporary file is removed on any failure.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let named =
+        |e: std::io::Error| std::io::Error::new(e.kind(), format!("{}: {e}", path.display()));
+    let name = path.file_name().map_or("out".into(), |n| n.to_string_lossy().to_string());
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let mut created = None;
+    for k in 0..TEMP_NAMES {
+        let temp = dir.join(format!(".{name}.{}.{k}.tmp", std::process::id()));
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(&temp) {
+            Ok(file) => {
+                created = Some((temp, file));
+                break;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(named(e)),
+        }
+    }
+    let Some((temp, mut file)) = created else {
+        return Err(named(std::io::Error::new(
+            std::io::ErrorKind::AlreadyExists,
+            format!("{TEMP_NAMES} temporary names beside it are taken"),
+        )));
+    };
+    let written = file
+        .write_all(bytes)
+        .and_then(|()| file.sync_all())
+        .and_then(|()| std::fs::rename(&temp, path));
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&temp);
+        return Err(named(e));
+    }
+    #[cfg(unix)]
+    std::fs::File::open(dir).and_then(|d| d.sync_all()).map_err(named)?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -160,6 +206,67 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         dir
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn a_write_replaces_the_file_whole_and_leaves_no_temporary_file() {
+        let dir = scratch("write");
+        let path = dir.join("out.json");
+        write_atomic(&path, b"first").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"first");
+        write_atomic(&path, b"second, longer").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"second, longer");
+        write_atomic(&path, b"").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"");
+        assert_eq!(names(&dir), ["out.json"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_link_is_replaced_and_a_planted_temporary_name_passed_over() {
+        use std::os::unix::fs::symlink;
+        let dir = scratch("links");
+        let precious = dir.join("precious.txt");
+        std::fs::write(&precious, "keep me").unwrap();
+        let path = dir.join("out.json");
+        symlink(&precious, &path).unwrap();
+        // Links where the first temporary files would go: never written through.
+        for k in 0..3 {
+            symlink(&precious, dir.join(format!(".out.json.{}.{k}.tmp", std::process::id())))
+                .unwrap();
+        }
+        write_atomic(&path, b"new").unwrap();
+        assert_eq!(std::fs::read_to_string(&precious).unwrap(), "keep me");
+        assert!(std::fs::symlink_metadata(&path).unwrap().is_file(), "the link is replaced");
+        assert_eq!(std::fs::read(&path).unwrap(), b"new");
+        assert_eq!(names(&dir).len(), 2 + 3, "{:?}", names(&dir));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_failed_write_names_the_path_and_leaves_nothing() {
+        let dir = scratch("fail");
+        // The target is a folder that holds a file: the rename over it fails.
+        let path = dir.join("taken");
+        std::fs::create_dir_all(path.join("inside")).unwrap();
+        let e = write_atomic(&path, b"x").unwrap_err();
+        assert!(e.to_string().starts_with(&format!("{}: ", path.display())), "{e}");
+        assert_eq!(names(&dir), ["taken"]);
+        let missing = dir.join("no/such/folder/out.json");
+        let e = write_atomic(&missing, b"x").unwrap_err();
+        assert_eq!(e.kind(), std::io::ErrorKind::NotFound);
+        assert!(e.to_string().contains(&missing.display().to_string()), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -10,7 +10,8 @@
 //!
 //! A mesh sample's border is found by [`crate::mesh::border_of`] and followed by vertex index.
 //!
-//! A file's bytes are read bounded by [`read_file`] (a file a walk listed, [`read_listed`]).
+//! A file's bytes are read bounded by [`read_file`] (a file a walk listed, [`read_listed`]), and
+//! written whole or not at all by [`write_atomic`].
 
 pub mod json;
 pub mod mat;
@@ -19,7 +20,7 @@ pub mod ply;
 pub mod text;
 
 mod files;
-pub use files::{read_file, read_file_io, read_listed, FileId, ReadError};
+pub use files::{read_file, read_file_io, read_listed, write_atomic, FileId, ReadError};
 
 use serde::{Deserialize, Serialize};
 
