@@ -6,22 +6,23 @@
 //! deviation of the disk values after dropping those with a z-score of 7 or more. On a mesh
 //! outline every staircase step passes that test, and on a fine polygonal curve every vertex
 //! does, so the threshold stays as one input and two more decide at the scale of the cloth:
-//! - the border must turn by at least [`CornerParams::min_turn_rad`] between the chords that reach
-//! [`CornerParams::window_share`] of the perimeter back and forward from the vertex (a staircase
-//! along a straight or slanted side turns by nothing at that scale, a circle by
-//! 2π·2·`window_share`);
+//! - the border must turn by at least [`CornerParams::min_turn_rad`] between the chords
+//!   that reach [`CornerParams::window_share`] of the perimeter back and forward from the
+//!   vertex (a staircase along a straight or slanted side turns by nothing at that scale, a
+//!   circle by 2π·2·`window_share`);
 //! - of the rim cells that pass both tests within one window, only the largest |value| is a
 //!   corner (one corner per bend, not one per staircase step);
-//! - and only when its bend turns by at least [`CornerParams::min_turn_rad`] at half that scale too
-//! ([`CornerParams::core_window_share`], at a vertex within that reach): a corner concentrates its
-//! turn, so the narrower chords still see all of it, while a smooth curve spreads it and they see
-//! about half (a round neckline whose radius is a few windows turns past the least turn at the
-//! window, not at the core window; two corners close together, a sleeve's end, keep each its own
-//! turn); - a polygon's own vertex is a corner too when it turns by at least
-//! [`CornerParams::min_vertex_turn_rad`] between straight neighbours (the two vertices either side
-//! turn by less than [`CornerParams::straight_share`] of it): a neckline of a few gentle polygon
-//! corners keeps them, a curve (every vertex turns alike) or a staircase (every step turns back)
-//! does not.
+//! - and only when its bend turns by at least [`CornerParams::min_turn_rad`] at half that
+//!   scale too ([`CornerParams::core_window_share`], at a vertex within that reach): a corner
+//!   concentrates its turn, so the narrower chords still see all of it, while a smooth curve
+//!   spreads it and they see about half (a round neckline whose radius is a few windows turns
+//!   past the least turn at the window, not at the core window; two corners close together, a
+//!   sleeve's end, keep each its own turn);
+//! - a polygon's own vertex is a corner too when it turns by at least
+//!   [`CornerParams::min_vertex_turn_rad`] between straight neighbours (the two vertices
+//!   either side turn by less than [`CornerParams::straight_share`] of it): a neckline of a few
+//!   gentle polygon corners keeps them, a curve (every vertex turns alike) or a staircase
+//!   (every step turns back) does not.
 //!
 //! Each corner is reported as the angle of its vertex, 2πv/N.
 //!
