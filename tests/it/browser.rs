@@ -2232,7 +2232,9 @@ async fn uploads_outlive_a_reload_and_a_restart(client: &Client, scratch: &Path)
         "(f => f.drawn && f.drawn === f.wanted)(window.closeApp.interpolate.following())",
     )
     .await;
-    // A restart: a new server on the same address, over the same folder.
+    // A restart: a new server on the same address, over the same folder (the page left
+    // first, as below).
+    client.goto("about:blank").await.expect("leave the page");
     stop.send(()).ok();
     tokio::time::sleep(Duration::from_millis(300)).await;
     let stop = serve_at(addr, app(AppState::with_config(config()))).await;
@@ -2255,7 +2257,9 @@ async fn uploads_outlive_a_reload_and_a_restart(client: &Client, scratch: &Path)
         "/\\d+ steps? ·|already folded/.test(document.getElementById('plan-case').textContent)",
     )
     .await;
-    // Gone: the folder emptied behind the server's back.
+    // Gone: the folder emptied behind the server's back. The page is left first, so that
+    // none of its pictures is still asked of the server while it is down.
+    client.goto("about:blank").await.expect("leave the page");
     stop.send(()).ok();
     tokio::time::sleep(Duration::from_millis(300)).await;
     std::fs::remove_dir_all(&data).expect("empty the data folder");
